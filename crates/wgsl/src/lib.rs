@@ -1,0 +1,442 @@
+//! WGSL module composition for skyscape.
+//!
+//! skyscape keeps every WGSL function exactly once (under `shaders/<crate>/`) and lets
+//! other crates use it by import rather than by copy. The mechanism is a deliberately
+//! small preprocessor with one directive:
+//!
+//! ```wgsl
+//! #import atmos::phase
+//! ```
+//!
+//! * A directive is a line whose first non-blank characters are `#import`, followed by
+//!   one module name `crate::module`. Nothing else may follow on the line except a `//`
+//!   comment.
+//! * [`Composer::compose`] resolves imports depth first, emits each module **once**
+//!   (before the first module that needs it) and then the root source. Cycles and
+//!   unknown modules are errors naming the importing module.
+//! * There is no textual `#define`/`#ifdef`: variants are WGSL `override` constants, so
+//!   the composed text is always plain, valid WGSL and naga sees every branch.
+//! * A forgotten composition step fails loudly: `#` is not a WGSL token, so naga
+//!   rejects an uncomposed source.
+//!
+//! Why not naga_oil or WESL: both pin a naga version that trails wgpu's by a release or
+//! more, and skyscape needs nothing beyond ordered, deduplicated inclusion. Name
+//! clashes between modules are reported by naga itself when the composed source is
+//! validated (see [`validate`], behind the `validate` feature).
+
+pub mod common;
+
+use std::collections::{BTreeMap, HashSet};
+
+/// The shared WGSL modules (`common::*`), canonical under `shaders/common/`.
+pub const COMMON_MODULES: &[Module] = &[
+    Module {
+        name: "common::constants",
+        source: include_str!("../shaders/constants.wgsl"),
+    },
+    Module {
+        name: "common::hash",
+        source: include_str!("../shaders/hash.wgsl"),
+    },
+];
+
+/// One named WGSL source file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Module {
+    /// `crate::module`, e.g. `atmos::phase`.
+    pub name: &'static str,
+    /// The WGSL text, possibly with `#import` directives.
+    pub source: &'static str,
+}
+
+/// Errors from registering or composing modules.
+#[derive(Debug, thiserror::Error, PartialEq, Eq)]
+pub enum ComposeError {
+    /// A module name was registered twice with different sources.
+    #[error("WGSL module `{name}` is registered twice with different sources")]
+    DuplicateModule {
+        /// The clashing name.
+        name: String,
+    },
+    /// A module name does not have the `crate::module` form.
+    #[error("WGSL module name `{name}` is not of the form `crate::module`")]
+    BadModuleName {
+        /// The offending name.
+        name: String,
+    },
+    /// An `#import` names a module that was never registered.
+    #[error("`{importer}` line {line}: `#import {module}` names an unknown module")]
+    UnknownModule {
+        /// The module (or root) containing the directive.
+        importer: String,
+        /// 1-based line number of the directive in `importer`.
+        line: usize,
+        /// The requested module.
+        module: String,
+    },
+    /// A directive that is not `#import crate::module`.
+    #[error(
+        "`{importer}` line {line}: malformed directive `{text}` (expected `#import crate::module`)"
+    )]
+    MalformedDirective {
+        /// The module (or root) containing the directive.
+        importer: String,
+        /// 1-based line number.
+        line: usize,
+        /// The text of the line.
+        text: String,
+    },
+    /// Modules import each other in a cycle.
+    #[error("WGSL import cycle: {}", chain.join(" -> "))]
+    ImportCycle {
+        /// The chain of module names, first and last equal.
+        chain: Vec<String>,
+    },
+}
+
+/// A set of registered modules that sources can import from.
+#[derive(Debug, Clone, Default)]
+pub struct Composer {
+    modules: BTreeMap<&'static str, &'static str>,
+}
+
+/// What a line of WGSL is, as far as the composer cares.
+enum Line<'a> {
+    Import(&'a str),
+    Malformed,
+    Text,
+}
+
+fn classify(line: &str) -> Line<'_> {
+    let trimmed = line.trim_start();
+    let Some(rest) = trimmed.strip_prefix('#') else {
+        return Line::Text;
+    };
+    let Some(rest) = rest.strip_prefix("import") else {
+        return Line::Malformed;
+    };
+    let rest = match rest.find("//") {
+        Some(comment) => &rest[..comment],
+        None => rest,
+    };
+    let mut words = rest.split_whitespace();
+    match (words.next(), words.next()) {
+        (Some(name), None) if is_module_name(name) && rest.starts_with(char::is_whitespace) => {
+            Line::Import(name)
+        }
+        _ => Line::Malformed,
+    }
+}
+
+fn is_module_name(name: &str) -> bool {
+    let mut parts = name.split("::");
+    let ident = |s: &str| {
+        !s.is_empty()
+            && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+            && !s.starts_with(|c: char| c.is_ascii_digit())
+    };
+    matches!((parts.next(), parts.next(), parts.next()), (Some(a), Some(b), None) if ident(a) && ident(b))
+}
+
+impl Composer {
+    /// An empty composer; [`Composer::with_common`] is usually what you want.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// A composer that already knows [`COMMON_MODULES`].
+    pub fn with_common() -> Self {
+        let mut composer = Self::new();
+        composer
+            .add_modules(COMMON_MODULES)
+            .expect("common modules are well formed");
+        composer
+    }
+
+    /// Registers modules. Registering the identical module twice is allowed (crates
+    /// may each add their dependencies' modules); a different source under the same
+    /// name is an error.
+    pub fn add_modules(&mut self, modules: &[Module]) -> Result<&mut Self, ComposeError> {
+        for module in modules {
+            if !is_module_name(module.name) {
+                return Err(ComposeError::BadModuleName {
+                    name: module.name.to_owned(),
+                });
+            }
+            match self.modules.get(module.name) {
+                Some(existing) if *existing != module.source => {
+                    return Err(ComposeError::DuplicateModule {
+                        name: module.name.to_owned(),
+                    });
+                }
+                _ => {
+                    self.modules.insert(module.name, module.source);
+                }
+            }
+        }
+        Ok(self)
+    }
+
+    /// Names of all registered modules, sorted.
+    pub fn module_names(&self) -> impl Iterator<Item = &'static str> + '_ {
+        self.modules.keys().copied()
+    }
+
+    /// Composes the registered module `name` on its own (useful for validation).
+    pub fn compose_module(&self, name: &str) -> Result<String, ComposeError> {
+        let source = self
+            .modules
+            .get(name)
+            .ok_or_else(|| ComposeError::UnknownModule {
+                importer: "<caller>".into(),
+                line: 0,
+                module: name.to_owned(),
+            })?;
+        self.compose(name, source)
+    }
+
+    /// Resolves the imports of `root_source` (named `root_name` in errors) and returns
+    /// plain WGSL: each imported module once, dependencies first, then the root.
+    pub fn compose(&self, root_name: &str, root_source: &str) -> Result<String, ComposeError> {
+        let mut out = String::new();
+        let mut emitted = HashSet::new();
+        let mut stack = vec![root_name.to_owned()];
+        self.emit(root_name, root_source, &mut emitted, &mut stack, &mut out)?;
+        Ok(out)
+    }
+
+    fn emit(
+        &self,
+        name: &str,
+        source: &str,
+        emitted: &mut HashSet<String>,
+        stack: &mut Vec<String>,
+        out: &mut String,
+    ) -> Result<(), ComposeError> {
+        // Dependencies first, in directive order.
+        for (index, line) in source.lines().enumerate() {
+            match classify(line) {
+                Line::Text => {}
+                Line::Malformed => {
+                    return Err(ComposeError::MalformedDirective {
+                        importer: name.to_owned(),
+                        line: index + 1,
+                        text: line.trim().to_owned(),
+                    });
+                }
+                Line::Import(module) => {
+                    if stack.iter().any(|s| s == module) {
+                        let mut chain = stack.clone();
+                        chain.push(module.to_owned());
+                        return Err(ComposeError::ImportCycle { chain });
+                    }
+                    if emitted.contains(module) {
+                        continue;
+                    }
+                    let dependency =
+                        self.modules
+                            .get(module)
+                            .ok_or_else(|| ComposeError::UnknownModule {
+                                importer: name.to_owned(),
+                                line: index + 1,
+                                module: module.to_owned(),
+                            })?;
+                    stack.push(module.to_owned());
+                    self.emit(module, dependency, emitted, stack, out)?;
+                    stack.pop();
+                    emitted.insert(module.to_owned());
+                }
+            }
+        }
+        // Then the body, with directives blanked (keeps line structure readable).
+        out.push_str("// ---- begin ");
+        out.push_str(name);
+        out.push_str(" ----\n");
+        for line in source.lines() {
+            if matches!(classify(line), Line::Text) {
+                out.push_str(line);
+            }
+            out.push('\n');
+        }
+        out.push_str("// ---- end ");
+        out.push_str(name);
+        out.push_str(" ----\n");
+        Ok(())
+    }
+}
+
+/// Errors from naga validation of a composed source.
+#[cfg(feature = "validate")]
+#[derive(Debug, thiserror::Error)]
+pub enum ValidateError {
+    /// The WGSL front end rejected the text.
+    #[error("WGSL parse error in `{name}`:\n{message}")]
+    Parse {
+        /// Name given to [`validate`].
+        name: String,
+        /// naga's rendered diagnostic, with source excerpt.
+        message: String,
+    },
+    /// The module parsed but failed validation.
+    #[error("WGSL validation error in `{name}`:\n{message}")]
+    Validation {
+        /// Name given to [`validate`].
+        name: String,
+        /// naga's rendered diagnostic.
+        message: String,
+    },
+}
+
+/// Parses and validates composed WGSL with naga (the same front end wgpu uses), with
+/// every capability enabled so that only real errors are reported.
+#[cfg(feature = "validate")]
+pub fn validate(name: &str, source: &str) -> Result<naga::Module, ValidateError> {
+    let module = naga::front::wgsl::parse_str(source).map_err(|e| ValidateError::Parse {
+        name: name.to_owned(),
+        message: e.emit_to_string_with_path(source, name),
+    })?;
+    let mut validator = naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::all(),
+    );
+    validator
+        .validate(&module)
+        .map_err(|e| ValidateError::Validation {
+            name: name.to_owned(),
+            message: e.emit_to_string_with_path(source, name),
+        })?;
+    Ok(module)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const A: Module = Module {
+        name: "t::a",
+        source: "fn a() -> f32 { return 1.0; }\n",
+    };
+    const B: Module = Module {
+        name: "t::b",
+        source: "#import t::a\nfn b() -> f32 { return a() + 1.0; }\n",
+    };
+    const C: Module = Module {
+        name: "t::c",
+        source: "#import t::a // shared\n#import t::b\nfn c() -> f32 { return a() + b(); }\n",
+    };
+
+    fn composer(modules: &[Module]) -> Composer {
+        let mut c = Composer::new();
+        c.add_modules(modules).unwrap();
+        c
+    }
+
+    #[test]
+    fn dependencies_come_first_and_once() {
+        let c = composer(&[A, B, C]);
+        let out = c
+            .compose("root", "#import t::c\n#import t::b\nfn main_() {}\n")
+            .unwrap();
+        assert_eq!(out.matches("fn a()").count(), 1);
+        assert_eq!(out.matches("fn b()").count(), 1);
+        let (pa, pb, pc, pm) = (
+            out.find("fn a()").unwrap(),
+            out.find("fn b()").unwrap(),
+            out.find("fn c()").unwrap(),
+            out.find("fn main_()").unwrap(),
+        );
+        assert!(pa < pb && pb < pc && pc < pm, "{out}");
+        assert!(!out.contains("#import"));
+    }
+
+    #[test]
+    fn unknown_module_names_importer_and_line() {
+        let c = composer(&[A]);
+        let err = c.compose("root", "\n#import t::zzz\n").unwrap_err();
+        assert_eq!(
+            err,
+            ComposeError::UnknownModule {
+                importer: "root".into(),
+                line: 2,
+                module: "t::zzz".into()
+            }
+        );
+    }
+
+    #[test]
+    fn cycles_are_reported_with_the_chain() {
+        let x = Module {
+            name: "t::x",
+            source: "#import t::y\n",
+        };
+        let y = Module {
+            name: "t::y",
+            source: "#import t::x\n",
+        };
+        let err = composer(&[x, y])
+            .compose("root", "#import t::x\n")
+            .unwrap_err();
+        assert_eq!(
+            err,
+            ComposeError::ImportCycle {
+                chain: vec!["root".into(), "t::x".into(), "t::y".into(), "t::x".into()]
+            }
+        );
+    }
+
+    #[test]
+    fn malformed_directives_are_rejected() {
+        let c = composer(&[A]);
+        for bad in [
+            "#include t::a",
+            "#import",
+            "#import t::a t::b",
+            "#import a",
+            "#importt::a",
+        ] {
+            assert!(
+                matches!(
+                    c.compose("root", bad),
+                    Err(ComposeError::MalformedDirective { .. })
+                ),
+                "{bad}"
+            );
+        }
+    }
+
+    #[test]
+    fn duplicate_registration_rules() {
+        let mut c = composer(&[A]);
+        assert!(
+            c.add_modules(&[A]).is_ok(),
+            "identical re-registration is fine"
+        );
+        let other = Module {
+            name: "t::a",
+            source: "fn a2() {}",
+        };
+        assert!(matches!(
+            c.add_modules(&[other]),
+            Err(ComposeError::DuplicateModule { .. })
+        ));
+        assert!(matches!(
+            Composer::new().add_modules(&[Module {
+                name: "nocrate",
+                source: ""
+            }]),
+            Err(ComposeError::BadModuleName { .. })
+        ));
+    }
+
+    #[cfg(feature = "validate")]
+    #[test]
+    fn common_modules_validate_and_uncomposed_source_fails() {
+        let c = Composer::with_common();
+        for name in c.module_names() {
+            let src = c.compose_module(name).unwrap();
+            validate(name, &src).unwrap();
+        }
+        // Forgetting to compose must not go unnoticed.
+        assert!(validate("raw", "#import common::constants\n").is_err());
+    }
+}

@@ -1,0 +1,1 @@
+//! Cross-crate and GPU tests live in tests/tests/.
