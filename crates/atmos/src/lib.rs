@@ -1,1 +1,66 @@
-//! placeholder
+//! `atmos`: atmospheric scattering math, once in Rust and once in WGSL.
+//!
+//! Every public function here has a WGSL twin of the same name, arguments and units in
+//! `shaders/atmos/` (embedded as [`WGSL_MODULES`]); [`reference`] holds f64 versions
+//! used as ground truth by `cargo xtask parity`. Conventions (SI units, `r`/`mu`
+//! naming) are in `docs/architecture.md`.
+//!
+//! ```
+//! use atmos::phase::{henyey_greenstein_phase, rayleigh_phase};
+//! // Forward scattering by haze dominates the Rayleigh lobe near the sun.
+//! assert!(henyey_greenstein_phase(1.0, 0.8) > 10.0 * rayleigh_phase(1.0));
+//! ```
+
+pub mod closed_form;
+pub mod geometry;
+pub mod optical_depth;
+pub mod phase;
+pub mod reference;
+pub mod transmittance;
+
+pub use skyscape_wgsl::common::PI;
+
+/// The WGSL modules of this crate, importable as `#import atmos::<name>`.
+pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
+    skyscape_wgsl::Module {
+        name: "atmos::phase",
+        source: include_str!("../shaders/phase.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "atmos::geometry",
+        source: include_str!("../shaders/geometry.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "atmos::optical_depth",
+        source: include_str!("../shaders/optical_depth.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "atmos::transmittance",
+        source: include_str!("../shaders/transmittance.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "atmos::closed_form",
+        source: include_str!("../shaders/closed_form.wgsl"),
+    },
+];
+
+/// A composer that knows the common modules and every `atmos` module.
+pub fn composer() -> skyscape_wgsl::Composer {
+    let mut composer = skyscape_wgsl::Composer::with_common();
+    composer
+        .add_modules(WGSL_MODULES)
+        .expect("atmos WGSL module names are unique and well formed");
+    composer
+}
+
+#[cfg(test)]
+mod wgsl_tests {
+    #[test]
+    fn every_module_composes_and_validates() {
+        let composer = super::composer();
+        for module in super::WGSL_MODULES {
+            let source = composer.compose_module(module.name).unwrap();
+            skyscape_wgsl::validate(module.name, &source).unwrap();
+        }
+    }
+}

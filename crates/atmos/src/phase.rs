@@ -1,0 +1,115 @@
+//! Phase functions, normalised over the sphere (1/sr). Twin of `shaders/atmos/phase.wgsl`.
+
+use skyscape_wgsl::common::PI;
+
+/// Rayleigh phase function 3/(16π)(1 + cos²θ).
+pub fn rayleigh_phase(cos_theta: f32) -> f32 {
+    3.0 / (16.0 * PI) * (1.0 + cos_theta * cos_theta)
+}
+
+/// 1 + g² − 2g·cosθ as a sum of non-negative terms (accurate as |g| → 1).
+pub fn phase_denominator_base(cos_theta: f32, g: f32) -> f32 {
+    if g >= 0.0 {
+        let one_minus_g = 1.0 - g;
+        one_minus_g * one_minus_g + 2.0 * g * (1.0 - cos_theta)
+    } else {
+        let one_plus_g = 1.0 + g;
+        one_plus_g * one_plus_g - 2.0 * g * (1.0 + cos_theta)
+    }
+}
+
+/// Henyey–Greenstein phase function (1 − g²)/(4π(1 + g² − 2g·cosθ)^{3/2}).
+pub fn henyey_greenstein_phase(cos_theta: f32, g: f32) -> f32 {
+    let base = phase_denominator_base(cos_theta, g);
+    (1.0 - g) * (1.0 + g) / (4.0 * PI * base * base.sqrt())
+}
+
+/// Cornette–Shanks phase function
+/// 3/(8π)(1 − g²)(1 + cos²θ)/((2 + g²)(1 + g² − 2g·cosθ)^{3/2}).
+pub fn cornette_shanks_phase(cos_theta: f32, g: f32) -> f32 {
+    let base = phase_denominator_base(cos_theta, g);
+    3.0 / (8.0 * PI) * (1.0 - g) * (1.0 + g) * (1.0 + cos_theta * cos_theta)
+        / ((2.0 + g * g) * base * base.sqrt())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference;
+
+    /// ∫ p dΩ = 2π ∫₋₁¹ p(μ) dμ, by composite Simpson in f64.
+    fn sphere_integral(p: impl Fn(f64) -> f64) -> f64 {
+        let n = 200_000;
+        let h = 2.0 / n as f64;
+        let mut sum = p(-1.0) + p(1.0);
+        for i in 1..n {
+            let w = if i % 2 == 1 { 4.0 } else { 2.0 };
+            sum += w * p(-1.0 + i as f64 * h);
+        }
+        2.0 * std::f64::consts::PI * sum * h / 3.0
+    }
+
+    #[test]
+    fn phases_are_normalised() {
+        approx::assert_relative_eq!(
+            sphere_integral(reference::rayleigh_phase),
+            1.0,
+            max_relative = 1e-9
+        );
+        for g in [-0.9, -0.5, 0.0, 0.3, 0.76, 0.9] {
+            approx::assert_relative_eq!(
+                sphere_integral(|mu| reference::henyey_greenstein_phase(mu, g)),
+                1.0,
+                max_relative = 1e-6
+            );
+            approx::assert_relative_eq!(
+                sphere_integral(|mu| reference::cornette_shanks_phase(mu, g)),
+                1.0,
+                max_relative = 1e-6
+            );
+        }
+    }
+
+    #[test]
+    fn mean_cosine_of_henyey_greenstein_is_g() {
+        for g in [-0.7, 0.2, 0.8] {
+            let mean = sphere_integral(|mu| mu * reference::henyey_greenstein_phase(mu, g));
+            approx::assert_abs_diff_eq!(mean, g, epsilon = 1e-6);
+        }
+    }
+
+    #[test]
+    fn analytic_values() {
+        approx::assert_relative_eq!(rayleigh_phase(0.0), 3.0 / (16.0 * PI), max_relative = 1e-7);
+        approx::assert_relative_eq!(rayleigh_phase(1.0), 3.0 / (8.0 * PI), max_relative = 1e-7);
+        // g = 0 is isotropic.
+        approx::assert_relative_eq!(
+            henyey_greenstein_phase(0.3, 0.0),
+            1.0 / (4.0 * PI),
+            max_relative = 1e-7
+        );
+        // Forward peak (1+g)/(4π(1−g)²).
+        let g = 0.9f32;
+        approx::assert_relative_eq!(
+            henyey_greenstein_phase(1.0, g),
+            (1.0 + g) / (4.0 * PI * (1.0 - g) * (1.0 - g)),
+            max_relative = 1e-5
+        );
+    }
+
+    #[test]
+    fn stable_denominator_beats_naive_form_near_unit_g() {
+        // g = 0.9999, θ = 0: exact 1 + g² − 2g = (1 − g)² = 1e−8.
+        let (mu, g) = (1.0f32, 0.9999f32);
+        let naive = 1.0 + g * g - 2.0 * g * mu;
+        let stable = phase_denominator_base(mu, g);
+        let exact = reference::phase_denominator_base(f64::from(mu), f64::from(g));
+        let rel = |x: f32| ((f64::from(x) - exact) / exact).abs();
+        assert!(rel(stable) < 1e-6, "stable form error {}", rel(stable));
+        assert!(
+            rel(naive) > 1e-2,
+            "naive form unexpectedly accurate: {}",
+            rel(naive)
+        );
+    }
+}

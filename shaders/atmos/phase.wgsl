@@ -1,0 +1,35 @@
+// Phase functions, normalised over the sphere (unit: 1/sr).
+// Twin: atmos::phase (f32) and atmos::reference (f64). Same names, same arguments.
+#import common::constants
+
+// Rayleigh: 3/(16π) (1 + cos²θ).
+fn rayleigh_phase(cos_theta: f32) -> f32 {
+    return 3.0 / (16.0 * PI) * (1.0 + cos_theta * cos_theta);
+}
+
+// 1 + g² − 2 g cosθ, written as a sum of non-negative terms so it keeps full
+// relative accuracy as |g| → 1 (the naive form cancels when g cosθ ≈ 1).
+//   g ≥ 0: (1 − g)² + 2 g (1 − cosθ)
+//   g < 0: (1 + g)² − 2 g (1 + cosθ)
+fn phase_denominator_base(cos_theta: f32, g: f32) -> f32 {
+    if g >= 0.0 {
+        let one_minus_g = 1.0 - g;
+        return one_minus_g * one_minus_g + 2.0 * g * (1.0 - cos_theta);
+    }
+    let one_plus_g = 1.0 + g;
+    return one_plus_g * one_plus_g - 2.0 * g * (1.0 + cos_theta);
+}
+
+// Henyey–Greenstein: (1 − g²) / (4π (1 + g² − 2 g cosθ)^{3/2}).
+fn henyey_greenstein_phase(cos_theta: f32, g: f32) -> f32 {
+    let base = phase_denominator_base(cos_theta, g);
+    // 1 − g² as (1 − g)(1 + g): exact factors, no cancellation near |g| = 1.
+    return (1.0 - g) * (1.0 + g) / (4.0 * PI * base * sqrt(base));
+}
+
+// Cornette–Shanks: 3/(8π) (1 − g²)(1 + cos²θ) / ((2 + g²)(1 + g² − 2 g cosθ)^{3/2}).
+fn cornette_shanks_phase(cos_theta: f32, g: f32) -> f32 {
+    let base = phase_denominator_base(cos_theta, g);
+    return 3.0 / (8.0 * PI) * (1.0 - g) * (1.0 + g) * (1.0 + cos_theta * cos_theta)
+        / ((2.0 + g * g) * base * sqrt(base));
+}
