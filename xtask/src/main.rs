@@ -1,1 +1,94 @@
-fn main() {}
+//! skyscape's developer tasks: `cargo xtask <command>`.
+//!
+//! * `parity [--filter NAME] [--backend vulkan|gl|…] [--inject CASE] [--self-test]` —
+//!   every WGSL function against its Rust twin and f64 reference; table on stdout,
+//!   `target/parity/report.json`; exits non-zero when a case fails.
+
+mod parity;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// The workspace root (xtask lives one level below it).
+pub fn workspace_root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask is inside the workspace")
+        .to_path_buf()
+}
+
+const USAGE: &str =
+    "usage: cargo xtask parity [--filter NAME] [--backend BACKENDS] [--inject CASE] [--self-test]";
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    match args.first().map(String::as_str) {
+        Some("parity") => run_parity(&args[1..]),
+        Some("-h" | "--help") | None => {
+            println!("{USAGE}");
+            ExitCode::SUCCESS
+        }
+        Some(other) => {
+            eprintln!("unknown command `{other}`\n{USAGE}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run_parity(args: &[String]) -> ExitCode {
+    let mut options = parity::Options::default();
+    let mut self_test = false;
+    let mut iter = args.iter();
+    while let Some(arg) = iter.next() {
+        let mut value = |flag: &str| {
+            iter.next()
+                .cloned()
+                .ok_or_else(|| format!("{flag} needs a value"))
+        };
+        let result = match arg.as_str() {
+            "--filter" => value("--filter").map(|v| options.filter = Some(v)),
+            "--inject" => value("--inject").map(|v| options.inject = Some(v)),
+            "--backend" => value("--backend").and_then(|v| {
+                let backends = wgpu::Backends::from_comma_list(&v);
+                if backends.is_empty() {
+                    Err(format!("--backend `{v}` names no known backend"))
+                } else {
+                    skyscape_harness::select_backends(backends).map_err(|e| e.to_string())
+                }
+            }),
+            "--self-test" => {
+                self_test = true;
+                Ok(())
+            }
+            other => Err(format!("unknown option `{other}`\n{USAGE}")),
+        };
+        if let Err(message) = result {
+            eprintln!("{message}");
+            return ExitCode::FAILURE;
+        }
+    }
+    if self_test {
+        let problems = parity::self_test();
+        if problems.is_empty() {
+            println!(
+                "parity self-test: every comparator passes the reference and rejects injected differences and NaN"
+            );
+            return ExitCode::SUCCESS;
+        }
+        for problem in problems {
+            eprintln!("self-test: {problem}");
+        }
+        return ExitCode::FAILURE;
+    }
+    match parity::run(&options) {
+        Ok(true) => ExitCode::SUCCESS,
+        Ok(false) => {
+            eprintln!("parity: at least one case is out of tolerance");
+            ExitCode::FAILURE
+        }
+        Err(message) => {
+            eprintln!("parity: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}

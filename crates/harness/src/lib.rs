@@ -113,9 +113,26 @@ fn backend_env() -> String {
     std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "unset".into())
 }
 
+static BACKENDS: OnceLock<wgpu::Backends> = OnceLock::new();
+
+/// Chooses the backends instead of `WGPU_BACKEND` (e.g. from a `--backend` flag).
+/// Must be called before the first [`context`].
+pub fn select_backends(backends: wgpu::Backends) -> Result<(), HarnessError> {
+    if CONTEXT.get().is_some() || BACKENDS.set(backends).is_err() {
+        return Err(HarnessError::NoAdapter {
+            backend: format!("{backends:?}"),
+            reason: "backends must be selected before the GPU context is created".into(),
+        });
+    }
+    Ok(())
+}
+
 fn create_context() -> Result<GpuContext, HarnessError> {
-    let instance =
-        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+    if let Some(backends) = BACKENDS.get() {
+        descriptor.backends = *backends;
+    }
+    let instance = wgpu::Instance::new(descriptor);
     let adapter = pollster::block_on(wgpu::util::initialize_adapter_from_env_or_default(
         &instance, None,
     ))

@@ -1,1 +1,51 @@
-//! placeholder
+//! `render`: composes skyscape's subsystems into images. It owns only what is
+//! specific to composition (the sky pass, display encoding); every piece of physics
+//! comes from the subsystem crates, in Rust and by `#import` in WGSL.
+//!
+//! ```
+//! let scene = render::SkyScene { width: 32, height: 18, ..Default::default() };
+//! let pixels = render::sky::render_sky_cpu(&scene).unwrap();
+//! assert_eq!(pixels.len(), 32 * 18);
+//! ```
+
+pub mod error;
+#[cfg(feature = "gpu")]
+pub mod gpu;
+pub mod sky;
+pub mod tonemap;
+
+pub use error::RenderError;
+pub use sky::{ClosedFormAtmosphere, SkyScene, SkyUniforms};
+
+/// The WGSL modules of this crate, importable as `#import render::<name>`.
+pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
+    skyscape_wgsl::Module {
+        name: "render::tonemap",
+        source: include_str!("../shaders/tonemap.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::sky_closed_form",
+        source: include_str!("../shaders/sky_closed_form.wgsl"),
+    },
+];
+
+/// A composer with the common, `atmos` and `render` modules.
+pub fn composer() -> skyscape_wgsl::Composer {
+    let mut composer = atmos::composer();
+    composer
+        .add_modules(WGSL_MODULES)
+        .expect("render WGSL module names are unique and well formed");
+    composer
+}
+
+#[cfg(test)]
+mod wgsl_tests {
+    #[test]
+    fn every_module_composes_and_validates() {
+        let composer = super::composer();
+        for module in super::WGSL_MODULES {
+            let source = composer.compose_module(module.name).unwrap();
+            skyscape_wgsl::validate(module.name, &source).unwrap();
+        }
+    }
+}

@@ -1,0 +1,39 @@
+//! Errors of the `render` crate.
+
+/// What went wrong, naming the field and the value.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum RenderError {
+    /// A scene parameter is outside its valid range (or not finite).
+    #[error("invalid scene: `{field}` = {value}: {reason}")]
+    InvalidParameter {
+        /// The field, as spelled in the API (e.g. `atmosphere.mie_g`).
+        field: &'static str,
+        /// Its value, formatted.
+        value: String,
+        /// The rule it breaks.
+        reason: &'static str,
+    },
+    /// `encode` was called before `prepare`.
+    #[error("the pass was encoded before `prepare` gave it a scene")]
+    NotPrepared,
+    /// WGSL composition failed (a bug in skyscape's shaders).
+    #[error("WGSL composition: {0}")]
+    Shader(#[from] skyscape_wgsl::ComposeError),
+}
+
+pub(crate) fn check(
+    field: &'static str,
+    value: f32,
+    ok: bool,
+    reason: &'static str,
+) -> Result<(), RenderError> {
+    if value.is_finite() && ok {
+        Ok(())
+    } else {
+        Err(RenderError::InvalidParameter {
+            field,
+            value: value.to_string(),
+            reason,
+        })
+    }
+}

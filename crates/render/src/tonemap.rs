@@ -1,0 +1,100 @@
+//! Display encoding. Twin of `shaders/render/tonemap.wgsl`.
+
+use atmos::transmittance::one_minus_exp_neg;
+use skyscape_wgsl::common::{hash_combine, hash_u32, unit_float_from_bits};
+
+/// Seed 001's tone map, 1 − exp(−radiance·exposure) per channel.
+pub fn tonemap_exposure(radiance: [f32; 3], exposure: f32) -> [f32; 3] {
+    radiance.map(|c| one_minus_exp_neg(c * exposure))
+}
+
+/// The sRGB transfer function (IEC 61966-2-1) for one channel in [0, 1].
+pub fn linear_to_srgb(linear: f32) -> f32 {
+    if linear <= 0.003_130_8 {
+        12.92 * linear
+    } else {
+        1.055 * linear.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// Triangular-PDF dither in (−1, 1) LSB for a pixel (identical to the WGSL).
+pub fn dither_offset(pixel: [u32; 2], seed: u32) -> f32 {
+    let h = hash_combine(hash_combine(seed, pixel[0]), pixel[1]);
+    unit_float_from_bits(h) + unit_float_from_bits(hash_u32(h ^ 0x5bd1_e995)) - 1.0
+}
+
+/// sRGB-encodes, dithers and quantises a display value to 8-bit code values.
+pub fn quantize_srgb8(display: [f32; 3], pixel: [u32; 2], seed: u32) -> [f32; 3] {
+    let offset = dither_offset(pixel, seed);
+    display.map(|c| {
+        (linear_to_srgb(c) * 255.0 + offset + 0.5)
+            .floor()
+            .clamp(0.0, 255.0)
+    })
+}
+
+/// Packs code values into RGBA8 (alpha 255), R in the low byte.
+pub fn pack_rgba8(code: [f32; 3]) -> u32 {
+    let [r, g, b] = code.map(|c| c as u32);
+    r | (g << 8) | (b << 16) | (255 << 24)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn srgb_endpoints_and_continuity() {
+        assert_eq!(linear_to_srgb(0.0), 0.0);
+        approx::assert_abs_diff_eq!(linear_to_srgb(1.0), 1.0, epsilon = 1e-6);
+        let below = linear_to_srgb(0.003_130_8);
+        let above = linear_to_srgb(0.003_130_9);
+        assert!((above - below).abs() < 1e-5);
+    }
+
+    #[test]
+    fn dither_is_triangular_and_centred() {
+        let n = 200_000u32;
+        let samples: Vec<f32> = (0..n)
+            .map(|i| dither_offset([i % 1000, i / 1000], 7))
+            .collect();
+        let mean = samples.iter().map(|&s| f64::from(s)).sum::<f64>() / f64::from(n);
+        let variance = samples.iter().map(|&s| f64::from(s).powi(2)).sum::<f64>() / f64::from(n);
+        assert!(samples.iter().all(|s| s.abs() < 1.0));
+        assert!(mean.abs() < 0.01, "mean {mean}");
+        // Triangular on (−1, 1) has variance 1/6.
+        assert!((variance - 1.0 / 6.0).abs() < 0.005, "variance {variance}");
+    }
+
+    #[test]
+    fn dithering_breaks_banding_on_a_smooth_gradient() {
+        // A slow ramp over 1024 pixels spans ~4 code values: without dither each
+        // value would hold for ~250 pixels; with it the longest run is short while
+        // the local mean still tracks the ramp.
+        let width = 1024u32;
+        let codes: Vec<f32> = (0..width)
+            .map(|x| quantize_srgb8([0.2 + 0.002 * x as f32 / width as f32; 3], [x, 0], 1)[0])
+            .collect();
+        let longest = codes
+            .chunk_by(|a, b| a == b)
+            .map(<[f32]>::len)
+            .max()
+            .unwrap();
+        assert!(longest < 40, "longest run of one code value: {longest}");
+    }
+
+    #[test]
+    fn tonemap_is_monotonic_and_bounded() {
+        let mut last = -1.0;
+        for i in 0..1000 {
+            let v = tonemap_exposure([i as f32 * 0.01; 3], 3.0)[0];
+            assert!(v >= last && (0.0..=1.0).contains(&v));
+            last = v;
+        }
+    }
+
+    #[test]
+    fn packing_puts_red_in_the_low_byte() {
+        assert_eq!(pack_rgba8([1.0, 2.0, 3.0]).to_le_bytes(), [1, 2, 3, 255]);
+    }
+}

@@ -1,0 +1,545 @@
+//! The registry of parity cases: each pairs one WGSL function with its Rust f32 twin
+//! and (where one exists) an f64 reference, over a dense input grid plus extremes.
+
+use super::compare::{Tolerance, UNIT_ROUNDOFF as U};
+use atmos::reference as f64ref;
+
+/// One WGSL function (or pass) against its twins.
+pub struct Case {
+    /// `crate::function`.
+    pub name: &'static str,
+    /// WGSL modules the kernel imports.
+    pub imports: &'static [&'static str],
+    /// Number of f32 inputs per element (`x0`, `x1`, …) and outputs (`y0`, …).
+    pub arity: (usize, usize),
+    /// WGSL statements computing `y*` from `x*`.
+    pub wgsl: &'static str,
+    /// The inputs (each row has `arity.0` values; they are rounded to f32 before use).
+    pub grid: fn() -> Vec<Vec<f64>>,
+    /// The Rust f32 twin.
+    pub cpu: fn(&[f32]) -> Vec<f32>,
+    /// The f64 reference, evaluated on the f32-rounded inputs.
+    pub reference: fn(&[f64]) -> Vec<f64>,
+    /// Tolerance with its justification.
+    pub tolerance: Tolerance,
+}
+
+const R_GROUND: f64 = 6_360_000.0;
+const R_TOP: f64 = 6_460_000.0;
+/// The Earth coefficients used by the closed-form cases (1/m).
+const BETA_RAYLEIGH: [f64; 3] = [5.802e-6, 13.558e-6, 33.1e-6];
+const BETA_MIE: [f64; 3] = [3.996e-6, 3.996e-6, 3.996e-6];
+
+fn linspace(a: f64, b: f64, n: usize) -> impl Iterator<Item = f64> {
+    (0..n).map(move |i| a + (b - a) * i as f64 / (n - 1) as f64)
+}
+
+fn logspace(a: f64, b: f64, n: usize) -> impl Iterator<Item = f64> {
+    linspace(a.ln(), b.ln(), n).map(f64::exp)
+}
+
+fn to_f32(v: [f64; 3]) -> [f32; 3] {
+    v.map(|x| x as f32)
+}
+
+/// Cosines dense over [−1, 1] plus the ends approached geometrically.
+fn cosines(n: usize) -> Vec<f64> {
+    let mut v: Vec<f64> = linspace(-1.0, 1.0, n).collect();
+    for k in 1..=8 {
+        let d = 10f64.powi(-k);
+        v.extend([1.0 - d, -1.0 + d]);
+    }
+    v.extend([0.0, 1.0, -1.0]);
+    v
+}
+
+/// Anisotropies over (−1, 1), denser towards ±1, with ±0.9999 as the extremes.
+fn anisotropies() -> Vec<f64> {
+    let mut v: Vec<f64> = linspace(-0.99, 0.99, 81).collect();
+    v.extend([-0.9999, -0.999, -0.995, 0.995, 0.999, 0.9999, 0.0]);
+    v
+}
+
+// ---------------------------------------------------------------- phase functions
+
+fn phase_grid() -> Vec<Vec<f64>> {
+    let mut grid = Vec::new();
+    for g in anisotropies() {
+        for mu in cosines(201) {
+            grid.push(vec![mu, g]);
+        }
+    }
+    grid
+}
+
+// ---------------------------------------------------------------- ray geometry
+
+fn altitudes() -> [f64; 14] {
+    [
+        -10.0, 0.0, 1.0, 10.0, 100.0, 1e3, 1e4, 5e4, 99_999.0, 100_000.0, 100_001.0, 2e5, 1e6, 1e7,
+    ]
+}
+
+/// Bound on the absolute error of the discriminant b² − c in f32 (b = r·mu,
+/// c = (r − R)(r + R)): each product is correctly rounded in WGSL and Rust, so
+/// |δD| ≤ 4u(b² + |c|) with margin.
+fn discriminant_and_error(r: f64, mu: f64, radius: f64) -> (f64, f64) {
+    let b = r * mu;
+    let c = (r - radius) * (r + radius);
+    (b * b - c, 4.0 * U * (b * b + c.abs()))
+}
+
+fn ray_sphere_grid() -> Vec<Vec<f64>> {
+    let mut grid = Vec::new();
+    for altitude in altitudes() {
+        for radius in [R_GROUND, R_TOP] {
+            let r = f64::from((R_GROUND + altitude) as f32);
+            let mut mus = cosines(401);
+            if r > radius {
+                // Rays grazing this sphere: around the tangent cosine.
+                let tangent = -(1.0 - (radius / r).powi(2)).sqrt();
+                for k in 0..20 {
+                    let d = 1e-7 * 1.6f64.powi(k);
+                    mus.extend([tangent - d, tangent + d]);
+                }
+            }
+            for mu in mus {
+                let mu32 = f64::from(mu as f32);
+                let (d, error) = discriminant_and_error(r, mu32, radius);
+                // Hit or miss is undecidable in f32 within rounding of D = 0: such
+                // near-tangent rays are excluded (both answers are right).
+                if d.abs() < error {
+                    continue;
+                }
+                grid.push(vec![r, mu, radius]);
+            }
+        }
+    }
+    grid
+}
+
+/// |δt| ≤ 2·δ√D + 12u|t|, with δ√D = min(δD/(2√D), √δD): the roots inherit the
+/// discriminant's absolute error (q has no cancellation, |c/q| ≤ |q|), plus
+/// sqrt (WGSL: 1/inverseSqrt, ≤ 4.5 ULP), division (2.5 ULP) and a few roundings.
+fn ray_sphere_bound(x: &[f64]) -> Vec<f64> {
+    let (d, error) = discriminant_and_error(x[0], x[1], x[2]);
+    let t = f64ref::ray_sphere_intersect(x[0], x[1], x[2]);
+    let sqrt_error = if d > 0.0 {
+        (error / (2.0 * d.sqrt())).min(error.sqrt())
+    } else {
+        0.0
+    };
+    t.iter()
+        .map(|t| 2.0 * sqrt_error + 12.0 * U * t.abs())
+        .collect()
+}
+
+fn altitude_grid() -> Vec<Vec<f64>> {
+    let mut grid = Vec::new();
+    for altitude in [-10.0, 0.0, 1.0, 100.0, 1e3, 1e4, 1e5, 1e6, 1e7] {
+        let r = R_GROUND + altitude;
+        for mu in linspace(-1.0, 1.0, 41) {
+            for t in std::iter::once(0.0).chain(logspace(1e-2, 1e7, 30)) {
+                grid.push(vec![r, mu, t, R_GROUND]);
+            }
+        }
+    }
+    grid
+}
+
+/// Forward bound of `altitude_along_ray`: the numerator
+/// (r − R)(r + R) + t(2rμ + t) has |δ| ≤ 4u(|(r−R)(r+R)| + |t|(2|rμ| + |t|)) (inner
+/// sum 2rμ + t may cancel), divided by r_t + R; plus 8u|h| for the sqrt and division.
+fn altitude_error(r: f64, mu: f64, t: f64, planet_radius: f64) -> f64 {
+    let e1 = ((r - planet_radius) * (r + planet_radius)).abs();
+    let r_t = (r * r + t * (2.0 * r * mu + t)).max(0.0).sqrt();
+    let h = f64ref::altitude_along_ray(r, mu, t, planet_radius);
+    4.0 * U * (e1 + t.abs() * (2.0 * (r * mu).abs() + t.abs())) / (r_t + planet_radius)
+        + 8.0 * U * h.abs()
+}
+
+const OPTICAL_SAMPLES: f64 = 16.0;
+
+fn optical_length_grid() -> Vec<Vec<f64>> {
+    let mut grid = Vec::new();
+    let altitudes: Vec<f64> = std::iter::once(0.0)
+        .chain(logspace(1.0, 99_000.0, 19))
+        .collect();
+    for scale_height in [1200.0, 8000.0] {
+        for &altitude in &altitudes {
+            let r = R_GROUND + altitude;
+            for mu in linspace(-1.0, 1.0, 251) {
+                let ground = f64ref::ray_sphere_intersect(r, mu, R_GROUND);
+                let top = f64ref::ray_sphere_intersect(r, mu, R_TOP);
+                // Rays that meet the ground stop there (at 0 for a camera on the ground).
+                let length = if ground[0] >= 0.0 { ground[0] } else { top[1] };
+                grid.push(vec![r, mu, length, R_GROUND, scale_height, OPTICAL_SAMPLES]);
+            }
+        }
+    }
+    grid
+}
+
+/// Σᵢ dt·e^{−xᵢ}·(2u(3 + 2xᵢ) + 5u·xᵢ + δhᵢ/H) + (n + 4)u·result: WGSL's exp bound
+/// (3 + 2|x| ULP), the division h/H (2.5 ULP), each sample's altitude error (incl.
+/// 4u·t from t = (i + ½)·dt), and the summation of n positive terms.
+fn optical_length_bound(x: &[f64]) -> Vec<f64> {
+    let (r, mu, length, planet, scale_height) = (x[0], x[1], x[2], x[3], x[4]);
+    let n = x[5] as u32;
+    let dt = length / f64::from(n);
+    let mut bound = 0.0;
+    let mut total = 0.0;
+    for i in 0..n {
+        let t = (f64::from(i) + 0.5) * dt;
+        let h = f64ref::altitude_along_ray(r, mu, t, planet);
+        let xi = h / scale_height;
+        let term = (-xi).exp() * dt;
+        let dh = altitude_error(r, mu, t, planet) + 4.0 * U * t;
+        bound += term * (2.0 * U * (3.0 + 2.0 * xi.abs()) + 5.0 * U * xi.abs() + dh / scale_height);
+        total += term;
+    }
+    vec![bound + (f64::from(n) + 4.0) * U * total]
+}
+
+// ---------------------------------------------------------------- exponentials
+
+fn optical_depths() -> Vec<f64> {
+    let mut v: Vec<f64> = logspace(1e-8, 1e4, 9000).collect();
+    v.extend(linspace(0.0, 100.0, 1001));
+    v.extend([0.0, 87.0, 88.0, 95.0, 103.0, 1e4]);
+    v
+}
+
+/// WGSL: exp has 3 + 2|x| ULP; write it as a relative bound 2u(3 + 2|x|).
+fn exp_relative_error(x: f64) -> f64 {
+    2.0 * U * (3.0 + 2.0 * x.abs())
+}
+
+fn one_minus_exp_bound(x: f64) -> f64 {
+    if x.abs() < 0.5 {
+        0.0
+    } else {
+        // 1 − e^{−x}: the exp error, absolute, plus the subtraction's rounding.
+        exp_relative_error(x) * (-x).exp() + U * (1.0 - (-x).exp()).abs()
+    }
+}
+
+fn closed_form_grid() -> Vec<Vec<f64>> {
+    let mut grid = Vec::new();
+    for g in [0.0, 0.76, 0.9, -0.5] {
+        for mu in linspace(-1.0, 1.0, 41) {
+            for s in std::iter::once(0.0).chain(logspace(1.0, 1e7, 64)) {
+                grid.push(vec![mu, g, s]);
+            }
+        }
+    }
+    grid
+}
+
+fn closed_form_optical_depths(s: f64) -> [f64; 3] {
+    std::array::from_fn(|i| (BETA_RAYLEIGH[i] + BETA_MIE[i]) * s)
+}
+
+/// The case list, in report order.
+pub fn all() -> Vec<Case> {
+    vec![
+        Case {
+            name: "atmos::rayleigh_phase",
+            imports: &["atmos::phase"],
+            arity: (1, 1),
+            wgsl: "y0 = rayleigh_phase(x0);",
+            grid: || cosines(20_001).into_iter().map(|mu| vec![mu]).collect(),
+            cpu: |x| vec![atmos::phase::rayleigh_phase(x[0])],
+            reference: |x| vec![f64ref::rayleigh_phase(x[0])],
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 4.0,
+                bound: None,
+                why: "3 correctly rounded + and × (WGSL and Rust), the constant folded once; \
+                      ≤ 2 ULP plus the reference's rounding to f32",
+            },
+        },
+        Case {
+            name: "atmos::henyey_greenstein_phase",
+            imports: &["atmos::phase"],
+            arity: (2, 1),
+            wgsl: "y0 = henyey_greenstein_phase(x0, x1);",
+            grid: phase_grid,
+            cpu: |x| vec![atmos::phase::henyey_greenstein_phase(x[0], x[1])],
+            reference: |x| vec![f64ref::henyey_greenstein_phase(x[0], x[1])],
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 16.0,
+                bound: None,
+                why: "stable base (≤ 2 ULP, sums of non-negative terms) enters as base^{3/2} (×1.5); \
+                      WGSL sqrt = 1/inverseSqrt ≤ 4.5 ULP, ÷ 2.5 ULP, 4 × and (1−g)(1+g) ≤ 2.5: \
+                      ≈ 13 ULP",
+            },
+        },
+        Case {
+            name: "atmos::cornette_shanks_phase",
+            imports: &["atmos::phase"],
+            arity: (2, 1),
+            wgsl: "y0 = cornette_shanks_phase(x0, x1);",
+            grid: phase_grid,
+            cpu: |x| vec![atmos::phase::cornette_shanks_phase(x[0], x[1])],
+            reference: |x| vec![f64ref::cornette_shanks_phase(x[0], x[1])],
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 20.0,
+                bound: None,
+                why: "the Henyey–Greenstein budget (13 ULP) plus (1 + cos²θ) and (2 + g²) \
+                      factors (≤ 3 ULP) and one more product",
+            },
+        },
+        Case {
+            name: "atmos::ray_sphere_intersect",
+            imports: &["atmos::geometry"],
+            arity: (3, 2),
+            wgsl: "let hit = ray_sphere_intersect(x0, x1, x2); y0 = hit.x; y1 = hit.y;",
+            grid: ray_sphere_grid,
+            cpu: |x| atmos::geometry::ray_sphere_intersect(x[0], x[1], x[2]).to_vec(),
+            reference: |x| f64ref::ray_sphere_intersect(x[0], x[1], x[2]).to_vec(),
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 2.0,
+                bound: Some(ray_sphere_bound),
+                why: "forward bound: 2·δ√D + 12u|t| with δD = 4u(b² + |c|) (near-tangent rays \
+                      are ill-conditioned in f32 whatever the formula; rays within rounding of \
+                      tangency are excluded as undecidable)",
+            },
+        },
+        Case {
+            name: "atmos::altitude_along_ray",
+            imports: &["atmos::geometry"],
+            arity: (4, 1),
+            wgsl: "y0 = altitude_along_ray(x0, x1, x2, x3);",
+            grid: altitude_grid,
+            cpu: |x| vec![atmos::geometry::altitude_along_ray(x[0], x[1], x[2], x[3])],
+            reference: |x| vec![f64ref::altitude_along_ray(x[0], x[1], x[2], x[3])],
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 2.0,
+                bound: Some(|x| vec![altitude_error(x[0], x[1], x[2], x[3])]),
+                why: "forward bound: 4u(|(r−R)(r+R)| + |t|(2|rμ| + |t|))/(r_t + R) + 8u|h| \
+                      (the only cancellation left is the geometric one in 2rμ + t)",
+            },
+        },
+        Case {
+            name: "atmos::optical_length_exponential",
+            imports: &["atmos::optical_depth"],
+            arity: (6, 1),
+            wgsl: "y0 = optical_length_exponential(x0, x1, x2, x3, x4, u32(x5));",
+            grid: optical_length_grid,
+            cpu: |x| {
+                vec![atmos::optical_depth::optical_length_exponential(
+                    x[0],
+                    x[1],
+                    x[2],
+                    x[3],
+                    x[4],
+                    x[5] as u32,
+                )]
+            },
+            reference: |x| {
+                vec![f64ref::optical_length_exponential(
+                    x[0],
+                    x[1],
+                    x[2],
+                    x[3],
+                    x[4],
+                    x[5] as u32,
+                )]
+            },
+            tolerance: Tolerance {
+                abs: 1e-30,
+                rel: 0.0,
+                ulp: 2.0,
+                bound: Some(optical_length_bound),
+                why: "forward bound summed over the 16 samples: WGSL exp (3 + 2|x| ULP), h/H \
+                      (2.5 ULP), each altitude's bound, n-term summation; abs 1e-30 m for \
+                      samples flushed to 0 above ~100 km with H = 1.2 km",
+            },
+        },
+        Case {
+            name: "atmos::transmittance_from_optical_depth",
+            imports: &["atmos::transmittance"],
+            arity: (3, 3),
+            wgsl: "let t = transmittance_from_optical_depth(vec3<f32>(x0, x1, x2)); \
+                   y0 = t.x; y1 = t.y; y2 = t.z;",
+            grid: || {
+                optical_depths()
+                    .into_iter()
+                    .map(|tau| vec![tau, tau * 0.37, tau * 3.1])
+                    .collect()
+            },
+            cpu: |x| {
+                atmos::transmittance::transmittance_from_optical_depth([x[0], x[1], x[2]]).to_vec()
+            },
+            reference: |x| f64ref::transmittance_from_optical_depth([x[0], x[1], x[2]]).to_vec(),
+            tolerance: Tolerance {
+                abs: f32::MIN_POSITIVE as f64,
+                rel: 0.0,
+                ulp: 1.0,
+                bound: Some(|x| {
+                    x.iter()
+                        .map(|&tau| exp_relative_error(tau) * (-tau).exp())
+                        .collect()
+                }),
+                why: "WGSL exp: 3 + 2|x| ULP (lavapipe measured ≈ 16); results below f32::MIN_POSITIVE \
+                      may flush to 0 (exp(−95) does on lavapipe)",
+            },
+        },
+        Case {
+            name: "atmos::one_minus_exp_neg",
+            imports: &["atmos::transmittance"],
+            arity: (1, 1),
+            wgsl: "y0 = one_minus_exp_neg(x0);",
+            grid: || {
+                let mut v: Vec<f64> = logspace(1e-8, 1e4, 8000).collect();
+                v.extend(linspace(-0.5, 2.0, 2001));
+                v.extend([0.0, 1e-8, 0.5, 0.499_999_97, -0.499_999_97]);
+                v.into_iter().map(|x| vec![x]).collect()
+            },
+            cpu: |x| vec![atmos::transmittance::one_minus_exp_neg(x[0])],
+            reference: |x| vec![f64ref::one_minus_exp_neg(x[0])],
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 4.0,
+                bound: Some(|x| vec![one_minus_exp_bound(x[0])]),
+                why: "|x| < 0.5: 8-term Horner series, each factor in [0.7, 1.3] (≤ 4 ULP); \
+                      beyond: WGSL exp's 3 + 2|x| ULP scaled by e^{−x}, plus one subtraction",
+            },
+        },
+        Case {
+            name: "atmos::closed_form_inscatter",
+            imports: &["atmos::closed_form"],
+            arity: (3, 3),
+            wgsl: "let l = closed_form_inscatter(vec3<f32>(5.802e-6, 13.558e-6, 33.1e-6), \
+                   vec3<f32>(3.996e-6), x0, x1, x2); y0 = l.x; y1 = l.y; y2 = l.z;",
+            grid: closed_form_grid,
+            cpu: |x| {
+                atmos::closed_form::closed_form_inscatter(
+                    to_f32(BETA_RAYLEIGH),
+                    to_f32(BETA_MIE),
+                    x[0],
+                    x[1],
+                    x[2],
+                )
+                .to_vec()
+            },
+            reference: |x| {
+                f64ref::closed_form_inscatter(
+                    to_f32(BETA_RAYLEIGH).map(f64::from),
+                    to_f32(BETA_MIE).map(f64::from),
+                    x[0],
+                    x[1],
+                    x[2],
+                )
+                .to_vec()
+            },
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 32.0,
+                bound: Some(|x| {
+                    let reference = f64ref::closed_form_inscatter(
+                        to_f32(BETA_RAYLEIGH).map(f64::from),
+                        to_f32(BETA_MIE).map(f64::from),
+                        x[0],
+                        x[1],
+                        x[2],
+                    );
+                    let tau = closed_form_optical_depths(x[2]);
+                    (0..3)
+                        .map(|i| {
+                            let fraction = f64ref::one_minus_exp_neg(tau[i]);
+                            if fraction > 0.0 {
+                                reference[i] * one_minus_exp_bound(tau[i]) / fraction
+                            } else {
+                                0.0
+                            }
+                        })
+                        .collect()
+                }),
+                why: "phases (HG 13 + Rayleigh 2 ULP, weighted sum 1), 1 − e^{−τ} (4 ULP, or exp's \
+                      bound relative to the result), τ = βs (1.5), division (2.5): ≤ 32 ULP \
+                      plus the exp term",
+            },
+        },
+        Case {
+            name: "atmos::closed_form_extinction",
+            imports: &["atmos::closed_form"],
+            arity: (3, 3),
+            wgsl: "let t = closed_form_extinction(vec3<f32>(5.802e-6, 13.558e-6, 33.1e-6), \
+                   vec3<f32>(3.996e-6), x2); y0 = t.x; y1 = t.y; y2 = t.z;",
+            grid: closed_form_grid,
+            cpu: |x| {
+                atmos::closed_form::closed_form_extinction(
+                    to_f32(BETA_RAYLEIGH),
+                    to_f32(BETA_MIE),
+                    x[2],
+                )
+                .to_vec()
+            },
+            reference: |x| {
+                f64ref::closed_form_extinction(
+                    to_f32(BETA_RAYLEIGH).map(f64::from),
+                    to_f32(BETA_MIE).map(f64::from),
+                    x[2],
+                )
+                .to_vec()
+            },
+            tolerance: Tolerance {
+                abs: f32::MIN_POSITIVE as f64,
+                rel: 0.0,
+                ulp: 1.0,
+                bound: Some(|x| {
+                    closed_form_optical_depths(x[2])
+                        .iter()
+                        .map(|&tau| (-tau).exp() * (exp_relative_error(tau) + 3.0 * U * tau))
+                        .collect()
+                }),
+                why: "τ = (βR + βM)·s carries 1.5u relative (an absolute 1.5u·τ in the exponent), \
+                      then WGSL exp's 3 + 2|τ| ULP; flushed subnormals allowed",
+            },
+        },
+        Case {
+            name: "common::hash_u32",
+            imports: &["common::hash"],
+            arity: (2, 2),
+            wgsl: "let h = hash_u32(u32(x0) | (u32(x1) << 16u)); y0 = f32(h >> 8u); y1 = f32(h & 0xffu);",
+            grid: || {
+                let mut v = Vec::new();
+                for hi in (0..65_536u32).step_by(4099) {
+                    for lo in (0..65_536u32).step_by(97) {
+                        v.push(vec![f64::from(lo), f64::from(hi)]);
+                    }
+                }
+                v.push(vec![65_535.0, 65_535.0]);
+                v
+            },
+            cpu: |x| {
+                let h = skyscape_wgsl::common::hash_u32(x[0] as u32 | ((x[1] as u32) << 16));
+                vec![(h >> 8) as f32, (h & 0xff) as f32]
+            },
+            reference: |x| {
+                let h = skyscape_wgsl::common::hash_u32(x[0] as u32 | ((x[1] as u32) << 16));
+                vec![f64::from(h >> 8), f64::from(h & 0xff)]
+            },
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 0.0,
+                bound: None,
+                why: "integer arithmetic wraps identically in WGSL and Rust: bit-exact",
+            },
+        },
+    ]
+}
