@@ -43,6 +43,12 @@ pub enum HarnessError {
         /// wgpu's reason.
         reason: String,
     },
+    /// The process-wide context could not be created earlier (the reason is kept).
+    #[error("{reason}")]
+    Unavailable {
+        /// Why the context could not be created.
+        reason: String,
+    },
     /// The adapter refused to create a device.
     #[error("adapter `{adapter}` refused a device: {reason}")]
     NoDevice {
@@ -178,8 +184,7 @@ pub fn context() -> Result<&'static GpuContext, HarnessError> {
         }
         created.map_err(|e| e.to_string())
     });
-    result.as_ref().map_err(|reason| HarnessError::NoAdapter {
-        backend: backend_env(),
+    result.as_ref().map_err(|reason| HarnessError::Unavailable {
         reason: reason.clone(),
     })
 }

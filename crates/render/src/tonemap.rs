@@ -1,7 +1,7 @@
 //! Display encoding. Twin of `shaders/render/tonemap.wgsl`.
 
 use atmos::transmittance::one_minus_exp_neg;
-use skyscape_wgsl::common::{hash_combine, hash_u32, unit_float_from_bits};
+use skyscape_wgsl::common::{hash_combine, hash_u32};
 
 /// Seed 001's tone map, 1 − exp(−radiance·exposure) per channel.
 pub fn tonemap_exposure(radiance: [f32; 3], exposure: f32) -> [f32; 3] {
@@ -17,10 +17,12 @@ pub fn linear_to_srgb(linear: f32) -> f32 {
     }
 }
 
-/// Triangular-PDF dither in (−1, 1) LSB for a pixel (identical to the WGSL).
+/// Triangular-PDF dither in (−1, 1) LSB for a pixel: two 23-bit draws summed in
+/// integers and converted once, exactly (bit-identical to the WGSL).
 pub fn dither_offset(pixel: [u32; 2], seed: u32) -> f32 {
     let h = hash_combine(hash_combine(seed, pixel[0]), pixel[1]);
-    unit_float_from_bits(h) + unit_float_from_bits(hash_u32(h ^ 0x5bd1_e995)) - 1.0
+    let sum = (h >> 9) + (hash_u32(h ^ 0x5bd1_e995) >> 9);
+    (sum as i32 - 8_388_608) as f32 * (1.0 / 8_388_608.0)
 }
 
 /// sRGB-encodes, dithers and quantises a display value to 8-bit code values.

@@ -234,7 +234,7 @@ pub fn run(options: &Options) -> Result<bool, String> {
 
 fn print_table(reports: &[CaseReport]) {
     println!(
-        "{:<40} {:<4} {:>7} {:>10} {:>10} {:>8} {:>10} {:<26} {:<7} drift",
+        "{:<40} {:<4} {:>7} {:>10} {:>10} {:>8} {:>10} {:<30} {:<7} drift",
         "case",
         "side",
         "inputs",
@@ -253,7 +253,7 @@ fn print_table(reports: &[CaseReport]) {
                 continue;
             };
             println!(
-                "{:<40} {:<4} {:>7} {:>10.3e} {:>10.3e} {:>8} {:>10.3e} {:<26} {:<7} {}",
+                "{:<40} {:<4} {:>7} {:>10.3e} {:>10.3e} {:>8} {:>10.3e} {:<30} {:<7} {}",
                 report.name,
                 side,
                 report.inputs,
