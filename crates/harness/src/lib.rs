@@ -272,7 +272,7 @@ impl GpuContext {
 
     /// Errors unless storage buffers of `bytes` can be bound.
     pub fn require_storage_binding(&self, bytes: u64) -> Result<(), HarnessError> {
-        let have = u64::from(self.device.limits().max_storage_buffer_binding_size);
+        let have = self.device.limits().max_storage_buffer_binding_size;
         if have >= bytes {
             Ok(())
         } else {
@@ -305,22 +305,40 @@ pub fn workgroups_1d(n: u32, workgroup_size: u32) -> [u32; 3] {
     }
 }
 
-/// Runs `entry` of the (already composed) WGSL `source` once over the given storage
-/// buffers and reads back the output.
+/// One compute dispatch over storage buffers, for [`run_compute`].
 ///
 /// Bindings: `@group(0) @binding(i)` is `inputs[i]` (read-only storage) for
 /// `i < inputs.len()`, and `@binding(inputs.len())` is the read-write output of
 /// `output_bytes` bytes. `constants` set WGSL `override` values.
-pub fn run_compute(
-    ctx: &GpuContext,
-    label: &str,
-    source: &str,
-    entry: &str,
-    constants: &[(&str, f64)],
-    inputs: &[&[u8]],
-    output_bytes: u64,
-    workgroups: [u32; 3],
-) -> Result<Vec<u8>, HarnessError> {
+#[derive(Debug, Clone, Copy)]
+pub struct ComputeJob<'a> {
+    /// Label for wgpu objects and errors.
+    pub label: &'a str,
+    /// Composed WGSL (no `#import` left).
+    pub source: &'a str,
+    /// Entry point.
+    pub entry: &'a str,
+    /// `override` constants.
+    pub constants: &'a [(&'a str, f64)],
+    /// Read-only storage inputs, in binding order.
+    pub inputs: &'a [&'a [u8]],
+    /// Size of the output buffer in bytes.
+    pub output_bytes: u64,
+    /// Workgroup counts (see [`workgroups_1d`]).
+    pub workgroups: [u32; 3],
+}
+
+/// Validates the job's WGSL with naga, runs it once and reads back the output.
+pub fn run_compute(ctx: &GpuContext, job: &ComputeJob<'_>) -> Result<Vec<u8>, HarnessError> {
+    let ComputeJob {
+        label,
+        source,
+        entry,
+        constants,
+        inputs,
+        output_bytes,
+        workgroups,
+    } = *job;
     use wgpu::util::DeviceExt as _;
     skyscape_wgsl::validate(label, source)?;
     let device = &ctx.device;
@@ -464,13 +482,15 @@ mod tests {
         let input: Vec<f32> = (0..100).map(|i| i as f32).collect();
         let out = run_compute(
             gpu,
-            "round_trip",
-            src,
-            "main",
-            &[("scale", 2.0)],
-            &[bytemuck::cast_slice(&input)],
-            400,
-            workgroups_1d(100, 64),
+            &ComputeJob {
+                label: "round_trip",
+                source: src,
+                entry: "main",
+                constants: &[("scale", 2.0)],
+                inputs: &[bytemuck::cast_slice(&input)],
+                output_bytes: 400,
+                workgroups: workgroups_1d(100, 64),
+            },
         )
         .unwrap();
         let out: &[f32] = bytemuck::cast_slice(&out);
@@ -482,7 +502,18 @@ mod tests {
         let Some(gpu) = gpu_or_skip("harness::invalid_shader") else {
             return;
         };
-        let err = run_compute(gpu, "bad", "fn oops( {", "main", &[], &[], 4, [1, 1, 1]);
+        let err = run_compute(
+            gpu,
+            &ComputeJob {
+                label: "bad",
+                source: "fn oops( {",
+                entry: "main",
+                constants: &[],
+                inputs: &[],
+                output_bytes: 4,
+                workgroups: [1, 1, 1],
+            },
+        );
         assert!(matches!(err, Err(HarnessError::Shader(_))), "{err:?}");
     }
 }

@@ -504,8 +504,10 @@ mod tests {
         scene.atmosphere.mie_g = 1.0;
         let err = SkyUniforms::from_scene(&scene).unwrap_err();
         assert!(err.to_string().contains("atmosphere.mie_g"), "{err}");
-        let mut scene = SkyScene::default();
-        scene.exposure = f32::NAN;
+        let scene = SkyScene {
+            exposure: f32::NAN,
+            ..SkyScene::default()
+        };
         assert!(matches!(
             SkyUniforms::from_scene(&scene),
             Err(RenderError::InvalidParameter {
@@ -513,8 +515,10 @@ mod tests {
                 ..
             })
         ));
-        let mut scene = SkyScene::default();
-        scene.width = 0;
+        let scene = SkyScene {
+            width: 0,
+            ..SkyScene::default()
+        };
         assert!(matches!(
             SkyUniforms::from_scene(&scene),
             Err(RenderError::InvalidParameter { field: "width", .. })
@@ -523,8 +527,9 @@ mod tests {
 
     #[test]
     fn no_nan_anywhere_over_extreme_scenes() {
+        use std::f32::consts::FRAC_PI_2;
         for altitude in [0.0, 1.0, 7_999.0, 8_000.0, 8_001.0, 1e5, 1e7] {
-            for sun_elevation in [-1.5707, -0.1, 0.0, 0.02, 1.5707] {
+            for sun_elevation in [-FRAC_PI_2, -0.1, 0.0, 0.02, FRAC_PI_2] {
                 let scene = SkyScene {
                     width: 48,
                     height: 27,

@@ -3,6 +3,9 @@
 /// f32 unit roundoff, 2⁻²⁴: half an ULP at 1.0. Forward-error bounds are written in it.
 pub const UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;
 
+/// A forward-error bound: extra absolute allowance per output element, from the inputs.
+pub type ForwardBound = fn(&[f64]) -> Vec<f64>;
+
 /// Per-case tolerance. An output element passes when
 /// `|value − reference| ≤ abs + rel·|reference| + ulp·ulp_f32(reference) + bound(inputs)`,
 /// where `bound` is an optional forward-error bound computed from the inputs (for
@@ -16,7 +19,7 @@ pub struct Tolerance {
     /// Allowance in f32 ULPs of the reference.
     pub ulp: f64,
     /// Extra absolute allowance per output element from a forward-error analysis.
-    pub bound: Option<fn(&[f64]) -> Vec<f64>>,
+    pub bound: Option<ForwardBound>,
     /// Why these numbers (printed in the report).
     pub why: &'static str,
 }
@@ -142,7 +145,9 @@ pub fn compare(
             (f64::from(value) - expected).abs()
         };
         let ratio = if error == 0.0 { 0.0 } else { error / allowed };
-        if !(ratio <= 1.0) {
+        // NaN ratios (a NaN error) fail too.
+        let within = ratio <= 1.0;
+        if !within {
             stats.failures += 1;
         }
         if ratio > stats.worst_ratio || (ratio.is_nan() && !stats.worst_ratio.is_nan()) {

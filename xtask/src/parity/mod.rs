@@ -147,13 +147,15 @@ fn evaluate_gpu(
         .map_err(|e| e.to_string())?;
     let bytes = skyscape_harness::run_compute(
         gpu,
-        case.name,
-        &composed,
-        "parity_main",
-        &[],
-        &[bytemuck::cast_slice(inputs32)],
-        (count * case.arity.1 * 4) as u64,
-        skyscape_harness::workgroups_1d(count as u32, 64),
+        &skyscape_harness::ComputeJob {
+            label: case.name,
+            source: &composed,
+            entry: "parity_main",
+            constants: &[],
+            inputs: &[bytemuck::cast_slice(inputs32)],
+            output_bytes: (count * case.arity.1 * 4) as u64,
+            workgroups: skyscape_harness::workgroups_1d(count as u32, 64),
+        },
     )
     .map_err(|e| e.to_string())?;
     Ok(bytemuck::cast_slice(&bytes).to_vec())
