@@ -1,6 +1,6 @@
 //! skyscape's developer tasks: `cargo xtask <command>`.
 //!
-//! * `parity [--filter NAME] [--backend vulkan|gl|…] [--inject CASE] [--self-test]` —
+//! * `parity [--filter NAME] [--backend vulkan|gl|…] [--inject CASE] [--markdown PATH] [--self-test]` —
 //!   every WGSL function against its Rust twin and f64 reference; table on stdout,
 //!   `target/parity/report.json`; exits non-zero when a case fails.
 
@@ -48,6 +48,7 @@ fn run_parity(args: &[String]) -> ExitCode {
         let result = match arg.as_str() {
             "--filter" => value("--filter").map(|v| options.filter = Some(v)),
             "--inject" => value("--inject").map(|v| options.inject = Some(v)),
+            "--markdown" => value("--markdown").map(|v| options.markdown = Some(v.into())),
             "--backend" => value("--backend").and_then(|v| {
                 let backends = wgpu::Backends::from_comma_list(&v);
                 if backends.is_empty() {
