@@ -549,3 +549,58 @@ mod tests {
         }
     }
 }
+
+/// Seed 000's observations, as tests of the closed-form sky.
+#[cfg(test)]
+mod seed_000_observations {
+    use super::*;
+
+    fn sky(sun_elevation: f32, mie_scattering: f32) -> SkyUniforms {
+        SkyUniforms::from_scene(&SkyScene {
+            sun_elevation,
+            atmosphere: ClosedFormAtmosphere {
+                mie_scattering,
+                ..ClosedFormAtmosphere::default()
+            },
+            ..SkyScene::default()
+        })
+        .unwrap()
+    }
+
+    /// Chroma relative to brightness: (max − min)/max of the channels.
+    fn saturation(c: [f32; 3]) -> f32 {
+        let max = c.iter().copied().fold(0.0, f32::max);
+        let min = c.iter().copied().fold(f32::INFINITY, f32::min);
+        (max - min) / max
+    }
+
+    #[test]
+    fn clear_blue_sky_without_mie() {
+        let u = sky(std::f32::consts::FRAC_PI_2 - 0.01, 0.0);
+        let zenith = shade_sky_pixel(Vec3::Y, &u);
+        assert!(zenith[2] > zenith[1] && zenith[1] > zenith[0], "{zenith:?}");
+    }
+
+    #[test]
+    fn strong_mie_with_high_sun_is_hazy() {
+        // 30° from a high sun, with 25× Earth's haze: brighter and much less
+        // saturated than the clear sky in the same direction.
+        let clear = sky(1.3, 3.996e-6);
+        let hazy = sky(1.3, 1e-4);
+        let direction = direction_from_angles(1.3 - 0.52, 0.6);
+        let (c, h) = (shade_sky_pixel(direction, &clear), shade_sky_pixel(direction, &hazy));
+        assert!(saturation(h) < 0.6 * saturation(c), "hazy {h:?} vs clear {c:?}");
+        assert!(h.iter().sum::<f32>() > c.iter().sum::<f32>());
+    }
+
+    #[test]
+    fn low_sun_turns_the_sky_towards_it_yellow_orange() {
+        let u = sky(0.03, 3.996e-6);
+        let towards_sun = direction_from_angles(0.05, 0.6);
+        let c = shade_sky_pixel(towards_sun, &u);
+        assert!(c[0] > c[1] && c[1] > c[2], "towards a low sun: {c:?}");
+        // …while at noon the same elevation and azimuth is not.
+        let noon = shade_sky_pixel(towards_sun, &sky(1.2, 3.996e-6));
+        assert!(noon[2] > noon[0], "{noon:?}");
+    }
+}
