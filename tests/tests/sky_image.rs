@@ -5,13 +5,15 @@ use render::SkyScene;
 
 fn gpu_sky(gpu: &skyscape_harness::GpuContext, scene: &SkyScene) -> Vec<u32> {
     let mut sky = render::gpu::SkyRenderer::new(&gpu.device).expect("sky pass compiles");
-    sky.prepare(&gpu.device, &gpu.queue, scene).expect("scene is valid");
+    sky.prepare(&gpu.device, &gpu.queue, scene)
+        .expect("scene is valid");
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     sky.encode(&mut encoder).expect("prepared");
     gpu.queue.submit([encoder.finish()]);
     let size = u64::from(scene.width) * u64::from(scene.height) * 4;
-    let bytes = skyscape_harness::read_buffer(gpu, "sky pixels", sky.pixel_buffer().unwrap(), 0, size)
-        .expect("readback");
+    let bytes =
+        skyscape_harness::read_buffer(gpu, "sky pixels", sky.pixel_buffer().unwrap(), 0, size)
+            .expect("readback");
     bytemuck::cast_slice(&bytes).to_vec()
 }
 
@@ -69,7 +71,11 @@ fn gpu_and_cpu_sky_images_agree() {
         let cpu = render::sky::render_sky_cpu(&scene).unwrap();
         let gpu_pixels = gpu_sky(gpu, &scene);
         let within = fraction_within(&cpu, &gpu_pixels, 2);
-        assert!(within >= 0.999, "{name}: only {:.4} % of pixels within 2 LSB", within * 100.0);
+        assert!(
+            within >= 0.999,
+            "{name}: only {:.4} % of pixels within 2 LSB",
+            within * 100.0
+        );
     }
 }
 
@@ -82,7 +88,11 @@ fn comparison_detects_a_different_image() {
         ..SkyScene::default()
     };
     let a = render::sky::render_sky_cpu(&scene).unwrap();
-    let b = render::sky::render_sky_cpu(&SkyScene { exposure: 22.0, ..scene }).unwrap();
+    let b = render::sky::render_sky_cpu(&SkyScene {
+        exposure: 22.0,
+        ..scene
+    })
+    .unwrap();
     assert!(fraction_within(&a, &b, 2) < 0.999);
 }
 
@@ -105,7 +115,10 @@ fn default_image_looks_like_a_daytime_sky() {
     assert!(top[2] > top[1] && top[1] > top[0], "top-left {top:?}");
     // The horizon sits around row 77 for this camera; a row just above it.
     let horizon = rgb(20, 74);
-    assert!(luma(horizon) > luma(top) * 1.3, "horizon {horizon:?} vs top {top:?}");
+    assert!(
+        luma(horizon) > luma(top) * 1.3,
+        "horizon {horizon:?} vs top {top:?}"
+    );
     // Find the sun direction's pixel: brightest in the sky region.
     let (mut best, mut best_xy) = (0.0, (0, 0));
     for y in 0..70 {

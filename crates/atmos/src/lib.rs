@@ -11,6 +11,7 @@
 //! assert!(henyey_greenstein_phase(1.0, 0.8) > 10.0 * rayleigh_phase(1.0));
 //! ```
 
+pub mod atmosphere;
 pub mod closed_form;
 pub mod geometry;
 pub mod optical_depth;
@@ -18,10 +19,15 @@ pub mod phase;
 pub mod reference;
 pub mod transmittance;
 
+pub use atmosphere::{AtmosError, Atmosphere, AtmosphereParameters};
 pub use skyscape_wgsl::common::PI;
 
 /// The WGSL modules of this crate, importable as `#import atmos::<name>`.
 pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
+    skyscape_wgsl::Module {
+        name: "atmos::atmosphere",
+        source: include_str!("../shaders/atmosphere.wgsl"),
+    },
     skyscape_wgsl::Module {
         name: "atmos::phase",
         source: include_str!("../shaders/phase.wgsl"),

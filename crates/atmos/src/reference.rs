@@ -114,3 +114,29 @@ pub fn closed_form_inscatter(
             / extinction
     })
 }
+
+/// f64 [`crate::atmosphere::exponential_density`].
+pub fn exponential_density(altitude: f64, scale_height: f64) -> f64 {
+    (-altitude / scale_height).exp()
+}
+
+/// f64 [`crate::atmosphere::tent_density`].
+pub fn tent_density(altitude: f64, center: f64, half_width: f64) -> f64 {
+    (1.0 - (altitude - center).abs() / half_width).max(0.0)
+}
+
+/// f64 [`crate::atmosphere::extinction_at_altitude`], from the f64 parameters.
+pub fn extinction_at_altitude(atmosphere: &crate::Atmosphere, altitude: f64) -> [f64; 3] {
+    let rayleigh = exponential_density(altitude, atmosphere.rayleigh_scale_height);
+    let mie = exponential_density(altitude, atmosphere.mie_scale_height);
+    let ozone = tent_density(
+        altitude,
+        atmosphere.ozone_center_altitude,
+        atmosphere.ozone_half_width,
+    );
+    std::array::from_fn(|i| {
+        atmosphere.rayleigh_scattering[i] * rayleigh
+            + atmosphere.mie_extinction[i] * mie
+            + atmosphere.ozone_absorption[i] * ozone
+    })
+}

@@ -1,1 +1,86 @@
-//! placeholder
+//! Dobashi et al. 2000's cellular automaton for cloud growth, three ways with one
+//! result.
+//!
+//! A grid `nx × ny × nz` (z up) holds three booleans per cell: humidity `hum`,
+//! activation `act` and cloud `cld`. Each step reads only the previous state:
+//!
+//! ```text
+//! hum' = hum ∧ ¬act      cld' = cld ∨ act      act' = ¬act ∧ hum ∧ f_act
+//! f_act = OR of act over x±1, y±1, x±2, y±2, z+1, z−1, z−2
+//! ```
+//!
+//! then applies three stochastic terms, each with its own draw per cell: extinction
+//! `cld' ∧= ¬(rnd < p_ext)`, humidity supply `hum' ∨= (rnd < p_hum)`, activation
+//! `act' ∨= (rnd < p_act)`; clouds vanish where the ellipsoid mask is 0; finally each
+//! slice moves with its wind. Probabilities come from ellipsoids ([`Model`]).
+//!
+//! * [`naive`]: one bool per cell, the reference;
+//! * [`packed`] / [`Simulation`]: 32 cells per `u32`, multi-threaded;
+//! * `gpu` (feature `gpu`): WGSL compute on the same packed layout.
+//!
+//! Draws are counter based ([`rng`]), so all three agree bit for bit for the same seed,
+//! whatever the thread count. [`density()`] turns the `cld` history into a smooth
+//! `f32` volume.
+
+mod error;
+mod model;
+mod sim;
+mod state;
+
+pub mod density;
+#[cfg(feature = "gpu")]
+pub mod gpu;
+pub mod naive;
+pub mod packed;
+pub mod rng;
+
+pub use density::density;
+pub use error::Error;
+pub use model::{
+    Boundary, Config, Ellipsoid, GridSize, MASK_LEVEL_MAX, MAX_CELLS, MAX_DIMENSION,
+    MAX_SMOOTHING_RADIUS_CELLS, MAX_SMOOTHING_RADIUS_STEPS, MAX_WIND, MIXED_LEVELS, Model,
+    Probabilities, Smoothing,
+};
+pub use sim::Simulation;
+pub use state::{NaiveState, PackedState};
+
+/// The crate's WGSL modules, canonical under `shaders/cloudsim/`.
+pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
+    skyscape_wgsl::Module {
+        name: "cloudsim::rng",
+        source: include_str!("../shaders/rng.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "cloudsim::step",
+        source: include_str!("../shaders/step.wgsl"),
+    },
+];
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn every_wgsl_module_composes_and_validates() {
+        let mut composer = skyscape_wgsl::Composer::with_common();
+        composer.add_modules(super::WGSL_MODULES).unwrap();
+        for module in super::WGSL_MODULES {
+            let source = composer.compose_module(module.name).unwrap();
+            skyscape_wgsl::validate(module.name, &source).unwrap_or_else(|e| panic!("{e}"));
+        }
+        // the module names follow the `cloudsim::<file_stem>` convention
+        let names: Vec<_> = super::WGSL_MODULES.iter().map(|m| m.name).collect();
+        assert_eq!(names, ["cloudsim::rng", "cloudsim::step"]);
+    }
+
+    #[cfg(feature = "gpu")]
+    #[test]
+    fn composed_step_shader_has_both_entry_points() {
+        let source = super::gpu::compose_shader().unwrap();
+        let module = skyscape_wgsl::validate("cloudsim::step", &source).unwrap();
+        let entries: Vec<_> = module
+            .entry_points
+            .iter()
+            .map(|e| e.name.as_str())
+            .collect();
+        assert_eq!(entries, ["step_main", "wind_main"]);
+    }
+}

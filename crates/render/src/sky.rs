@@ -588,8 +588,14 @@ mod seed_000_observations {
         let clear = sky(1.3, 3.996e-6);
         let hazy = sky(1.3, 1e-4);
         let direction = direction_from_angles(1.3 - 0.52, 0.6);
-        let (c, h) = (shade_sky_pixel(direction, &clear), shade_sky_pixel(direction, &hazy));
-        assert!(saturation(h) < 0.6 * saturation(c), "hazy {h:?} vs clear {c:?}");
+        let (c, h) = (
+            shade_sky_pixel(direction, &clear),
+            shade_sky_pixel(direction, &hazy),
+        );
+        assert!(
+            saturation(h) < 0.6 * saturation(c),
+            "hazy {h:?} vs clear {c:?}"
+        );
         assert!(h.iter().sum::<f32>() > c.iter().sum::<f32>());
     }
 

@@ -1,1 +1,93 @@
-//! placeholder
+//! `terrain`: heightfields, normal maps and horizon maps for self-shadowed terrain.
+//!
+//! Seed 000 shades terrain with `(N·L) · terrain_color · self_shadow · cloud_shadow`,
+//! the self-shadow coming from a *horizon angle* stored in the alpha channel of the
+//! normal map — one map for the sun in the east, one for the west. This crate bakes
+//! those maps from a [`Heightfield`] (loaded from PNG / raw `f32`, or
+//! [generated](generate::generate)), exactly and fast:
+//!
+//! * [`NormalMap`]: central differences over the true spacing;
+//! * [`horizon`]: the horizon angle (definition and sampling documented there), by
+//!   brute force or by the exact convex-hull sweep of Timonen & Westerholm (2010),
+//!   east/west or `N` azimuths, with Earth curvature and a maximum distance;
+//! * [`shadow`]: hard and soft (sun-disc) shadow queries and the seed-000 shading
+//!   term, each with a WGSL twin in [`WGSL_MODULES`];
+//! * `gpu` (default feature): an east/west horizon bake in WGSL compute that records
+//!   into the caller's encoder.
+//!
+//! Frames and units: SI, radians; heightfields row-major with `x` east and rows
+//! south; normals and sun directions in east–north–up; azimuths clockwise from north.
+//!
+//! ```
+//! use terrain::{Heightfield, HorizonOptions, Algorithm, bake_east_west};
+//! // A 10 m wall 20 m east of texel 0 of a 1 m-spaced row.
+//! let hf = Heightfield::from_fn(32, 1, 1.0, |x, _| if x == 20 { 10.0 } else { 0.0 })?;
+//! let maps = bake_east_west(&hf, &HorizonOptions::flat(), Algorithm::HullSweep)?;
+//! assert!((maps.east.angle(0, 0) - (10.0f32 / 20.0).atan()).abs() < 1e-6);
+//! # Ok::<(), terrain::TerrainError>(())
+//! ```
+
+mod error;
+pub mod generate;
+#[cfg(feature = "gpu")]
+pub mod gpu;
+mod heightfield;
+pub mod horizon;
+mod normal;
+pub mod shadow;
+
+pub use error::TerrainError;
+pub use heightfield::{Heightfield, MAX_SIDE, MAX_TEXELS};
+pub use horizon::{
+    Algorithm, AzimuthHorizonMaps, EastWestHorizon, HorizonMap, HorizonOptions, bake_azimuths,
+    bake_east_west, bake_horizon, horizon_angle,
+};
+pub use normal::{BitDepth, NormalMap, encode_horizon_angle};
+
+/// The WGSL modules of this crate, importable as `#import terrain::<name>`.
+pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
+    skyscape_wgsl::Module {
+        name: "terrain::shadow",
+        source: include_str!("../shaders/shadow.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "terrain::shading",
+        source: include_str!("../shaders/shading.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "terrain::horizon_bake",
+        source: include_str!("../shaders/horizon_bake.wgsl"),
+    },
+];
+
+/// A composer that knows the common modules and every `terrain` module.
+pub fn composer() -> skyscape_wgsl::Composer {
+    let mut composer = skyscape_wgsl::Composer::with_common();
+    composer
+        .add_modules(WGSL_MODULES)
+        .expect("terrain WGSL module names are unique and well formed");
+    composer
+}
+
+#[cfg(test)]
+mod wgsl_tests {
+    #[test]
+    fn every_module_composes_and_validates() {
+        let composer = super::composer();
+        assert_eq!(super::WGSL_MODULES.len(), 3);
+        for module in super::WGSL_MODULES {
+            assert!(module.name.starts_with("terrain::"));
+            let source = composer.compose_module(module.name).unwrap();
+            skyscape_wgsl::validate(module.name, &source).unwrap();
+        }
+    }
+
+    #[test]
+    fn broken_wgsl_is_caught_by_validation() {
+        // The validation above can fail: a type error in a composed terrain module is reported.
+        let composer = super::composer();
+        let bad = "#import terrain::shadow\nfn f() -> f32 { return hard_shadow(1.0, 2u); }\n";
+        let source = composer.compose("bad", bad).unwrap();
+        assert!(skyscape_wgsl::validate("bad", &source).is_err());
+    }
+}

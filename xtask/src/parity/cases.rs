@@ -273,6 +273,50 @@ fn srgb_bound(x: f64) -> f64 {
     1.055 * power * (pow_relative + 2.0 * U) + U * (1.055 * power + 0.055)
 }
 
+// ---------------------------------------------------------------- atmosphere profiles
+
+/// The f64 view of the f32 Earth uniforms: the reference sees the parameters the f32
+/// sides see.
+fn earth_f32_as_f64() -> atmos::Atmosphere {
+    let u = atmos::Atmosphere::earth()
+        .to_uniforms()
+        .expect("Earth is valid");
+    let f = |v: [f32; 3]| v.map(f64::from);
+    atmos::Atmosphere {
+        planet_radius: f64::from(u.planet_radius),
+        top_radius: f64::from(u.top_radius),
+        rayleigh_scattering: f(u.rayleigh_scattering),
+        rayleigh_scale_height: f64::from(u.rayleigh_scale_height),
+        mie_scattering: f(u.mie_scattering),
+        mie_extinction: f(u.mie_extinction),
+        mie_scale_height: f64::from(u.mie_scale_height),
+        mie_g: f64::from(u.mie_g),
+        ozone_absorption: f(u.ozone_absorption),
+        ozone_center_altitude: f64::from(u.ozone_center_altitude),
+        ozone_half_width: f64::from(u.ozone_half_width),
+        ground_albedo: f(u.ground_albedo),
+        sun_irradiance: f(u.sun_irradiance),
+        sun_angular_radius: f64::from(u.sun_angular_radius),
+    }
+}
+
+/// exp(−h/H): the division (2.5 ULP → 5u·x absolute in the exponent) and WGSL exp.
+fn exponential_density_error(altitude: f64, scale_height: f64) -> f64 {
+    let x = altitude / scale_height;
+    (-x).exp() * (exp_relative_error(x) + 5.0 * U * x.abs())
+}
+
+/// 1 − |h − c|/w: the subtraction (u|h − c|), division (2.5 ULP) and the final
+/// 1 − q, whose cancellation near the tent's feet makes the bound absolute: ≤ 5u.
+const TENT_ERROR: f64 = 5.0 * U;
+
+fn profile_altitudes() -> Vec<f64> {
+    let mut v: Vec<f64> = linspace(-10.0, 100_000.0, 10_001).collect();
+    v.extend(logspace(1e-3, 1e7, 200));
+    v.extend([0.0, 10_000.0, 25_000.0, 40_000.0]);
+    v
+}
+
 /// The case list, in report order.
 pub fn all() -> Vec<Case> {
     vec![
@@ -326,6 +370,89 @@ pub fn all() -> Vec<Case> {
                 bound: None,
                 why: "the Henyey–Greenstein budget (13 ULP) plus (1 + cos²θ) and (2 + g²) \
                       factors (≤ 3 ULP) and one more product",
+            },
+        },
+        Case {
+            name: "atmos::exponential_density",
+            imports: &["atmos::atmosphere"],
+            arity: (2, 1),
+            wgsl: "y0 = exponential_density(x0, x1);",
+            grid: || {
+                let mut grid = Vec::new();
+                for scale_height in [1200.0, 8000.0] {
+                    for h in profile_altitudes() {
+                        grid.push(vec![h, scale_height]);
+                    }
+                }
+                grid
+            },
+            cpu: |x| vec![atmos::atmosphere::exponential_density(x[0], x[1])],
+            reference: |x| vec![f64ref::exponential_density(x[0], x[1])],
+            tolerance: Tolerance {
+                abs: f32::MIN_POSITIVE as f64,
+                rel: 0.0,
+                ulp: 1.0,
+                bound: Some(|x| vec![exponential_density_error(x[0], x[1])]),
+                why: "h/H (2.5 ULP, absolute 5u·x in the exponent) then WGSL exp (3 + 2|x| ULP); \
+                      flushed subnormals allowed",
+            },
+        },
+        Case {
+            name: "atmos::tent_density",
+            imports: &["atmos::atmosphere"],
+            arity: (3, 1),
+            wgsl: "y0 = tent_density(x0, x1, x2);",
+            grid: || {
+                profile_altitudes()
+                    .into_iter()
+                    .map(|h| vec![h, 25_000.0, 15_000.0])
+                    .collect()
+            },
+            cpu: |x| vec![atmos::atmosphere::tent_density(x[0], x[1], x[2])],
+            reference: |x| vec![f64ref::tent_density(x[0], x[1], x[2])],
+            tolerance: Tolerance {
+                abs: TENT_ERROR,
+                rel: 0.0,
+                ulp: 1.0,
+                bound: None,
+                why: "|h − c| (0.5 ULP), ÷ w (2.5 ULP), then 1 − q cancels near the feet: \
+                      absolute 5u",
+            },
+        },
+        Case {
+            name: "atmos::extinction_at_altitude",
+            imports: &["atmos::atmosphere"],
+            arity: (1, 3),
+            // Earth's parameters as the f32 uniforms hold them (the f32 nearest each literal).
+            wgsl: "let earth = AtmosphereParameters(vec3<f32>(5.802e-6, 13.558e-6, 33.1e-6), 8000.0, \
+                   vec3<f32>(3.996e-6), 1200.0, vec3<f32>(4.40e-6), 0.8, \
+                   vec3<f32>(0.650e-6, 1.881e-6, 0.085e-6), 25000.0, vec3<f32>(0.1), 15000.0, \
+                   vec3<f32>(1.0), 0.004675, 6360000.0, 6460000.0, vec2<f32>(0.0)); \
+                   let e = extinction_at_altitude(earth, x0); y0 = e.x; y1 = e.y; y2 = e.z;",
+            grid: || profile_altitudes().into_iter().map(|h| vec![h]).collect(),
+            cpu: |x| {
+                let earth = atmos::Atmosphere::earth().to_uniforms().unwrap();
+                atmos::atmosphere::extinction_at_altitude(&earth, x[0]).to_vec()
+            },
+            reference: |x| f64ref::extinction_at_altitude(&earth_f32_as_f64(), x[0]).to_vec(),
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 3.0,
+                bound: Some(|x| {
+                    let a = earth_f32_as_f64();
+                    let rayleigh = exponential_density_error(x[0], a.rayleigh_scale_height);
+                    let mie = exponential_density_error(x[0], a.mie_scale_height);
+                    (0..3)
+                        .map(|i| {
+                            a.rayleigh_scattering[i] * rayleigh
+                                + a.mie_extinction[i] * mie
+                                + a.ozone_absorption[i] * TENT_ERROR
+                        })
+                        .collect()
+                }),
+                why: "each profile's bound times its coefficient, plus 3 ULP for the products \
+                      and sums of positive terms",
             },
         },
         Case {

@@ -2,9 +2,11 @@
 
 pub mod cases;
 pub mod compare;
+pub mod passes;
 
 use cases::Case;
 use compare::{SideStats, compare, inject_difference};
+use passes::PassCase;
 use std::fmt::Write as _;
 
 /// Options from the command line.
@@ -94,6 +96,7 @@ pub fn composer() -> skyscape_wgsl::Composer {
 }
 
 struct Evaluated {
+    inputs: usize,
     inputs32: Vec<f32>,
     reference: Vec<f64>,
     bounds: Option<Vec<f64>>,
@@ -131,6 +134,7 @@ fn evaluate_cpu(case: &Case) -> Evaluated {
         }
     }
     Evaluated {
+        inputs: grid.len(),
         inputs32,
         reference,
         bounds,
@@ -163,22 +167,90 @@ fn evaluate_gpu(
     Ok(bytemuck::cast_slice(&bytes).to_vec())
 }
 
+/// A function case or a pass case.
+enum AnyCase {
+    Function(Case),
+    Pass(PassCase),
+}
+
+impl AnyCase {
+    fn all() -> Vec<AnyCase> {
+        let functions = cases::all().into_iter().map(AnyCase::Function);
+        functions
+            .chain(passes::all().into_iter().map(AnyCase::Pass))
+            .collect()
+    }
+
+    fn name(&self) -> &'static str {
+        match self {
+            AnyCase::Function(c) => c.name,
+            AnyCase::Pass(p) => p.name,
+        }
+    }
+
+    fn tolerance(&self) -> &compare::Tolerance {
+        match self {
+            AnyCase::Function(c) => &c.tolerance,
+            AnyCase::Pass(p) => &p.tolerance,
+        }
+    }
+
+    fn evaluate_cpu(&self) -> Result<Evaluated, String> {
+        match self {
+            AnyCase::Function(c) => Ok(evaluate_cpu(c)),
+            AnyCase::Pass(p) => {
+                let cpu = (p.cpu)()?;
+                if cpu.cpu.len() != cpu.reference.len() {
+                    return Err(format!("{}: CPU and reference lengths differ", p.name));
+                }
+                Ok(Evaluated {
+                    inputs: cpu.inputs,
+                    inputs32: Vec::new(),
+                    reference: cpu.reference,
+                    bounds: cpu.bounds,
+                    cpu: cpu.cpu,
+                })
+            }
+        }
+    }
+
+    fn evaluate_gpu(
+        &self,
+        gpu: &skyscape_harness::GpuContext,
+        evaluated: &Evaluated,
+    ) -> Result<Vec<f32>, String> {
+        let values = match self {
+            AnyCase::Function(c) => evaluate_gpu(gpu, c, &evaluated.inputs32)?,
+            AnyCase::Pass(p) => (p.gpu)(gpu)?,
+        };
+        if values.len() != evaluated.reference.len() {
+            return Err(format!(
+                "{}: GPU returned {} values, reference has {}",
+                self.name(),
+                values.len(),
+                evaluated.reference.len()
+            ));
+        }
+        Ok(values)
+    }
+}
+
 /// Runs the selected cases; returns true when all passed.
 pub fn run(options: &Options) -> Result<bool, String> {
-    let selected: Vec<Case> = cases::all()
+    let selected: Vec<AnyCase> = AnyCase::all()
         .into_iter()
         .filter(|c| {
             options
                 .filter
                 .as_ref()
-                .is_none_or(|f| c.name.contains(f.as_str()))
+                .is_none_or(|f| c.name().contains(f.as_str()))
         })
         .collect();
     if selected.is_empty() {
         return Err(format!("no parity case matches {:?}", options.filter));
     }
     if let Some(inject) = &options.inject
-        && !selected.iter().any(|c| c.name.contains(inject.as_str()))
+        && !selected.iter().any(|c| c.name().contains(inject.as_str()))
     {
         return Err(format!("--inject {inject}: no selected case has that name"));
     }
@@ -200,31 +272,32 @@ pub fn run(options: &Options) -> Result<bool, String> {
     };
     let mut reports = Vec::new();
     for case in &selected {
-        let evaluated = evaluate_cpu(case);
+        let evaluated = case.evaluate_cpu()?;
+        let tolerance = case.tolerance();
         let bounds = evaluated.bounds.as_deref();
         let mut cpu_values = evaluated.cpu.clone();
         let mut gpu_values = match gpu {
-            Some(ctx) => Some(evaluate_gpu(ctx, case, &evaluated.inputs32)?),
+            Some(ctx) => Some(case.evaluate_gpu(ctx, &evaluated)?),
             None => None,
         };
         let injected = options
             .inject
             .as_ref()
-            .is_some_and(|name| case.name.contains(name.as_str()));
+            .is_some_and(|name| case.name().contains(name.as_str()));
         if injected {
             let index = evaluated.reference.len() / 2;
             let target = gpu_values.as_mut().unwrap_or(&mut cpu_values);
-            inject_difference(target, &evaluated.reference, bounds, &case.tolerance, index);
+            inject_difference(target, &evaluated.reference, bounds, tolerance, index);
         }
-        let cpu = compare(&cpu_values, &evaluated.reference, bounds, &case.tolerance);
+        let cpu = compare(&cpu_values, &evaluated.reference, bounds, tolerance);
         let gpu = gpu_values
             .as_ref()
-            .map(|values| compare(values, &evaluated.reference, bounds, &case.tolerance));
+            .map(|values| compare(values, &evaluated.reference, bounds, tolerance));
         reports.push(CaseReport {
-            name: case.name,
-            inputs: evaluated.inputs32.len() / case.arity.0,
-            tolerance: case.tolerance.describe(),
-            why: case.tolerance.why,
+            name: case.name(),
+            inputs: evaluated.inputs,
+            tolerance: tolerance.describe(),
+            why: tolerance.why,
             cpu,
             gpu,
             injected,
@@ -434,12 +507,20 @@ fn write_markdown(
 /// passes, and an injected difference (and a NaN) fails. Returns the failures.
 pub fn self_test() -> Vec<String> {
     let mut problems = Vec::new();
-    for case in cases::all() {
-        let evaluated = evaluate_cpu(&case);
+    for case in AnyCase::all() {
+        let name = case.name();
+        let tolerance = case.tolerance();
+        let evaluated = match case.evaluate_cpu() {
+            Ok(e) => e,
+            Err(e) => {
+                problems.push(format!("{name}: {e}"));
+                continue;
+            }
+        };
         let bounds = evaluated.bounds.as_deref();
         let exact: Vec<f32> = evaluated.reference.iter().map(|&r| r as f32).collect();
-        if !compare(&exact, &evaluated.reference, bounds, &case.tolerance).passed() {
-            problems.push(format!("{}: the reference itself fails", case.name));
+        if !compare(&exact, &evaluated.reference, bounds, tolerance).passed() {
+            problems.push(format!("{name}: the reference itself fails"));
         }
         for index in [
             0,
@@ -451,19 +532,16 @@ pub fn self_test() -> Vec<String> {
                 &mut perturbed,
                 &evaluated.reference,
                 bounds,
-                &case.tolerance,
+                tolerance,
                 index,
             );
-            if compare(&perturbed, &evaluated.reference, bounds, &case.tolerance).passed() {
-                problems.push(format!(
-                    "{}: injected difference at {index} passed",
-                    case.name
-                ));
+            if compare(&perturbed, &evaluated.reference, bounds, tolerance).passed() {
+                problems.push(format!("{name}: injected difference at {index} passed"));
             }
             let mut nan = exact.clone();
             nan[index] = f32::NAN;
-            if compare(&nan, &evaluated.reference, bounds, &case.tolerance).passed() {
-                problems.push(format!("{}: NaN at {index} passed", case.name));
+            if compare(&nan, &evaluated.reference, bounds, tolerance).passed() {
+                problems.push(format!("{name}: NaN at {index} passed"));
             }
         }
     }
@@ -476,12 +554,12 @@ mod tests {
 
     #[test]
     fn every_case_has_enough_inputs_and_distinct_names() {
-        let all = cases::all();
-        let mut names: Vec<_> = all.iter().map(|c| c.name).collect();
+        let all = AnyCase::all();
+        let mut names: Vec<_> = all.iter().map(AnyCase::name).collect();
         names.sort_unstable();
         names.dedup();
         assert_eq!(names.len(), all.len());
-        for case in &all {
+        for case in cases::all() {
             let n = (case.grid)().len();
             assert!(n >= 10_000, "{}: {n} inputs", case.name);
         }
@@ -505,11 +583,11 @@ mod tests {
     }
 
     #[test]
-    fn cpu_twins_are_within_tolerance() {
-        for case in cases::all() {
-            let e = evaluate_cpu(&case);
-            let stats = compare(&e.cpu, &e.reference, e.bounds.as_deref(), &case.tolerance);
-            assert!(stats.passed(), "{}: {stats:?}", case.name);
+    fn cpu_sides_are_within_tolerance() {
+        for case in AnyCase::all() {
+            let e = case.evaluate_cpu().unwrap();
+            let stats = compare(&e.cpu, &e.reference, e.bounds.as_deref(), case.tolerance());
+            assert!(stats.passed(), "{}: {stats:?}", case.name());
         }
     }
 }

@@ -1,0 +1,387 @@
+//! Heightfields and their loaders.
+//!
+//! Layout (see `docs/architecture.md`): row-major, `x` (columns) increases to the
+//! east, `y` (rows) increases to the south. Texel `(x, y)` is a point sample at
+//! horizontal position `(x * spacing, -y * spacing)` metres (east, north) with
+//! elevation `vertical_scale * samples[y * width + x]` metres.
+
+use std::io::Cursor;
+use std::path::Path;
+
+use image::{ColorType, ImageDecoder};
+
+use crate::TerrainError;
+
+/// Largest accepted width or height, in texels.
+pub const MAX_SIDE: usize = 32_768;
+/// Largest accepted texel count (`width * height`): 2²⁸ (1 GiB of `f32`).
+pub const MAX_TEXELS: usize = 1 << 28;
+
+/// A regular grid of elevations.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Heightfield {
+    width: usize,
+    height: usize,
+    spacing: f64,
+    vertical_scale: f64,
+    samples: Vec<f32>,
+}
+
+/// Checks a pair of dimensions against zero and the limits.
+pub(crate) fn check_dimensions(width: u64, height: u64) -> Result<(), TerrainError> {
+    if width == 0 {
+        return Err(TerrainError::ZeroSize { field: "width" });
+    }
+    if height == 0 {
+        return Err(TerrainError::ZeroSize { field: "height" });
+    }
+    for (field, value) in [("width", width), ("height", height)] {
+        if value > MAX_SIDE as u64 {
+            return Err(TerrainError::TooLarge {
+                field,
+                value,
+                limit: MAX_SIDE as u64,
+            });
+        }
+    }
+    let texels = width * height;
+    if texels > MAX_TEXELS as u64 {
+        return Err(TerrainError::TooLarge {
+            field: "width * height",
+            value: texels,
+            limit: MAX_TEXELS as u64,
+        });
+    }
+    Ok(())
+}
+
+fn check_spacing(spacing: f64) -> Result<(), TerrainError> {
+    if spacing.is_finite() && spacing > 0.0 {
+        Ok(())
+    } else {
+        Err(TerrainError::param(
+            "spacing",
+            spacing,
+            "must be finite and > 0 (metres per texel)",
+        ))
+    }
+}
+
+fn check_scale(field: &'static str, scale: f64) -> Result<(), TerrainError> {
+    if scale.is_finite() && scale > 0.0 {
+        Ok(())
+    } else {
+        Err(TerrainError::param(field, scale, "must be finite and > 0"))
+    }
+}
+
+fn png_error(operation: &'static str, e: impl std::fmt::Display) -> TerrainError {
+    TerrainError::Png {
+        operation,
+        message: e.to_string(),
+    }
+}
+
+fn read_file(path: &Path) -> Result<Vec<u8>, TerrainError> {
+    std::fs::read(path).map_err(|source| TerrainError::Io {
+        path: path.to_owned(),
+        source,
+    })
+}
+
+/// Decodes a greyscale PNG of the expected type after checking its header against
+/// the limits (so a huge header cannot trigger a huge allocation).
+fn decode_grey_png(
+    bytes: &[u8],
+    expected: ColorType,
+    expected_name: &'static str,
+) -> Result<(usize, usize, Vec<u8>), TerrainError> {
+    let decoder = image::codecs::png::PngDecoder::new(Cursor::new(bytes))
+        .map_err(|e| png_error("decode", e))?;
+    let (width, height) = decoder.dimensions();
+    let color = decoder.color_type();
+    if color != expected {
+        return Err(TerrainError::PixelFormat {
+            expected: expected_name,
+            found: format!("{color:?}"),
+        });
+    }
+    check_dimensions(u64::from(width), u64::from(height))?;
+    let mut buf = vec![0u8; decoder.total_bytes() as usize];
+    decoder
+        .read_image(&mut buf)
+        .map_err(|e| png_error("decode", e))?;
+    Ok((width as usize, height as usize, buf))
+}
+
+impl Heightfield {
+    /// A heightfield from raw samples (row-major, `width * height` of them).
+    ///
+    /// Elevation in metres is `vertical_scale * sample`. Errors on zero or oversized
+    /// dimensions, a length mismatch, a non-positive or non-finite `spacing` or
+    /// `vertical_scale`, and on any sample whose elevation is not finite.
+    pub fn new(
+        width: usize,
+        height: usize,
+        spacing: f64,
+        vertical_scale: f64,
+        samples: Vec<f32>,
+    ) -> Result<Self, TerrainError> {
+        check_dimensions(width as u64, height as u64)?;
+        check_spacing(spacing)?;
+        check_scale("vertical_scale", vertical_scale)?;
+        if samples.len() != width * height {
+            return Err(TerrainError::SizeMismatch {
+                field: "samples",
+                expected: (width * height) as u64,
+                found: samples.len() as u64,
+            });
+        }
+        for (i, &s) in samples.iter().enumerate() {
+            let elevation = f64::from(s) * vertical_scale;
+            if !elevation.is_finite() {
+                return Err(TerrainError::NonFiniteHeight {
+                    x: i % width,
+                    y: i / width,
+                    value: f64::from(s),
+                });
+            }
+        }
+        Ok(Self {
+            width,
+            height,
+            spacing,
+            vertical_scale,
+            samples,
+        })
+    }
+
+    /// A heightfield whose sample at `(x, y)` is `f(x, y)` metres (`vertical_scale` 1).
+    pub fn from_fn(
+        width: usize,
+        height: usize,
+        spacing: f64,
+        mut f: impl FnMut(usize, usize) -> f32,
+    ) -> Result<Self, TerrainError> {
+        check_dimensions(width as u64, height as u64)?;
+        let mut samples = Vec::with_capacity(width * height);
+        for y in 0..height {
+            for x in 0..width {
+                samples.push(f(x, y));
+            }
+        }
+        Self::new(width, height, spacing, 1.0, samples)
+    }
+
+    /// Loads a 16-bit greyscale PNG (`L16`): the sample for a pixel value `v` is
+    /// `offset + scale * v` metres (`scale` in metres per count, `> 0`).
+    ///
+    /// Any other pixel format (8-bit, RGB, alpha) is a [`TerrainError::PixelFormat`].
+    pub fn from_png16(
+        bytes: &[u8],
+        spacing: f64,
+        scale: f64,
+        offset: f64,
+    ) -> Result<Self, TerrainError> {
+        Self::from_png(bytes, spacing, scale, offset, 16)
+    }
+
+    /// Loads an 8-bit greyscale PNG (`L8`): the sample is `offset + scale * v` metres.
+    pub fn from_png8(
+        bytes: &[u8],
+        spacing: f64,
+        scale: f64,
+        offset: f64,
+    ) -> Result<Self, TerrainError> {
+        Self::from_png(bytes, spacing, scale, offset, 8)
+    }
+
+    /// [`Heightfield::from_png16`] on the contents of a file.
+    pub fn open_png16(
+        path: impl AsRef<Path>,
+        spacing: f64,
+        scale: f64,
+        offset: f64,
+    ) -> Result<Self, TerrainError> {
+        Self::from_png16(&read_file(path.as_ref())?, spacing, scale, offset)
+    }
+
+    /// [`Heightfield::from_png8`] on the contents of a file.
+    pub fn open_png8(
+        path: impl AsRef<Path>,
+        spacing: f64,
+        scale: f64,
+        offset: f64,
+    ) -> Result<Self, TerrainError> {
+        Self::from_png8(&read_file(path.as_ref())?, spacing, scale, offset)
+    }
+
+    fn from_png(
+        bytes: &[u8],
+        spacing: f64,
+        scale: f64,
+        offset: f64,
+        bits: u8,
+    ) -> Result<Self, TerrainError> {
+        check_spacing(spacing)?;
+        check_scale("scale", scale)?;
+        if !offset.is_finite() {
+            return Err(TerrainError::param("offset", offset, "must be finite"));
+        }
+        let (width, height, buf) = if bits == 16 {
+            decode_grey_png(bytes, ColorType::L16, "16-bit greyscale (L16)")?
+        } else {
+            decode_grey_png(bytes, ColorType::L8, "8-bit greyscale (L8)")?
+        };
+        let samples: Vec<f32> = if bits == 16 {
+            // The decoder writes native-endian u16.
+            buf.chunks_exact(2)
+                .map(|c| (offset + scale * f64::from(u16::from_ne_bytes([c[0], c[1]]))) as f32)
+                .collect()
+        } else {
+            buf.iter()
+                .map(|&v| (offset + scale * f64::from(v)) as f32)
+                .collect()
+        };
+        Self::new(width, height, spacing, 1.0, samples)
+    }
+
+    /// Loads raw little-endian `f32` samples (metres), row-major, with the given
+    /// dimensions. The byte length must be exactly `4 * width * height`.
+    pub fn from_raw_f32_le(
+        bytes: &[u8],
+        width: usize,
+        height: usize,
+        spacing: f64,
+    ) -> Result<Self, TerrainError> {
+        check_dimensions(width as u64, height as u64)?;
+        let expected = 4 * (width as u64) * (height as u64);
+        if bytes.len() as u64 != expected {
+            return Err(TerrainError::SizeMismatch {
+                field: "raw f32 bytes",
+                expected,
+                found: bytes.len() as u64,
+            });
+        }
+        let samples = bytes
+            .chunks_exact(4)
+            .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+            .collect();
+        Self::new(width, height, spacing, 1.0, samples)
+    }
+
+    /// [`Heightfield::from_raw_f32_le`] on the contents of a file.
+    pub fn open_raw_f32_le(
+        path: impl AsRef<Path>,
+        width: usize,
+        height: usize,
+        spacing: f64,
+    ) -> Result<Self, TerrainError> {
+        Self::from_raw_f32_le(&read_file(path.as_ref())?, width, height, spacing)
+    }
+
+    /// Returns the same heightfield with another vertical scale (exaggeration).
+    pub fn with_vertical_scale(self, vertical_scale: f64) -> Result<Self, TerrainError> {
+        Self::new(
+            self.width,
+            self.height,
+            self.spacing,
+            vertical_scale,
+            self.samples,
+        )
+    }
+
+    /// Columns (east–west extent in texels).
+    pub fn width(&self) -> usize {
+        self.width
+    }
+
+    /// Rows (north–south extent in texels).
+    pub fn height(&self) -> usize {
+        self.height
+    }
+
+    /// Horizontal distance between neighbouring texels, metres.
+    pub fn spacing(&self) -> f64 {
+        self.spacing
+    }
+
+    /// Metres per sample unit.
+    pub fn vertical_scale(&self) -> f64 {
+        self.vertical_scale
+    }
+
+    /// The raw samples, row-major.
+    pub fn samples(&self) -> &[f32] {
+        &self.samples
+    }
+
+    /// Elevation of texel `(x, y)` in metres. Panics when out of range (like indexing).
+    pub fn elevation(&self, x: usize, y: usize) -> f64 {
+        assert!(
+            x < self.width && y < self.height,
+            "texel ({x}, {y}) out of range"
+        );
+        f64::from(self.samples[y * self.width + x]) * self.vertical_scale
+    }
+
+    /// All elevations in metres, row-major, as `f64`.
+    pub fn elevations(&self) -> Vec<f64> {
+        self.samples
+            .iter()
+            .map(|&s| f64::from(s) * self.vertical_scale)
+            .collect()
+    }
+
+    /// Encodes the elevations as a 16-bit greyscale PNG: `v = round((e - offset) / scale)`
+    /// clamped to `0..=65535` (the inverse of [`Heightfield::from_png16`]).
+    pub fn to_png16(&self, scale: f64, offset: f64) -> Result<Vec<u8>, TerrainError> {
+        check_scale("scale", scale)?;
+        if !offset.is_finite() {
+            return Err(TerrainError::param("offset", offset, "must be finite"));
+        }
+        let mut bytes = Vec::with_capacity(self.samples.len() * 2);
+        for e in self.elevations() {
+            let v = ((e - offset) / scale).round().clamp(0.0, 65535.0) as u16;
+            bytes.extend_from_slice(&v.to_be_bytes());
+        }
+        encode_png(
+            &bytes,
+            self.width,
+            self.height,
+            image::ExtendedColorType::L16,
+        )
+    }
+}
+
+/// Encodes big-endian pixel bytes as a PNG (the layout the `png` encoder expects
+/// for 16-bit data is big-endian; 8-bit data has no byte order).
+pub(crate) fn encode_png(
+    bytes_be: &[u8],
+    width: usize,
+    height: usize,
+    color: image::ExtendedColorType,
+) -> Result<Vec<u8>, TerrainError> {
+    use image::ImageEncoder as _;
+    let mut out = Vec::new();
+    // image's PNG encoder takes 16-bit samples in native endianness.
+    let native: Vec<u8>;
+    let data = if matches!(
+        color,
+        image::ExtendedColorType::L16
+            | image::ExtendedColorType::Rgb16
+            | image::ExtendedColorType::Rgba16
+    ) {
+        native = bytes_be
+            .chunks_exact(2)
+            .flat_map(|c| u16::from_be_bytes([c[0], c[1]]).to_ne_bytes())
+            .collect();
+        &native[..]
+    } else {
+        bytes_be
+    };
+    image::codecs::png::PngEncoder::new(&mut out)
+        .write_image(data, width as u32, height as u32, color)
+        .map_err(|e| png_error("encode", e))?;
+    Ok(out)
+}

@@ -1,0 +1,708 @@
+//! Horizon angles: brute-force reference and the exact convex-hull sweep.
+//!
+//! # Definition and sampling
+//!
+//! The **horizon angle** of texel `P` for azimuth `φ` (radians clockwise from north:
+//! east `π/2`, west `3π/2`) is the largest elevation angle, seen from `P`, of the
+//! terrain samples `Q_1, Q_2, …` lying along `φ`:
+//!
+//! ```text
+//! horizon(P, φ) = max_k atan( (h(Q_k) − h(P) − d_k² / (2 R)) / d_k ),   d_k = k · L
+//! ```
+//!
+//! in `(−π/2, π/2)`, or [`NO_HORIZON`] (`−π/2`) when no sample lies in range (a texel
+//! on the map edge facing outwards, or a maximum distance shorter than one step).
+//! The term `d²/(2R)` is the drop of the surface below the tangent plane of `P` on a
+//! sphere of radius `R`; it is left out when curvature is off.
+//!
+//! **Which samples** ("digital lines"): write the horizontal direction of `φ` in
+//! texel axes as `(sin φ, −cos φ)` (columns east, rows south). The *dominant* axis is
+//! the one with the larger absolute component; `t` is the minor component divided by
+//! the dominant one (`|t| ≤ 1`). With `u` the dominant and `m` the minor coordinate,
+//! the texels of the map are partitioned into lines `{(u, c + round(u·t))}` for
+//! integer `c` (`round` is half away from zero). The samples of `P = (u₀, m₀)` are the
+//! texels of its own line with `u = u₀ ± 1, u₀ ± 2, …` (the sign of the dominant
+//! component), `Q_k` being `k` steps away, until the line leaves the map.
+//! The distance `d_k = k · L` uses `L = spacing · sqrt(1 + t²)`: the distance along
+//! `φ` of one dominant step. The samples are texel heights (no interpolation); their
+//! lateral offset from the exact ray is at most one texel.
+//!
+//! For east and west `t = 0`: the samples are exactly the texels of the same row,
+//! `d_k = k · spacing`. For north and south, the same column.
+//!
+//! With a maximum distance `D`, only `k ≤ K` count, `K` the largest integer with
+//! `K · L ≤ D`.
+//!
+//! # Algorithms
+//!
+//! [`Algorithm::BruteForce`] evaluates the formula for every `k` (O(n²) per line).
+//! [`Algorithm::HullSweep`] is the exact sweep of Timonen & Westerholm (2010): walking
+//! each line from its far end, it keeps the upper convex hull of the samples ahead
+//! and finds the horizon point as the tangent from `P`, popping hull points that `P`
+//! cannot see (amortised O(1) per texel).
+//!
+//! Curvature is exact in the sweep: with `s` the position along the line and
+//! `g = h − s²/(2R)`, the curved elevation tangent from `P` is
+//! `(g(Q) − g(P)) / (s(Q) − s(P)) + s(P)/R`; the last term does not depend on `Q`,
+//! so the horizon point is the ordinary hull tangent in the `(s, g)` frame. The
+//! angle is then evaluated with the same formula as the brute force.
+//!
+//! A maximum distance makes the window slide, which a single hull cannot follow. The
+//! sweep then cuts each line into blocks of `K` samples: the window of `P` is the rest
+//! of its own block (a fresh sweep per block) plus a prefix of the next block, whose
+//! upper hull is built incrementally and undone point by point as `P` moves back, the
+//! tangent found by binary search (O(n log K) per line).
+//!
+//! Lines are distributed over threads (`std::thread::scope`); every line is computed
+//! the same way whatever the thread count, so the result does not depend on it.
+
+use std::num::NonZeroUsize;
+
+use crate::{Heightfield, TerrainError};
+
+/// Mean Earth radius, metres.
+pub const EARTH_RADIUS: f64 = 6_371_000.0;
+/// The usual effective radius for standard atmospheric refraction, `4/3` of
+/// [`EARTH_RADIUS`] (metres): light bends down with about a quarter of the Earth's
+/// curvature, which lifts distant terrain as if the Earth were flatter.
+pub const EFFECTIVE_EARTH_RADIUS: f64 = EARTH_RADIUS * 4.0 / 3.0;
+/// The horizon angle when no sample lies along the line: nothing occludes.
+pub const NO_HORIZON: f32 = -std::f32::consts::FRAC_PI_2;
+/// Azimuth of east, radians clockwise from north.
+pub const EAST: f64 = std::f64::consts::FRAC_PI_2;
+/// Azimuth of west, radians clockwise from north.
+pub const WEST: f64 = 3.0 * std::f64::consts::FRAC_PI_2;
+/// Fewest azimuths accepted by [`bake_azimuths`].
+pub const MIN_AZIMUTHS: usize = 4;
+/// Most azimuths accepted by [`bake_azimuths`].
+pub const MAX_AZIMUTHS: usize = 64;
+
+/// Which algorithm computes the horizon.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Algorithm {
+    /// Evaluate every sample: the reference, O(n²) per line.
+    BruteForce,
+    /// Timonen & Westerholm's convex-hull sweep: same angles, O(n) per line.
+    HullSweep,
+}
+
+/// Options of a horizon bake.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HorizonOptions {
+    /// Radius of the sphere whose curvature drops distant terrain by `d²/(2R)`,
+    /// metres; `None` for a flat Earth. Default [`EFFECTIVE_EARTH_RADIUS`].
+    pub effective_radius: Option<f64>,
+    /// Only samples at most this far (metres) count; `None`: up to the map edge.
+    pub max_distance: Option<f64>,
+    /// Worker threads; `None` uses `std::thread::available_parallelism`.
+    pub threads: Option<NonZeroUsize>,
+}
+
+impl Default for HorizonOptions {
+    fn default() -> Self {
+        Self {
+            effective_radius: Some(EFFECTIVE_EARTH_RADIUS),
+            max_distance: None,
+            threads: None,
+        }
+    }
+}
+
+impl HorizonOptions {
+    /// No curvature, no maximum distance.
+    pub fn flat() -> Self {
+        Self {
+            effective_radius: None,
+            ..Self::default()
+        }
+    }
+
+    pub(crate) fn validate(&self) -> Result<(), TerrainError> {
+        if let Some(r) = self.effective_radius {
+            if !(r.is_finite() && r > 0.0) {
+                return Err(TerrainError::param(
+                    "effective_radius",
+                    r,
+                    "must be finite and > 0 metres",
+                ));
+            }
+        }
+        if let Some(d) = self.max_distance {
+            if d.is_nan() || d < 0.0 {
+                return Err(TerrainError::param(
+                    "max_distance",
+                    d,
+                    "must be >= 0 metres (or +inf)",
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    pub(crate) fn inv_two_r(&self) -> f64 {
+        self.effective_radius.map_or(0.0, |r| 0.5 / r)
+    }
+
+    fn thread_count(&self) -> usize {
+        self.threads.map_or_else(
+            || std::thread::available_parallelism().map_or(1, NonZeroUsize::get),
+            NonZeroUsize::get,
+        )
+    }
+}
+
+/// One horizon angle per texel for one azimuth.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HorizonMap {
+    width: usize,
+    height: usize,
+    azimuth: f64,
+    angles: Vec<f32>,
+}
+
+impl HorizonMap {
+    /// Columns.
+    pub fn width(&self) -> usize {
+        self.width
+    }
+    /// Rows.
+    pub fn height(&self) -> usize {
+        self.height
+    }
+    /// Azimuth, radians clockwise from north, in `[0, 2π)`.
+    pub fn azimuth(&self) -> f64 {
+        self.azimuth
+    }
+    /// Angles in radians, row-major.
+    pub fn angles(&self) -> &[f32] {
+        &self.angles
+    }
+    /// The angle at `(x, y)`, radians.
+    pub fn angle(&self, x: usize, y: usize) -> f32 {
+        self.angles[y * self.width + x]
+    }
+}
+
+/// The two maps of seed 000.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EastWestHorizon {
+    /// Horizon towards the east (used while the sun is in the east).
+    pub east: HorizonMap,
+    /// Horizon towards the west.
+    pub west: HorizonMap,
+}
+
+/// Horizon maps for `N` equally spaced azimuths `k · 2π / N`, `k = 0..N`
+/// (layer 0 is north), with interpolation for any azimuth.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AzimuthHorizonMaps {
+    layers: Vec<HorizonMap>,
+}
+
+impl AzimuthHorizonMaps {
+    /// The layers, layer `k` at azimuth `k · 2π / N`.
+    pub fn layers(&self) -> &[HorizonMap] {
+        &self.layers
+    }
+
+    /// Number of azimuths `N`.
+    pub fn count(&self) -> usize {
+        self.layers.len()
+    }
+
+    /// Horizon angle at `(x, y)` for any azimuth (radians clockwise from north),
+    /// linearly interpolated between the two neighbouring layers with
+    /// [`crate::shadow::azimuth_layers`] (the WGSL twin does the same).
+    pub fn horizon_angle(&self, x: usize, y: usize, sun_azimuth: f32) -> f32 {
+        let l = crate::shadow::azimuth_layers(sun_azimuth, self.layers.len() as u32);
+        let a = self.layers[l.lower as usize].angle(x, y);
+        let b = self.layers[l.upper as usize].angle(x, y);
+        a + (b - a) * l.weight
+    }
+}
+
+/// The digital-line geometry of one azimuth on one map.
+#[derive(Debug, Clone)]
+struct Lines {
+    dominant_is_x: bool,
+    /// `+1` or `-1`: the direction of travel along the dominant axis.
+    march: i64,
+    /// `round(u · t)` for every dominant coordinate `u`.
+    offsets: Vec<i64>,
+    n_dominant: usize,
+    n_minor: usize,
+    width: usize,
+    /// Distance of one step, metres.
+    step: f64,
+}
+
+impl Lines {
+    fn new(width: usize, height: usize, spacing: f64, azimuth: f64) -> Self {
+        let (east, south) = (azimuth.sin(), -azimuth.cos());
+        let dominant_is_x = east.abs() >= south.abs();
+        let (dominant, minor, n_dominant, n_minor) = if dominant_is_x {
+            (east, south, width, height)
+        } else {
+            (south, east, height, width)
+        };
+        let t = minor / dominant;
+        let offsets = (0..n_dominant)
+            .map(|u| (u as f64 * t).round() as i64)
+            .collect();
+        Self {
+            dominant_is_x,
+            march: if dominant > 0.0 { 1 } else { -1 },
+            offsets,
+            n_dominant,
+            n_minor,
+            width,
+            step: spacing * (1.0 + t * t).sqrt(),
+        }
+    }
+
+    /// Line ids `c` covering the map, in order.
+    fn ids(&self) -> std::ops::RangeInclusive<i64> {
+        let last = *self.offsets.last().unwrap_or(&0);
+        let (lo, hi) = (last.min(0), last.max(0));
+        -hi..=(self.n_minor as i64 - 1 - lo)
+    }
+
+    /// The line id and dominant coordinate of texel `(x, y)`.
+    fn locate(&self, x: usize, y: usize) -> (i64, usize) {
+        let (u, m) = if self.dominant_is_x { (x, y) } else { (y, x) };
+        (m as i64 - self.offsets[u], u)
+    }
+
+    /// Texel indices of line `c` in marching order (appended to `out`).
+    fn texels(&self, c: i64, out: &mut Vec<usize>) {
+        out.clear();
+        let mut push = |u: usize| {
+            let m = c + self.offsets[u];
+            if m >= 0 && (m as usize) < self.n_minor {
+                let m = m as usize;
+                out.push(if self.dominant_is_x {
+                    m * self.width + u
+                } else {
+                    u * self.width + m
+                });
+            }
+        };
+        if self.march > 0 {
+            (0..self.n_dominant).for_each(&mut push);
+        } else {
+            (0..self.n_dominant).rev().for_each(&mut push);
+        }
+    }
+
+    /// `K`: the largest number of steps within `max_distance` (`usize::MAX` for none).
+    fn max_steps(&self, max_distance: Option<f64>) -> usize {
+        max_steps_for(self.step, max_distance)
+    }
+}
+
+/// `K`: the largest integer with `K · step ≤ max_distance` (`usize::MAX` for none).
+pub(crate) fn max_steps_for(step: f64, max_distance: Option<f64>) -> usize {
+    match max_distance {
+        None => usize::MAX,
+        Some(d) if d.is_infinite() => usize::MAX,
+        Some(d) => {
+            let mut k = (d / step).floor().min(1e15) as usize;
+            while k > 0 && k as f64 * step > d {
+                k -= 1;
+            }
+            while ((k + 1) as f64) * step <= d {
+                k += 1;
+            }
+            k
+        }
+    }
+}
+
+/// Profile of one line: heights in marching order and the per-line constants.
+struct Profile<'a> {
+    h: &'a [f64],
+    step: f64,
+    inv_two_r: f64,
+}
+
+impl Profile<'_> {
+    /// Tangent of the elevation of sample `j` seen from sample `k < j`: the one
+    /// formula both algorithms evaluate.
+    #[inline]
+    fn tangent(&self, k: usize, j: usize) -> f64 {
+        let d = (j - k) as f64 * self.step;
+        (self.h[j] - self.h[k] - d * d * self.inv_two_r) / d
+    }
+}
+
+fn angle_from_tangent(best: f64) -> f32 {
+    if best == f64::NEG_INFINITY {
+        NO_HORIZON
+    } else {
+        best.atan() as f32
+    }
+}
+
+/// Brute force over one line.
+fn brute_line(p: &Profile<'_>, max_steps: usize, out: &mut [f32]) {
+    let n = p.h.len();
+    for (k, o) in out.iter_mut().enumerate() {
+        let end = k.saturating_add(max_steps).min(n - 1);
+        let mut best = f64::NEG_INFINITY;
+        for j in k + 1..=end {
+            best = best.max(p.tangent(k, j));
+        }
+        *o = angle_from_tangent(best);
+    }
+}
+
+/// `true` when, seen from `q` (left of both), `b` is at least as high in slope as
+/// `a`, in the curvature-corrected frame `g` (indices are positions along the line).
+#[inline]
+fn not_lower(g: &[f64], q: usize, a: usize, b: usize) -> bool {
+    (g[b] - g[q]) * (a - q) as f64 >= (g[a] - g[q]) * (b - q) as f64
+}
+
+/// The hull sweep over one line.
+fn sweep_line(p: &Profile<'_>, max_steps: usize, g: &mut Vec<f64>, out: &mut [f32]) {
+    let n = p.h.len();
+    g.clear();
+    g.extend(p.h.iter().enumerate().map(|(i, &h)| {
+        let s = i as f64 * p.step;
+        h - s * s * p.inv_two_r
+    }));
+    let g = &g[..];
+    if max_steps == 0 {
+        out.fill(NO_HORIZON);
+        return;
+    }
+    // Block length: the whole line when the window reaches the end anyway.
+    let block = if max_steps >= n - 1 { n } else { max_steps };
+    let mut hull: Vec<usize> = Vec::new();
+    let mut prefix: Vec<usize> = Vec::new();
+    let mut undo_log: Vec<(usize, usize)> = Vec::new(); // (added point, popped count)
+    let mut popped: Vec<usize> = Vec::new();
+    let mut block_start = (n - 1) / block * block;
+    loop {
+        let block_end = (block_start + block).min(n); // exclusive
+        // Build the upper hull of the whole next-block window prefix, recording undo.
+        prefix.clear();
+        undo_log.clear();
+        popped.clear();
+        let next_last = if block < n {
+            (block_end + block - 1).min(n - 1)
+        } else {
+            0
+        };
+        let has_next = block < n && block_end < n;
+        if has_next {
+            for j in block_end..=next_last {
+                let mut count = 0;
+                while prefix.len() >= 2 {
+                    let t = prefix[prefix.len() - 1];
+                    let s = prefix[prefix.len() - 2];
+                    // Pop `t` when it is on or below the segment s → j.
+                    if (g[t] - g[s]) * (j - s) as f64 <= (g[j] - g[s]) * (t - s) as f64 {
+                        popped.push(t);
+                        prefix.pop();
+                        count += 1;
+                    } else {
+                        break;
+                    }
+                }
+                prefix.push(j);
+                undo_log.push((j, count));
+            }
+        }
+        let mut prefix_end = next_last;
+        hull.clear();
+        for k in (block_start..block_end).rev() {
+            let mut best = f64::NEG_INFINITY;
+            // Part A: rest of the own block, Timonen–Westerholm popping.
+            while hull.len() >= 2 && not_lower(g, k, hull[hull.len() - 1], hull[hull.len() - 2]) {
+                hull.pop();
+            }
+            if let Some(&j) = hull.last() {
+                best = best.max(p.tangent(k, j));
+            }
+            hull.push(k);
+            // Part B: prefix of the next block up to k + K.
+            if has_next {
+                let target = (k + max_steps).min(n - 1);
+                while prefix_end > target {
+                    let (added, count) = undo_log.pop().expect("undo log matches prefix");
+                    debug_assert_eq!(prefix.last(), Some(&added));
+                    prefix.pop();
+                    for _ in 0..count {
+                        prefix.push(popped.pop().expect("popped log matches"));
+                    }
+                    prefix_end -= 1;
+                }
+                // Tangent: first i whose successor is not above the line k → prefix[i].
+                let (mut lo, mut hi) = (0usize, prefix.len() - 1);
+                while lo < hi {
+                    let mid = (lo + hi) / 2;
+                    if not_lower(g, k, prefix[mid + 1], prefix[mid]) {
+                        hi = mid;
+                    } else {
+                        lo = mid + 1;
+                    }
+                }
+                best = best.max(p.tangent(k, prefix[lo]));
+            }
+            out[k] = angle_from_tangent(best);
+        }
+        if block_start == 0 {
+            break;
+        }
+        block_start -= block;
+    }
+}
+
+fn check_azimuth(azimuth: f64) -> Result<f64, TerrainError> {
+    if !azimuth.is_finite() {
+        return Err(TerrainError::param("azimuth", azimuth, "must be finite"));
+    }
+    Ok(azimuth.rem_euclid(std::f64::consts::TAU))
+}
+
+/// The horizon angle of one texel (brute force on the documented sampling).
+pub fn horizon_angle(
+    hf: &Heightfield,
+    x: usize,
+    y: usize,
+    azimuth: f64,
+    options: &HorizonOptions,
+) -> Result<f32, TerrainError> {
+    options.validate()?;
+    let azimuth = check_azimuth(azimuth)?;
+    if x >= hf.width() {
+        return Err(TerrainError::param("x", x as f64, "must be < width"));
+    }
+    if y >= hf.height() {
+        return Err(TerrainError::param("y", y as f64, "must be < height"));
+    }
+    let lines = Lines::new(hf.width(), hf.height(), hf.spacing(), azimuth);
+    let (c, _) = lines.locate(x, y);
+    let mut texels = Vec::new();
+    lines.texels(c, &mut texels);
+    let target = y * hf.width() + x;
+    let k = texels
+        .iter()
+        .position(|&t| t == target)
+        .expect("every texel lies on its own line");
+    let h: Vec<f64> = texels
+        .iter()
+        .map(|&t| f64::from(hf.samples()[t]) * hf.vertical_scale())
+        .collect();
+    let p = Profile {
+        h: &h,
+        step: lines.step,
+        inv_two_r: options.inv_two_r(),
+    };
+    let end = k
+        .saturating_add(lines.max_steps(options.max_distance))
+        .min(h.len() - 1);
+    let mut best = f64::NEG_INFINITY;
+    for j in k + 1..=end {
+        best = best.max(p.tangent(k, j));
+    }
+    Ok(angle_from_tangent(best))
+}
+
+/// Bakes the horizon map for one azimuth (radians clockwise from north).
+pub fn bake_horizon(
+    hf: &Heightfield,
+    azimuth: f64,
+    options: &HorizonOptions,
+    algorithm: Algorithm,
+) -> Result<HorizonMap, TerrainError> {
+    options.validate()?;
+    let azimuth = check_azimuth(azimuth)?;
+    let lines = Lines::new(hf.width(), hf.height(), hf.spacing(), azimuth);
+    let max_steps = lines.max_steps(options.max_distance);
+    let inv_two_r = options.inv_two_r();
+    let scale = hf.vertical_scale();
+    let samples = hf.samples();
+    let solve = |h: &[f64], g: &mut Vec<f64>, out: &mut [f32]| {
+        let p = Profile {
+            h,
+            step: lines.step,
+            inv_two_r,
+        };
+        match algorithm {
+            Algorithm::BruteForce => brute_line(&p, max_steps, out),
+            Algorithm::HullSweep => sweep_line(&p, max_steps, g, out),
+        }
+    };
+    if lines.dominant_is_x && lines.offsets.iter().all(|&o| o == 0) {
+        // East/west fast path: every line is a row, written in place.
+        let width = hf.width();
+        let mut angles = vec![NO_HORIZON; width * hf.height()];
+        let threads = options.thread_count().clamp(1, hf.height());
+        let reverse = lines.march < 0;
+        let run_rows = |first_row: usize, block: &mut [f32]| {
+            let (mut h, mut g, mut out) = (Vec::new(), Vec::new(), vec![0.0f32; width]);
+            for (i, row_out) in block.chunks_mut(width).enumerate() {
+                let row = &samples[(first_row + i) * width..][..width];
+                h.clear();
+                if reverse {
+                    h.extend(row.iter().rev().map(|&v| f64::from(v) * scale));
+                } else {
+                    h.extend(row.iter().map(|&v| f64::from(v) * scale));
+                }
+                solve(&h, &mut g, &mut out);
+                if reverse {
+                    row_out
+                        .iter_mut()
+                        .zip(out.iter().rev())
+                        .for_each(|(o, &v)| *o = v);
+                } else {
+                    row_out.copy_from_slice(&out);
+                }
+            }
+        };
+        if threads == 1 {
+            run_rows(0, &mut angles);
+        } else {
+            // Blocks of rows handed out on demand, so that a thread slowed down by other
+            // work on the machine does not hold up the others.
+            const ROWS_PER_BLOCK: usize = 16;
+            let blocks = std::sync::Mutex::new(
+                angles
+                    .chunks_mut(ROWS_PER_BLOCK * width)
+                    .enumerate()
+                    .map(|(b, block)| (b * ROWS_PER_BLOCK, block)),
+            );
+            std::thread::scope(|scope| {
+                for _ in 0..threads {
+                    let (blocks, run_rows) = (&blocks, &run_rows);
+                    scope.spawn(move || {
+                        loop {
+                            // A poisoned lock means another worker panicked; the scope
+                            // re-raises that panic, so this one just stops.
+                            let next = match blocks.lock() {
+                                Ok(mut iter) => iter.next(),
+                                Err(_) => None,
+                            };
+                            let Some((first_row, block)) = next else {
+                                break;
+                            };
+                            run_rows(first_row, block);
+                        }
+                    });
+                }
+            });
+        }
+        return Ok(HorizonMap {
+            width,
+            height: hf.height(),
+            azimuth,
+            angles,
+        });
+    }
+    let ids: Vec<i64> = lines.ids().collect();
+    let threads = options.thread_count().clamp(1, ids.len());
+    // Contiguous chunks of lines with about equal texel counts.
+    let texels_total = hf.width() * hf.height();
+    let mut chunks: Vec<&[i64]> = Vec::with_capacity(threads);
+    {
+        let mut scratch = Vec::new();
+        let mut start = 0;
+        let mut acc = 0;
+        for (i, &c) in ids.iter().enumerate() {
+            lines.texels(c, &mut scratch);
+            acc += scratch.len();
+            if acc * threads >= texels_total * (chunks.len() + 1) && chunks.len() + 1 < threads {
+                chunks.push(&ids[start..=i]);
+                start = i + 1;
+            }
+        }
+        chunks.push(&ids[start..]);
+    }
+    let run_chunk = |chunk: &[i64]| -> Vec<f32> {
+        let mut results = Vec::new();
+        let (mut texels, mut h, mut g, mut out) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        for &c in chunk {
+            lines.texels(c, &mut texels);
+            if texels.is_empty() {
+                continue;
+            }
+            h.clear();
+            h.extend(texels.iter().map(|&t| f64::from(samples[t]) * scale));
+            out.clear();
+            out.resize(texels.len(), 0.0f32);
+            solve(&h, &mut g, &mut out);
+            results.extend_from_slice(&out);
+        }
+        results
+    };
+    let per_chunk: Vec<Vec<f32>> = if chunks.len() == 1 {
+        vec![run_chunk(chunks[0])]
+    } else {
+        std::thread::scope(|scope| {
+            let handles: Vec<_> = chunks
+                .iter()
+                .map(|&chunk| scope.spawn(move || run_chunk(chunk)))
+                .collect();
+            handles
+                .into_iter()
+                .map(|h| h.join().expect("horizon worker panicked"))
+                .collect()
+        })
+    };
+    // Scatter line-ordered results back into the row-major map.
+    let mut angles = vec![NO_HORIZON; texels_total];
+    let mut texels = Vec::new();
+    for (chunk, values) in chunks.iter().zip(&per_chunk) {
+        let mut next = 0;
+        for &c in *chunk {
+            lines.texels(c, &mut texels);
+            for &t in &texels {
+                angles[t] = values[next];
+                next += 1;
+            }
+        }
+    }
+    Ok(HorizonMap {
+        width: hf.width(),
+        height: hf.height(),
+        azimuth,
+        angles,
+    })
+}
+
+/// Bakes the east and west maps of seed 000.
+pub fn bake_east_west(
+    hf: &Heightfield,
+    options: &HorizonOptions,
+    algorithm: Algorithm,
+) -> Result<EastWestHorizon, TerrainError> {
+    Ok(EastWestHorizon {
+        east: bake_horizon(hf, EAST, options, algorithm)?,
+        west: bake_horizon(hf, WEST, options, algorithm)?,
+    })
+}
+
+/// Bakes `count` (4..=64) equally spaced azimuths, layer `k` at `k · 2π / count`.
+pub fn bake_azimuths(
+    hf: &Heightfield,
+    count: usize,
+    options: &HorizonOptions,
+    algorithm: Algorithm,
+) -> Result<AzimuthHorizonMaps, TerrainError> {
+    if !(MIN_AZIMUTHS..=MAX_AZIMUTHS).contains(&count) {
+        return Err(TerrainError::param(
+            "count",
+            count as f64,
+            "number of azimuths must be in 4..=64",
+        ));
+    }
+    let layers = (0..count)
+        .map(|k| {
+            let azimuth = k as f64 * std::f64::consts::TAU / count as f64;
+            bake_horizon(hf, azimuth, options, algorithm)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(AzimuthHorizonMaps { layers })
+}
