@@ -88,10 +88,10 @@ pub fn kernel_source(case: &Case, count: usize) -> String {
 
 /// The composer with every crate's WGSL modules.
 pub fn composer() -> skyscape_wgsl::Composer {
-    let mut composer = atmos::composer();
+    let mut composer = render::composer();
     composer
-        .add_modules(render::WGSL_MODULES)
-        .expect("render WGSL modules register");
+        .add_modules(terrain::WGSL_MODULES)
+        .expect("terrain WGSL modules register");
     composer
 }
 
