@@ -1,1 +1,54 @@
-//! placeholder
+//! `cloudlight`: lighting of cloud volumes, once in Rust and once in WGSL.
+//!
+//! Implemented so far (each function has a same-named WGSL twin under
+//! `shaders/cloudlight/`, embedded as [`WGSL_MODULES`], and a case in
+//! `cargo xtask parity`):
+//!
+//! * [`slice::slice_attenuation`]: seed 002's slice-by-slice light attenuation step;
+//! * [`jitter::bayer_jitter_4x4`]: seed 003's ordered (Bayer) ray-march jitter.
+//!
+//! The slice-attenuation pass (ping-pong textures) and cone-marched lighting
+//! (6 + 1 far samples, Beer, forward scattering) build on these and on `atmos`'
+//! phase functions, imported in WGSL with `#import atmos::phase`.
+//!
+//! ```
+//! // A fully dense slice passing 60 % of the light, after one that passed 80 %.
+//! let light = cloudlight::slice::slice_attenuation(0.8, 1.0, 0.6);
+//! assert!((light - 0.48).abs() < 1e-6);
+//! ```
+
+pub mod jitter;
+pub mod slice;
+
+/// The WGSL modules of this crate, importable as `#import cloudlight::<name>`.
+pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
+    skyscape_wgsl::Module {
+        name: "cloudlight::slice_attenuation",
+        source: include_str!("../shaders/slice_attenuation.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "cloudlight::jitter",
+        source: include_str!("../shaders/jitter.wgsl"),
+    },
+];
+
+/// A composer with the common, `atmos` and `cloudlight` modules.
+pub fn composer() -> skyscape_wgsl::Composer {
+    let mut composer = atmos::composer();
+    composer
+        .add_modules(WGSL_MODULES)
+        .expect("cloudlight WGSL module names are unique and well formed");
+    composer
+}
+
+#[cfg(test)]
+mod wgsl_tests {
+    #[test]
+    fn every_module_composes_and_validates() {
+        let composer = super::composer();
+        for module in super::WGSL_MODULES {
+            let source = composer.compose_module(module.name).unwrap();
+            skyscape_wgsl::validate(module.name, &source).unwrap();
+        }
+    }
+}

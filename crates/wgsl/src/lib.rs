@@ -192,15 +192,27 @@ impl Composer {
                 line: 0,
                 module: name.to_owned(),
             })?;
-        self.compose(name, source)
+        // The root is itself a module: importing itself is a cycle.
+        self.compose_with_stack(name, source, vec![name.to_owned()])
     }
 
     /// Resolves the imports of `root_source` (named `root_name` in errors) and returns
     /// plain WGSL: each imported module once, dependencies first, then the root.
+    ///
+    /// `root_name` only labels errors: a free-standing root is not a module, so it may
+    /// share a name with one it imports (e.g. a test kernel named after its function).
     pub fn compose(&self, root_name: &str, root_source: &str) -> Result<String, ComposeError> {
+        self.compose_with_stack(root_name, root_source, Vec::new())
+    }
+
+    fn compose_with_stack(
+        &self,
+        root_name: &str,
+        root_source: &str,
+        mut stack: Vec<String>,
+    ) -> Result<String, ComposeError> {
         let mut out = String::new();
         let mut emitted = HashSet::new();
-        let mut stack = vec![root_name.to_owned()];
         self.emit(root_name, root_source, &mut emitted, &mut stack, &mut out)?;
         Ok(out)
     }
@@ -227,6 +239,9 @@ impl Composer {
                 Line::Import(module) => {
                     if stack.iter().any(|s| s == module) {
                         let mut chain = stack.clone();
+                        if chain.last().map(String::as_str) != Some(name) {
+                            chain.push(name.to_owned());
+                        }
                         chain.push(module.to_owned());
                         return Err(ComposeError::ImportCycle { chain });
                     }
@@ -379,7 +394,23 @@ mod tests {
         assert_eq!(
             err,
             ComposeError::ImportCycle {
-                chain: vec!["root".into(), "t::x".into(), "t::y".into(), "t::x".into()]
+                chain: vec!["t::x".into(), "t::y".into(), "t::x".into()]
+            }
+        );
+    }
+
+    #[test]
+    fn a_root_may_share_its_name_with_an_import_but_a_module_may_not_import_itself() {
+        let c = composer(&[A]);
+        assert!(c.compose("t::a", "#import t::a\nfn k() {}\n").is_ok());
+        let selfish = Module {
+            name: "t::s",
+            source: "#import t::s\n",
+        };
+        assert_eq!(
+            composer(&[selfish]).compose_module("t::s").unwrap_err(),
+            ComposeError::ImportCycle {
+                chain: vec!["t::s".into(), "t::s".into()]
             }
         );
     }

@@ -91,7 +91,11 @@ pub fn composer() -> skyscape_wgsl::Composer {
     let mut composer = render::composer();
     composer
         .add_modules(terrain::WGSL_MODULES)
-        .expect("terrain WGSL modules register");
+        .expect("terrain WGSL modules register")
+        .add_modules(cloudlight::WGSL_MODULES)
+        .expect("cloudlight WGSL modules register")
+        .add_modules(cloudsim::WGSL_MODULES)
+        .expect("cloudsim WGSL modules register");
     composer
 }
 

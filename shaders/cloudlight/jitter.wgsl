@@ -1,0 +1,11 @@
+// Seed 003: ray-march start offsets from a 4×4 Bayer matrix, to break up the
+// layering of fixed-step marching without white-noise grain. Twin: cloudlight::jitter.
+
+// The Bayer threshold of a pixel as a fraction of a step, in {0, 1/16, …, 15/16}:
+// the matrix entry is the bit-reversed interleave of (x xor y, y), exact in f32.
+fn bayer_jitter_4x4(pixel: vec2<u32>) -> f32 {
+    let a = (pixel.x ^ pixel.y) & 3u;
+    let y = pixel.y & 3u;
+    let index = ((a & 1u) << 3u) | ((y & 1u) << 2u) | (((a >> 1u) & 1u) << 1u) | ((y >> 1u) & 1u);
+    return f32(index) * (1.0 / 16.0);
+}
