@@ -46,9 +46,15 @@ impl CaseReport {
                 (false, false) => "both",
                 (false, true) => "cpu",
                 (true, false) => "gpu",
+                (true, true) if gpu.worst_ratio == self.cpu.worst_ratio => {
+                    if gpu.worst_ratio > 0.0 {
+                        "equal (within tol)"
+                    } else {
+                        "none"
+                    }
+                }
                 (true, true) if gpu.worst_ratio > self.cpu.worst_ratio => "gpu (within tol)",
-                (true, true) if self.cpu.worst_ratio > 0.0 => "cpu (within tol)",
-                _ => "none",
+                (true, true) => "cpu (within tol)",
             },
         }
     }
