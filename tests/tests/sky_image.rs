@@ -17,20 +17,6 @@ fn gpu_sky(gpu: &skyscape_harness::GpuContext, scene: &SkyScene) -> Vec<u32> {
     bytemuck::cast_slice(&bytes).to_vec()
 }
 
-fn fraction_within(a: &[u32], b: &[u32], lsb: u8) -> f64 {
-    let close = a
-        .iter()
-        .zip(b)
-        .filter(|(x, y)| {
-            x.to_le_bytes()
-                .iter()
-                .zip(y.to_le_bytes())
-                .all(|(p, q)| p.abs_diff(q) <= lsb)
-        })
-        .count();
-    close as f64 / a.len() as f64
-}
-
 fn scenes() -> Vec<(&'static str, SkyScene)> {
     let small = SkyScene {
         width: 192,
@@ -70,7 +56,7 @@ fn gpu_and_cpu_sky_images_agree() {
     for (name, scene) in scenes() {
         let cpu = render::sky::render_sky_cpu(&scene).unwrap();
         let gpu_pixels = gpu_sky(gpu, &scene);
-        let within = fraction_within(&cpu, &gpu_pixels, 2);
+        let within = render::tonemap::fraction_within_lsb(&cpu, &gpu_pixels, 2).unwrap();
         assert!(
             within >= 0.999,
             "{name}: only {:.4} % of pixels within 2 LSB",
@@ -93,7 +79,7 @@ fn comparison_detects_a_different_image() {
         ..scene
     })
     .unwrap();
-    assert!(fraction_within(&a, &b, 2) < 0.999);
+    assert!(render::tonemap::fraction_within_lsb(&a, &b, 2).unwrap() < 0.999);
 }
 
 #[test]

@@ -1,5 +1,6 @@
 //! Display encoding. Twin of `shaders/render/tonemap.wgsl`.
 
+use crate::RenderError;
 use atmos::transmittance::one_minus_exp_neg;
 use skyscape_wgsl::common::{hash_combine, hash_u32};
 
@@ -39,6 +40,34 @@ pub fn quantize_srgb8(display: [f32; 3], pixel: [u32; 2], seed: u32) -> [f32; 3]
 pub fn pack_rgba8(code: [f32; 3]) -> u32 {
     let [r, g, b] = code.map(|c| c as u32);
     r | (g << 8) | (b << 16) | (255 << 24)
+}
+
+/// Fraction of RGBA8 pixels (as packed by [`pack_rgba8`]) whose channels all differ
+/// by at most `lsb` code values between two images of the same size; 1 for two empty
+/// images; an error when the sizes differ. Used to compare the GPU pass with its
+/// CPU twin.
+pub fn fraction_within_lsb(a: &[u32], b: &[u32], lsb: u8) -> Result<f64, RenderError> {
+    if a.len() != b.len() {
+        return Err(RenderError::InvalidParameter {
+            field: "b",
+            value: format!("{} pixels", b.len()),
+            reason: "must have as many pixels as `a`",
+        });
+    }
+    if a.is_empty() {
+        return Ok(1.0);
+    }
+    let close = a
+        .iter()
+        .zip(b)
+        .filter(|(x, y)| {
+            x.to_le_bytes()
+                .iter()
+                .zip(y.to_le_bytes())
+                .all(|(p, q)| p.abs_diff(q) <= lsb)
+        })
+        .count();
+    Ok(close as f64 / a.len() as f64)
 }
 
 #[cfg(test)]
@@ -93,6 +122,16 @@ mod tests {
             assert!(v >= last && (0.0..=1.0).contains(&v));
             last = v;
         }
+    }
+
+    #[test]
+    fn agreement_counts_pixels_with_every_channel_close() {
+        let a = [pack_rgba8([10.0, 20.0, 30.0]), pack_rgba8([0.0, 0.0, 0.0])];
+        let b = [pack_rgba8([12.0, 18.0, 30.0]), pack_rgba8([0.0, 3.0, 0.0])];
+        assert_eq!(fraction_within_lsb(&a, &b, 2), Ok(0.5));
+        assert_eq!(fraction_within_lsb(&a, &b, 3), Ok(1.0));
+        assert_eq!(fraction_within_lsb(&a, &a, 0), Ok(1.0));
+        assert!(fraction_within_lsb(&a, &b[..1], 0).is_err());
     }
 
     #[test]

@@ -164,21 +164,6 @@ fn write_png(path: &PathBuf, scene: &SkyScene, pixels: &[u32]) -> Result<(), Str
     .map_err(|e| format!("writing {}: {e}", path.display()))
 }
 
-/// Fraction of pixels whose channels all differ by at most `lsb` code values.
-fn agreement(a: &[u32], b: &[u32], lsb: u8) -> f64 {
-    let close = a
-        .iter()
-        .zip(b)
-        .filter(|(x, y)| {
-            x.to_le_bytes()
-                .iter()
-                .zip(y.to_le_bytes())
-                .all(|(p, q)| p.abs_diff(q) <= lsb)
-        })
-        .count();
-    close as f64 / a.len() as f64
-}
-
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let options = match parse(&args) {
@@ -229,11 +214,20 @@ fn main() -> ExitCode {
                 println!("--compare: no GPU image to compare with");
             }
             (Ok(reference), _) => {
-                println!(
-                    "--compare: {:.4} % of pixels within 2 LSB of the CPU twin, {:.4} % identical",
-                    100.0 * agreement(&pixels, &reference, 2),
-                    100.0 * agreement(&pixels, &reference, 0)
-                );
+                let agreement = |lsb| {
+                    render::tonemap::fraction_within_lsb(&pixels, &reference, lsb)
+                        .map(|fraction| 100.0 * fraction)
+                };
+                match (agreement(2), agreement(0)) {
+                    (Ok(close), Ok(identical)) => println!(
+                        "--compare: {close:.4} % of pixels within 2 LSB of the CPU twin, \
+                         {identical:.4} % identical"
+                    ),
+                    (Err(e), _) | (_, Err(e)) => {
+                        eprintln!("skyscape: {e}");
+                        return ExitCode::FAILURE;
+                    }
+                }
             }
             (Err(message), _) => {
                 eprintln!("skyscape: {message}");
