@@ -3,8 +3,11 @@
 //! * `parity [--filter NAME] [--backend vulkan|gl|…] [--inject CASE] [--markdown PATH] [--self-test]` —
 //!   every WGSL function against its Rust twin and f64 reference; table on stdout,
 //!   `target/parity/report.json`; exits non-zero when a case fails.
+//! * `tradeoff <atmos|terrain> [--quick] [--backend …]` — speed against accuracy for each
+//!   quality setting of a subsystem, measured; writes `docs/tradeoffs/<subsystem>.md`.
 
 mod parity;
+mod tradeoff;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -18,12 +21,14 @@ pub fn workspace_root() -> PathBuf {
 }
 
 const USAGE: &str =
-    "usage: cargo xtask parity [--filter NAME] [--backend BACKENDS] [--inject CASE] [--self-test]";
+    "usage: cargo xtask parity [--filter NAME] [--backend BACKENDS] [--inject CASE] [--self-test]
+       cargo xtask tradeoff <atmos|terrain> [--quick] [--backend BACKENDS]";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     match args.first().map(String::as_str) {
         Some("parity") => run_parity(&args[1..]),
+        Some("tradeoff") => tradeoff::run(&args[1..]),
         Some("-h" | "--help") | None => {
             println!("{USAGE}");
             ExitCode::SUCCESS

@@ -1,0 +1,61 @@
+//! Parity cases for whole passes (a simulation step, a bake): the case supplies its
+//! own CPU evaluation (reference and f32 twin) and GPU evaluation; comparison and
+//! reporting are shared with the function cases.
+
+use super::compare::Tolerance;
+
+mod cloudsim_passes;
+mod terrain_passes;
+
+/// The CPU side of a pass case.
+#[derive(Debug, Default)]
+pub struct PassCpu {
+    /// Number of inputs (cells, texels, …) the pass covered.
+    pub inputs: usize,
+    /// The reference outputs (f64; exact integers for bit-exact passes).
+    pub reference: Vec<f64>,
+    /// Optional forward-error allowance per output.
+    pub bounds: Option<Vec<f64>>,
+    /// The fast CPU implementation's outputs.
+    pub cpu: Vec<f32>,
+}
+
+/// A pass checked GPU vs CPU vs reference.
+pub struct PassCase {
+    /// `crate::pass`.
+    pub name: &'static str,
+    /// Runs the reference and the CPU implementation.
+    pub cpu: fn() -> Result<PassCpu, String>,
+    /// Runs the pass on the GPU; outputs in the same order as `PassCpu::reference`.
+    pub gpu: fn(&skyscape_harness::GpuContext) -> Result<Vec<f32>, String>,
+    /// Tolerance with its justification.
+    pub tolerance: Tolerance,
+}
+
+/// Splits 32-bit words into exact f32 halves (16 bits each), so bit-exact state
+/// comparisons go through the same comparator (exact tolerance).
+pub fn words_as_exact_floats(words: &[u32]) -> Vec<f32> {
+    words
+        .iter()
+        .flat_map(|w| [(w & 0xffff) as f32, (w >> 16) as f32])
+        .collect()
+}
+
+/// All pass cases, in report order.
+pub fn all() -> Vec<PassCase> {
+    [terrain_passes::cases(), cloudsim_passes::cases()]
+        .into_iter()
+        .flatten()
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn word_split_is_exact_and_ordered() {
+        assert_eq!(
+            super::words_as_exact_floats(&[0xdead_beef]),
+            vec![0xbeef as f32, 0xdead as f32]
+        );
+    }
+}
