@@ -14,12 +14,14 @@
 pub mod atmosphere;
 pub mod closed_form;
 pub mod geometry;
+pub mod ladder;
 pub mod optical_depth;
 pub mod phase;
 pub mod reference;
 pub mod transmittance;
 
 pub use atmosphere::{AtmosError, Atmosphere, AtmosphereParameters};
+pub use ladder::{SkyModel, SkyQuery, SkySample};
 pub use skyscape_wgsl::common::PI;
 
 /// The WGSL modules of this crate, importable as `#import atmos::<name>`.

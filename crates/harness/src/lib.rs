@@ -16,6 +16,9 @@
 use std::io::Write as _;
 use std::sync::OnceLock;
 
+mod timer;
+pub use timer::{PassTimer, median_pass_seconds};
+
 /// Environment variable that turns "no adapter" from a skip into a failure.
 pub const REQUIRE_GPU_ENV: &str = "SKYSCAPE_REQUIRE_GPU";
 
@@ -515,5 +518,71 @@ mod tests {
             },
         );
         assert!(matches!(err, Err(HarnessError::Shader(_))), "{err:?}");
+    }
+
+    #[test]
+    fn pass_timer_measures_a_dispatch_that_does_work() {
+        let Some(gpu) = gpu_or_skip("harness::pass_timer") else {
+            return;
+        };
+        if gpu
+            .device
+            .features()
+            .contains(wgpu::Features::TIMESTAMP_QUERY)
+        {
+            let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("busy"),
+                source: wgpu::ShaderSource::Wgsl(
+                    "@group(0) @binding(0) var<storage, read_write> out: array<f32>;\n\
+                     @compute @workgroup_size(64) fn main(@builtin(global_invocation_id) gid: vec3<u32>) {\n\
+                       var x = f32(gid.x);\n\
+                       for (var i = 0u; i < 4096u; i++) { x = sin(x) + 1.0; }\n\
+                       out[gid.x] = x;\n\
+                     }\n"
+                        .into(),
+                ),
+            });
+            let pipeline = gpu
+                .device
+                .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some("busy"),
+                    layout: None,
+                    module: &module,
+                    entry_point: Some("main"),
+                    compilation_options: Default::default(),
+                    cache: None,
+                });
+            let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("busy out"),
+                size: 4 * 64 * 64,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            });
+            let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("busy"),
+                layout: &pipeline.get_bind_group_layout(0),
+                entries: &[wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: buffer.as_entire_binding(),
+                }],
+            });
+            let seconds = median_pass_seconds(gpu, 3, |encoder, timer, span| {
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("busy"),
+                    timestamp_writes: Some(timer.compute_writes(span)),
+                });
+                pass.set_pipeline(&pipeline);
+                pass.set_bind_group(0, &bind_group, &[]);
+                pass.dispatch_workgroups(64, 1, 1);
+            })
+            .unwrap();
+            // 4096 × 4096 sines: microseconds on any real GPU, milliseconds on a CPU
+            // adapter; never zero, never more than a few seconds.
+            assert!(seconds > 0.0 && seconds < 5.0, "{seconds} s");
+            eprintln!("pass timer: busy dispatch took {:.3} ms", seconds * 1e3);
+        } else {
+            let err = PassTimer::new(gpu, 1).unwrap_err();
+            assert!(matches!(err, HarnessError::MissingFeature { .. }), "{err}");
+        }
     }
 }
