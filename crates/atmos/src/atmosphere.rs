@@ -14,6 +14,13 @@ pub enum AtmosError {
         /// The rule it breaks.
         reason: &'static str,
     },
+    /// WGSL composition failed (a bug in skyscape's shaders, reported rather than panicking).
+    #[error("WGSL composition: {0}")]
+    Shader(#[from] skyscape_wgsl::ComposeError),
+    /// A GPU resource this pass needs is unavailable (e.g. a frame larger than the
+    /// device's storage-buffer limit); names the resource and the numbers.
+    #[error("GPU: {0}")]
+    Gpu(String),
 }
 
 /// A planet's atmosphere. SI units: radii and heights in metres, coefficients in 1/m.

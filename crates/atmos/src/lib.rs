@@ -13,7 +13,10 @@
 
 pub mod atmosphere;
 pub mod closed_form;
+pub mod frame;
 pub mod geometry;
+#[cfg(feature = "gpu")]
+pub mod gpu;
 pub mod ladder;
 pub mod optical_depth;
 pub mod phase;
@@ -45,6 +48,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {
         name: "atmos::transmittance",
         source: include_str!("../shaders/transmittance.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "atmos::frame",
+        source: include_str!("../shaders/frame.wgsl"),
     },
     skyscape_wgsl::Module {
         name: "atmos::closed_form",

@@ -50,7 +50,7 @@ pub struct Module {
 }
 
 /// Errors from registering or composing modules.
-#[derive(Debug, thiserror::Error, PartialEq, Eq)]
+#[derive(Debug, Clone, thiserror::Error, PartialEq, Eq)]
 pub enum ComposeError {
     /// A module name was registered twice with different sources.
     #[error("WGSL module `{name}` is registered twice with different sources")]

@@ -1,0 +1,11 @@
+//! GPU passes of `atmos` (feature `gpu`, on by default). Bring your own device: every
+//! type takes `&wgpu::Device` / `&wgpu::Queue`, `prepare` only writes buffers and
+//! `encode` records into the caller's encoder; nothing here creates a device or submits.
+//!
+//! Every rung's renderer follows one convention, so a caller (and
+//! `cargo xtask tradeoff atmos`) can swap them: `new(device, &Atmosphere, settings)`,
+//! `prepare(queue, &FrameCamera)`, `encode(encoder, &FrameOutput, timestamp_writes)`.
+
+pub mod frame_output;
+
+pub use frame_output::FrameOutput;
