@@ -13,6 +13,8 @@
 
 pub mod atmosphere;
 pub mod closed_form;
+pub mod closed_form_sky;
+pub mod dome;
 pub mod frame;
 pub mod geometry;
 #[cfg(feature = "gpu")]
@@ -48,6 +50,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {
         name: "atmos::transmittance",
         source: include_str!("../shaders/transmittance.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "atmos::closed_form_sky",
+        source: include_str!("../shaders/closed_form_sky.wgsl"),
     },
     skyscape_wgsl::Module {
         name: "atmos::frame",
