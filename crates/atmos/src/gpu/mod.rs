@@ -6,6 +6,8 @@
 //! `cargo xtask tradeoff atmos`) can swap them: `new(device, &Atmosphere, settings)`,
 //! `prepare(queue, &FrameCamera)`, `encode(encoder, &FrameOutput, timestamp_writes)`.
 
+pub mod closed_form;
 pub mod frame_output;
 
+pub use closed_form::{ClosedFormRenderer, EvaluationFrequency};
 pub use frame_output::FrameOutput;

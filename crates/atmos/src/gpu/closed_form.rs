@@ -1,0 +1,236 @@
+//! Rung 1's frame renderer: the closed-form sky per pixel, or per vertex of a dome
+//! (`shaders/atmos/render_closed_form.wgsl`).
+//!
+//! ```no_run
+//! # fn demo(device: &wgpu::Device, queue: &wgpu::Queue) -> Result<(), atmos::AtmosError> {
+//! use atmos::gpu::{ClosedFormRenderer, EvaluationFrequency, FrameOutput};
+//! let mut sky = ClosedFormRenderer::new(device, &atmos::Atmosphere::earth(), EvaluationFrequency::PerPixel)?;
+//! let camera = atmos::frame::FrameCamera::look_at(
+//!     glam::DVec3::new(0.0, 0.0, 6_360_002.0), glam::DVec3::X, glam::DVec3::Z,
+//!     1.2, 1280, 720, glam::DVec3::new(0.5, 0.0, 0.866), None)?;
+//! let output = FrameOutput::new(device, 1280, 720)?;
+//! sky.prepare(queue, &camera);
+//! let mut encoder = device.create_command_encoder(&Default::default());
+//! sky.encode(&mut encoder, &output, None)?;
+//! queue.submit([encoder.finish()]);
+//! # Ok(()) }
+//! ```
+
+use crate::closed_form_sky::ClosedFormSkyParameters;
+use crate::dome::DomeResolution;
+use crate::frame::FrameCamera;
+use crate::gpu::FrameOutput;
+use crate::{AtmosError, Atmosphere};
+
+/// Where the closed form is evaluated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EvaluationFrequency {
+    /// Once per pixel.
+    PerPixel,
+    /// Once per vertex of a latitude–longitude dome, interpolated per pixel.
+    PerVertex(DomeResolution),
+}
+
+/// The closed-form sky as a compute pass writing a [`FrameOutput`].
+#[derive(Debug)]
+pub struct ClosedFormRenderer {
+    device: wgpu::Device,
+    frequency: EvaluationFrequency,
+    layout: wgpu::BindGroupLayout,
+    pixels: wgpu::ComputePipeline,
+    vertices: Option<(wgpu::ComputePipeline, wgpu::ComputePipeline)>,
+    camera: wgpu::Buffer,
+    params: wgpu::Buffer,
+    dome: wgpu::Buffer,
+    parameters: ClosedFormSkyParameters,
+    prepared: Option<FrameCamera>,
+}
+
+fn buffer_entry(binding: u32, ty: wgpu::BufferBindingType) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+/// The composed WGSL of the renderer.
+pub fn closed_form_renderer_source() -> Result<String, AtmosError> {
+    Ok(crate::composer().compose_module("atmos::render_closed_form")?)
+}
+
+impl ClosedFormRenderer {
+    /// Compiles the pass for `atmosphere` (validated) at the given evaluation frequency.
+    pub fn new(
+        device: &wgpu::Device,
+        atmosphere: &Atmosphere,
+        frequency: EvaluationFrequency,
+    ) -> Result<Self, AtmosError> {
+        let parameters = ClosedFormSkyParameters::from_atmosphere(atmosphere)?;
+        let (rings, segments) = match frequency {
+            EvaluationFrequency::PerPixel => (2, 3),
+            EvaluationFrequency::PerVertex(resolution) => {
+                // Reuse the CPU wrapper's validation of the resolution.
+                crate::dome::DomeInterpolated::new(
+                    crate::closed_form_sky::ClosedFormSky::new(atmosphere)?,
+                    resolution,
+                    atmosphere.planet_radius,
+                )?;
+                (resolution.rings, resolution.segments)
+            }
+        };
+        let source = closed_form_renderer_source()?;
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("atmos render_closed_form"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let storage = wgpu::BufferBindingType::Storage { read_only: false };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("atmos closed form"),
+            entries: &[
+                buffer_entry(0, wgpu::BufferBindingType::Uniform),
+                buffer_entry(1, wgpu::BufferBindingType::Uniform),
+                buffer_entry(2, storage),
+                buffer_entry(3, storage),
+                buffer_entry(4, storage),
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("atmos closed form"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let constants = [
+            ("dome_rings", f64::from(rings)),
+            ("dome_segments", f64::from(segments)),
+        ];
+        let pipeline = |entry: &str| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&pipeline_layout),
+                module: &module,
+                entry_point: Some(entry),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: &constants,
+                    ..Default::default()
+                },
+                cache: None,
+            })
+        };
+        let pixels = pipeline("render_closed_form_pixels");
+        let vertices = match frequency {
+            EvaluationFrequency::PerPixel => None,
+            EvaluationFrequency::PerVertex(_) => Some((
+                pipeline("evaluate_dome_vertices"),
+                pipeline("interpolate_dome"),
+            )),
+        };
+        let uniform = |label, size| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        let camera = uniform(
+            "atmos closed form camera",
+            std::mem::size_of::<FrameCamera>() as u64,
+        );
+        let params = uniform(
+            "atmos closed form parameters",
+            std::mem::size_of::<ClosedFormSkyParameters>() as u64,
+        );
+        let vertex_count = (u64::from(rings) + 1) * (u64::from(segments) + 1);
+        let dome = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("atmos closed form dome vertices"),
+            size: 32 * vertex_count,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
+        Ok(Self {
+            device: device.clone(),
+            frequency,
+            layout,
+            pixels,
+            vertices,
+            camera,
+            params,
+            dome,
+            parameters,
+            prepared: None,
+        })
+    }
+
+    /// The evaluation frequency chosen at creation.
+    pub fn frequency(&self) -> EvaluationFrequency {
+        self.frequency
+    }
+
+    /// Uploads the camera (and sun) of the next frame, and the atmosphere.
+    pub fn prepare(&mut self, queue: &wgpu::Queue, camera: &FrameCamera) {
+        queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(camera));
+        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&self.parameters));
+        self.prepared = Some(*camera);
+    }
+
+    /// Records the frame into `encoder` (one compute pass; per vertex, two dispatches
+    /// in it: the dome's vertices, then the per-pixel interpolation).
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        output: &FrameOutput,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), AtmosError> {
+        let camera = self
+            .prepared
+            .ok_or_else(|| AtmosError::Gpu("encode called before prepare".into()))?;
+        output.check_camera(&camera)?;
+        let [radiance, transmittance] = output.bind_group_entries(2);
+        let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("atmos closed form"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: self.camera.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: self.params.as_entire_binding(),
+                },
+                radiance,
+                transmittance,
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: self.dome.as_entire_binding(),
+                },
+            ],
+        });
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("atmos closed form"),
+            timestamp_writes,
+        });
+        pass.set_bind_group(0, &bind_group, &[]);
+        let groups = [camera.width.div_ceil(8), camera.height.div_ceil(8)];
+        match (&self.vertices, self.frequency) {
+            (Some((evaluate, interpolate)), EvaluationFrequency::PerVertex(resolution)) => {
+                let vertex_count = resolution.vertex_count() as u32;
+                pass.set_pipeline(evaluate);
+                pass.dispatch_workgroups(vertex_count.div_ceil(64), 1, 1);
+                pass.set_pipeline(interpolate);
+                pass.dispatch_workgroups(groups[0], groups[1], 1);
+            }
+            _ => {
+                pass.set_pipeline(&self.pixels);
+                pass.dispatch_workgroups(groups[0], groups[1], 1);
+            }
+        }
+        Ok(())
+    }
+}

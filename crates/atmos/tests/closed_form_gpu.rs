@@ -1,0 +1,127 @@
+//! Rung 1 on the GPU against its CPU twin, per pixel and per vertex.
+
+use atmos::closed_form_sky::{
+    ClosedFormSkyParameters, closed_form_sky_radiance, closed_form_sky_transmittance,
+    closed_form_sunlight,
+};
+use atmos::frame::{FrameCamera, frame_view_direction};
+use atmos::gpu::{ClosedFormRenderer, EvaluationFrequency, FrameOutput};
+use atmos::ladder::{SkyModel, SkyQuery};
+use atmos::{Atmosphere, dome::DomeInterpolated, dome::DomeResolution};
+use glam::DVec3;
+
+const WIDTH: u32 = 32;
+const HEIGHT: u32 = 18;
+
+fn camera(altitude: f64, pitch: f64) -> FrameCamera {
+    let earth = Atmosphere::earth();
+    let forward = DVec3::new(pitch.cos(), 0.0, pitch.sin());
+    FrameCamera::look_at(
+        DVec3::new(0.0, 0.0, earth.planet_radius + altitude),
+        forward,
+        DVec3::Z,
+        1.6,
+        WIDTH,
+        HEIGHT,
+        DVec3::new(0.3, 0.4, 0.2).normalize(),
+        None,
+    )
+    .unwrap()
+}
+
+fn render(
+    gpu: &skyscape_harness::GpuContext,
+    frequency: EvaluationFrequency,
+    camera: &FrameCamera,
+) -> (Vec<[f32; 4]>, Vec<[f32; 4]>) {
+    let mut renderer =
+        ClosedFormRenderer::new(&gpu.device, &Atmosphere::earth(), frequency).unwrap();
+    let output = FrameOutput::new(&gpu.device, WIDTH, HEIGHT).unwrap();
+    renderer.prepare(&gpu.queue, camera);
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    renderer.encode(&mut encoder, &output, None).unwrap();
+    gpu.queue.submit([encoder.finish()]);
+    let bytes = (WIDTH * HEIGHT * 16) as u64;
+    let read = |b| {
+        let raw = skyscape_harness::read_buffer(gpu, "frame", b, 0, bytes).unwrap();
+        bytemuck::cast_slice::<u8, [f32; 4]>(&raw).to_vec()
+    };
+    (read(output.radiance()), read(output.transmittance()))
+}
+
+#[test]
+fn per_pixel_matches_the_cpu_twin() {
+    let Some(gpu) = skyscape_harness::gpu_or_skip("atmos::closed_form per pixel") else {
+        return;
+    };
+    let params = ClosedFormSkyParameters::from_atmosphere(&Atmosphere::earth()).unwrap();
+    for (altitude, pitch) in [(2.0, 0.1), (20_000.0, -0.4), (500_000.0, -1.2)] {
+        let cam = camera(altitude, pitch);
+        let (radiance, transmittance) = render(gpu, EvaluationFrequency::PerPixel, &cam);
+        let r = (cam.position[0].powi(2) + cam.position[1].powi(2) + cam.position[2].powi(2)).sqrt();
+        let up = cam.position.map(|c| c / r);
+        let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let mut worst = 0.0f32;
+        for y in 0..HEIGHT {
+            for x in 0..WIDTH {
+                let view = frame_view_direction([x, y], &cam);
+                let sunlight = closed_form_sunlight(r, dot(cam.sun, up), &params);
+                let cpu = closed_form_sky_radiance(
+                    r,
+                    dot(view, up),
+                    dot(view, cam.sun),
+                    cam.max_distance,
+                    sunlight,
+                    &params,
+                );
+                let cpu_t = closed_form_sky_transmittance(r, dot(view, up), cam.max_distance, &params);
+                let i = (x + WIDTH * y) as usize;
+                for c in 0..3 {
+                    // Near-tangent rays make the path length ill-conditioned in f32
+                    // (see the ray_sphere_intersect parity case); compare with a
+                    // tolerance relative to the frame's brightest value.
+                    let scale = cpu[c].abs().max(1e-3);
+                    worst = worst.max((radiance[i][c] - cpu[c]).abs() / scale);
+                    assert!((transmittance[i][c] - cpu_t[c]).abs() < 2e-3, "{x},{y}");
+                }
+            }
+        }
+        assert!(worst < 2e-3, "altitude {altitude}: worst relative difference {worst}");
+    }
+}
+
+#[test]
+fn per_vertex_matches_the_cpu_dome() {
+    let Some(gpu) = skyscape_harness::gpu_or_skip("atmos::closed_form per vertex") else {
+        return;
+    };
+    let earth = Atmosphere::earth();
+    let resolution = DomeResolution {
+        rings: 8,
+        segments: 16,
+    };
+    let dome = DomeInterpolated::new(
+        atmos::closed_form_sky::ClosedFormSky::new(&earth).unwrap(),
+        resolution,
+        earth.planet_radius,
+    )
+    .unwrap();
+    let cam = camera(2.0, 0.2);
+    let (radiance, _) = render(gpu, EvaluationFrequency::PerVertex(resolution), &cam);
+    let position = DVec3::from_array(cam.position.map(f64::from));
+    let sun = DVec3::from_array(cam.sun.map(f64::from)).normalize();
+    let mut worst = 0.0f64;
+    for y in 0..HEIGHT {
+        for x in 0..WIDTH {
+            let view = DVec3::from_array(frame_view_direction([x, y], &cam).map(f64::from));
+            let q = SkyQuery::new(earth.planet_radius, position, view.normalize(), sun).unwrap();
+            let cpu = dome.evaluate(&q).radiance;
+            let i = (x + WIDTH * y) as usize;
+            for c in 0..3 {
+                let d = (f64::from(radiance[i][c]) - cpu[c]).abs() / cpu[c].abs().max(1e-3);
+                worst = worst.max(d);
+            }
+        }
+    }
+    assert!(worst < 5e-3, "worst relative difference {worst}");
+}
