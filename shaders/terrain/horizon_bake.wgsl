@@ -8,6 +8,8 @@
 //   hull stack lives in `hull` (width u32 per row).
 // * horizon_window: one invocation per texel, brute force over at most max_steps samples
 //   (used when a maximum distance is set).
+// * horizon_sweep_lines / horizon_window_lines: the same for any azimuth, one invocation
+//   per digital line (end of file).
 
 struct HorizonBakeParams {
     width: u32,
@@ -105,4 +107,129 @@ fn horizon_window(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_wo
         found = true;
     }
     angles[row_texel(row, k)] = select(NO_HORIZON, atan(best), found);
+}
+
+// ---------------------------------------------------------------- any azimuth
+// Digital lines of terrain::horizon (see its docs): line c holds the texels
+// (u, c + offsets[u]) (u dominant, m minor) that lie in the map. `offsets` is uploaded
+// from the CPU (round(u * t) in f64) so that both sides walk the same texels. Positions
+// along the line count in-map texels in marching order, d_k = k * step.
+
+struct HorizonLineParams {
+    // 1: the dominant axis is x (columns), 0: it is y (rows).
+    dominant_is_x: u32,
+    // 1: march toward increasing u, 0: decreasing.
+    march_forward: u32,
+    n_dominant: u32,
+    n_minor: u32,
+    // Line id of invocation 0.
+    first_line: i32,
+    line_count: u32,
+    _pad0: u32,
+    _pad1: u32,
+}
+
+@group(0) @binding(4) var<uniform> lines: HorizonLineParams;
+@group(0) @binding(5) var<storage, read> offsets: array<i32>;
+
+// The in-map range [lo, hi] of dominant coordinates of line c (empty when lo > hi):
+// m = c + offsets[u] is monotone in u, so the range is contiguous.
+fn line_range(c: i32) -> vec2<i32> {
+    var lo = i32(lines.n_dominant);
+    var hi = -1;
+    for (var u = 0; u < i32(lines.n_dominant); u++) {
+        let m = c + offsets[u];
+        if m >= 0 && m < i32(lines.n_minor) {
+            lo = min(lo, u);
+            hi = max(hi, u);
+        }
+    }
+    return vec2<i32>(lo, hi);
+}
+
+// Texel index of position p (0 = the first texel in marching order) of line c.
+fn line_texel(c: i32, range: vec2<i32>, p: u32) -> u32 {
+    var u = range.x + i32(p);
+    if lines.march_forward == 0u {
+        u = range.y - i32(p);
+    }
+    let m = u32(c + offsets[u]);
+    if lines.dominant_is_x != 0u {
+        return m * params.width + u32(u);
+    }
+    return u32(u) * params.width + m;
+}
+
+fn line_curved_height(c: i32, range: vec2<i32>, p: u32) -> f32 {
+    let s = f32(p) * params.step;
+    return heights[line_texel(c, range, p)] - s * s * params.inv_two_r;
+}
+
+// One invocation per line: the hull sweep of horizon_sweep_rows along a digital line.
+@compute @workgroup_size(64)
+fn horizon_sweep_lines(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let line = gid.x;
+    if line >= lines.line_count {
+        return;
+    }
+    let c = lines.first_line + i32(line);
+    let range = line_range(c);
+    if range.x > range.y {
+        return;
+    }
+    let n = u32(range.y - range.x + 1);
+    let base = line * lines.n_dominant;
+    var top = 0u;
+    for (var i = 0u; i < n; i++) {
+        let k = n - 1u - i;
+        let gk = line_curved_height(c, range, k);
+        loop {
+            if top < 2u {
+                break;
+            }
+            let a = hull[base + top - 1u];
+            let b = hull[base + top - 2u];
+            if (line_curved_height(c, range, b) - gk) * f32(a - k) >= (line_curved_height(c, range, a) - gk) * f32(b - k) {
+                top -= 1u;
+            } else {
+                break;
+            }
+        }
+        var angle = NO_HORIZON;
+        if top > 0u {
+            let j = hull[base + top - 1u];
+            angle = atan(horizon_tangent(heights[line_texel(c, range, k)], heights[line_texel(c, range, j)], j - k));
+        }
+        angles[line_texel(c, range, k)] = angle;
+        hull[base + top] = k;
+        top += 1u;
+    }
+}
+
+// One invocation per line, each texel scanning at most max_steps samples ahead (used
+// with a maximum distance).
+@compute @workgroup_size(64)
+fn horizon_window_lines(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let line = gid.x;
+    if line >= lines.line_count {
+        return;
+    }
+    let c = lines.first_line + i32(line);
+    let range = line_range(c);
+    if range.x > range.y {
+        return;
+    }
+    let n = u32(range.y - range.x + 1);
+    for (var k = 0u; k < n; k++) {
+        let last = k + min(n - 1u - k, params.max_steps);
+        let h_k = heights[line_texel(c, range, k)];
+        var found = false;
+        var best = 0.0;
+        for (var j = k + 1u; j <= last; j++) {
+            let t = horizon_tangent(h_k, heights[line_texel(c, range, j)], j - k);
+            best = select(t, max(best, t), found);
+            found = true;
+        }
+        angles[line_texel(c, range, k)] = select(NO_HORIZON, atan(best), found);
+    }
 }

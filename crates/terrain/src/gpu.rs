@@ -1,4 +1,5 @@
-//! GPU east/west horizon bake (WGSL compute, `shaders/terrain/horizon_bake.wgsl`).
+//! GPU horizon bakes (WGSL compute, `shaders/terrain/horizon_bake.wgsl`): seed 000's
+//! east/west pair, and any azimuth on the digital lines of [`crate::horizon`].
 //!
 //! Bring your own device: [`GpuHorizonBaker::new`] takes a `&wgpu::Device`,
 //! [`GpuHorizonBaker::record_east_west`] uploads through the caller's `&wgpu::Queue`
@@ -12,7 +13,7 @@
 //! with the CPU within the tolerance measured in the tests (`f32` arithmetic and the
 //! GPU's `atan`).
 
-use crate::horizon::{HorizonOptions, max_steps_for};
+use crate::horizon::{HorizonOptions, Lines, check_azimuth, max_steps_for};
 use crate::{Heightfield, TerrainError};
 
 const WORKGROUP: u32 = 64;
@@ -30,11 +31,40 @@ struct Params {
     _pad: [u32; 2],
 }
 
+/// Uniform block `HorizonLineParams` of `horizon_bake.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct LineParams {
+    dominant_is_x: u32,
+    march_forward: u32,
+    n_dominant: u32,
+    n_minor: u32,
+    first_line: i32,
+    line_count: u32,
+    _pad: [u32; 2],
+}
+
 /// Compiled pipelines for the GPU horizon bake.
 #[derive(Debug)]
 pub struct GpuHorizonBaker {
     sweep: wgpu::ComputePipeline,
     window: wgpu::ComputePipeline,
+    sweep_lines: wgpu::ComputePipeline,
+    window_lines: wgpu::ComputePipeline,
+}
+
+/// Output of [`GpuHorizonBaker::record_azimuth`]: a storage buffer of `f32` angles
+/// (radians, row-major, `width * height`), usable as `COPY_SRC`.
+#[derive(Debug)]
+pub struct GpuHorizonMap {
+    /// The angles.
+    pub angles: wgpu::Buffer,
+    /// Azimuth, radians clockwise from north, in `[0, 2π)`.
+    pub azimuth: f64,
+    /// Columns.
+    pub width: usize,
+    /// Rows.
+    pub height: usize,
 }
 
 /// Output of [`GpuHorizonBaker::record_east_west`]: two storage buffers of `f32`
@@ -79,7 +109,165 @@ impl GpuHorizonBaker {
         Self {
             sweep: pipeline("horizon_sweep_rows"),
             window: pipeline("horizon_window"),
+            sweep_lines: pipeline("horizon_sweep_lines"),
+            window_lines: pipeline("horizon_window_lines"),
         }
+    }
+
+    /// Uploads `hf` and records the bake of one azimuth (radians clockwise from north)
+    /// into `encoder`: the digital lines of [`crate::horizon`] (their offsets computed
+    /// here in `f64` and uploaded, so the GPU walks exactly the CPU's texels), one
+    /// invocation per line (hull sweep; per-texel windows with a maximum distance).
+    ///
+    /// Errors like [`GpuHorizonBaker::record_east_west`], and on a non-finite azimuth.
+    pub fn record_azimuth(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        hf: &Heightfield,
+        azimuth: f64,
+        options: &HorizonOptions,
+    ) -> Result<GpuHorizonMap, TerrainError> {
+        options.validate()?;
+        let azimuth = check_azimuth(azimuth)?;
+        let (width, height) = (hf.width(), hf.height());
+        let lines = Lines::new(width, height, hf.spacing(), azimuth);
+        let ids = lines.ids();
+        let line_count = (ids.end() - ids.start() + 1) as usize;
+        let map_bytes = (width * height * 4) as u64;
+        let hull_bytes = (line_count * lines.n_dominant * 4) as u64;
+        let limit = device.limits().max_storage_buffer_binding_size;
+        for (field, bytes) in [
+            (
+                "heightfield bytes (max_storage_buffer_binding_size)",
+                map_bytes,
+            ),
+            (
+                "line hull bytes (max_storage_buffer_binding_size)",
+                hull_bytes,
+            ),
+        ] {
+            if bytes > limit {
+                return Err(TerrainError::TooLarge {
+                    field,
+                    value: bytes,
+                    limit,
+                });
+            }
+        }
+        let max_steps = max_steps_for(lines.step, options.max_distance);
+        let windowed = max_steps < lines.n_dominant.saturating_sub(1);
+        let storage = |label: &str, size: u64, usage: wgpu::BufferUsages| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage: wgpu::BufferUsages::STORAGE | usage,
+                mapped_at_creation: false,
+            })
+        };
+        let heights = storage("terrain heights", map_bytes, wgpu::BufferUsages::COPY_DST);
+        let elevations: Vec<f32> = hf.elevations().iter().map(|&e| e as f32).collect();
+        queue.write_buffer(&heights, 0, bytemuck::cast_slice(&elevations));
+        let offsets: Vec<i32> = lines.offsets.iter().map(|&o| o as i32).collect();
+        let offsets_buffer = storage(
+            "terrain line offsets",
+            (offsets.len() * 4) as u64,
+            wgpu::BufferUsages::COPY_DST,
+        );
+        queue.write_buffer(&offsets_buffer, 0, bytemuck::cast_slice(&offsets));
+        let hull = storage(
+            "terrain line hull scratch",
+            hull_bytes.max(4),
+            wgpu::BufferUsages::empty(),
+        );
+        let angles = storage("terrain horizon", map_bytes, wgpu::BufferUsages::COPY_SRC);
+        let uniform = |label: &str, bytes: &[u8]| {
+            let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: bytes.len() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            queue.write_buffer(&buffer, 0, bytes);
+            buffer
+        };
+        let params = uniform(
+            "terrain horizon params",
+            bytemuck::bytes_of(&Params {
+                width: width as u32,
+                height: height as u32,
+                max_steps: u32::try_from(max_steps).unwrap_or(u32::MAX),
+                march_east: 0,
+                step: lines.step as f32,
+                inv_two_r: options.inv_two_r() as f32,
+                _pad: [0; 2],
+            }),
+        );
+        let line_params = uniform(
+            "terrain horizon line params",
+            bytemuck::bytes_of(&LineParams {
+                dominant_is_x: u32::from(lines.dominant_is_x),
+                march_forward: u32::from(lines.march > 0),
+                n_dominant: lines.n_dominant as u32,
+                n_minor: lines.n_minor as u32,
+                first_line: *ids.start() as i32,
+                line_count: line_count as u32,
+                _pad: [0; 2],
+            }),
+        );
+        let pipeline = if windowed {
+            &self.window_lines
+        } else {
+            &self.sweep_lines
+        };
+        let mut entries = vec![
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: params.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: heights.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: angles.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 4,
+                resource: line_params.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 5,
+                resource: offsets_buffer.as_entire_binding(),
+            },
+        ];
+        if !windowed {
+            entries.push(wgpu::BindGroupEntry {
+                binding: 2,
+                resource: hull.as_entire_binding(),
+            });
+        }
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("terrain horizon bake (lines)"),
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &entries,
+        });
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("terrain horizon bake (lines)"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, &bind_group, &[]);
+        pass.dispatch_workgroups((line_count as u32).div_ceil(WORKGROUP), 1, 1);
+        drop(pass);
+        Ok(GpuHorizonMap {
+            angles,
+            azimuth,
+            width,
+            height,
+        })
     }
 
     /// Uploads `hf` and records the east and west bakes into `encoder`.

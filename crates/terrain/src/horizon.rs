@@ -161,6 +161,16 @@ pub struct HorizonMap {
 }
 
 impl HorizonMap {
+    pub(crate) fn from_angles(width: usize, height: usize, azimuth: f64, angles: Vec<f32>) -> Self {
+        debug_assert_eq!(angles.len(), width * height);
+        Self {
+            width,
+            height,
+            azimuth,
+            angles,
+        }
+    }
+
     /// Columns.
     pub fn width(&self) -> usize {
         self.width
@@ -223,21 +233,21 @@ impl AzimuthHorizonMaps {
 
 /// The digital-line geometry of one azimuth on one map.
 #[derive(Debug, Clone)]
-struct Lines {
-    dominant_is_x: bool,
+pub(crate) struct Lines {
+    pub(crate) dominant_is_x: bool,
     /// `+1` or `-1`: the direction of travel along the dominant axis.
-    march: i64,
+    pub(crate) march: i64,
     /// `round(u · t)` for every dominant coordinate `u`.
-    offsets: Vec<i64>,
-    n_dominant: usize,
-    n_minor: usize,
+    pub(crate) offsets: Vec<i64>,
+    pub(crate) n_dominant: usize,
+    pub(crate) n_minor: usize,
     width: usize,
     /// Distance of one step, metres.
-    step: f64,
+    pub(crate) step: f64,
 }
 
 impl Lines {
-    fn new(width: usize, height: usize, spacing: f64, azimuth: f64) -> Self {
+    pub(crate) fn new(width: usize, height: usize, spacing: f64, azimuth: f64) -> Self {
         let (east, south) = (azimuth.sin(), -azimuth.cos());
         let dominant_is_x = east.abs() >= south.abs();
         let (dominant, minor, n_dominant, n_minor) = if dominant_is_x {
@@ -261,7 +271,7 @@ impl Lines {
     }
 
     /// Line ids `c` covering the map, in order.
-    fn ids(&self) -> std::ops::RangeInclusive<i64> {
+    pub(crate) fn ids(&self) -> std::ops::RangeInclusive<i64> {
         let last = *self.offsets.last().unwrap_or(&0);
         let (lo, hi) = (last.min(0), last.max(0));
         -hi..=(self.n_minor as i64 - 1 - lo)
@@ -459,7 +469,7 @@ fn sweep_line(p: &Profile<'_>, max_steps: usize, g: &mut Vec<f64>, out: &mut [f3
     }
 }
 
-fn check_azimuth(azimuth: f64) -> Result<f64, TerrainError> {
+pub(crate) fn check_azimuth(azimuth: f64) -> Result<f64, TerrainError> {
     if !azimuth.is_finite() {
         return Err(TerrainError::param("azimuth", azimuth, "must be finite"));
     }

@@ -12,8 +12,13 @@
 //!   east/west or `N` azimuths, with Earth curvature and a maximum distance;
 //! * [`shadow`]: hard and soft (sun-disc) shadow queries and the seed-000 shading
 //!   term, each with a WGSL twin in [`WGSL_MODULES`];
-//! * `gpu` (default feature): an east/west horizon bake in WGSL compute that records
-//!   into the caller's encoder.
+//! * [`tilted`]: variant (c), east/west measured in the tilted plane of the sun's
+//!   daily path at a latitude;
+//! * [`HorizonEncoding`]: how an angle is stored (u8, u16 unorm or f32), exactly;
+//! * [`raycast`]: the exact ray-cast horizon over the bilinear surface (`f64`), the
+//!   reference the trade-off (`cargo xtask tradeoff terrain`) measures maps against;
+//! * `gpu` (default feature): horizon bakes in WGSL compute (east/west, or any azimuth
+//!   on the same digital lines) that record into the caller's encoder.
 //!
 //! Frames and units: SI, radians; heightfields row-major with `x` east and rows
 //! south; normals and sun directions in east–north–up; azimuths clockwise from north.
@@ -27,6 +32,7 @@
 //! # Ok::<(), terrain::TerrainError>(())
 //! ```
 
+mod encoding;
 mod error;
 pub mod generate;
 #[cfg(feature = "gpu")]
@@ -34,8 +40,14 @@ pub mod gpu;
 mod heightfield;
 pub mod horizon;
 mod normal;
+pub mod raycast;
 pub mod shadow;
+pub mod tilted;
 
+pub use encoding::{
+    HorizonEncoding, decode_horizon_unorm8, decode_horizon_unorm16, encode_horizon_unorm8,
+    encode_horizon_unorm16,
+};
 pub use error::TerrainError;
 pub use heightfield::{Heightfield, MAX_SIDE, MAX_TEXELS};
 pub use horizon::{
