@@ -20,20 +20,25 @@ struct Params {
     periodic: u32,
     seed: u32,
     last_word_mask: u32,
+    // floor(p * 2^16) of extinction, humidity, activation
+    threshold_ext: u32,
+    threshold_hum: u32,
+    threshold_act: u32,
+    // 1 when ellipsoids scale the probabilities (mask draws), else 0
+    regions: u32,
 }
 
 const HEADER_WORDS: u32 = 4u;
 const WORKGROUP_SIZE: u32 = 64u;
 
 @group(0) @binding(0) var<uniform> params: Params;
-// Mask level (0..=255) of each cell, four cells per word, little end first.
-@group(0) @binding(1) var<storage, read> mask_levels: array<u32>;
-// Per mask level: (extinction, humidity, activation, unused) thresholds.
-@group(0) @binding(2) var<storage, read> thresholds: array<vec4<u32>, 256>;
+// MASK_PLANES words per packed word: bit (7 - k) of every lane's mask level for
+// k < 8, then the lanes at level 256, then the lanes above level 0.
+@group(0) @binding(1) var<storage, read> mask_planes: array<u32>;
 // Per z slice: wind velocity in cells per step, 16.16 fixed point.
-@group(0) @binding(3) var<storage, read> wind: array<vec2<i32>>;
-@group(0) @binding(4) var<storage, read> src: array<u32>;
-@group(0) @binding(5) var<storage, read_write> dst: array<u32>;
+@group(0) @binding(2) var<storage, read> wind: array<vec2<i32>>;
+@group(0) @binding(3) var<storage, read> src: array<u32>;
+@group(0) @binding(4) var<storage, read_write> dst: array<u32>;
 
 fn field_base(field: u32) -> u32 {
     return HEADER_WORDS + field * params.word_count;
@@ -60,27 +65,12 @@ fn act_word(wx: u32, y: i32, z: i32) -> u32 {
     return act_at(row * params.words_per_row + wx);
 }
 
-fn mask_level(cell: u32) -> u32 {
-    return (mask_levels[cell >> 2u] >> ((cell & 3u) * 8u)) & 0xffu;
-}
-
-// The events among `candidates` (one bit per lane) for stream `stream`.
-fn events(key: u32, base_cell: u32, candidates: u32, stream: u32) -> u32 {
-    var bits = 0u;
-    var rest = candidates;
-    loop {
-        if rest == 0u {
-            break;
-        }
-        let lane = firstTrailingBit(rest);
-        rest &= rest - 1u;
-        let cell = base_cell + lane;
-        let threshold = thresholds[mask_level(cell)][stream];
-        if draw_event(key, cell, threshold) {
-            bits |= 1u << lane;
-        }
+fn word_mask_planes(word: u32) -> array<u32, 10> {
+    var planes: array<u32, 10>;
+    for (var k = 0u; k < MASK_PLANES; k++) {
+        planes[k] = mask_planes[word * MASK_PLANES + k];
     }
-    return bits;
+    return planes;
 }
 
 fn word_index(gid: vec3<u32>, groups: vec3<u32>) -> u32 {
@@ -138,25 +128,40 @@ fn step_main(
     }
     var hum_next = h & ~a;
     var cld_next = c | a;
-    var act_next = ~a & h & f_act;
+    var act_next = ~a & h & f_act & valid;
 
-    let base_cell = wx * 32u + params.nx * row;
-    // Clouds vanish where the mask level is 0.
-    var alive = 0u;
-    let lanes = min(params.nx - wx * 32u, 32u);
-    for (var lane = 0u; lane < lanes; lane++) {
-        if mask_level(base_cell + lane) != 0u {
-            alive |= 1u << lane;
-        }
+    // The stochastic terms, each drawn 32 lanes at a time for the lanes it can change.
+    let regions = params.regions != 0u;
+    var planes: array<u32, 10>;
+    var alive = valid;
+    if regions {
+        planes = word_mask_planes(w);
+        alive = planes[MASK_PLANE_ALIVE];
     }
+    // Clouds vanish where the mask level is 0.
     cld_next &= alive;
-
-    let key_ext = stream_key(params.seed, step, STREAM_EXTINCTION);
-    let key_hum = stream_key(params.seed, step, STREAM_HUMIDITY);
-    let key_act = stream_key(params.seed, step, STREAM_ACTIVATION);
-    cld_next &= ~events(key_ext, base_cell, cld_next, STREAM_EXTINCTION);
-    hum_next |= events(key_hum, base_cell, ~hum_next & valid, STREAM_HUMIDITY);
-    act_next |= events(key_act, base_cell, ~act_next & valid, STREAM_ACTIVATION);
+    let seed = params.seed;
+    var ext = below_threshold(stream_key(seed, step, STREAM_EXTINCTION), w, cld_next,
+        params.threshold_ext);
+    if regions && ext != 0u {
+        let key = stream_key(seed, step, STREAM_EXTINCTION + STREAM_MASK_OFFSET);
+        ext &= ~below_mask_level(key, w, ext, planes);
+    }
+    cld_next &= ~ext;
+    var sup = below_threshold(stream_key(seed, step, STREAM_HUMIDITY), w, ~hum_next & alive,
+        params.threshold_hum);
+    if regions && sup != 0u {
+        let key = stream_key(seed, step, STREAM_HUMIDITY + STREAM_MASK_OFFSET);
+        sup = below_mask_level(key, w, sup, planes);
+    }
+    hum_next |= sup;
+    var spark = below_threshold(stream_key(seed, step, STREAM_ACTIVATION), w,
+        ~act_next & alive, params.threshold_act);
+    if regions && spark != 0u {
+        let key = stream_key(seed, step, STREAM_ACTIVATION + STREAM_MASK_OFFSET);
+        spark = below_mask_level(key, w, spark, planes);
+    }
+    act_next |= spark;
 
     dst[field_base(0u) + w] = hum_next;
     dst[field_base(1u) + w] = act_next;

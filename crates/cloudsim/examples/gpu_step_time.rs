@@ -1,6 +1,7 @@
-//! Times GPU steps (wall clock, submit to completion) on the harness adapter and checks
-//! the result against the CPU. The adapter type is printed with the timing: on a CPU
-//! adapter (lavapipe/llvmpipe) it is a CPU timing.
+//! Times GPU steps with timestamp queries (`skyscape_harness::PassTimer`, the median of
+//! 5 passes of 40 steps after a warm-up) on the harness adapter, and checks the result
+//! against the CPU. The adapter type is printed with the timing: on a CPU adapter
+//! (lavapipe/llvmpipe) it is a CPU timing, not GPU speed.
 //!
 //! `WGPU_BACKEND=vulkan cargo run --release -p cloudsim --example gpu_step_time`
 
@@ -19,25 +20,30 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let model = Model::new(config)?;
     let start = PackedState::empty(size)?;
     let mut sim = GpuSimulation::new(&gpu.device, &gpu.queue, &model, &start, 0)?;
-    let run = |sim: &mut GpuSimulation, steps: u32| -> Result<f64, Box<dyn std::error::Error>> {
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        sim.encode_steps(&mut encoder, steps);
-        let t = std::time::Instant::now();
-        gpu.queue.submit([encoder.finish()]);
-        gpu.device.poll(wgpu::PollType::wait_indefinitely())?;
-        Ok(t.elapsed().as_secs_f64())
-    };
-    run(&mut sim, 50)?; // warm-up and let clouds grow
-    let steps = 200;
-    let seconds = run(&mut sim, steps)?;
+    // Warm-up (pipelines, first touch) and let clouds grow, untimed.
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    sim.encode_steps(&mut encoder, 50);
+    gpu.queue.submit([encoder.finish()]);
+    const STEPS_PER_PASS: u32 = 40;
+    let seconds_per_pass =
+        skyscape_harness::median_pass_seconds(gpu, 5, |encoder, timer, span| {
+            sim.encode_steps_timed(encoder, STEPS_PER_PASS, Some(timer.compute_writes(span)));
+        })?;
+    let steps = STEPS_PER_PASS;
+    let seconds = seconds_per_pass;
     let bytes =
         skyscape_harness::read_buffer(gpu, "state", sim.state_buffer(), 0, sim.state_size())?;
     let (state, counter) = sim.decode_state(&bytes)?;
     let mut cpu = Simulation::new(model)?;
     cpu.advance(counter)?;
     println!(
-        "adapter: {}\n{}x{}x{}: {steps} steps in {:.3} s = {:.3} ms/step = {:.2} G cell-updates/s; bit-identical to CPU: {}",
+        "adapter: {}{}\n{}x{}x{}: {steps} steps in {:.3} s (timestamp queries) = {:.3} ms/step = {:.2} G cell-updates/s; bit-identical to CPU: {}",
         skyscape_harness::describe_adapter(&gpu.info),
+        if gpu.is_cpu_adapter() {
+            " — a CPU adapter: CPU time, not GPU speed"
+        } else {
+            ""
+        },
         size.nx,
         size.ny,
         size.nz,

@@ -18,6 +18,15 @@ use crate::{Boundary, Error, Model};
 /// wrap when periodic). All sums are exact integers, so the result is deterministic;
 /// it lies in `[0, scale[z]]` and is exactly `scale[z]` deep inside a solid cloud.
 pub fn density(model: &Model, cld_history: &[&[u32]]) -> Result<Vec<f32>, Error> {
+    Ok(density_f64(model, cld_history)?
+        .into_iter()
+        .map(|d| d as f32)
+        .collect())
+}
+
+/// [`density()`] before its final rounding to `f32`: the exact integer sums divided and
+/// scaled in f64 (the parity reference of the WGSL `density_main`).
+pub fn density_f64(model: &Model, cld_history: &[&[u32]]) -> Result<Vec<f64>, Error> {
     let size = model.size();
     let words = size.words();
     if cld_history.is_empty() {
@@ -93,7 +102,7 @@ pub fn density(model: &Model, cld_history: &[&[u32]]) -> Result<Vec<f32>, Error>
         .enumerate()
         .map(|(i, &sum)| {
             let z = i / (nx * ny);
-            (sum as f64 / norm as f64 * f64::from(scale[z])) as f32
+            sum as f64 / norm as f64 * f64::from(scale[z])
         })
         .collect())
 }

@@ -50,6 +50,20 @@ pub enum Error {
         /// The offending value.
         value: f32,
     },
+    /// A probability is positive but below the 2^-16 resolution of the draws, so it
+    /// would silently act as 0.
+    #[error(
+        "probability `{field}` = {value} is below the draws' resolution {resolution} \
+         (thresholds are floor(p * 2^16)); use 0 or at least {resolution}"
+    )]
+    ProbabilityResolution {
+        /// E.g. `probabilities.activation`.
+        field: &'static str,
+        /// The offending value.
+        value: f32,
+        /// 2^-16.
+        resolution: f64,
+    },
     /// An ellipsoid radius is NaN, infinite, zero or negative.
     #[error("`ellipsoids[{index}].{field}` = {value}: radii must be finite and positive")]
     EllipsoidRadius {

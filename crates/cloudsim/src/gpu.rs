@@ -13,9 +13,13 @@
 
 use crate::{Error, Model, PackedState};
 
+pub mod density;
+pub use density::GpuDensity;
+
 /// Words before the fields in a GPU state buffer (word 0: the step counter).
 pub const HEADER_WORDS: usize = 4;
-/// Workgroup size of both kernels (one invocation per packed word).
+/// Workgroup size of all kernels (one invocation per packed word, or per cell for the
+/// density).
 pub const WORKGROUP_SIZE: u32 = 64;
 
 /// Errors of the GPU path.
@@ -83,7 +87,6 @@ pub struct GpuSimulation {
     wind: bool,
     _params: wgpu::Buffer,
     _mask: wgpu::Buffer,
-    _thresholds: wgpu::Buffer,
     _wind: wgpu::Buffer,
 }
 
@@ -118,8 +121,8 @@ impl GpuSimulation {
         check_state(model, state)?;
         let limit = device.limits().max_storage_buffer_binding_size;
         let state_bytes = state_bytes_of(model);
-        let mask_bytes = (size.cells().div_ceil(4) * 4) as u64;
-        for (what, bytes) in [("state", state_bytes), ("mask_levels", mask_bytes)] {
+        let mask_bytes = (model.all_mask_planes().len() * 4) as u64;
+        for (what, bytes) in [("state", state_bytes), ("mask_planes", mask_bytes)] {
             if bytes > limit {
                 return Err(GpuError::BufferTooLarge { what, bytes, limit });
             }
@@ -145,8 +148,7 @@ impl GpuSimulation {
                 storage_entry(1, true),
                 storage_entry(2, true),
                 storage_entry(3, true),
-                storage_entry(4, true),
-                storage_entry(5, false),
+                storage_entry(4, false),
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -176,7 +178,8 @@ impl GpuSimulation {
             })
         };
         let storage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
-        let params_data: [u32; 8] = [
+        let [t_ext, t_hum, t_act] = model.thresholds();
+        let params_data: [u32; 12] = [
             size.nx,
             size.ny,
             size.nz,
@@ -185,28 +188,20 @@ impl GpuSimulation {
             u32::from(model.boundary() == crate::Boundary::Periodic),
             model.seed(),
             size.last_word_mask(),
+            t_ext,
+            t_hum,
+            t_act,
+            u32::from(model.has_regions()),
         ];
         let params = buffer(
             "cloudsim params",
-            32,
+            48,
             wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         );
         queue.write_buffer(&params, 0, bytemuck::cast_slice(&params_data));
 
-        let mut mask_words = vec![0u32; size.cells().div_ceil(4)];
-        for (i, &level) in model.mask_levels().iter().enumerate() {
-            mask_words[i / 4] |= u32::from(level) << (8 * (i % 4));
-        }
-        let mask = buffer("cloudsim mask", mask_bytes, storage);
-        queue.write_buffer(&mask, 0, bytemuck::cast_slice(&mask_words));
-
-        let threshold_data: Vec<u32> = model
-            .thresholds()
-            .iter()
-            .flat_map(|t| [t[0], t[1], t[2], 0])
-            .collect();
-        let thresholds = buffer("cloudsim thresholds", 256 * 16, storage);
-        queue.write_buffer(&thresholds, 0, bytemuck::cast_slice(&threshold_data));
+        let mask = buffer("cloudsim mask planes", mask_bytes, storage);
+        queue.write_buffer(&mask, 0, bytemuck::cast_slice(model.all_mask_planes()));
 
         let mut wind_data: Vec<i32> = model.wind_fixed().iter().flatten().copied().collect();
         if wind_data.is_empty() {
@@ -224,7 +219,6 @@ impl GpuSimulation {
             let entries = [
                 params.as_entire_binding(),
                 mask.as_entire_binding(),
-                thresholds.as_entire_binding(),
                 wind.as_entire_binding(),
                 buffers[from].as_entire_binding(),
                 buffers[1 - from].as_entire_binding(),
@@ -255,7 +249,6 @@ impl GpuSimulation {
             wind: model.has_wind(),
             _params: params,
             _mask: mask,
-            _thresholds: thresholds,
             _wind: wind,
         };
         sim.upload(queue, state, step)?;
@@ -284,13 +277,24 @@ impl GpuSimulation {
     /// Records `steps` automaton steps into `encoder` (one compute pass; two
     /// dispatches per step when the model has wind).
     pub fn encode_steps(&mut self, encoder: &mut wgpu::CommandEncoder, steps: u32) {
+        self.encode_steps_timed(encoder, steps, None);
+    }
+
+    /// [`GpuSimulation::encode_steps`] with timestamp writes on its single compute pass
+    /// (e.g. from `skyscape_harness::PassTimer`), for GPU timings.
+    pub fn encode_steps_timed(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        steps: u32,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
         if steps == 0 {
             return;
         }
         let [x, y, z] = workgroups(self.model.size().words() as u32);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("cloudsim steps"),
-            timestamp_writes: None,
+            timestamp_writes,
         });
         for _ in 0..steps {
             pass.set_pipeline(&self.step_pipeline);

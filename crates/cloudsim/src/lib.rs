@@ -16,7 +16,8 @@
 //!
 //! * [`naive`]: one bool per cell, the reference;
 //! * [`packed`] / [`Simulation`]: 32 cells per `u32`, multi-threaded;
-//! * `gpu` (feature `gpu`): WGSL compute on the same packed layout.
+//! * `gpu` (feature `gpu`): WGSL compute on the same packed layout, and the density
+//!   volume (`gpu::GpuDensity`).
 //!
 //! Draws are counter based ([`rng`]), so all three agree bit for bit for the same seed,
 //! whatever the thread count. [`density()`] turns the `cld` history into a smooth
@@ -38,8 +39,8 @@ pub use density::density;
 pub use error::Error;
 pub use model::{
     Boundary, Config, Ellipsoid, GridSize, MASK_LEVEL_MAX, MAX_CELLS, MAX_DIMENSION,
-    MAX_SMOOTHING_RADIUS_CELLS, MAX_SMOOTHING_RADIUS_STEPS, MAX_WIND, MIXED_LEVELS, Model,
-    Probabilities, Smoothing,
+    MAX_SMOOTHING_RADIUS_CELLS, MAX_SMOOTHING_RADIUS_STEPS, MAX_WIND, Model, Probabilities,
+    Smoothing,
 };
 pub use sim::Simulation;
 pub use state::{NaiveState, PackedState};
@@ -53,6 +54,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {
         name: "cloudsim::step",
         source: include_str!("../shaders/step.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "cloudsim::density",
+        source: include_str!("../shaders/density.wgsl"),
     },
 ];
 
@@ -68,7 +73,10 @@ mod tests {
         }
         // the module names follow the `cloudsim::<file_stem>` convention
         let names: Vec<_> = super::WGSL_MODULES.iter().map(|m| m.name).collect();
-        assert_eq!(names, ["cloudsim::rng", "cloudsim::step"]);
+        assert_eq!(
+            names,
+            ["cloudsim::rng", "cloudsim::step", "cloudsim::density"]
+        );
     }
 
     #[cfg(feature = "gpu")]
@@ -82,5 +90,8 @@ mod tests {
             .map(|e| e.name.as_str())
             .collect();
         assert_eq!(entries, ["step_main", "wind_main"]);
+        let source = super::gpu::density::compose_density_shader().unwrap();
+        let module = skyscape_wgsl::validate("cloudsim::density", &source).unwrap();
+        assert_eq!(module.entry_points[0].name, "density_main");
     }
 }

@@ -2,7 +2,10 @@
 //! derived tables every implementation reads: mask levels, thresholds, wind).
 
 use crate::Error;
-use crate::rng::{probability_threshold, wind_velocity_fixed};
+use crate::rng::{
+    MASK_FULL, MASK_PLANE_ALIVE, MASK_PLANE_FULL, MASK_PLANES, THRESHOLD_ONE,
+    probability_threshold, wind_velocity_fixed,
+};
 
 /// Largest allowed `nx`, `ny` or `nz`.
 pub const MAX_DIMENSION: u32 = 1 << 16;
@@ -14,8 +17,8 @@ pub const MAX_WIND: f32 = 16.0;
 pub const MAX_SMOOTHING_RADIUS_CELLS: u32 = 8;
 /// Largest allowed [`Smoothing::radius_steps`].
 pub const MAX_SMOOTHING_RADIUS_STEPS: u32 = 15;
-/// Number of quantised mask levels minus one: level 255 is mask 1, level 0 is mask 0.
-pub const MASK_LEVEL_MAX: u8 = 255;
+/// The mask level of mask 1: levels run over `0..=256`, level `l` meaning `l / 256`.
+pub const MASK_LEVEL_MAX: u16 = MASK_FULL;
 
 /// Grid dimensions in cells; `z` is up. Cell `(x, y, z)` has linear index
 /// `x + nx * (y + ny * z)`.
@@ -108,7 +111,8 @@ pub enum Boundary {
     /// cells in.
     #[default]
     Empty,
-    /// x and y wrap around. Needs `nx` to be a multiple of 32.
+    /// x and y wrap around. Needs `nx` to be a multiple of 32 (rows of whole words);
+    /// other widths are rejected with [`Error::PeriodicWidth`].
     Periodic,
 }
 
@@ -124,9 +128,13 @@ pub struct Ellipsoid {
 
 /// Base probabilities per cell and step.
 ///
+/// Each must lie in `[0, 1]` and is quantised *down* to a multiple of 2^-16
+/// (`threshold = floor(p * 2^16)`, see [`crate::rng`]); a non-zero value below 2^-16,
+/// which would quantise to 0, is rejected ([`Error::ProbabilityResolution`]).
+///
 /// Without ellipsoids they apply everywhere as they are. With ellipsoids, a cell whose
-/// mask is `m` in [0, 1] (see [`Model::mask_level`]) uses `humidity * m`,
-/// `activation * m` and `extinction * (1 - m)`, and loses its cloud where `m` rounds to
+/// quantised mask is `m = level / 256` (see [`Model::mask_level`]) uses `humidity * m`,
+/// `activation * m` and `extinction * (1 - m)`, and loses its cloud where the level is
 /// 0 (seed 002).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Probabilities {
@@ -209,32 +217,33 @@ impl Config {
     }
 }
 
-/// Marker in [`Model::word_levels`] for a word whose cells have different mask levels.
-pub const MIXED_LEVELS: u16 = u16::MAX;
-
 /// A validated [`Config`] with everything the implementations derive from it.
 #[derive(Debug, Clone)]
 pub struct Model {
     config: Config,
-    /// Mask level per cell (linear index).
-    mask: Vec<u8>,
-    /// Thresholds per level: `[extinction, humidity, activation]`.
-    thresholds: [[u32; 3]; 256],
-    /// Per packed word: the common level of its cells, or [`MIXED_LEVELS`].
-    word_levels: Vec<u16>,
-    /// Per packed word: bits of cells with level > 0 (cloud survives there).
-    alive: Vec<u32>,
+    /// Mask level per cell (linear index), `0..=256`.
+    mask: Vec<u16>,
+    /// `[extinction, humidity, activation]` thresholds, `floor(p * 2^16)`.
+    thresholds: [u32; 3],
+    /// Per packed word, [`MASK_PLANES`] words: the level bit planes, full, alive.
+    mask_planes: Vec<u32>,
     /// Wind per slice as 16.16 fixed point.
     wind_q: Vec<[i32; 2]>,
     slice_density: Vec<f32>,
 }
 
-fn check_probability(field: &'static str, value: f32) -> Result<(), Error> {
-    if (0.0..=1.0).contains(&value) {
-        Ok(())
-    } else {
-        Err(Error::Probability { field, value })
+/// `floor(p * 2^16)` for a valid probability, or the typed error.
+fn checked_threshold(field: &'static str, value: f32) -> Result<u32, Error> {
+    let threshold =
+        probability_threshold(f64::from(value)).ok_or(Error::Probability { field, value })?;
+    if threshold == 0 && value > 0.0 {
+        return Err(Error::ProbabilityResolution {
+            field,
+            value,
+            resolution: 1.0 / f64::from(THRESHOLD_ONE),
+        });
     }
+    Ok(threshold)
 }
 
 impl Model {
@@ -246,9 +255,11 @@ impl Model {
             return Err(Error::PeriodicWidth { nx: size.nx });
         }
         let p = config.probabilities;
-        check_probability("probabilities.extinction", p.extinction)?;
-        check_probability("probabilities.humidity", p.humidity)?;
-        check_probability("probabilities.activation", p.activation)?;
+        let thresholds = [
+            checked_threshold("probabilities.extinction", p.extinction)?,
+            checked_threshold("probabilities.humidity", p.humidity)?,
+            checked_threshold("probabilities.activation", p.activation)?,
+        ];
         const AXES: [&str; 3] = ["x", "y", "z"];
         for (index, e) in config.ellipsoids.iter().enumerate() {
             for axis in 0..3 {
@@ -318,8 +329,7 @@ impl Model {
         }
 
         let mask = mask_levels(size, &config.ellipsoids);
-        let thresholds = threshold_table(p, !config.ellipsoids.is_empty());
-        let (word_levels, alive) = word_tables(size, &mask);
+        let mask_planes = mask_planes(size, &mask);
         let wind_q = config
             .wind
             .iter()
@@ -334,8 +344,7 @@ impl Model {
             config,
             mask,
             thresholds,
-            word_levels,
-            alive,
+            mask_planes,
             wind_q,
             slice_density,
         })
@@ -361,34 +370,43 @@ impl Model {
         self.config.seed
     }
 
-    /// Quantised region mask of every cell (linear index), 0..=255.
+    /// Quantised region mask of every cell (linear index), `0..=256` (level `l` is
+    /// mask `l / 256`).
     ///
     /// Per ellipsoid `m_e = max(0, 1 - d^2)` with `d` the cell centre's normalised
-    /// distance from the ellipsoid centre; `m = max_e m_e`; level `= round(255 m)`
-    /// (computed once, in f64, on the CPU). Without ellipsoids every level is 255.
-    pub fn mask_levels(&self) -> &[u8] {
+    /// distance from the ellipsoid centre; `m = max_e m_e`; level `= round(256 m)`
+    /// (computed once, in f64, on the CPU). Without ellipsoids every level is 256.
+    pub fn mask_levels(&self) -> &[u16] {
         &self.mask
     }
 
     /// The mask level of one cell.
-    pub fn mask_level(&self, x: u32, y: u32, z: u32) -> u8 {
+    pub fn mask_level(&self, x: u32, y: u32, z: u32) -> u16 {
         self.mask[self.size().index(x, y, z)]
     }
 
-    /// `[extinction, humidity, activation]` thresholds (see [`crate::rng`]) per mask
-    /// level.
-    pub fn thresholds(&self) -> &[[u32; 3]; 256] {
-        &self.thresholds
+    /// True when ellipsoids scale the probabilities (and extinction uses `1 - m`).
+    pub fn has_regions(&self) -> bool {
+        !self.config.ellipsoids.is_empty()
     }
 
-    /// Per packed word: the common mask level of its cells, or [`MIXED_LEVELS`].
-    pub fn word_levels(&self) -> &[u16] {
-        &self.word_levels
+    /// `[extinction, humidity, activation]` base thresholds `floor(p * 2^16)` in
+    /// `[0, 2^16]` (see [`crate::rng`]); the effective base probability is
+    /// `threshold / 2^16`.
+    pub fn thresholds(&self) -> [u32; 3] {
+        self.thresholds
     }
 
-    /// Per packed word: the cells whose mask level is above 0 (clouds survive there).
-    pub fn alive_words(&self) -> &[u32] {
-        &self.alive
+    /// The mask planes of packed word `word` ([`crate::rng::MASK_PLANES`] words: bit
+    /// `7 - k` of every lane's level for `k < 8`, then the lanes at level 256, then the
+    /// lanes above level 0; padding lanes are 0).
+    pub fn mask_planes(&self, word: usize) -> &[u32] {
+        &self.mask_planes[word * MASK_PLANES..(word + 1) * MASK_PLANES]
+    }
+
+    /// All words' mask planes, [`crate::rng::MASK_PLANES`] per word (the GPU's copy).
+    pub fn all_mask_planes(&self) -> &[u32] {
+        &self.mask_planes
     }
 
     /// Wind per z slice as 16.16 fixed point `[vx, vy]`; empty when there is no wind.
@@ -423,7 +441,7 @@ impl Model {
     }
 }
 
-fn mask_levels(size: GridSize, ellipsoids: &[Ellipsoid]) -> Vec<u8> {
+fn mask_levels(size: GridSize, ellipsoids: &[Ellipsoid]) -> Vec<u16> {
     if ellipsoids.is_empty() {
         return vec![MASK_LEVEL_MAX; size.cells()];
     }
@@ -468,51 +486,27 @@ fn mask_levels(size: GridSize, ellipsoids: &[Ellipsoid]) -> Vec<u8> {
     }
     mask_value
         .into_iter()
-        .map(|m| (m.clamp(0.0, 1.0) * f64::from(MASK_LEVEL_MAX)).round() as u8)
+        .map(|m| (m.clamp(0.0, 1.0) * f64::from(MASK_LEVEL_MAX)).round() as u16)
         .collect()
 }
 
-fn threshold_table(p: Probabilities, regions: bool) -> [[u32; 3]; 256] {
-    let mut table = [[0u32; 3]; 256];
-    for (level, entry) in table.iter_mut().enumerate() {
-        let (ext, hum_act) = if regions {
-            let m = level as f64 / f64::from(MASK_LEVEL_MAX);
-            (1.0 - m, m)
-        } else {
-            (1.0, 1.0)
-        };
-        *entry = [
-            probability_threshold(f64::from(p.extinction) * ext),
-            probability_threshold(f64::from(p.humidity) * hum_act),
-            probability_threshold(f64::from(p.activation) * hum_act),
-        ];
-    }
-    table
-}
-
-fn word_tables(size: GridSize, mask: &[u8]) -> (Vec<u16>, Vec<u32>) {
+fn mask_planes(size: GridSize, mask: &[u16]) -> Vec<u32> {
     let wpr = size.words_per_row();
     let nx = size.nx as usize;
-    let mut levels = Vec::with_capacity(size.words());
-    let mut alive = Vec::with_capacity(size.words());
-    for row in mask.chunks_exact(nx) {
-        for wx in 0..wpr {
-            let cells = &row[wx * 32..((wx + 1) * 32).min(nx)];
-            let first = cells[0];
-            let uniform = cells.iter().all(|&l| l == first);
-            levels.push(if uniform {
-                u16::from(first)
-            } else {
-                MIXED_LEVELS
-            });
-            let mut bits = 0u32;
-            for (lane, &l) in cells.iter().enumerate() {
-                bits |= u32::from(l > 0) << lane;
+    let mut planes = vec![0u32; size.words() * MASK_PLANES];
+    for (row, levels) in mask.chunks_exact(nx).enumerate() {
+        for (x, &level) in levels.iter().enumerate() {
+            let word = row * wpr + x / 32;
+            let lane = x % 32;
+            let p = &mut planes[word * MASK_PLANES..(word + 1) * MASK_PLANES];
+            for (k, plane) in p.iter_mut().take(8).enumerate() {
+                *plane |= u32::from((level & 0xff) >> (7 - k) & 1) << lane;
             }
-            alive.push(bits);
+            p[MASK_PLANE_FULL] |= u32::from(level == MASK_FULL) << lane;
+            p[MASK_PLANE_ALIVE] |= u32::from(level > 0) << lane;
         }
     }
-    (levels, alive)
+    planes
 }
 
 #[cfg(test)]
@@ -687,6 +681,27 @@ mod tests {
     }
 
     #[test]
+    fn tiny_probabilities_are_rejected_not_rounded_to_zero() {
+        let mut c = config();
+        c.probabilities.activation = 1e-6;
+        let err = Model::new(c).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                Error::ProbabilityResolution {
+                    field: "probabilities.activation",
+                    ..
+                }
+            ),
+            "{err:?}"
+        );
+        assert!(err.to_string().contains("probabilities.activation"));
+        let mut c = config();
+        c.probabilities.activation = 1.0 / 65536.0;
+        assert_eq!(Model::new(c).unwrap().thresholds()[2], 1);
+    }
+
+    #[test]
     fn mask_peaks_at_centres_and_vanishes_outside() {
         let mut c = Config::new(GridSize::new(40, 20, 10));
         c.ellipsoids = vec![Ellipsoid {
@@ -694,37 +709,39 @@ mod tests {
             radii: [8.0, 6.0, 4.0],
         }];
         let m = Model::new(c).unwrap();
-        assert_eq!(m.mask_level(10, 10, 5), 255);
+        assert!(m.has_regions());
+        assert_eq!(m.mask_level(10, 10, 5), 256);
         assert_eq!(m.mask_level(30, 10, 5), 0);
         assert_eq!(m.mask_level(0, 0, 0), 0);
-        // (x - 10.5) / 8 = 0.5 -> 1 - 0.25 = 0.75 -> 191.25 -> 191
-        assert_eq!(m.mask_level(14, 10, 5), 191);
-        // extinction grows away from the centre, supply/activation towards it
-        let t = m.thresholds();
-        assert!(t[255][0] == 0 && t[0][0] == probability_threshold(0.1f32 as f64));
-        assert!(t[0][1] == 0 && t[255][1] == probability_threshold(0.1f32 as f64));
-        assert!(t[100][1] < t[200][1] && t[100][0] > t[200][0]);
-        // word tables agree with the cells
+        // (x - 10.5) / 8 = 0.5 -> 1 - 0.25 = 0.75 -> 192
+        assert_eq!(m.mask_level(14, 10, 5), 192);
+        // (x - 10.5) / 8 = 0.625 -> 1 - 0.390625 = 0.609375 -> 156
+        assert_eq!(m.mask_level(15, 10, 5), 156);
+        let p = Probabilities::default();
+        assert_eq!(
+            m.thresholds(),
+            [p.extinction, p.humidity, p.activation].map(|v| (f64::from(v) * 65536.0) as u32)
+        );
+        // mask planes agree with the cells
         let size = m.size();
-        for (w, (&level, &alive)) in m.word_levels().iter().zip(m.alive_words()).enumerate() {
-            let row = w / size.words_per_row();
-            let wx = w % size.words_per_row();
+        let wpr = size.words_per_row();
+        for w in 0..size.words() {
+            let row = w / wpr;
+            let wx = w % wpr;
             let (y, z) = ((row % 20) as u32, (row / 20) as u32);
-            let mut expect_alive = 0;
-            let mut levels = vec![];
+            let planes = m.mask_planes(w);
             for lane in 0..32 {
                 let x = (wx * 32 + lane) as u32;
-                if x < 40 {
-                    let l = m.mask_level(x, y, z);
-                    levels.push(l);
-                    expect_alive |= u32::from(l > 0) << lane;
+                let bit = |k: usize| planes[k] >> lane & 1;
+                if x >= 40 {
+                    assert!((0..MASK_PLANES).all(|k| bit(k) == 0));
+                    continue;
                 }
-            }
-            assert_eq!(alive, expect_alive);
-            if levels.iter().all(|&l| l == levels[0]) {
-                assert_eq!(level, u16::from(levels[0]));
-            } else {
-                assert_eq!(level, MIXED_LEVELS);
+                let l = m.mask_level(x, y, z);
+                let low: u32 = (0..8).fold(0, |v, k| v << 1 | bit(k));
+                assert_eq!(low, u32::from(l & 0xff));
+                assert_eq!(bit(MASK_PLANE_FULL) == 1, l == 256);
+                assert_eq!(bit(MASK_PLANE_ALIVE) == 1, l > 0);
             }
         }
     }
@@ -732,17 +749,7 @@ mod tests {
     #[test]
     fn uniform_without_ellipsoids() {
         let m = Model::new(config()).unwrap();
-        assert!(m.mask_levels().iter().all(|&l| l == 255));
-        let p = Probabilities::default();
-        for entry in m.thresholds() {
-            assert_eq!(
-                *entry,
-                [
-                    probability_threshold(f64::from(p.extinction)),
-                    probability_threshold(f64::from(p.humidity)),
-                    probability_threshold(f64::from(p.activation))
-                ]
-            );
-        }
+        assert!(!m.has_regions());
+        assert!(m.mask_levels().iter().all(|&l| l == 256));
     }
 }

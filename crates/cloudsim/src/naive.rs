@@ -1,7 +1,10 @@
 //! The reference implementation: one `bool` per cell, written for clarity, not speed.
 //! The fast ([`crate::packed`]) and GPU implementations must match it bit for bit.
 
-use crate::rng::{STREAM_ACTIVATION, STREAM_EXTINCTION, STREAM_HUMIDITY, draw_event, stream_key};
+use crate::rng::{
+    MASK_BITS, MASK_FULL, STREAM_ACTIVATION, STREAM_EXTINCTION, STREAM_HUMIDITY,
+    STREAM_MASK_OFFSET, UNIFORM_BITS, stream_key, uniform16,
+};
 use crate::{Boundary, Error, GridSize, Model, NaiveState};
 
 /// Offsets `(dx, dy, dz)` whose `act` feeds a cell's `f_act`: x±1, x±2, y±1, y±2,
@@ -39,6 +42,38 @@ fn resolve(size: GridSize, boundary: Boundary, x: i64, y: i64, z: i64) -> Option
     Some(size.index(x as u32, y as u32, z as u32))
 }
 
+/// Whether the event of stream `stream` happens in cell `(x, y, z)` during `step`,
+/// spelled out cell by cell (see [`crate::rng`]): the cell's uniform 16-bit number is
+/// below the base threshold and, with ellipsoids, its mask draw (the top 8 bits of a
+/// second number) is below the mask level (supply, activation) or not below it
+/// (extinction: probability `1 - m`).
+fn event(model: &Model, stream: u32, step: u32, x: u32, y: u32, z: u32) -> bool {
+    let size = model.size();
+    let seed = model.seed();
+    let wpr = size.words_per_row() as u32;
+    let word = x / 32 + wpr * (y + size.ny * z);
+    let lane = x % 32;
+    let threshold = model.thresholds()[stream as usize];
+    // `&&` only skips draws whose value cannot change the outcome.
+    let base =
+        || threshold > 0 && uniform16(stream_key(seed, step, stream), word, lane) < threshold;
+    if !model.has_regions() {
+        return base();
+    }
+    let level = u32::from(model.mask_level(x, y, z));
+    let in_mask = || {
+        let mask_key = stream_key(seed, step, stream + STREAM_MASK_OFFSET);
+        let mask_draw = uniform16(mask_key, word, lane) >> (UNIFORM_BITS - MASK_BITS);
+        level == u32::from(MASK_FULL) || (level > 0 && mask_draw < level)
+    };
+    if stream == STREAM_EXTINCTION {
+        base() && !in_mask()
+    } else {
+        // mask 0: probability 0
+        level > 0 && base() && in_mask()
+    }
+}
+
 /// One automaton step `step` → `step + 1`, read entirely from `src`.
 ///
 /// 1. rules: `hum' = hum ∧ ¬act`, `cld' = cld ∨ act`, `act' = ¬act ∧ hum ∧ f_act`;
@@ -56,10 +91,6 @@ pub fn step(model: &Model, src: &NaiveState, step: u32) -> Result<NaiveState, Er
         });
     }
     let boundary = model.boundary();
-    let seed = model.seed();
-    let key_ext = stream_key(seed, step, STREAM_EXTINCTION);
-    let key_hum = stream_key(seed, step, STREAM_HUMIDITY);
-    let key_act = stream_key(seed, step, STREAM_ACTIVATION);
 
     let mut next = NaiveState::empty(size)?;
     for z in 0..size.nz {
@@ -81,19 +112,18 @@ pub fn step(model: &Model, src: &NaiveState, step: u32) -> Result<NaiveState, Er
                 let mut cld_next = cld || act;
                 let mut act_next = !act && hum && f_act;
 
-                let level = model.mask_levels()[i];
-                let [t_ext, t_hum, t_act] = model.thresholds()[usize::from(level)];
-                let cell = i as u32;
-                if draw_event(key_ext, cell, t_ext) {
+                // Each event has its own draws; a draw only matters where the event
+                // can change the cell, so the others are skipped (same result).
+                if cld_next && event(model, STREAM_EXTINCTION, step, x, y, z) {
                     cld_next = false;
                 }
-                if draw_event(key_hum, cell, t_hum) {
+                if !hum_next && event(model, STREAM_HUMIDITY, step, x, y, z) {
                     hum_next = true;
                 }
-                if draw_event(key_act, cell, t_act) {
+                if !act_next && event(model, STREAM_ACTIVATION, step, x, y, z) {
                     act_next = true;
                 }
-                if level == 0 {
+                if model.mask_levels()[i] == 0 {
                     cld_next = false;
                 }
                 next.hum[i] = hum_next;

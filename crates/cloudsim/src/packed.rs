@@ -1,81 +1,28 @@
 //! The fast CPU implementation: 32 cells per `u32` word along x, bitwise rules,
-//! neighbour shifts across words, random masks built 32 lanes at a time, rows split
-//! over `std::thread::scope` threads. Every cell's result depends only on the previous
+//! funnel shifts across neighbouring words, random masks built 32 lanes at a time
+//! (bit-sliced comparisons, [`crate::rng`]) fused into the same pass over each row,
+//! blocks of rows dealt over `std::thread::scope` threads. Every cell's result depends only on the previous
 //! state and its own counter-based draws, so the output is independent of the thread
 //! count and bit-identical to [`crate::naive`].
 
-use crate::model::MIXED_LEVELS;
 use crate::rng::{
-    STREAM_ACTIVATION, STREAM_EXTINCTION, STREAM_HUMIDITY, THRESHOLD_ONE, draw_bits, stream_key,
+    MASK_PLANE_ALIVE, MASK_PLANES, STREAM_ACTIVATION, STREAM_EXTINCTION, STREAM_HUMIDITY,
+    STREAM_MASK_OFFSET, below_mask_level, below_threshold, stream_key,
 };
 use crate::{Boundary, Error, GridSize, Model, PackedState};
 
-/// Below this many candidate cells a word's draws are made one set bit at a time;
-/// from it on, all 32 lanes are hashed in a straight (vectorisable) loop. Either way
-/// the same draws decide the same cells.
-const DENSE_LANES: u32 = 4;
-
-/// The events among `candidates` for a threshold shared by the whole word.
-#[inline]
-fn events_uniform(key: u32, base_cell: u32, candidates: u32, threshold: u32) -> u32 {
-    if candidates == 0 || threshold == 0 {
-        return 0;
-    }
-    if threshold >= THRESHOLD_ONE {
-        return candidates;
-    }
-    if candidates.count_ones() >= DENSE_LANES {
-        let mut bits = 0u32;
-        for lane in 0..32u32 {
-            let draw = draw_bits(key, base_cell.wrapping_add(lane)) >> 8;
-            bits |= u32::from(draw < threshold) << lane;
-        }
-        bits & candidates
-    } else {
-        let mut bits = 0u32;
-        let mut rest = candidates;
-        while rest != 0 {
-            let lane = rest.trailing_zeros();
-            rest &= rest - 1;
-            let draw = draw_bits(key, base_cell.wrapping_add(lane)) >> 8;
-            bits |= u32::from(draw < threshold) << lane;
-        }
-        bits
-    }
-}
-
-/// The events among `candidates` with one threshold per lane.
-#[inline]
-fn events_per_lane(key: u32, base_cell: u32, candidates: u32, thresholds: &[u32; 32]) -> u32 {
-    if candidates == 0 {
-        return 0;
-    }
-    let mut bits = 0u32;
-    if candidates.count_ones() >= DENSE_LANES {
-        for (lane, &t) in thresholds.iter().enumerate() {
-            let draw = draw_bits(key, base_cell.wrapping_add(lane as u32)) >> 8;
-            bits |= u32::from(draw < t) << lane;
-        }
-        bits & candidates
-    } else {
-        let mut rest = candidates;
-        while rest != 0 {
-            let lane = rest.trailing_zeros();
-            rest &= rest - 1;
-            let draw = draw_bits(key, base_cell.wrapping_add(lane)) >> 8;
-            bits |= u32::from(draw < thresholds[lane as usize]) << lane;
-        }
-        bits
-    }
-}
-
+/// Everything one step's row kernel reads.
 struct Rules<'a> {
-    model: &'a Model,
     src: &'a PackedState,
     size: GridSize,
     wpr: usize,
     periodic: bool,
-    keys: [u32; 3],
+    regions: bool,
+    mask_planes: &'a [u32],
+    /// `[extinction, humidity, activation]` base thresholds.
+    thresholds: [u32; 3],
+    /// Base-draw keys of the three streams, then their mask-draw keys.
+    keys: [u32; 6],
     zero_row: Vec<u32>,
 }
 
@@ -97,18 +44,53 @@ impl Rules<'_> {
         &self.src.act[row * self.wpr..(row + 1) * self.wpr]
     }
 
-    /// Computes rows `first_row..` into the output slices (whole rows).
+    /// The three stochastic terms of one word (rules already applied), fused into the
+    /// row pass: each draw is built 32 lanes at a time, bit-sliced, and only for the
+    /// lanes it can change (see [`crate::rng`]).
+    #[inline]
+    fn stochastic(&self, word: usize, valid: u32, hum: &mut u32, act: &mut u32, cld: &mut u32) {
+        let [t_ext, t_hum, t_act] = self.thresholds;
+        let [k_ext, k_hum, k_act, m_ext, m_hum, m_act] = self.keys;
+        let w = word as u32;
+        let planes = if self.regions {
+            &self.mask_planes[word * MASK_PLANES..(word + 1) * MASK_PLANES]
+        } else {
+            &[]
+        };
+        let alive = if self.regions {
+            planes[MASK_PLANE_ALIVE]
+        } else {
+            valid
+        };
+        // Clouds vanish where the mask level is 0 (seed 002); outside every ellipsoid
+        // (most words) nothing can happen, so no draw is needed.
+        *cld &= alive;
+        if alive == 0 {
+            return;
+        }
+        let mut ext = below_threshold(k_ext, w, *cld, t_ext);
+        if self.regions && ext != 0 {
+            // extinction grows away from the centres: probability p (1 - m)
+            ext &= !below_mask_level(m_ext, w, ext, planes);
+        }
+        *cld &= !ext;
+        let mut sup = below_threshold(k_hum, w, !*hum & alive, t_hum);
+        if self.regions && sup != 0 {
+            sup = below_mask_level(m_hum, w, sup, planes);
+        }
+        *hum |= sup;
+        let mut spark = below_threshold(k_act, w, !*act & alive, t_act);
+        if self.regions && spark != 0 {
+            spark = below_mask_level(m_act, w, spark, planes);
+        }
+        *act |= spark;
+    }
+
+    /// Computes whole rows `first_row..` into the output slices.
     fn run(&self, first_row: usize, hum_out: &mut [u32], act_out: &mut [u32], cld_out: &mut [u32]) {
         let wpr = self.wpr;
-        let size = self.size;
-        let ny = size.ny as usize;
-        let nx = size.nx as usize;
-        let last_mask = size.last_word_mask();
-        let thresholds = self.model.thresholds();
-        let mask = self.model.mask_levels();
-        let word_levels = self.model.word_levels();
-        let alive = self.model.alive_words();
-        let [key_ext, key_hum, key_act] = self.keys;
+        let ny = self.size.ny as usize;
+        let last_mask = self.size.last_word_mask();
         let rows = hum_out.len() / wpr;
         for local in 0..rows {
             let row = first_row + local;
@@ -117,75 +99,58 @@ impl Rules<'_> {
             let act = &self.src.act[base..base + wpr];
             let hum = &self.src.hum[base..base + wpr];
             let cld = &self.src.cld[base..base + wpr];
-            let neighbours = [
-                self.act_row(y - 1, z),
-                self.act_row(y + 1, z),
-                self.act_row(y - 2, z),
-                self.act_row(y + 2, z),
-                self.act_row(y, z + 1),
-                self.act_row(y, z - 1),
-                self.act_row(y, z - 2),
-            ];
+            let (ym1, yp1, ym2, yp2) = (
+                &self.act_row(y - 1, z)[..wpr],
+                &self.act_row(y + 1, z)[..wpr],
+                &self.act_row(y - 2, z)[..wpr],
+                &self.act_row(y + 2, z)[..wpr],
+            );
+            let (zp1, zm1, zm2) = (
+                &self.act_row(y, z + 1)[..wpr],
+                &self.act_row(y, z - 1)[..wpr],
+                &self.act_row(y, z - 2)[..wpr],
+            );
+            let out_h = &mut hum_out[local * wpr..(local + 1) * wpr];
+            let out_a = &mut act_out[local * wpr..(local + 1) * wpr];
+            let out_c = &mut cld_out[local * wpr..(local + 1) * wpr];
+            // The words just outside the row along x (wrapped when periodic).
+            let (before, after) = if self.periodic {
+                (act[wpr - 1], act[0])
+            } else {
+                (0, 0)
+            };
             for wx in 0..wpr {
                 let a = act[wx];
-                let (prev, next) = match (wx > 0, wx + 1 < wpr) {
-                    (true, true) => (act[wx - 1], act[wx + 1]),
-                    (true, false) => (act[wx - 1], if self.periodic { act[0] } else { 0 }),
-                    (false, true) => (if self.periodic { act[wpr - 1] } else { 0 }, act[wx + 1]),
-                    (false, false) => {
-                        if self.periodic {
-                            (a, a)
-                        } else {
-                            (0, 0)
-                        }
-                    }
-                };
-                // bit i of `a << 1 | prev >> 31` is act(x - 1), and so on.
-                let mut f_act = (a << 1 | prev >> 31)
+                let prev = if wx > 0 { act[wx - 1] } else { before };
+                let next = if wx + 1 < wpr { act[wx + 1] } else { after };
+                // Funnel shifts across words: bit i of `a << 1 | prev >> 31` is
+                // act(x - 1), and so on.
+                let f_act = (a << 1 | prev >> 31)
                     | (a << 2 | prev >> 30)
                     | (a >> 1 | next << 31)
-                    | (a >> 2 | next << 30);
-                for n in &neighbours {
-                    f_act |= n[wx];
-                }
+                    | (a >> 2 | next << 30)
+                    | ym1[wx]
+                    | yp1[wx]
+                    | ym2[wx]
+                    | yp2[wx]
+                    | zp1[wx]
+                    | zm1[wx]
+                    | zm2[wx];
                 let h = hum[wx];
-                let c = cld[wx];
                 let valid = if wx + 1 == wpr { last_mask } else { u32::MAX };
                 let mut hum_next = h & !a;
-                let mut cld_next = c | a;
-                let mut act_next = !a & h & f_act;
-
-                let word = base + wx;
-                let base_cell = (wx * 32 + nx * row) as u32;
-                let level = word_levels[word];
-                if level != MIXED_LEVELS {
-                    let [t_ext, t_hum, t_act] = thresholds[usize::from(level)];
-                    if level == 0 {
-                        cld_next = 0;
-                    } else {
-                        cld_next &= !events_uniform(key_ext, base_cell, cld_next, t_ext);
-                    }
-                    hum_next |= events_uniform(key_hum, base_cell, !hum_next & valid, t_hum);
-                    act_next |= events_uniform(key_act, base_cell, !act_next & valid, t_act);
-                } else {
-                    let lanes = (nx - wx * 32).min(32);
-                    let cells = &mask[base_cell as usize..base_cell as usize + lanes];
-                    let mut t = [[0u32; 32]; 3];
-                    for (lane, &l) in cells.iter().enumerate() {
-                        let entry = thresholds[usize::from(l)];
-                        t[0][lane] = entry[0];
-                        t[1][lane] = entry[1];
-                        t[2][lane] = entry[2];
-                    }
-                    cld_next &= alive[word];
-                    cld_next &= !events_per_lane(key_ext, base_cell, cld_next, &t[0]);
-                    hum_next |= events_per_lane(key_hum, base_cell, !hum_next & valid, &t[1]);
-                    act_next |= events_per_lane(key_act, base_cell, !act_next & valid, &t[2]);
-                }
-                let out = local * wpr + wx;
-                hum_out[out] = hum_next;
-                act_out[out] = act_next;
-                cld_out[out] = cld_next;
+                let mut cld_next = cld[wx] | a;
+                let mut act_next = !a & h & f_act & valid;
+                self.stochastic(
+                    base + wx,
+                    valid,
+                    &mut hum_next,
+                    &mut act_next,
+                    &mut cld_next,
+                );
+                out_h[wx] = hum_next;
+                out_a[wx] = act_next;
+                out_c[wx] = cld_next;
             }
         }
     }
@@ -214,8 +179,12 @@ fn check_pair(
     Ok(())
 }
 
-/// Splits the rows of `dst` into `threads` contiguous chunks and runs `work(first_row,
-/// hum, act, cld)` on each, in parallel when `threads > 1`.
+/// Blocks of rows handed out per thread: the work is uneven (draws happen only inside
+/// the ellipsoids), so each thread gets several blocks spread over the grid.
+const BLOCKS_PER_THREAD: usize = 8;
+
+/// Splits the rows of `dst` into blocks, deals them round-robin to `threads` threads and
+/// runs `work(first_row, hum, act, cld)` on each block, in parallel when `threads > 1`.
 fn split_rows<F>(size: GridSize, dst: &mut PackedState, threads: usize, work: F)
 where
     F: Fn(usize, &mut [u32], &mut [u32], &mut [u32]) + Sync,
@@ -227,17 +196,26 @@ where
         work(0, &mut dst.hum, &mut dst.act, &mut dst.cld);
         return;
     }
-    let per = rows.div_ceil(threads) * wpr;
+    let per = rows.div_ceil(threads * BLOCKS_PER_THREAD) * wpr;
+    type Block<'b> = (usize, &'b mut [u32], &'b mut [u32], &'b mut [u32]);
+    let mut dealt: Vec<Vec<Block>> = (0..threads).map(|_| Vec::new()).collect();
+    let blocks = dst
+        .hum
+        .chunks_mut(per)
+        .zip(dst.act.chunks_mut(per))
+        .zip(dst.cld.chunks_mut(per))
+        .enumerate();
+    for (index, ((hum, act), cld)) in blocks {
+        dealt[index % threads].push((index * per / wpr, hum, act, cld));
+    }
     let work = &work;
     std::thread::scope(|scope| {
-        let chunks = dst
-            .hum
-            .chunks_mut(per)
-            .zip(dst.act.chunks_mut(per))
-            .zip(dst.cld.chunks_mut(per))
-            .enumerate();
-        for (index, ((hum, act), cld)) in chunks {
-            scope.spawn(move || work(index * per / wpr, hum, act, cld));
+        for blocks in dealt {
+            scope.spawn(move || {
+                for (first, hum, act, cld) in blocks {
+                    work(first, hum, act, cld);
+                }
+            });
         }
     });
 }
@@ -254,17 +232,18 @@ pub fn step_rules(
     check_pair(model, src, dst, threads)?;
     let size = model.size();
     let seed = model.seed();
+    let streams = [STREAM_EXTINCTION, STREAM_HUMIDITY, STREAM_ACTIVATION];
+    let base = streams.map(|s| stream_key(seed, step, s));
+    let mask = streams.map(|s| stream_key(seed, step, s + STREAM_MASK_OFFSET));
     let rules = Rules {
-        model,
         src,
         size,
         wpr: size.words_per_row(),
         periodic: model.boundary() == Boundary::Periodic,
-        keys: [
-            stream_key(seed, step, STREAM_EXTINCTION),
-            stream_key(seed, step, STREAM_HUMIDITY),
-            stream_key(seed, step, STREAM_ACTIVATION),
-        ],
+        regions: model.has_regions(),
+        mask_planes: model.all_mask_planes(),
+        thresholds: model.thresholds(),
+        keys: [base[0], base[1], base[2], mask[0], mask[1], mask[2]],
         zero_row: vec![0; size.words_per_row()],
     };
     split_rows(size, dst, threads, |first, h, a, c| {

@@ -105,4 +105,10 @@ impl Simulation {
         let history: Vec<&[u32]> = self.history.iter().map(Vec::as_slice).collect();
         density::density(&self.model, &history)
     }
+
+    /// [`Simulation::density`] in f64 (see [`density::density_f64`]).
+    pub fn density_f64(&self) -> Result<Vec<f64>, Error> {
+        let history: Vec<&[u32]> = self.history.iter().map(Vec::as_slice).collect();
+        density::density_f64(&self.model, &history)
+    }
 }

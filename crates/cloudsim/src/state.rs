@@ -1,8 +1,9 @@
 //! The two state layouts: one `bool` per cell ([`NaiveState`]) and 32 cells per `u32`
 //! word along x ([`PackedState`], shared by the fast CPU path and the GPU).
 
-use crate::rng::{draw_bits, stream_key};
+use crate::rng::{probability_threshold, stream_key};
 use crate::{Error, GridSize};
+use skyscape_wgsl::common::hash_combine;
 
 /// One `bool` per cell and field, linear index `x + nx * (y + ny * z)`.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -82,8 +83,8 @@ impl PackedState {
     }
 
     /// A reproducible random state: each cell's `hum`, `act`, `cld` is set with the
-    /// given probabilities, drawn with the crate's hash from `seed` (streams 100..103,
-    /// so they never coincide with the automaton's draws).
+    /// given probabilities (quantised to 2^-16), drawn with the crate's hash from `seed`
+    /// (streams 100..103, so they never coincide with the automaton's draws).
     pub fn random(size: GridSize, seed: u32, hum: f32, act: f32, cld: f32) -> Result<Self, Error> {
         for (field, value) in [("hum", hum), ("act", act), ("cld", cld)] {
             if !(0.0..=1.0).contains(&value) {
@@ -98,9 +99,9 @@ impl PackedState {
         ];
         for (cells, p, stream) in fields {
             let key = stream_key(seed, 0, stream);
-            let t = crate::rng::probability_threshold(f64::from(p));
+            let t = probability_threshold(f64::from(p)).unwrap_or(0);
             for (i, cell) in cells.iter_mut().enumerate() {
-                *cell = (draw_bits(key, i as u32) >> 8) < t;
+                *cell = (hash_combine(key, i as u32) >> 16) < t;
             }
         }
         Self::from_naive(&naive)
@@ -124,6 +125,9 @@ impl PackedState {
             }
             let wpr = self.size.words_per_row();
             let padding = !self.size.last_word_mask();
+            if padding == 0 {
+                continue; // rows of whole words have no padding bits
+            }
             if let Some(row) = words
                 .chunks_exact(wpr)
                 .position(|row| row[wpr - 1] & padding != 0)

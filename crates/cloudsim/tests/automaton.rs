@@ -333,11 +333,16 @@ fn ellipsoid_masks_scale_the_frequencies() {
         let mut var = 0.0;
         let mut count = 0usize;
         for i in 0..size.cells() {
+            // p = t / 2^16 * m (supply, activation) or t / 2^16 * (1 - m) (extinction)
+            // with m = level / 256: the product of two independent draws. A mask draw
+            // that reused the base draw's number would give min(p, m) instead.
             let level = m.mask_levels()[i];
-            let p = if stream == 0 && level == 0 {
-                1.0 // removed outside the mask
-            } else {
-                f64::from(m.thresholds()[usize::from(level)][stream]) / f64::from(1u32 << 24)
+            let base = f64::from(m.thresholds()[stream]) / 65536.0;
+            let mask = f64::from(level) / 256.0;
+            let p = match stream {
+                0 if level == 0 => 1.0, // removed outside the mask
+                0 => base * (1.0 - mask),
+                _ => base * mask,
             };
             mean += p;
             var += p * (1.0 - p);
@@ -359,7 +364,7 @@ fn ellipsoid_masks_scale_the_frequencies() {
     }
     // mask level 0 removes clouds; the centre (level 255) never loses a cloud
     let centre = size.index(20, 30, 7);
-    assert_eq!(m.mask_levels()[centre], 255);
+    assert_eq!(m.mask_levels()[centre], 256);
     assert!(n.cld[centre]);
     assert!(!n.cld[size.index(63, 63, 15)]);
 }

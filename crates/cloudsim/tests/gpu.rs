@@ -141,3 +141,64 @@ fn readback_through_encode_readback() {
         Err(cloudsim::gpu::GpuError::ReadbackSize { .. })
     ));
 }
+
+#[test]
+fn gpu_density_matches_cpu_density() {
+    let Some(gpu) = skyscape_harness::gpu_or_skip("cloudsim::gpu_density_matches_cpu_density")
+    else {
+        return;
+    };
+    for (size, boundary, radius_cells, radius_steps, steps) in [
+        (GridSize::new(48, 20, 12), Boundary::Empty, 1, 2, 25),
+        (GridSize::new(64, 16, 10), Boundary::Periodic, 2, 3, 2), // history not yet full
+        (GridSize::new(33, 9, 7), Boundary::Empty, 0, 0, 12),
+    ] {
+        let mut c = config(size, boundary, true);
+        c.smoothing = cloudsim::Smoothing {
+            radius_cells,
+            radius_steps,
+        };
+        c.slice_density = (0..size.nz).map(|z| 1.0 - 0.05 * z as f32).collect();
+        let model = Model::new(c).unwrap();
+        let start = PackedState::random(size, 9, 0.4, 0.05, 0.3).unwrap();
+        let mut cpu = cloudsim::Simulation::with_state(model.clone(), start.clone(), 0).unwrap();
+        cpu.advance(steps).unwrap();
+        let expected = cpu.density().unwrap();
+
+        let device = &gpu.device;
+        let mut sim = GpuSimulation::new(device, &gpu.queue, &model, &start, 0).unwrap();
+        let mut density = cloudsim::gpu::GpuDensity::new(device, &gpu.queue, &model).unwrap();
+        let mut encoder = device.create_command_encoder(&Default::default());
+        assert!(
+            density.encode_density(&mut encoder).is_err(),
+            "empty history"
+        );
+        density.encode_capture(&mut encoder, &sim).unwrap(); // the start, as the CPU keeps it
+        density
+            .encode_steps_with_history(&mut encoder, &mut sim, steps)
+            .unwrap();
+        assert_eq!(density.history_len(), (steps + 1).min(radius_steps + 1));
+        density.encode_density(&mut encoder).unwrap();
+        gpu.queue.submit([encoder.finish()]);
+        let bytes = skyscape_harness::read_buffer(
+            gpu,
+            "cloudsim density",
+            density.density_buffer(),
+            0,
+            density.density_size(),
+        )
+        .unwrap();
+        let got = density.decode_density(&bytes).unwrap();
+        assert!(
+            expected.iter().any(|&d| d > 0.0),
+            "the test must grow clouds"
+        );
+        // integer sums on both sides; f32 division (<= 2.5 ULP in WGSL) and scale
+        for (i, (&g, &e)) in got.iter().zip(&expected).enumerate() {
+            assert!(
+                (g - e).abs() <= 1e-6,
+                "{size:?} cell {i}: GPU {g} vs CPU {e}"
+            );
+        }
+    }
+}
