@@ -4,7 +4,7 @@
 // a direction's zenith cosine mu is its y component.
 #import common::constants
 #import atmos::geometry
-#import atmos::closed_form
+#import atmos::closed_form_sky
 #import render::tonemap
 
 struct SkyUniforms {
@@ -54,22 +54,21 @@ fn shade_sky_pixel(view_direction: vec3<f32>, uniforms: SkyUniforms) -> vec3<f32
     let r = uniforms.camera_forward.w;
     let mu = view_direction.y;
     let planet_radius = uniforms.beta_mie.w;
-    let shell = ray_sphere_intersect(r, mu, uniforms.sun_irradiance_at_camera.w);
-    let ground = ray_sphere_intersect(r, mu, planet_radius);
-    let hits_ground = ground.x >= 0.0;
-    let path_start = max(shell.x, 0.0);
-    var path_end = shell.y;
-    if hits_ground {
-        path_end = min(path_end, ground.x);
-    }
-    let path_length = max(path_end - path_start, 0.0);
-    let beta_rayleigh = uniforms.beta_rayleigh.xyz;
-    let beta_mie = uniforms.beta_mie.xyz;
+    // The shell, coefficients and path are atmos's rung 1 (closed_form_sky); this pass
+    // only adds the lit ground or the sun disc behind the path.
+    let params = ClosedFormSkyParameters(
+        uniforms.beta_rayleigh.xyz,
+        uniforms.beta_rayleigh.w,
+        uniforms.beta_mie.xyz,
+        planet_radius,
+        uniforms.sun_irradiance_at_camera.xyz,
+        uniforms.sun_irradiance_at_camera.w,
+    );
+    let hits_ground = ray_sphere_intersect(r, mu, planet_radius).x >= 0.0;
     let cos_theta = dot(view_direction, uniforms.sun_direction.xyz);
     let sunlight = uniforms.sun_irradiance_at_camera.xyz;
-    var radiance = uniforms.sunlight_in_scatter.xyz
-        * closed_form_inscatter(beta_rayleigh, beta_mie, cos_theta, uniforms.beta_rayleigh.w, path_length);
-    let extinction = closed_form_extinction(beta_rayleigh, beta_mie, path_length);
+    var radiance = closed_form_sky_radiance(r, mu, cos_theta, 1e30, uniforms.sunlight_in_scatter.xyz, params);
+    let extinction = closed_form_sky_transmittance(r, mu, 1e30, params);
     if hits_ground {
         // Lambertian ground lit by the (camera's) sunlight: albedo/π · E · cos(sun zenith).
         let cos_sun_zenith = max(uniforms.sun_direction.y, 0.0);

@@ -19,10 +19,13 @@ pub mod frame;
 pub mod geometry;
 #[cfg(feature = "gpu")]
 pub mod gpu;
+pub mod ground_irradiance;
 pub mod ladder;
+pub mod lut;
 pub mod optical_depth;
 pub mod phase;
 pub mod reference;
+pub mod single_scattering;
 pub mod transmittance;
 
 pub use atmosphere::{AtmosError, Atmosphere, AtmosphereParameters};
@@ -67,6 +70,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         name: "atmos::closed_form",
         source: include_str!("../shaders/closed_form.wgsl"),
     },
+    skyscape_wgsl::Module {
+        name: "atmos::single_scattering",
+        source: include_str!("../shaders/single_scattering.wgsl"),
+    },
 ];
 
 /// A composer that knows the common modules and every `atmos` module.
@@ -76,7 +83,15 @@ pub fn composer() -> skyscape_wgsl::Composer {
         .add_modules(WGSL_MODULES)
         .expect("atmos WGSL module names are unique and well formed");
     composer
+        .add_modules(lut::WGSL_MODULES)
+        .expect("atmos LUT WGSL module names are unique and well formed");
+    composer
 }
+
+/// The README's examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
 
 #[cfg(test)]
 mod wgsl_tests {

@@ -58,7 +58,8 @@ fn per_pixel_matches_the_cpu_twin() {
     for (altitude, pitch) in [(2.0, 0.1), (20_000.0, -0.4), (500_000.0, -1.2)] {
         let cam = camera(altitude, pitch);
         let (radiance, transmittance) = render(gpu, EvaluationFrequency::PerPixel, &cam);
-        let r = (cam.position[0].powi(2) + cam.position[1].powi(2) + cam.position[2].powi(2)).sqrt();
+        let r =
+            (cam.position[0].powi(2) + cam.position[1].powi(2) + cam.position[2].powi(2)).sqrt();
         let up = cam.position.map(|c| c / r);
         let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
         let mut worst = 0.0f32;
@@ -74,7 +75,8 @@ fn per_pixel_matches_the_cpu_twin() {
                     sunlight,
                     &params,
                 );
-                let cpu_t = closed_form_sky_transmittance(r, dot(view, up), cam.max_distance, &params);
+                let cpu_t =
+                    closed_form_sky_transmittance(r, dot(view, up), cam.max_distance, &params);
                 let i = (x + WIDTH * y) as usize;
                 for c in 0..3 {
                     // Near-tangent rays make the path length ill-conditioned in f32
@@ -86,7 +88,10 @@ fn per_pixel_matches_the_cpu_twin() {
                 }
             }
         }
-        assert!(worst < 2e-3, "altitude {altitude}: worst relative difference {worst}");
+        assert!(
+            worst < 2e-3,
+            "altitude {altitude}: worst relative difference {worst}"
+        );
     }
 }
 

@@ -16,6 +16,9 @@ pub enum RenderError {
     /// `encode` was called before `prepare`.
     #[error("the pass was encoded before `prepare` gave it a scene")]
     NotPrepared,
+    /// The atmosphere, a query or an atmos GPU pass was rejected by `atmos`.
+    #[error("atmos: {0}")]
+    Atmosphere(String),
     /// WGSL composition failed (a bug in skyscape's shaders).
     #[error("WGSL composition: {0}")]
     Shader(#[from] skyscape_wgsl::ComposeError),

@@ -11,6 +11,7 @@
 pub mod error;
 #[cfg(feature = "gpu")]
 pub mod gpu;
+pub mod present;
 pub mod sky;
 pub mod tonemap;
 
@@ -22,6 +23,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {
         name: "render::tonemap",
         source: include_str!("../shaders/tonemap.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::present",
+        source: include_str!("../shaders/present.wgsl"),
     },
     skyscape_wgsl::Module {
         name: "render::sky_closed_form",

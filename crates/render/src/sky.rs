@@ -3,9 +3,13 @@
 
 use crate::error::{RenderError, check};
 use crate::tonemap::{pack_rgba8, quantize_srgb8, tonemap_exposure};
-use atmos::closed_form::{closed_form_extinction, closed_form_inscatter};
+use atmos::closed_form::closed_form_extinction;
+use atmos::closed_form_sky::{
+    ClosedFormSkyParameters, closed_form_sky_radiance, closed_form_sky_transmittance,
+    closed_form_sunlight,
+};
+use atmos::frame::UNLIMITED_DISTANCE;
 use atmos::geometry::ray_sphere_intersect;
-use atmos::transmittance::one_minus_exp_neg;
 use glam::Vec3;
 use skyscape_wgsl::common::INV_PI;
 
@@ -280,20 +284,17 @@ impl SkyUniforms {
         let sun_at_camera: [f32; 3] =
             std::array::from_fn(|i| a.sun_irradiance[i] * sun_transmittance[i]);
         // In-scatter happens all along the view path, mostly above the camera where
-        // the sun is less attenuated; the closed form needs one value, so use the
-        // transmittance averaged over the column, (1 − e^{−τs})/τs (→ 1 as τs → 0).
-        let column_average = sun_path.map_or([0.0; 3], |path| {
-            std::array::from_fn(|i| {
-                let optical_depth = (beta_rayleigh[i] + beta_mie[i]) * path;
-                if optical_depth > 0.0 {
-                    one_minus_exp_neg(optical_depth) / optical_depth
-                } else {
-                    1.0
-                }
-            })
-        });
-        let sunlight_in_scatter: [f32; 3] =
-            std::array::from_fn(|i| a.sun_irradiance[i] * column_average[i]);
+        // the sun is less attenuated; the closed form needs one value: atmos's
+        // column-averaged sunlight, E·(1 − e^{−τs})/τs (0 when the planet hides the sun).
+        let shell = ClosedFormSkyParameters {
+            beta_rayleigh,
+            mie_g: a.mie_g,
+            beta_mie,
+            planet_radius: a.planet_radius,
+            sun_irradiance: a.sun_irradiance,
+            shell_radius,
+        };
+        let sunlight_in_scatter = closed_form_sunlight(r, sun.y, &shell);
         let disc_solid_angle = std::f32::consts::PI * a.sun_angular_radius * a.sun_angular_radius;
         let disc = a.sun_irradiance.map(|e| e / disc_solid_angle);
         Ok(Self {
@@ -343,6 +344,30 @@ fn add(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
     std::array::from_fn(|i| a[i] + b[i])
 }
 
+/// The homogeneous shell of `atmos::closed_form_sky` held in the uniforms.
+fn shell_parameters(uniforms: &SkyUniforms) -> ClosedFormSkyParameters {
+    ClosedFormSkyParameters {
+        beta_rayleigh: [
+            uniforms.beta_rayleigh[0],
+            uniforms.beta_rayleigh[1],
+            uniforms.beta_rayleigh[2],
+        ],
+        mie_g: uniforms.beta_rayleigh[3],
+        beta_mie: [
+            uniforms.beta_mie[0],
+            uniforms.beta_mie[1],
+            uniforms.beta_mie[2],
+        ],
+        planet_radius: uniforms.beta_mie[3],
+        sun_irradiance: [
+            uniforms.sun_irradiance_at_camera[0],
+            uniforms.sun_irradiance_at_camera[1],
+            uniforms.sun_irradiance_at_camera[2],
+        ],
+        shell_radius: uniforms.sun_irradiance_at_camera[3],
+    }
+}
+
 /// Unit view direction through the centre of `pixel` (y down). Twin of the WGSL.
 pub fn sky_view_direction(pixel: [u32; 2], uniforms: &SkyUniforms) -> Vec3 {
     let ndc_x = (pixel[0] as f32 + 0.5) / uniforms.image[0] as f32 * 2.0 - 1.0;
@@ -359,25 +384,10 @@ pub fn shade_sky_pixel(view_direction: Vec3, uniforms: &SkyUniforms) -> [f32; 3]
     let r = uniforms.camera_forward[3];
     let mu = view_direction.y;
     let planet_radius = uniforms.beta_mie[3];
-    let shell = ray_sphere_intersect(r, mu, uniforms.sun_irradiance_at_camera[3]);
-    let ground = ray_sphere_intersect(r, mu, planet_radius);
-    let hits_ground = ground[0] >= 0.0;
-    let path_start = shell[0].max(0.0);
-    let mut path_end = shell[1];
-    if hits_ground {
-        path_end = path_end.min(ground[0]);
-    }
-    let path_length = (path_end - path_start).max(0.0);
-    let beta_rayleigh = [
-        uniforms.beta_rayleigh[0],
-        uniforms.beta_rayleigh[1],
-        uniforms.beta_rayleigh[2],
-    ];
-    let beta_mie = [
-        uniforms.beta_mie[0],
-        uniforms.beta_mie[1],
-        uniforms.beta_mie[2],
-    ];
+    // The shell, coefficients and path are atmos's rung 1 (closed_form_sky); this pass
+    // only adds the lit ground or the sun disc behind the path.
+    let params = shell_parameters(uniforms);
+    let hits_ground = ray_sphere_intersect(r, mu, planet_radius)[0] >= 0.0;
     let sun = xyz(uniforms.sun_direction);
     let cos_theta = view_direction.dot(sun);
     let sunlight = [
@@ -390,17 +400,15 @@ pub fn shade_sky_pixel(view_direction: Vec3, uniforms: &SkyUniforms) -> [f32; 3]
         uniforms.sunlight_in_scatter[1],
         uniforms.sunlight_in_scatter[2],
     ];
-    let mut radiance = mul(
+    let mut radiance = closed_form_sky_radiance(
+        r,
+        mu,
+        cos_theta,
+        UNLIMITED_DISTANCE,
         in_scatter_light,
-        closed_form_inscatter(
-            beta_rayleigh,
-            beta_mie,
-            cos_theta,
-            uniforms.beta_rayleigh[3],
-            path_length,
-        ),
+        &params,
     );
-    let extinction = closed_form_extinction(beta_rayleigh, beta_mie, path_length);
+    let extinction = closed_form_sky_transmittance(r, mu, UNLIMITED_DISTANCE, &params);
     if hits_ground {
         let cos_sun_zenith = uniforms.sun_direction[1].max(0.0);
         let lit = scale(

@@ -8,6 +8,10 @@
 
 pub mod closed_form;
 pub mod frame_output;
+pub mod luts;
+pub mod precomputed;
+pub mod single_scattering;
 
 pub use closed_form::{ClosedFormRenderer, EvaluationFrequency};
 pub use frame_output::FrameOutput;
+pub use single_scattering::SingleScatteringRenderer;

@@ -29,6 +29,17 @@ OPTIONS:
         --mie-scale X          multiply Mie scattering (haze) by X [1]
         --mie-g G              Mie anisotropy, |G| < 1 [0.8]
         --seed N               dither seed [0]
+        --rung NAME            which model of the atmosphere renders the sky [sky]:
+                                 sky                 seed 000's closed form with the lit
+                                                     ground and the sun (the default image)
+                                 closed-form         ladder rung 1, per pixel
+                                 closed-form-vertex  ladder rung 1, per vertex of a 16×32 dome
+                                 single              ladder rung 2, single scattering (32/8)
+                                 precomputed         ladder rung 3, Hillaire-style LUTs
+                                 reference           ladder rung 4, the f64 reference (CPU
+                                                     only, slow: use a small --width/--height)
+                               Ladder rungs show the atmosphere alone: in-scatter, the sun
+                               disc through it, the ground dark behind aerial perspective.
         --cpu                  render on the CPU even if a GPU adapter exists
         --compare              render on both and report how many pixels agree
     -h, --help                 print this help
@@ -37,7 +48,36 @@ ENVIRONMENT:
     WGPU_BACKEND               restrict the adapter search (vulkan, gl, …)
 ";
 
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Rung {
+    Sky,
+    ClosedForm,
+    ClosedFormVertex,
+    Single,
+    Precomputed,
+    Reference,
+}
+
+impl Rung {
+    fn parse(name: &str) -> Result<Self, String> {
+        Ok(match name {
+            "sky" => Self::Sky,
+            "closed-form" => Self::ClosedForm,
+            "closed-form-vertex" => Self::ClosedFormVertex,
+            "single" => Self::Single,
+            "precomputed" => Self::Precomputed,
+            "reference" => Self::Reference,
+            other => {
+                return Err(format!(
+                    "--rung: `{other}` is not one of sky, closed-form, closed-form-vertex, single, precomputed, reference"
+                ));
+            }
+        })
+    }
+}
+
 struct Options {
+    rung: Rung,
     scene: SkyScene,
     output: PathBuf,
     cpu_only: bool,
@@ -46,6 +86,7 @@ struct Options {
 
 fn parse(args: &[String]) -> Result<Option<Options>, String> {
     let mut options = Options {
+        rung: Rung::Sky,
         scene: SkyScene::default(),
         output: PathBuf::from("target/skyscape/default.png"),
         cpu_only: false,
@@ -84,6 +125,7 @@ fn parse(args: &[String]) -> Result<Option<Options>, String> {
             }
             "--mie-g" => s.atmosphere.mie_g = number(value()?)?,
             "--seed" => s.dither_seed = integer(value()?)?,
+            "--rung" => options.rung = Rung::parse(value()?)?,
             "--cpu" => options.cpu_only = true,
             "--compare" => options.compare = true,
             other => return Err(format!("unknown option `{other}` (see --help)")),
@@ -93,8 +135,9 @@ fn parse(args: &[String]) -> Result<Option<Options>, String> {
     Ok(Some(options))
 }
 
-/// Renders on the first adapter wgpu finds (honouring WGPU_BACKEND).
-fn render_gpu(scene: &SkyScene) -> Result<(Vec<u32>, String), String> {
+/// The first adapter wgpu finds (honouring WGPU_BACKEND), its device and a label
+/// saying what kind of adapter it is.
+fn open_device() -> Result<(wgpu::Device, wgpu::Queue, String), String> {
     let instance =
         wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
     let adapter = pollster::block_on(wgpu::util::initialize_adapter_from_env_or_default(
@@ -113,21 +156,24 @@ fn render_gpu(scene: &SkyScene) -> Result<(Vec<u32>, String), String> {
         ..Default::default()
     }))
     .map_err(|e| format!("adapter {} refused a device: {e}", info.name))?;
-    let mut sky = render::gpu::SkyRenderer::new(&device).map_err(|e| e.to_string())?;
-    sky.prepare(&device, &queue, scene)
-        .map_err(|e| e.to_string())?;
-    let size = u64::from(scene.width) * u64::from(scene.height) * 4;
+    Ok((device, queue, label))
+}
+
+/// Copies a pixel buffer back (the binary owns its device, so it may submit and wait).
+fn read_pixels(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    mut encoder: wgpu::CommandEncoder,
+    pixels: &wgpu::Buffer,
+    count: usize,
+) -> Result<Vec<u32>, String> {
+    let size = 4 * count as u64;
     let readback = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("skyscape readback"),
         size,
         usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-        label: Some("skyscape"),
-    });
-    sky.encode(&mut encoder).map_err(|e| e.to_string())?;
-    let pixels = sky.pixel_buffer().ok_or("sky pass has no pixel buffer")?;
     encoder.copy_buffer_to_buffer(pixels, 0, &readback, 0, size);
     queue.submit([encoder.finish()]);
     let (sender, receiver) = std::sync::mpsc::channel();
@@ -145,7 +191,176 @@ fn render_gpu(scene: &SkyScene) -> Result<(Vec<u32>, String), String> {
     let out = bytemuck::cast_slice::<u8, u32>(&view).to_vec();
     drop(view);
     readback.unmap();
-    Ok((out, label))
+    Ok(out)
+}
+
+/// Renders the default sky pass on the GPU.
+fn render_gpu(scene: &SkyScene) -> Result<(Vec<u32>, String), String> {
+    let (device, queue, label) = open_device()?;
+    let mut sky = render::gpu::SkyRenderer::new(&device).map_err(|e| e.to_string())?;
+    sky.prepare(&device, &queue, scene)
+        .map_err(|e| e.to_string())?;
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("skyscape"),
+    });
+    sky.encode(&mut encoder).map_err(|e| e.to_string())?;
+    let pixels = sky.pixel_buffer().ok_or("sky pass has no pixel buffer")?;
+    let count = scene.width as usize * scene.height as usize;
+    Ok((read_pixels(&device, &queue, encoder, pixels, count)?, label))
+}
+
+/// The scene's atmosphere as an `atmos::Atmosphere` (Earth, with the scene's haze,
+/// anisotropy, albedo and sun).
+fn ladder_atmosphere(scene: &SkyScene) -> atmos::Atmosphere {
+    let a = &scene.atmosphere;
+    let mut atmosphere = atmos::Atmosphere::earth();
+    let earth_mie = atmosphere.mie_scattering[0];
+    let haze = f64::from(a.mie_scattering) / earth_mie;
+    atmosphere.planet_radius = f64::from(a.planet_radius);
+    atmosphere.top_radius = atmosphere.planet_radius + 100_000.0;
+    atmosphere.rayleigh_scattering = a.rayleigh_scattering.map(f64::from);
+    atmosphere.rayleigh_scale_height = f64::from(a.rayleigh_scale_height);
+    atmosphere.mie_scattering = atmosphere.mie_scattering.map(|b| b * haze);
+    atmosphere.mie_extinction = atmosphere.mie_extinction.map(|b| b * haze);
+    atmosphere.mie_scale_height = f64::from(a.mie_scale_height);
+    atmosphere.mie_g = f64::from(a.mie_g);
+    atmosphere.ground_albedo = [f64::from(a.ground_albedo); 3];
+    atmosphere.sun_irradiance = a.sun_irradiance.map(f64::from);
+    atmosphere.sun_angular_radius = f64::from(a.sun_angular_radius);
+    atmosphere
+}
+
+/// The scene's camera as an `atmos` frame camera (the scene's frame is y-up).
+fn ladder_camera(scene: &SkyScene) -> Result<atmos::frame::FrameCamera, String> {
+    let d = |v: glam::Vec3| v.as_dvec3();
+    let position = glam::DVec3::new(
+        0.0,
+        f64::from(scene.atmosphere.planet_radius) + f64::from(scene.camera_altitude),
+        0.0,
+    );
+    atmos::frame::FrameCamera::look_at(
+        position,
+        d(render::sky::direction_from_angles(
+            scene.camera_elevation,
+            scene.camera_azimuth,
+        )),
+        glam::DVec3::Y,
+        f64::from(scene.vertical_fov),
+        scene.width,
+        scene.height,
+        d(render::sky::direction_from_angles(
+            scene.sun_elevation,
+            scene.sun_azimuth,
+        )),
+        None,
+    )
+    .map_err(|e| e.to_string())
+}
+
+const DOME: atmos::dome::DomeResolution = atmos::dome::DomeResolution {
+    rings: 16,
+    segments: 32,
+};
+
+fn ladder_model(
+    rung: Rung,
+    atmosphere: &atmos::Atmosphere,
+) -> Result<Box<dyn atmos::SkyModel + Sync>, String> {
+    let e = |e: atmos::AtmosError| e.to_string();
+    Ok(match rung {
+        Rung::Sky | Rung::ClosedForm => {
+            Box::new(atmos::closed_form_sky::ClosedFormSky::new(atmosphere).map_err(e)?)
+        }
+        Rung::ClosedFormVertex => Box::new(
+            atmos::dome::DomeInterpolated::new(
+                atmos::closed_form_sky::ClosedFormSky::new(atmosphere).map_err(e)?,
+                DOME,
+                atmosphere.planet_radius,
+            )
+            .map_err(e)?,
+        ),
+        Rung::Single => Box::new(
+            atmos::single_scattering::SingleScatteringSky::new(atmosphere, Default::default())
+                .map_err(e)?,
+        ),
+        Rung::Precomputed => {
+            Box::new(atmos::lut::PrecomputedSky::new(atmosphere, &Default::default()).map_err(e)?)
+        }
+        Rung::Reference => Box::new(
+            atmos::reference::ReferenceSky::new(atmosphere, Default::default()).map_err(e)?,
+        ),
+    })
+}
+
+fn render_ladder_cpu(rung: Rung, scene: &SkyScene) -> Result<Vec<u32>, String> {
+    let atmosphere = ladder_atmosphere(scene);
+    let camera = ladder_camera(scene)?;
+    let present =
+        render::present::PresentParameters::new(&atmosphere, scene.exposure, scene.dither_seed)
+            .map_err(|e| e.to_string())?;
+    let model = ladder_model(rung, &atmosphere)?;
+    render::present::render_model_cpu(model.as_ref(), atmosphere.planet_radius, &camera, &present)
+        .map_err(|e| e.to_string())
+}
+
+fn render_ladder_gpu(rung: Rung, scene: &SkyScene) -> Result<(Vec<u32>, String), String> {
+    let e = |e: atmos::AtmosError| e.to_string();
+    let atmosphere = ladder_atmosphere(scene);
+    let camera = ladder_camera(scene)?;
+    let present =
+        render::present::PresentParameters::new(&atmosphere, scene.exposure, scene.dither_seed)
+            .map_err(|e| e.to_string())?;
+    let (device, queue, label) = open_device()?;
+    let frame = atmos::gpu::FrameOutput::new(&device, scene.width, scene.height).map_err(e)?;
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("skyscape ladder"),
+    });
+    match rung {
+        Rung::Sky | Rung::ClosedForm | Rung::ClosedFormVertex => {
+            let frequency = if rung == Rung::ClosedFormVertex {
+                atmos::gpu::EvaluationFrequency::PerVertex(DOME)
+            } else {
+                atmos::gpu::EvaluationFrequency::PerPixel
+            };
+            let mut sky =
+                atmos::gpu::ClosedFormRenderer::new(&device, &atmosphere, frequency).map_err(e)?;
+            sky.prepare(&queue, &camera);
+            sky.encode(&mut encoder, &frame, None).map_err(e)?;
+        }
+        Rung::Precomputed => {
+            let mut sky = atmos::gpu::precomputed::PrecomputedRenderer::new(
+                &device,
+                &atmosphere,
+                Default::default(),
+            )
+            .map_err(e)?;
+            sky.prepare(&queue, &camera);
+            sky.encode(&mut encoder, &frame, None).map_err(e)?;
+        }
+        Rung::Single => {
+            let mut sky = atmos::gpu::single_scattering::SingleScatteringRenderer::new(
+                &device,
+                &atmosphere,
+                Default::default(),
+            )
+            .map_err(e)?;
+            sky.prepare(&queue, &camera);
+            sky.encode(&mut encoder, &frame, None).map_err(e)?;
+        }
+        Rung::Reference => return Err("the reference rung runs on the CPU only".into()),
+    }
+    let mut presenter = render::gpu::Presenter::new(&device).map_err(|e| e.to_string())?;
+    presenter.prepare(&queue, &camera, &present);
+    presenter
+        .encode(&mut encoder, &frame)
+        .map_err(|e| e.to_string())?;
+    let pixels = presenter
+        .pixel_buffer()
+        .ok_or("present pass has no pixel buffer")?;
+    Ok((
+        read_pixels(&device, &queue, encoder, pixels, camera.pixel_count())?,
+        label,
+    ))
 }
 
 fn write_png(path: &PathBuf, scene: &SkyScene, pixels: &[u32]) -> Result<(), String> {
@@ -178,11 +393,26 @@ fn main() -> ExitCode {
         }
     };
     let scene = &options.scene;
-    let cpu = || render::sky::render_sky_cpu(scene).map_err(|e| e.to_string());
-    let result = if options.cpu_only {
+    let rung = options.rung;
+    let cpu = || match rung {
+        Rung::Sky => render::sky::render_sky_cpu(scene).map_err(|e| e.to_string()),
+        _ => render_ladder_cpu(rung, scene),
+    };
+    let result = if rung == Rung::Reference {
+        cpu().map(|p| {
+            (
+                p,
+                "the CPU (the reference rung has no GPU version)".to_string(),
+            )
+        })
+    } else if options.cpu_only {
         cpu().map(|p| (p, "the CPU twin (--cpu)".to_string()))
     } else {
-        match render_gpu(scene) {
+        let gpu = match rung {
+            Rung::Sky => render_gpu(scene),
+            _ => render_ladder_gpu(rung, scene),
+        };
+        match gpu {
             Ok(done) => Ok(done),
             Err(reason) => {
                 eprintln!("skyscape: {reason}; rendering on the CPU twin instead");

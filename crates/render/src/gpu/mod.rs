@@ -13,7 +13,10 @@
 //! ```
 
 use crate::error::RenderError;
+
+pub mod present;
 use crate::sky::{SkyScene, SkyUniforms};
+pub use present::Presenter;
 
 /// Compute pass writing the tone-mapped, dithered sky into a storage buffer.
 #[derive(Debug)]

@@ -5,6 +5,9 @@ use super::compare::{Tolerance, UNIT_ROUNDOFF as U};
 use atmos::reference as f64ref;
 
 mod atmos_cases;
+mod atmos_closed_form_sky_cases;
+mod atmos_lut_cases;
+mod atmos_single_scattering_cases;
 mod cloudlight_cases;
 mod common_cases;
 mod render_cases;
@@ -339,7 +342,11 @@ fn disc_fraction_bound(x: f64) -> f64 {
 pub fn all() -> Vec<Case> {
     [
         atmos_cases::cases(),
+        atmos_single_scattering_cases::cases(),
+        atmos_closed_form_sky_cases::cases(),
+        atmos_lut_cases::cases(),
         render_cases::cases(),
+        vec![render_cases::present_case()],
         terrain_cases::cases(),
         cloudlight_cases::cases(),
         common_cases::cases(),

@@ -139,3 +139,131 @@ pub fn cases() -> Vec<Case> {
         },
     ]
 }
+
+/// The present pass's camera and display constants, as WGSL literals and in Rust.
+macro_rules! present_wgsl {
+    () => {
+        "let camera = FrameCamera(vec3<f32>(0.0, 0.0, 6360002.0), 64u, vec3<f32>(0.0, -1.0, 0.0), \
+         64u, vec3<f32>(0.0, 0.0, 1.0), 0.75, vec3<f32>(1.0, 0.0, 0.0), 1e30, \
+         vec3<f32>(0.8, 0.0, 0.6), 0u); \
+         let present = PresentParameters(vec3<f32>(14565.0, 14000.0, 13000.0), 0.9999891, \
+         6360000.0, 20.0, 0u, 0u);"
+    };
+}
+
+fn present_camera() -> atmos::frame::FrameCamera {
+    atmos::frame::FrameCamera {
+        position: [0.0, 0.0, 6_360_002.0],
+        width: 64,
+        right: [0.0, -1.0, 0.0],
+        height: 64,
+        up: [0.0, 0.0, 1.0],
+        tan_half_fov_y: 0.75,
+        forward: [1.0, 0.0, 0.0],
+        max_distance: 1e30,
+        sun: [0.8, 0.0, 0.6],
+        padding: 0,
+    }
+}
+
+fn present_parameters() -> render::present::PresentParameters {
+    render::present::PresentParameters {
+        sun_disc_radiance: [14_565.0, 14_000.0, 13_000.0],
+        cos_sun_radius: 0.999_989_1,
+        planet_radius: 6_360_000.0,
+        exposure: 20.0,
+        dither_seed: 0,
+        padding: 0,
+    }
+}
+
+/// View directions around the sun disc and across the horizon (elevation, azimuth
+/// offsets from the sun), leaving out those within f32 rounding of the disc's edge or
+/// of the horizon's tangent, where either answer is right.
+fn present_grid() -> Vec<Vec<f64>> {
+    let sun = glam::DVec3::new(0.8, 0.0, 0.6);
+    let cos_radius = f64::from(0.999_989_1f32);
+    let mut grid = Vec::new();
+    let mut add = |v: glam::DVec3| {
+        let v = v.normalize();
+        let v32 = v.as_vec3().as_dvec3();
+        let near_edge = (v32.dot(sun) - cos_radius).abs() < 1e-6;
+        // Horizon from 2 m up: mu of the tangent ≈ −7.9e-4.
+        let near_horizon = (v32.z + 7.93e-4).abs() < 2e-5;
+        if !near_edge && !near_horizon {
+            grid.push(vec![v32.x, v32.y, v32.z]);
+        }
+    };
+    for i in 0..101 {
+        for j in 0..101 {
+            // ±0.02 rad around the sun (the disc's radius is 0.0047 rad).
+            let (de, da) = (-0.02 + 0.0004 * f64::from(i), -0.02 + 0.0004 * f64::from(j));
+            let elevation = 0.6f64.asin() + de;
+            add(glam::DVec3::new(
+                elevation.cos() * da.cos(),
+                elevation.cos() * da.sin(),
+                elevation.sin(),
+            ));
+        }
+    }
+    for i in 0..400 {
+        // Across the horizon, away from the sun.
+        let elevation = -0.01 + 0.00005 * f64::from(i);
+        add(glam::DVec3::new(-elevation.cos(), 0.3, elevation.sin()));
+    }
+    grid
+}
+
+/// The present pass's parity case (appended to this crate's cases by `cases()`).
+pub fn present_case() -> Case {
+    Case {
+        name: "render::present_radiance",
+        imports: &["render::present"],
+        arity: (3, 3),
+        wgsl: concat!(
+            present_wgsl!(),
+            " let l = present_radiance(vec3<f32>(x0, x1, x2), vec3<f32>(0.1, 0.2, 0.3), \
+             vec3<f32>(0.5, 0.6, 0.7), camera, present); y0 = l.x; y1 = l.y; y2 = l.z;"
+        ),
+        grid: present_grid,
+        cpu: |x| {
+            render::present::present_radiance(
+                [x[0], x[1], x[2]],
+                [0.1, 0.2, 0.3],
+                [0.5, 0.6, 0.7],
+                &present_camera(),
+                &present_parameters(),
+            )
+            .to_vec()
+        },
+        reference: |x| {
+            let v = glam::DVec3::new(x[0], x[1], x[2]);
+            let p = present_parameters();
+            let radiance = [0.1f32, 0.2, 0.3].map(f64::from);
+            let transmittance = [0.5f32, 0.6, 0.7].map(f64::from);
+            let position = glam::DVec3::new(0.0, 0.0, 6_360_002.0);
+            let r = position.length();
+            let ground = f64ref::ray_sphere_intersect(r, v.dot(position) / r, 6_360_000.0);
+            let sees_disc = ground[0] < 0.0
+                && v.dot(glam::DVec3::new(0.8, 0.0, 0.6)) >= f64::from(p.cos_sun_radius);
+            (0..3)
+                .map(|i| {
+                    if sees_disc {
+                        radiance[i] + transmittance[i] * f64::from(p.sun_disc_radiance[i])
+                    } else {
+                        radiance[i]
+                    }
+                })
+                .collect()
+        },
+        tolerance: Tolerance {
+            abs: 0.0,
+            rel: 0.0,
+            ulp: 2.0,
+            bound: None,
+            why: "one product and one sum, correctly rounded on both sides; the disc and \
+                  horizon tests are exact away from their edges (grid points within f32 \
+                  rounding of an edge are left out)",
+        },
+    }
+}

@@ -4,6 +4,7 @@
 
 use super::compare::Tolerance;
 
+mod atmos_passes;
 mod cloudsim_passes;
 mod terrain_passes;
 
@@ -43,10 +44,14 @@ pub fn words_as_exact_floats(words: &[u32]) -> Vec<f32> {
 
 /// All pass cases, in report order.
 pub fn all() -> Vec<PassCase> {
-    [terrain_passes::cases(), cloudsim_passes::cases()]
-        .into_iter()
-        .flatten()
-        .collect()
+    [
+        terrain_passes::cases(),
+        cloudsim_passes::cases(),
+        atmos_passes::cases(),
+    ]
+    .into_iter()
+    .flatten()
+    .collect()
 }
 
 #[cfg(test)]

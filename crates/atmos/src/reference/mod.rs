@@ -140,3 +140,15 @@ pub fn extinction_at_altitude(atmosphere: &crate::Atmosphere, altitude: f64) -> 
             + atmosphere.ozone_absorption[i] * ozone
     })
 }
+
+mod single_scattering;
+pub use single_scattering::{
+    density_profile, extinction_from_densities, light_path_transmittance, lowest_point_distance,
+    mean_transmittance_over_segment, optical_lengths, ray_sample_distance, single_scattering,
+    single_scattering_inside,
+};
+
+pub mod multiple_scattering;
+mod transmittance_table;
+pub use multiple_scattering::{ReferenceSettings, ReferenceSky};
+pub use transmittance_table::TransmittanceTable;

@@ -1,0 +1,342 @@
+//! Rung 3 of the ladder: precomputed multiple scattering after Hillaire 2020 ("A
+//! Scalable and Production Ready Sky and Atmosphere Rendering Technique"), with
+//! Bruneton 2017's parameterisations.
+//!
+//! Four tables, each baked on the CPU (f32 twins here, threaded) and on the GPU
+//! (`crate::gpu::luts`, one WGSL file per pass in `shaders/atmos/lut_*.wgsl`):
+//!
+//! | table | default size | depends on | what a texel holds |
+//! |---|---|---|---|
+//! | transmittance | 256 × 64, 40 log-linear steps | atmosphere | transmittance to the top of the atmosphere for (r, μ) |
+//! | multiple scattering | 32 × 32, 64 directions × 20 samples | atmosphere | Ψ_ms(altitude, μ_s): all orders ≥ 2, isotropic, per unit scattering |
+//! | sky view | 192 × 108, 30 samples | camera altitude, sun zenith | radiance for (view elevation, azimuth from the sun) |
+//! | aerial perspective | 32 × 32 × 32 over 32 km, 2 steps per slice | camera frame | in-scatter and transmittance per froxel |
+//!
+//! The first two are *static* (bake once per atmosphere); the last two are *per
+//! frame* ([`precomputed_sky::PrecomputedSky::prepare`] on the CPU, the renderer's
+//! frame passes on the GPU); a pixel then costs a few lookups.
+//!
+//! All LUTs store `[f32; 4]` texels (rgb + 1) in row-major order, the layout of the
+//! GPU's `array<vec4<f32>>` storage buffers: lookups filter manually (bilinear /
+//! trilinear), so they work on adapters without float32 filtering (llvmpipe GL) and
+//! the CPU twin reads exactly what the GPU reads.
+
+pub mod aerial_perspective;
+pub mod multiple_scattering_lut;
+pub mod parameterization;
+pub mod precomputed_sky;
+pub mod raymarch;
+pub mod reference;
+pub mod sky_view_lut;
+pub mod transmittance_lut;
+
+pub use precomputed_sky::{FrameLuts, PrecomputedSky, StaticLuts};
+
+use crate::AtmosError;
+
+/// The WGSL modules of this rung (`#import atmos::lut_*`), composed by
+/// [`crate::composer`].
+pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
+    skyscape_wgsl::Module {
+        name: "atmos::lut_parameterization",
+        source: include_str!("../../shaders/lut_parameterization.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "atmos::lut_sampling",
+        source: include_str!("../../shaders/lut_sampling.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "atmos::lut_transmittance",
+        source: include_str!("../../shaders/lut_transmittance.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "atmos::lut_multiple_scattering",
+        source: include_str!("../../shaders/lut_multiple_scattering.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "atmos::lut_sky_view",
+        source: include_str!("../../shaders/lut_sky_view.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "atmos::lut_aerial_perspective",
+        source: include_str!("../../shaders/lut_aerial_perspective.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "atmos::lut_render",
+        source: include_str!("../../shaders/lut_render.wgsl"),
+    },
+];
+
+/// Sizes and sample counts of the precomputed rung.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LutSettings {
+    /// Transmittance LUT size (μ, r).
+    pub transmittance_size: [u32; 2],
+    /// Uniform steps of the optical-depth integral per transmittance texel.
+    pub transmittance_samples: u32,
+    /// Multiple-scattering LUT size (μ_s, altitude).
+    pub multiple_scattering_size: [u32; 2],
+    /// Raymarch samples per direction in the multiple-scattering bake.
+    pub multiple_scattering_samples: u32,
+    /// √(directions) of the multiple-scattering bake (8 → Hillaire's 64).
+    pub multiple_scattering_direction_sqrt: u32,
+    /// Sky-view LUT size (azimuth, elevation); the height must be even (the horizon
+    /// lies between the two middle rows).
+    pub sky_view_size: [u32; 2],
+    /// Raymarch samples per sky-view texel (quadratically spaced).
+    pub sky_view_samples: u32,
+    /// Aerial-perspective froxels (screen x, screen y, depth slices).
+    pub aerial_perspective_size: [u32; 3],
+    /// Depth covered by the aerial-perspective volume (m).
+    pub aerial_perspective_range: f32,
+    /// Raymarch steps per depth slice of the aerial-perspective volume.
+    pub aerial_perspective_steps_per_slice: u32,
+    /// Raymarch samples of the per-pixel fallback (viewer above the atmosphere, or a
+    /// finite segment beyond the aerial-perspective range).
+    pub pixel_samples: u32,
+}
+
+impl Default for LutSettings {
+    fn default() -> Self {
+        Self {
+            transmittance_size: [256, 64],
+            transmittance_samples: 40,
+            multiple_scattering_size: [32, 32],
+            multiple_scattering_samples: 20,
+            multiple_scattering_direction_sqrt: 8,
+            sky_view_size: [192, 108],
+            sky_view_samples: 30,
+            aerial_perspective_size: [32, 32, 32],
+            aerial_perspective_range: 32_000.0,
+            aerial_perspective_steps_per_slice: 2,
+            pixel_samples: 32,
+        }
+    }
+}
+
+impl LutSettings {
+    /// Small tables for tests on software adapters (debug builds, lavapipe).
+    pub fn small() -> Self {
+        Self {
+            transmittance_size: [64, 16],
+            transmittance_samples: 40,
+            multiple_scattering_size: [16, 16],
+            multiple_scattering_samples: 20,
+            multiple_scattering_direction_sqrt: 8,
+            sky_view_size: [48, 28],
+            sky_view_samples: 30,
+            aerial_perspective_size: [8, 8, 16],
+            aerial_perspective_range: 32_000.0,
+            aerial_perspective_steps_per_slice: 2,
+            pixel_samples: 32,
+        }
+    }
+
+    /// Checks every size and count; the error names the field.
+    pub fn validate(&self) -> Result<(), AtmosError> {
+        let invalid = |field: &str, value: f64, reason: &'static str| {
+            Err(AtmosError::InvalidParameter {
+                field: field.to_owned(),
+                value,
+                reason,
+            })
+        };
+        // Each table stays far below the 128 MiB storage-binding minimum of wgpu.
+        const MAX_SIDE: u32 = 4096;
+        let sides: [(&str, u32); 9] = [
+            ("transmittance_size[0]", self.transmittance_size[0]),
+            ("transmittance_size[1]", self.transmittance_size[1]),
+            (
+                "multiple_scattering_size[0]",
+                self.multiple_scattering_size[0],
+            ),
+            (
+                "multiple_scattering_size[1]",
+                self.multiple_scattering_size[1],
+            ),
+            ("sky_view_size[0]", self.sky_view_size[0]),
+            ("sky_view_size[1]", self.sky_view_size[1]),
+            (
+                "aerial_perspective_size[0]",
+                self.aerial_perspective_size[0],
+            ),
+            (
+                "aerial_perspective_size[1]",
+                self.aerial_perspective_size[1],
+            ),
+            (
+                "aerial_perspective_size[2]",
+                self.aerial_perspective_size[2],
+            ),
+        ];
+        for (field, side) in sides {
+            if !(2..=MAX_SIDE).contains(&side) {
+                return invalid(field, f64::from(side), "must be in 2..=4096 texels");
+            }
+        }
+        if !self.sky_view_size[1].is_multiple_of(2) {
+            return invalid(
+                "sky_view_size[1]",
+                f64::from(self.sky_view_size[1]),
+                "must be even (sky and ground rows meet at the horizon)",
+            );
+        }
+        let ap = self.aerial_perspective_size;
+        if u64::from(ap[0]) * u64::from(ap[1]) * u64::from(ap[2]) > 1 << 22 {
+            return invalid(
+                "aerial_perspective_size",
+                f64::from(ap[0]) * f64::from(ap[1]) * f64::from(ap[2]),
+                "must hold at most 2^22 froxels",
+            );
+        }
+        let counts: [(&str, u32); 6] = [
+            ("transmittance_samples", self.transmittance_samples),
+            (
+                "multiple_scattering_samples",
+                self.multiple_scattering_samples,
+            ),
+            (
+                "multiple_scattering_direction_sqrt",
+                self.multiple_scattering_direction_sqrt,
+            ),
+            ("sky_view_samples", self.sky_view_samples),
+            (
+                "aerial_perspective_steps_per_slice",
+                self.aerial_perspective_steps_per_slice,
+            ),
+            ("pixel_samples", self.pixel_samples),
+        ];
+        for (field, count) in counts {
+            if !(1..=1024).contains(&count) {
+                return invalid(field, f64::from(count), "must be in 1..=1024 samples");
+            }
+        }
+        let range = self.aerial_perspective_range;
+        if !(range.is_finite() && range > 0.0) {
+            return invalid(
+                "aerial_perspective_range",
+                f64::from(range),
+                "must be a finite distance > 0 m",
+            );
+        }
+        Ok(())
+    }
+
+    /// Validates and converts to the uniform block of `shaders/atmos/lut_sampling.wgsl`.
+    pub fn to_uniforms(&self) -> Result<LutSettingsUniform, AtmosError> {
+        self.validate()?;
+        Ok(LutSettingsUniform {
+            transmittance_width: self.transmittance_size[0],
+            transmittance_height: self.transmittance_size[1],
+            transmittance_samples: self.transmittance_samples,
+            multiple_scattering_width: self.multiple_scattering_size[0],
+            multiple_scattering_height: self.multiple_scattering_size[1],
+            multiple_scattering_samples: self.multiple_scattering_samples,
+            multiple_scattering_direction_sqrt: self.multiple_scattering_direction_sqrt,
+            sky_view_width: self.sky_view_size[0],
+            sky_view_height: self.sky_view_size[1],
+            sky_view_samples: self.sky_view_samples,
+            aerial_perspective_width: self.aerial_perspective_size[0],
+            aerial_perspective_height: self.aerial_perspective_size[1],
+            aerial_perspective_depth: self.aerial_perspective_size[2],
+            aerial_perspective_steps_per_slice: self.aerial_perspective_steps_per_slice,
+            aerial_perspective_range: self.aerial_perspective_range,
+            pixel_samples: self.pixel_samples,
+        })
+    }
+}
+
+/// The settings as WGSL `LutSettings` (64 bytes, scalars only).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+#[allow(missing_docs)]
+pub struct LutSettingsUniform {
+    pub transmittance_width: u32,
+    pub transmittance_height: u32,
+    pub transmittance_samples: u32,
+    pub multiple_scattering_width: u32,
+    pub multiple_scattering_height: u32,
+    pub multiple_scattering_samples: u32,
+    pub multiple_scattering_direction_sqrt: u32,
+    pub sky_view_width: u32,
+    pub sky_view_height: u32,
+    pub sky_view_samples: u32,
+    pub aerial_perspective_width: u32,
+    pub aerial_perspective_height: u32,
+    pub aerial_perspective_depth: u32,
+    pub aerial_perspective_steps_per_slice: u32,
+    pub aerial_perspective_range: f32,
+    pub pixel_samples: u32,
+}
+
+/// A 2D table of `[f32; 4]` texels, row-major (`x + width · y`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Lut2d {
+    /// Columns.
+    pub width: u32,
+    /// Rows.
+    pub height: u32,
+    /// `width · height` texels.
+    pub texels: Vec<[f32; 4]>,
+}
+
+impl Lut2d {
+    /// The texel at column `x`, row `y`.
+    pub fn texel(&self, x: u32, y: u32) -> [f32; 4] {
+        self.texels[(x + self.width * y) as usize]
+    }
+
+    /// Bilinear interpolation over a footprint (same arithmetic as the WGSL
+    /// `bilinear_blend`).
+    pub fn blend(&self, f: &parameterization::BilinearFootprint) -> [f32; 3] {
+        let a = self.texel(f.x0, f.y0);
+        let b = self.texel(f.x1, f.y0);
+        let c = self.texel(f.x0, f.y1);
+        let d = self.texel(f.x1, f.y1);
+        std::array::from_fn(|i| bilinear_blend(a[i], b[i], c[i], d[i], f.fx, f.fy))
+    }
+
+    /// All texels flattened (`[r, g, b, 1]` each), as uploaded to the GPU.
+    pub fn as_floats(&self) -> &[f32] {
+        bytemuck::cast_slice(&self.texels)
+    }
+}
+
+/// (1 − fy)·((1 − fx)·a + fx·b) + fy·((1 − fx)·c + fx·d): twin of WGSL `mix(mix(a, b,
+/// fx), mix(c, d, fx), fy)` written out (WGSL's mix is x·(1 − t) + y·t).
+pub fn bilinear_blend(a: f32, b: f32, c: f32, d: f32, fx: f32, fy: f32) -> f32 {
+    let top = a * (1.0 - fx) + b * fx;
+    let bottom = c * (1.0 - fx) + d * fx;
+    top * (1.0 - fy) + bottom * fy
+}
+
+/// Evaluates `texel(index)` for `0..count` on all cores (`std::thread::scope`, one
+/// contiguous chunk per thread).
+pub fn fill_parallel<F>(count: usize, texel: F) -> Vec<[f32; 4]>
+where
+    F: Fn(usize) -> [f32; 4] + Sync,
+{
+    let threads = std::thread::available_parallelism()
+        .map(|n| n.get())
+        .unwrap_or(1)
+        .min(count.max(1));
+    let mut out = vec![[0.0f32; 4]; count];
+    if threads <= 1 || count < 64 {
+        for (i, t) in out.iter_mut().enumerate() {
+            *t = texel(i);
+        }
+        return out;
+    }
+    let chunk = count.div_ceil(threads);
+    std::thread::scope(|scope| {
+        for (c, slice) in out.chunks_mut(chunk).enumerate() {
+            let texel = &texel;
+            scope.spawn(move || {
+                for (i, t) in slice.iter_mut().enumerate() {
+                    *t = texel(c * chunk + i);
+                }
+            });
+        }
+    });
+    out
+}

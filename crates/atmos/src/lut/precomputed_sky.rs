@@ -1,0 +1,306 @@
+//! The precomputed rung as a [`SkyModel`], and the CPU twin of the GPU renderer's
+//! per-pixel pass.
+//!
+//! Cost is split the way the GPU splits it, so each part can be timed:
+//! * [`StaticLuts::bake`] — per atmosphere: transmittance and multiple-scattering LUTs;
+//! * [`PrecomputedSky::prepare`] / [`FrameLuts::bake`] — per frame (viewer altitude and
+//!   sun): the sky-view LUT (and, for a frame camera, the aerial-perspective volume);
+//! * [`PrecomputedSky::evaluate_prepared`] / [`shade_pixel`] — per pixel: lookups.
+//!
+//! What a query gets:
+//! * unlimited segment, viewer inside the atmosphere: sky-view lookup for the radiance,
+//!   transmittance LUT (Bruneton's ratio for ground rays) for the transmittance;
+//! * unlimited segment, viewer above the atmosphere: the sky-view LUT does not apply
+//!   (each ray enters the shell at a different zenith); the ray is marched from its
+//!   entry point with the LUTs ([`march_view_segment`], `pixel_samples` steps);
+//! * limited segment (`max_distance`): on the GPU, the aerial-perspective volume when
+//!   `max_distance` ≤ its range, else a march with the LUTs; on the CPU
+//!   ([`SkyModel::evaluate`], arbitrary directions with no frustum) always the march
+//!   with the LUTs. [`shade_pixel`] reproduces the GPU's choice exactly.
+
+use std::sync::{Arc, Mutex};
+
+use glam::DVec3;
+
+use crate::frame::{FrameCamera, UNLIMITED_DISTANCE, frame_view_direction};
+use crate::ladder::{SkyModel, SkyQuery, SkySample};
+use crate::{AtmosError, Atmosphere, AtmosphereParameters};
+
+use super::aerial_perspective::{
+    AerialPerspectiveVolume, bake_aerial_perspective, lookup_aerial_perspective, view_cosines,
+};
+use super::multiple_scattering_lut::bake_multiple_scattering_lut;
+use super::parameterization::view_sun_cos_azimuth;
+use super::raymarch::{LutBindings, ScatteringSegment, march_view_segment};
+use super::sky_view_lut::{bake_sky_view_lut, lookup_sky_view, sky_view_r_mu_s};
+use super::transmittance_lut::{bake_transmittance_lut, transmittance_to_boundary};
+use super::{Lut2d, LutSettings, LutSettingsUniform};
+
+/// The per-atmosphere tables.
+#[derive(Debug, Clone)]
+pub struct StaticLuts {
+    /// The f32 atmosphere they were baked for.
+    pub atmosphere: AtmosphereParameters,
+    /// Sizes and sample counts.
+    pub settings: LutSettingsUniform,
+    /// Transmittance LUT.
+    pub transmittance: Lut2d,
+    /// Multiple-scattering LUT.
+    pub multiple_scattering: Lut2d,
+}
+
+impl StaticLuts {
+    /// Validates and bakes both tables on the CPU (threaded).
+    pub fn bake(atmosphere: &Atmosphere, settings: &LutSettings) -> Result<Self, AtmosError> {
+        let atmosphere = atmosphere.to_uniforms()?;
+        let settings = settings.to_uniforms()?;
+        let transmittance = bake_transmittance_lut(&atmosphere, &settings);
+        let unused = Lut2d {
+            width: 0,
+            height: 0,
+            texels: Vec::new(),
+        };
+        let multiple_scattering = bake_multiple_scattering_lut(&LutBindings {
+            atmosphere: &atmosphere,
+            settings: &settings,
+            transmittance: &transmittance,
+            multiple_scattering: &unused,
+        });
+        Ok(Self {
+            atmosphere,
+            settings,
+            transmittance,
+            multiple_scattering,
+        })
+    }
+
+    /// The tables as the raymarch functions read them.
+    pub fn bindings(&self) -> LutBindings<'_> {
+        LutBindings {
+            atmosphere: &self.atmosphere,
+            settings: &self.settings,
+            transmittance: &self.transmittance,
+            multiple_scattering: &self.multiple_scattering,
+        }
+    }
+}
+
+/// The per-frame tables of a frame camera.
+#[derive(Debug, Clone)]
+pub struct FrameLuts {
+    /// The camera they were baked for.
+    pub camera: FrameCamera,
+    /// Viewer radius (clamped to the atmosphere) and sun zenith cosine of the sky view.
+    pub sky_view_r_mu_s: [f32; 2],
+    /// Sky-view LUT.
+    pub sky_view: Lut2d,
+    /// Aerial-perspective volume.
+    pub aerial_perspective: AerialPerspectiveVolume,
+}
+
+impl FrameLuts {
+    /// Bakes the sky view and the aerial-perspective volume for `camera`.
+    pub fn bake(luts: &StaticLuts, camera: &FrameCamera) -> Self {
+        let bindings = luts.bindings();
+        let r_mu_s = sky_view_r_mu_s(
+            camera,
+            luts.atmosphere.planet_radius,
+            luts.atmosphere.top_radius,
+        );
+        Self {
+            camera: *camera,
+            sky_view_r_mu_s: r_mu_s,
+            sky_view: bake_sky_view_lut(&bindings, r_mu_s[0], r_mu_s[1]),
+            aerial_perspective: bake_aerial_perspective(&bindings, camera),
+        }
+    }
+}
+
+/// Radiance and transmittance of one pixel of `frame.camera`: the CPU twin of
+/// `shade_pixel` in `shaders/atmos/lut_render.wgsl`.
+pub fn shade_pixel(luts: &StaticLuts, frame: &FrameLuts, pixel: [u32; 2]) -> ScatteringSegment {
+    let bindings = luts.bindings();
+    let atmosphere = &luts.atmosphere;
+    let settings = &luts.settings;
+    let camera = &frame.camera;
+    let direction = frame_view_direction(pixel, camera);
+    let [r, mu, mu_s, nu] = view_cosines(camera, direction, atmosphere.planet_radius);
+    if camera.max_distance >= UNLIMITED_DISTANCE {
+        if r <= atmosphere.top_radius {
+            let cos_azimuth = view_sun_cos_azimuth(mu, mu_s, nu);
+            return ScatteringSegment {
+                radiance: lookup_sky_view(
+                    &frame.sky_view,
+                    settings,
+                    atmosphere.planet_radius,
+                    r,
+                    mu,
+                    cos_azimuth,
+                ),
+                transmittance: transmittance_to_boundary(&bindings, r, mu),
+            };
+        }
+        return march_view_segment(
+            &bindings,
+            r,
+            mu,
+            mu_s,
+            nu,
+            UNLIMITED_DISTANCE,
+            settings.pixel_samples,
+        );
+    }
+    if camera.max_distance <= settings.aerial_perspective_range {
+        let uv = [
+            (pixel[0] as f32 + 0.5) / camera.width as f32,
+            (pixel[1] as f32 + 0.5) / camera.height as f32,
+        ];
+        let [radiance, transmittance] =
+            lookup_aerial_perspective(&frame.aerial_perspective, settings, uv, camera.max_distance);
+        return ScatteringSegment {
+            radiance,
+            transmittance,
+        };
+    }
+    march_view_segment(
+        &bindings,
+        r,
+        mu,
+        mu_s,
+        nu,
+        camera.max_distance,
+        settings.pixel_samples,
+    )
+}
+
+/// How many sky-view LUTs [`PrecomputedSky`] keeps (one per viewer radius and sun
+/// zenith cosine); the oldest is dropped beyond this.
+pub const SKY_VIEW_CACHE_CAPACITY: usize = 64;
+
+type SkyViewCache = Vec<([u32; 2], Arc<Lut2d>)>;
+
+/// Rung 3 on the CPU: static LUTs baked at construction, sky-view LUTs baked by
+/// [`PrecomputedSky::prepare`] (or on demand by [`SkyModel::evaluate`]) and cached per
+/// (viewer radius, sun zenith cosine).
+#[derive(Debug)]
+pub struct PrecomputedSky {
+    luts: StaticLuts,
+    sky_views: Mutex<SkyViewCache>,
+}
+
+impl PrecomputedSky {
+    /// Validates and bakes the static tables.
+    pub fn new(atmosphere: &Atmosphere, settings: &LutSettings) -> Result<Self, AtmosError> {
+        Ok(Self {
+            luts: StaticLuts::bake(atmosphere, settings)?,
+            sky_views: Mutex::new(Vec::new()),
+        })
+    }
+
+    /// The static tables.
+    pub fn static_luts(&self) -> &StaticLuts {
+        &self.luts
+    }
+
+    /// The per-frame part: the sky-view LUT for a viewer at `position` with the sun
+    /// along `sun` (baked, or taken from the cache). Directions need not be unit.
+    pub fn prepare(&self, position: DVec3, sun: DVec3) -> Arc<Lut2d> {
+        let r = position.length();
+        let mu_s = sun.normalize_or_zero().dot(position / r);
+        self.sky_view_for(r as f32, mu_s as f32)
+    }
+
+    fn sky_view_for(&self, r: f32, mu_s: f32) -> Arc<Lut2d> {
+        let a = &self.luts.atmosphere;
+        let key_r = r.clamp(a.planet_radius, a.top_radius);
+        let key_mu_s = mu_s.clamp(-1.0, 1.0);
+        let key = [key_r.to_bits(), key_mu_s.to_bits()];
+        if let Some((_, lut)) = self.lock_cache().iter().find(|(cached, _)| *cached == key) {
+            return Arc::clone(lut);
+        }
+        let lut = Arc::new(bake_sky_view_lut(&self.luts.bindings(), key_r, key_mu_s));
+        let mut cache = self.lock_cache();
+        if cache.len() >= SKY_VIEW_CACHE_CAPACITY {
+            cache.remove(0);
+        }
+        cache.push((key, Arc::clone(&lut)));
+        lut
+    }
+
+    fn lock_cache(&self) -> std::sync::MutexGuard<'_, SkyViewCache> {
+        // A panic while holding the lock leaves a valid Vec: keep using it.
+        self.sky_views
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+
+    /// The per-pixel part: a query answered with a sky-view LUT from
+    /// [`PrecomputedSky::prepare`] for the query's viewer and sun (it is read only for
+    /// unlimited segments seen from inside the atmosphere).
+    pub fn evaluate_prepared(&self, sky_view: &Lut2d, query: &SkyQuery) -> SkySample {
+        let bindings = self.luts.bindings();
+        let a = &self.luts.atmosphere;
+        let r = (query.r() as f32).max(a.planet_radius);
+        let (mu, mu_s, nu) = (query.mu() as f32, query.mu_s() as f32, query.nu() as f32);
+        let segment = if query.max_distance().is_infinite() && r <= a.top_radius {
+            ScatteringSegment {
+                radiance: lookup_sky_view(
+                    sky_view,
+                    &self.luts.settings,
+                    a.planet_radius,
+                    r,
+                    mu,
+                    view_sun_cos_azimuth(mu, mu_s, nu),
+                ),
+                transmittance: transmittance_to_boundary(&bindings, r, mu),
+            }
+        } else {
+            let max_distance = query.max_distance().min(f64::from(UNLIMITED_DISTANCE)) as f32;
+            march_view_segment(
+                &bindings,
+                r,
+                mu,
+                mu_s,
+                nu,
+                max_distance,
+                self.luts.settings.pixel_samples,
+            )
+        };
+        SkySample {
+            radiance: segment.radiance.map(f64::from),
+            transmittance: segment.transmittance.map(f64::from),
+        }
+    }
+}
+
+impl SkyModel for PrecomputedSky {
+    fn label(&self) -> String {
+        let s = &self.luts.settings;
+        format!(
+            "precomputed (T {}x{}, MS {}x{}, sky view {}x{}/{})",
+            s.transmittance_width,
+            s.transmittance_height,
+            s.multiple_scattering_width,
+            s.multiple_scattering_height,
+            s.sky_view_width,
+            s.sky_view_height,
+            s.sky_view_samples
+        )
+    }
+
+    fn evaluate(&self, query: &SkyQuery) -> SkySample {
+        let a = &self.luts.atmosphere;
+        let needs_sky_view = query.max_distance().is_infinite() && query.r() as f32 <= a.top_radius;
+        if needs_sky_view {
+            let lut = self.sky_view_for(query.r() as f32, query.mu_s() as f32);
+            self.evaluate_prepared(&lut, query)
+        } else {
+            let empty = Lut2d {
+                width: 0,
+                height: 0,
+                texels: Vec::new(),
+            };
+            self.evaluate_prepared(&empty, query)
+        }
+    }
+}

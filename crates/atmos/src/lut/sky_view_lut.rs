@@ -1,0 +1,98 @@
+//! Sky-view LUT (Hillaire 2020 §5.3): radiance of the whole sky for one viewer
+//! altitude and one sun zenith angle, per (azimuth from the sun, view zenith angle),
+//! baked per frame. Its rows are mapped non-linearly so the horizon, where radiance
+//! changes fastest, gets the most texels; the horizon itself lies between the two
+//! middle rows, and lookups never blend a sky row with a ground row.
+//!
+//! Valid for viewers inside the atmosphere (r ≤ top); above it the renderer marches
+//! each pixel from where its ray enters the shell
+//! ([`super::raymarch::march_view_segment`]). Twin of
+//! `shaders/atmos/lut_sky_view.wgsl` (bake) and `lut_sampling.wgsl` (lookup).
+
+use crate::frame::FrameCamera;
+
+use super::parameterization::{bilinear_footprint, sky_view_lut_direction, sky_view_lut_uv};
+use super::raymarch::{LutBindings, ray_segment_in_atmosphere, raymarch_scattering};
+use super::{Lut2d, LutSettingsUniform, fill_parallel};
+
+/// The viewer radius (clamped to the atmosphere) and sun zenith cosine a sky-view LUT
+/// is baked for, from a frame camera.
+pub fn sky_view_r_mu_s(camera: &FrameCamera, planet_radius: f32, top_radius: f32) -> [f32; 2] {
+    let p = camera.position;
+    let length = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+    let mu_s = (camera.sun[0] * p[0] + camera.sun[1] * p[1] + camera.sun[2] * p[2]) / length;
+    [
+        length.clamp(planet_radius, top_radius),
+        mu_s.clamp(-1.0, 1.0),
+    ]
+}
+
+/// One texel: radiance along the view ray of this texel's direction (w = 1).
+pub fn sky_view_texel(bindings: &LutBindings<'_>, r: f32, mu_s: f32, x: u32, y: u32) -> [f32; 4] {
+    let atmosphere = bindings.atmosphere;
+    let s = bindings.settings;
+    let (width, height) = (s.sky_view_width, s.sky_view_height);
+    let uv = [
+        (x as f32 + 0.5) / width as f32,
+        (y as f32 + 0.5) / height as f32,
+    ];
+    let [mu, cos_azimuth] = sky_view_lut_direction(uv, r, atmosphere.planet_radius, width, height);
+    let sin_v = ((1.0 - mu) * (1.0 + mu)).max(0.0).sqrt();
+    let sin_s = ((1.0 - mu_s) * (1.0 + mu_s)).max(0.0).sqrt();
+    let nu = (mu * mu_s + sin_v * sin_s * cos_azimuth).clamp(-1.0, 1.0);
+    let segment = ray_segment_in_atmosphere(r, mu, atmosphere.planet_radius, atmosphere.top_radius);
+    let result = raymarch_scattering(
+        bindings,
+        r,
+        mu,
+        mu_s,
+        nu,
+        segment[0],
+        segment[1],
+        s.sky_view_samples,
+    );
+    [
+        result.radiance[0],
+        result.radiance[1],
+        result.radiance[2],
+        1.0,
+    ]
+}
+
+/// Bakes the LUT for a viewer at radius `r` with the sun at zenith cosine `mu_s`.
+pub fn bake_sky_view_lut(bindings: &LutBindings<'_>, r: f32, mu_s: f32) -> Lut2d {
+    let (width, height) = (
+        bindings.settings.sky_view_width,
+        bindings.settings.sky_view_height,
+    );
+    let texels = fill_parallel((width * height) as usize, |i| {
+        sky_view_texel(bindings, r, mu_s, i as u32 % width, i as u32 / width)
+    });
+    Lut2d {
+        width,
+        height,
+        texels,
+    }
+}
+
+/// Bilinear lookup of the radiance towards (μ, cos φ) for a viewer at radius `r`
+/// (the radius the LUT was baked for). Sky directions read only sky rows, ground
+/// directions only ground rows.
+pub fn lookup_sky_view(
+    sky_view: &Lut2d,
+    settings: &LutSettingsUniform,
+    planet_radius: f32,
+    r: f32,
+    mu: f32,
+    cos_azimuth: f32,
+) -> [f32; 3] {
+    let (width, height) = (settings.sky_view_width, settings.sky_view_height);
+    let uv = sky_view_lut_uv(r, mu, cos_azimuth, planet_radius, width, height);
+    let half = height / 2;
+    let footprint = if uv[1] < 0.5 {
+        bilinear_footprint(uv, width, height, 0, half - 1)
+    } else {
+        bilinear_footprint(uv, width, height, half, height - 1)
+    };
+    sky_view.blend(&footprint)
+}

@@ -1,0 +1,56 @@
+// Bake of the aerial-perspective volume for the frame camera (per frame): one
+// invocation per froxel column, marched front to back, steps_per_slice uniform steps
+// per depth slice, clipped to the atmosphere. Layout: 2 vec4 per froxel (radiance,
+// transmittance), froxel k = x + W·(y + H·z). Twin: atmos::lut::aerial_perspective.
+#import atmos::lut_sampling
+
+@group(2) @binding(0) var<storage, read_write> aerial_perspective_out: array<vec4<f32>>;
+
+@compute @workgroup_size(8, 8)
+fn bake_aerial_perspective(@builtin(global_invocation_id) id: vec3<u32>) {
+    let w = lut_settings.aerial_perspective_width;
+    let h = lut_settings.aerial_perspective_height;
+    if id.x >= w || id.y >= h {
+        return;
+    }
+    let uv = vec2<f32>((f32(id.x) + 0.5) / f32(w), (f32(id.y) + 0.5) / f32(h));
+    let direction = froxel_view_direction(uv, frame_camera);
+    let cosines = view_cosines(frame_camera, direction, lut_atmosphere.planet_radius);
+    let r = cosines.x;
+    let mu = cosines.y;
+    let mu_s = cosines.z;
+    let nu = cosines.w;
+    let segment = ray_segment_in_atmosphere(r, mu, lut_atmosphere.planet_radius, lut_atmosphere.top_radius);
+    let rayleigh_phase_value = rayleigh_phase(nu);
+    let mie_phase_value = cornette_shanks_phase(nu, lut_atmosphere.mie_g);
+    let depth = lut_settings.aerial_perspective_depth;
+    let steps = lut_settings.aerial_perspective_steps_per_slice;
+    let step_length = lut_settings.aerial_perspective_range / f32(depth * steps);
+    var radiance = vec3<f32>(0.0);
+    var throughput = vec3<f32>(1.0);
+    for (var slice = 0u; slice < depth; slice++) {
+        for (var step = 0u; step < steps; step++) {
+            let a = f32(slice * steps + step) * step_length;
+            let lo = max(a, segment.x);
+            let hi = min(a + step_length, segment.y);
+            if hi > lo {
+                let dt = hi - lo;
+                let t = lo + 0.5 * dt;
+                let r_t = radius_along_ray(r, mu, t);
+                let mu_s_t = clamp((r * mu_s + t * nu) / r_t, -1.0, 1.0);
+                let medium = medium_at_altitude(lut_atmosphere, r_t - lut_atmosphere.planet_radius);
+                let source = scattering_source(medium, r_t, mu_s_t, rayleigh_phase_value, mie_phase_value);
+                let weight = vec3<f32>(
+                    scattering_step_fraction(medium.extinction.x, dt),
+                    scattering_step_fraction(medium.extinction.y, dt),
+                    scattering_step_fraction(medium.extinction.z, dt),
+                );
+                radiance += throughput * source * weight;
+                throughput *= exp(-medium.extinction * dt);
+            }
+        }
+        let k = id.x + w * (id.y + h * slice);
+        aerial_perspective_out[2u * k] = vec4<f32>(radiance * lut_atmosphere.sun_irradiance, 1.0);
+        aerial_perspective_out[2u * k + 1u] = vec4<f32>(throughput, 1.0);
+    }
+}

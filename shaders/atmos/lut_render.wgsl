@@ -1,0 +1,41 @@
+// The per-pixel pass of the precomputed rung: lookups into the sky-view LUT or the
+// aerial-perspective volume, a LUT raymarch where neither applies (viewer above the
+// atmosphere; a finite segment beyond the volume's range). Writes the FrameOutput
+// buffers (index x + width·y). Twin: atmos::lut::precomputed_sky::shade_pixel.
+#import atmos::lut_sampling
+
+@group(2) @binding(0) var<storage, read_write> frame_radiance: array<vec4<f32>>;
+@group(2) @binding(1) var<storage, read_write> frame_transmittance: array<vec4<f32>>;
+
+fn shade_pixel(pixel: vec2<u32>) -> ScatteringSegment {
+    let camera = frame_camera;
+    let direction = frame_view_direction(pixel, camera);
+    let cosines = view_cosines(camera, direction, lut_atmosphere.planet_radius);
+    let r = cosines.x;
+    let mu = cosines.y;
+    let mu_s = cosines.z;
+    let nu = cosines.w;
+    if camera.max_distance >= UNLIMITED_DISTANCE {
+        if r <= lut_atmosphere.top_radius {
+            let cos_azimuth = view_sun_cos_azimuth(mu, mu_s, nu);
+            return ScatteringSegment(lookup_sky_view(r, mu, cos_azimuth), transmittance_to_boundary(r, mu));
+        }
+        return march_view_segment(r, mu, mu_s, nu, UNLIMITED_DISTANCE, lut_settings.pixel_samples);
+    }
+    if camera.max_distance <= lut_settings.aerial_perspective_range {
+        let uv = vec2<f32>((f32(pixel.x) + 0.5) / f32(camera.width), (f32(pixel.y) + 0.5) / f32(camera.height));
+        return lookup_aerial_perspective(uv, camera.max_distance);
+    }
+    return march_view_segment(r, mu, mu_s, nu, camera.max_distance, lut_settings.pixel_samples);
+}
+
+@compute @workgroup_size(8, 8)
+fn render_precomputed(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= frame_camera.width || id.y >= frame_camera.height {
+        return;
+    }
+    let result = shade_pixel(id.xy);
+    let index = id.x + frame_camera.width * id.y;
+    frame_radiance[index] = vec4<f32>(result.radiance, 1.0);
+    frame_transmittance[index] = vec4<f32>(result.transmittance, 1.0);
+}

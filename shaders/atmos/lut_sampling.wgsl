@@ -1,0 +1,243 @@
+// Bindings, LUT lookups and the raymarch of the precomputed rung. Twin:
+// atmos::lut::{transmittance_lut, multiple_scattering_lut, sky_view_lut,
+// aerial_perspective, raymarch} (Rust f32): the same functions by name, arguments and
+// units, except that the Rust twins take the bindings (`LutBindings`, a LUT) as
+// explicit first arguments where WGSL reads them from module scope.
+//
+// Every pass imports this module and uses one pipeline layout:
+//   group 0: atmosphere, settings, frame camera (uniforms)
+//   group 1: transmittance, multiple scattering, sky view, aerial perspective
+//            (read-only storage, `array<vec4<f32>>`, row-major)
+//   group 2: the pass's outputs (declared by each pass)
+// LUTs are filtered by hand from storage buffers: portable to adapters without
+// float32 filtering (llvmpipe GL) and bit-for-bit the layout the CPU twin reads.
+#import atmos::atmosphere
+#import atmos::phase
+#import atmos::lut_parameterization
+
+// Sizes and sample counts (Rust: LutSettingsUniform).
+struct LutSettings {
+    transmittance_width: u32,
+    transmittance_height: u32,
+    transmittance_samples: u32,
+    multiple_scattering_width: u32,
+    multiple_scattering_height: u32,
+    multiple_scattering_samples: u32,
+    multiple_scattering_direction_sqrt: u32,
+    sky_view_width: u32,
+    sky_view_height: u32,
+    sky_view_samples: u32,
+    aerial_perspective_width: u32,
+    aerial_perspective_height: u32,
+    aerial_perspective_depth: u32,
+    aerial_perspective_steps_per_slice: u32,
+    aerial_perspective_range: f32,
+    pixel_samples: u32,
+}
+
+@group(0) @binding(0) var<uniform> lut_atmosphere: AtmosphereParameters;
+@group(0) @binding(1) var<uniform> lut_settings: LutSettings;
+@group(0) @binding(2) var<uniform> frame_camera: FrameCamera;
+@group(1) @binding(0) var<storage, read> transmittance_lut: array<vec4<f32>>;
+@group(1) @binding(1) var<storage, read> multiple_scattering_lut: array<vec4<f32>>;
+@group(1) @binding(2) var<storage, read> sky_view_lut: array<vec4<f32>>;
+@group(1) @binding(3) var<storage, read> aerial_perspective_volume: array<vec4<f32>>;
+
+// Segment lengths at or above this mean "to the ground or space" (Rust:
+// frame::UNLIMITED_DISTANCE).
+const UNLIMITED_DISTANCE: f32 = 1e30;
+
+struct MediumSample {
+    rayleigh_scattering: vec3<f32>,
+    mie_scattering: vec3<f32>,
+    extinction: vec3<f32>,
+}
+
+// Scattering and extinction coefficients (1/m) at an altitude.
+fn medium_at_altitude(atmosphere: AtmosphereParameters, altitude: f32) -> MediumSample {
+    let rayleigh = exponential_density(altitude, atmosphere.rayleigh_scale_height);
+    let mie = exponential_density(altitude, atmosphere.mie_scale_height);
+    let ozone = tent_density(altitude, atmosphere.ozone_center_altitude, atmosphere.ozone_half_width);
+    return MediumSample(
+        atmosphere.rayleigh_scattering * rayleigh,
+        atmosphere.mie_scattering * mie,
+        atmosphere.rayleigh_scattering * rayleigh + atmosphere.mie_extinction * mie
+            + atmosphere.ozone_absorption * ozone,
+    );
+}
+
+// Transmittance to the top of the atmosphere from (r, mu), bilinear.
+fn lookup_transmittance(r: f32, mu: f32) -> vec3<f32> {
+    let w = lut_settings.transmittance_width;
+    let h = lut_settings.transmittance_height;
+    let uv = transmittance_lut_uv(r, mu, lut_atmosphere.planet_radius, lut_atmosphere.top_radius, w, h);
+    let f = bilinear_footprint(uv, w, h, 0u, h - 1u);
+    return bilinear_blend(
+        transmittance_lut[f.x0 + w * f.y0].xyz,
+        transmittance_lut[f.x1 + w * f.y0].xyz,
+        transmittance_lut[f.x0 + w * f.y1].xyz,
+        transmittance_lut[f.x1 + w * f.y1].xyz,
+        f.fx,
+        f.fy,
+    );
+}
+
+// Transmittance to where the ray leaves the atmosphere or meets the ground (ground
+// rays: Bruneton's ratio of two upward lookups, capped at 1).
+fn transmittance_to_boundary(r_in: f32, mu: f32) -> vec3<f32> {
+    let r = max(r_in, lut_atmosphere.planet_radius);
+    let segment = ray_segment_in_atmosphere(r, mu, lut_atmosphere.planet_radius, lut_atmosphere.top_radius);
+    if segment.z < 0.5 {
+        return lookup_transmittance(r, mu);
+    }
+    let d = segment.y;
+    let r_d = radius_along_ray(r, mu, d);
+    let mu_d = clamp((r * mu + d) / r_d, -1.0, 1.0);
+    let numerator = lookup_transmittance(r_d, -mu_d);
+    let denominator = lookup_transmittance(r, -mu);
+    return select(vec3<f32>(0.0), min(numerator / denominator, vec3<f32>(1.0)), denominator > vec3<f32>(0.0));
+}
+
+// Transmittance from a point to the sun, 0 in the planet's shadow.
+fn sun_transmittance(r: f32, mu_s: f32) -> vec3<f32> {
+    return lookup_transmittance(r, mu_s) * sun_visibility(r, mu_s, lut_atmosphere.planet_radius);
+}
+
+// Ψ_ms(r, mu_s), bilinear.
+fn lookup_multiple_scattering(r: f32, mu_s: f32) -> vec3<f32> {
+    let w = lut_settings.multiple_scattering_width;
+    let h = lut_settings.multiple_scattering_height;
+    let uv = multiple_scattering_lut_uv(r, mu_s, lut_atmosphere.planet_radius, lut_atmosphere.top_radius, w, h);
+    let f = bilinear_footprint(uv, w, h, 0u, h - 1u);
+    return bilinear_blend(
+        multiple_scattering_lut[f.x0 + w * f.y0].xyz,
+        multiple_scattering_lut[f.x1 + w * f.y0].xyz,
+        multiple_scattering_lut[f.x0 + w * f.y1].xyz,
+        multiple_scattering_lut[f.x1 + w * f.y1].xyz,
+        f.fx,
+        f.fy,
+    );
+}
+
+// Radiance of the sky view towards (mu, cos_azimuth) from radius r; sky directions
+// read sky rows only, ground directions ground rows only.
+fn lookup_sky_view(r: f32, mu: f32, cos_azimuth: f32) -> vec3<f32> {
+    let w = lut_settings.sky_view_width;
+    let h = lut_settings.sky_view_height;
+    let uv = sky_view_lut_uv(r, mu, cos_azimuth, lut_atmosphere.planet_radius, w, h);
+    let half_height = h / 2u;
+    var f: BilinearFootprint;
+    if uv.y < 0.5 {
+        f = bilinear_footprint(uv, w, h, 0u, half_height - 1u);
+    } else {
+        f = bilinear_footprint(uv, w, h, half_height, h - 1u);
+    }
+    return bilinear_blend(
+        sky_view_lut[f.x0 + w * f.y0].xyz,
+        sky_view_lut[f.x1 + w * f.y0].xyz,
+        sky_view_lut[f.x0 + w * f.y1].xyz,
+        sky_view_lut[f.x1 + w * f.y1].xyz,
+        f.fx,
+        f.fy,
+    );
+}
+
+fn aerial_perspective_slice(f: BilinearFootprint, z: f32, which: u32) -> vec3<f32> {
+    if z < 0.0 {
+        return select(vec3<f32>(1.0), vec3<f32>(0.0), which == 0u);
+    }
+    let w = lut_settings.aerial_perspective_width;
+    let h = lut_settings.aerial_perspective_height;
+    let zi = u32(z);
+    return bilinear_blend(
+        aerial_perspective_volume[2u * (f.x0 + w * (f.y0 + h * zi)) + which].xyz,
+        aerial_perspective_volume[2u * (f.x1 + w * (f.y0 + h * zi)) + which].xyz,
+        aerial_perspective_volume[2u * (f.x0 + w * (f.y1 + h * zi)) + which].xyz,
+        aerial_perspective_volume[2u * (f.x1 + w * (f.y1 + h * zi)) + which].xyz,
+        f.fx,
+        f.fy,
+    );
+}
+
+struct ScatteringSegment {
+    radiance: vec3<f32>,
+    transmittance: vec3<f32>,
+}
+
+// Trilinear lookup of the aerial-perspective volume at screen uv and distance (m);
+// slice k ends at (k + 1)·range/depth, a virtual slice at 0 holds (0, 1).
+fn lookup_aerial_perspective(uv: vec2<f32>, distance: f32) -> ScatteringSegment {
+    let w = lut_settings.aerial_perspective_width;
+    let h = lut_settings.aerial_perspective_height;
+    let d = lut_settings.aerial_perspective_depth;
+    let f = bilinear_footprint(uv, w, h, 0u, h - 1u);
+    let slice = clamp(distance / lut_settings.aerial_perspective_range * f32(d) - 1.0, -1.0, f32(d - 1u));
+    let z0 = floor(slice);
+    let fz = slice - z0;
+    let z1 = min(z0 + 1.0, f32(d - 1u));
+    let radiance = aerial_perspective_slice(f, z0, 0u) * (1.0 - fz) + aerial_perspective_slice(f, z1, 0u) * fz;
+    let transmittance = aerial_perspective_slice(f, z0, 1u) * (1.0 - fz) + aerial_perspective_slice(f, z1, 1u) * fz;
+    return ScatteringSegment(radiance, transmittance);
+}
+
+// In-scatter source per metre per unit sun irradiance: single scattering lit through
+// the transmittance LUT plus all higher orders from the multiple-scattering LUT.
+fn scattering_source(medium: MediumSample, r: f32, mu_s: f32, rayleigh_phase_value: f32, mie_phase_value: f32) -> vec3<f32> {
+    let sun = sun_transmittance(r, mu_s);
+    let multiple = lookup_multiple_scattering(r, mu_s);
+    return sun * (medium.rayleigh_scattering * rayleigh_phase_value + medium.mie_scattering * mie_phase_value)
+        + multiple * (medium.rayleigh_scattering + medium.mie_scattering);
+}
+
+// Marches (r, mu) from t_start to t_end, steps spaced quadratically, each sampled at
+// its midpoint, with Hillaire's energy-conserving step. Radiance includes the sun
+// irradiance.
+fn raymarch_scattering(r: f32, mu: f32, mu_s: f32, nu: f32, t_start: f32, t_end: f32, sample_count: u32) -> ScatteringSegment {
+    let rayleigh_phase_value = rayleigh_phase(nu);
+    let mie_phase_value = cornette_shanks_phase(nu, lut_atmosphere.mie_g);
+    let ray_length = max(t_end - t_start, 0.0);
+    let n = f32(sample_count);
+    var radiance = vec3<f32>(0.0);
+    var throughput = vec3<f32>(1.0);
+    var t_previous = t_start;
+    for (var i = 0u; i < sample_count; i++) {
+        let s = (f32(i) + 1.0) / n;
+        let t_next = t_start + ray_length * s * s;
+        let dt = t_next - t_previous;
+        let t = t_previous + 0.5 * dt;
+        t_previous = t_next;
+        let r_t = radius_along_ray(r, mu, t);
+        let mu_s_t = clamp((r * mu_s + t * nu) / r_t, -1.0, 1.0);
+        let medium = medium_at_altitude(lut_atmosphere, r_t - lut_atmosphere.planet_radius);
+        let source = scattering_source(medium, r_t, mu_s_t, rayleigh_phase_value, mie_phase_value);
+        let weight = vec3<f32>(
+            scattering_step_fraction(medium.extinction.x, dt),
+            scattering_step_fraction(medium.extinction.y, dt),
+            scattering_step_fraction(medium.extinction.z, dt),
+        );
+        radiance += throughput * source * weight;
+        throughput *= exp(-medium.extinction * dt);
+    }
+    return ScatteringSegment(radiance * lut_atmosphere.sun_irradiance, throughput);
+}
+
+// The per-pixel path without the sky-view and aerial-perspective tables: the segment
+// inside the atmosphere up to max_distance, origin moved to where the ray enters the
+// shell (space views); an unlimited segment takes its transmittance from the LUT.
+fn march_view_segment(r_in: f32, mu: f32, mu_s: f32, nu: f32, max_distance: f32, sample_count: u32) -> ScatteringSegment {
+    let r = max(r_in, lut_atmosphere.planet_radius);
+    let segment = ray_segment_in_atmosphere(r, mu, lut_atmosphere.planet_radius, lut_atmosphere.top_radius);
+    let t_start = segment.x;
+    let t_end = min(segment.y, max_distance);
+    if t_end <= t_start {
+        return ScatteringSegment(vec3<f32>(0.0), vec3<f32>(1.0));
+    }
+    let r_0 = radius_along_ray(r, mu, t_start);
+    let mu_0 = clamp((r * mu + t_start) / r_0, -1.0, 1.0);
+    let mu_s_0 = clamp((r * mu_s + t_start * nu) / r_0, -1.0, 1.0);
+    var result = raymarch_scattering(r_0, mu_0, mu_s_0, nu, 0.0, t_end - t_start, sample_count);
+    if max_distance >= UNLIMITED_DISTANCE {
+        result.transmittance = transmittance_to_boundary(r_0, mu_0);
+    }
+    return result;
+}

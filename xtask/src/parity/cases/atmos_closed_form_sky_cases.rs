@@ -1,0 +1,347 @@
+//! Parity cases of rung 1 in spherical geometry (`atmos::closed_form_sky`) and of the
+//! shared frame camera (`atmos::frame`). The f64 references are composed here from
+//! `atmos::reference`'s f64 twins, following the Rust functions line by line.
+
+use super::*;
+
+/// The Earth shell of `ClosedFormSkyParameters::from_atmosphere` with literals that
+/// round identically in WGSL and Rust (Mie 3.996e-6 × 1200/8000 = 5.994e-7).
+macro_rules! params_wgsl {
+    () => {
+        "ClosedFormSkyParameters(vec3<f32>(5.802e-6, 13.558e-6, 33.1e-6), 0.8, \
+         vec3<f32>(5.994e-7), 6360000.0, vec3<f32>(1.0), 6368000.0)"
+    };
+}
+const SHELL: f64 = 6_368_000.0;
+
+fn params() -> atmos::closed_form_sky::ClosedFormSkyParameters {
+    atmos::closed_form_sky::ClosedFormSkyParameters {
+        beta_rayleigh: [5.802e-6, 13.558e-6, 33.1e-6],
+        mie_g: 0.8,
+        beta_mie: [5.994e-7; 3],
+        planet_radius: 6_360_000.0,
+        sun_irradiance: [1.0; 3],
+        shell_radius: 6_368_000.0,
+    }
+}
+
+fn extinction64() -> [f64; 3] {
+    let p = params();
+    std::array::from_fn(|i| f64::from(p.beta_rayleigh[i]) + f64::from(p.beta_mie[i]))
+}
+
+/// Hit-or-miss of a sphere is undecidable in f32 within the discriminant's rounding:
+/// such rays are left out of the grids (both answers are right).
+fn decidable(r: f64, mu: f64, radius: f64) -> bool {
+    let (d, error) = discriminant_and_error(r, f64::from(mu as f32), radius);
+    d.abs() >= 2.0 * error
+}
+
+/// Intersections that the f32 code may put on either side of 0 are undecidable too.
+fn sign_decidable(r: f64, mu: f64, radius: f64) -> bool {
+    let t = f64ref::ray_sphere_intersect(r, mu, radius);
+    let bound = ray_sphere_bound(&[r, mu, radius]);
+    t.iter().zip(&bound).all(|(t, b)| t.abs() > 2.0 * b + 1e-3)
+}
+
+fn path_length64(r: f64, mu: f64, max_distance: f64) -> f64 {
+    let shell = f64ref::ray_sphere_intersect(r, mu, SHELL);
+    if shell[1] < 0.0 {
+        return 0.0;
+    }
+    let ground = f64ref::ray_sphere_intersect(r, mu, R_GROUND);
+    let mut end = shell[1].min(max_distance);
+    if ground[0] >= 0.0 {
+        end = end.min(ground[0]);
+    }
+    (end - shell[0].max(0.0)).max(0.0)
+}
+
+/// Absolute error bound of the f32 path length: the intersections it uses.
+fn path_length_bound(r: f64, mu: f64) -> f64 {
+    let shell = ray_sphere_bound(&[r, mu, SHELL]);
+    let ground = ray_sphere_bound(&[r, mu, R_GROUND]);
+    shell[0] + shell[1] + ground[0] + 1.0
+}
+
+fn sunlight64(r: f64, mu_s: f64) -> [f64; 3] {
+    let ground = f64ref::ray_sphere_intersect(r, mu_s, R_GROUND);
+    if ground[0] >= 0.0 {
+        return [0.0; 3];
+    }
+    let shell = f64ref::ray_sphere_intersect(r, mu_s, SHELL);
+    let path = (shell[1] - shell[0].max(0.0)).max(0.0);
+    extinction64().map(|beta| {
+        let tau = beta * path;
+        if tau > 0.0 {
+            f64ref::one_minus_exp_neg(tau) / tau
+        } else {
+            1.0
+        }
+    })
+}
+
+fn radiance64(r: f64, mu: f64, nu: f64, max_distance: f64) -> Vec<f64> {
+    let p = params();
+    let path = path_length64(r, mu, max_distance);
+    f64ref::closed_form_inscatter(
+        p.beta_rayleigh.map(f64::from),
+        p.beta_mie.map(f64::from),
+        nu,
+        0.8,
+        path,
+    )
+    .to_vec()
+}
+
+fn geometry_grid(with_distance: bool, cosine_count: usize) -> Vec<Vec<f64>> {
+    let mut grid = Vec::new();
+    let distances: &[f64] = if with_distance {
+        &[1e30, 1_000.0, 50_000.0]
+    } else {
+        &[1e30]
+    };
+    for altitude in altitudes() {
+        let r = f64::from((R_GROUND + altitude) as f32);
+        let mut mus = cosines(cosine_count);
+        for radius in [R_GROUND, SHELL] {
+            if r > radius {
+                let tangent = -(1.0 - (radius / r).powi(2)).sqrt();
+                for k in 0..12 {
+                    let d = 1e-6 * 2f64.powi(k);
+                    mus.extend([tangent - d, tangent + d]);
+                }
+            }
+        }
+        for mu in mus {
+            let mu = f64::from(mu as f32);
+            let decided = decidable(r, mu, R_GROUND)
+                && decidable(r, mu, SHELL)
+                && sign_decidable(r, mu, R_GROUND)
+                && sign_decidable(r, mu, SHELL);
+            if !decided {
+                continue;
+            }
+            for &max_distance in distances {
+                grid.push(vec![r, mu, max_distance]);
+            }
+        }
+    }
+    grid
+}
+
+fn radiance_grid() -> Vec<Vec<f64>> {
+    let mut grid = Vec::new();
+    for row in geometry_grid(true, 241) {
+        for nu in [-1.0, -0.3, 0.2, 0.7, 0.95, 0.999, 1.0] {
+            grid.push(vec![row[0], row[1], nu, row[2]]);
+        }
+    }
+    grid
+}
+
+fn frame_camera_wgsl_and_rust() -> atmos::frame::FrameCamera {
+    atmos::frame::FrameCamera {
+        position: [0.0, 0.0, 6_361_000.0],
+        width: 1280,
+        right: [0.0, -1.0, 0.0],
+        height: 720,
+        up: [0.0, 0.0, 1.0],
+        tan_half_fov_y: 0.75,
+        forward: [1.0, 0.0, 0.0],
+        max_distance: 1e30,
+        sun: [0.0, 0.6, 0.8],
+        padding: 0,
+    }
+}
+
+/// The cases, in report order.
+pub fn cases() -> Vec<Case> {
+    vec![
+        Case {
+            name: "atmos::closed_form_path_length",
+            imports: &["atmos::closed_form_sky"],
+            arity: (3, 1),
+            wgsl: concat!(
+                "y0 = closed_form_path_length(x0, x1, x2, ",
+                params_wgsl!(),
+                ");"
+            ),
+            grid: || geometry_grid(true, 241),
+            cpu: |x| {
+                vec![atmos::closed_form_sky::closed_form_path_length(
+                    x[0],
+                    x[1],
+                    x[2],
+                    &params(),
+                )]
+            },
+            reference: |x| vec![path_length64(x[0], x[1], x[2])],
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 4.0,
+                bound: Some(|x| vec![path_length_bound(x[0], x[1])]),
+                why: "differences of ray–sphere intersections: their forward bounds (the \
+                      discriminant's rounding, ill-conditioned near tangents, see \
+                      atmos::ray_sphere_intersect) for the shell and the ground, + 1 m, + 4 ULP",
+            },
+        },
+        Case {
+            name: "atmos::closed_form_sunlight",
+            imports: &["atmos::closed_form_sky"],
+            arity: (2, 3),
+            wgsl: concat!(
+                "let s = closed_form_sunlight(x0, x1, ",
+                params_wgsl!(),
+                "); y0 = s.x; y1 = s.y; y2 = s.z;"
+            ),
+            grid: || {
+                geometry_grid(false, 801)
+                    .into_iter()
+                    .map(|row| vec![row[0], row[1]])
+                    .collect()
+            },
+            cpu: |x| atmos::closed_form_sky::closed_form_sunlight(x[0], x[1], &params()).to_vec(),
+            reference: |x| sunlight64(x[0], x[1]).to_vec(),
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 16.0,
+                bound: Some(|x| {
+                    // d/dτ (1 − e^{−τ})/τ ∈ [−1/2, 0]: the path error times β / 2.
+                    let path_error = path_length_bound(x[0], x[1]);
+                    extinction64().map(|beta| 0.5 * beta * path_error).to_vec()
+                }),
+                why: "(1 − e^{−τ})/τ (one_minus_exp_neg 4 ULP or exp's bound, the division \
+                      2.5, τ = βs 1.5): 16 ULP, plus the sun path's intersection error times \
+                      β/2 (the average's slope is at most 1/2)",
+            },
+        },
+        Case {
+            name: "atmos::closed_form_sky_radiance",
+            imports: &["atmos::closed_form_sky"],
+            arity: (4, 3),
+            wgsl: concat!(
+                "let l = closed_form_sky_radiance(x0, x1, x2, x3, vec3<f32>(1.0), ",
+                params_wgsl!(),
+                "); y0 = l.x; y1 = l.y; y2 = l.z;"
+            ),
+            grid: radiance_grid,
+            cpu: |x| {
+                atmos::closed_form_sky::closed_form_sky_radiance(
+                    x[0],
+                    x[1],
+                    x[2],
+                    x[3],
+                    [1.0; 3],
+                    &params(),
+                )
+                .to_vec()
+            },
+            reference: |x| radiance64(x[0], x[1], x[2], x[3]),
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 40.0,
+                bound: Some(|x| {
+                    // dL/ds = (βR·P_R + βM·P_HG)·e^{−βs} ≤ the angular coefficient.
+                    let p = params();
+                    let path_error = path_length_bound(x[0], x[1]);
+                    let p_r = f64ref::rayleigh_phase(x[2]);
+                    let p_m = f64ref::henyey_greenstein_phase(x[2], 0.8);
+                    let path = path_length64(x[0], x[1], x[3]);
+                    (0..3)
+                        .map(|i| {
+                            let angular = f64::from(p.beta_rayleigh[i]) * p_r
+                                + f64::from(p.beta_mie[i]) * p_m;
+                            let tau = extinction64()[i] * path;
+                            angular * path_error
+                                + angular * one_minus_exp_bound(tau) / extinction64()[i]
+                        })
+                        .collect()
+                }),
+                why: "closed_form_inscatter (32 ULP + its exp bound) times the unit sunlight \
+                      (1 rounding), plus the path-length error times dL/ds ≤ βR·P_R + βM·P_HG",
+            },
+        },
+        Case {
+            name: "atmos::closed_form_sky_transmittance",
+            imports: &["atmos::closed_form_sky"],
+            arity: (3, 3),
+            wgsl: concat!(
+                "let t = closed_form_sky_transmittance(x0, x1, x2, ",
+                params_wgsl!(),
+                "); y0 = t.x; y1 = t.y; y2 = t.z;"
+            ),
+            grid: || geometry_grid(true, 241),
+            cpu: |x| {
+                atmos::closed_form_sky::closed_form_sky_transmittance(x[0], x[1], x[2], &params())
+                    .to_vec()
+            },
+            reference: |x| {
+                let path = path_length64(x[0], x[1], x[2]);
+                extinction64().map(|beta| (-beta * path).exp()).to_vec()
+            },
+            tolerance: Tolerance {
+                abs: 1e-38,
+                rel: 0.0,
+                ulp: 2.0,
+                bound: Some(|x| {
+                    let path = path_length64(x[0], x[1], x[2]);
+                    let path_error = path_length_bound(x[0], x[1]);
+                    extinction64()
+                        .map(|beta| {
+                            let t = (-beta * path).exp();
+                            t * (exp_relative_error(beta * path) + beta * path_error)
+                        })
+                        .to_vec()
+                }),
+                why: "exp(−βs): WGSL exp's 3 + 2|x| ULP, τ = βs (1.5 ULP), plus the path \
+                      error times β·T",
+            },
+        },
+        Case {
+            name: "atmos::frame_view_direction",
+            imports: &["atmos::frame"],
+            arity: (2, 3),
+            wgsl: "let c = FrameCamera(vec3<f32>(0.0, 0.0, 6361000.0), 1280u, vec3<f32>(0.0, -1.0, 0.0), \
+                   720u, vec3<f32>(0.0, 0.0, 1.0), 0.75, vec3<f32>(1.0, 0.0, 0.0), 1e30, \
+                   vec3<f32>(0.0, 0.6, 0.8), 0u); \
+                   let d = frame_view_direction(vec2<u32>(u32(x0), u32(x1)), c); y0 = d.x; y1 = d.y; y2 = d.z;",
+            grid: || {
+                let mut grid = Vec::new();
+                for y in (0..720).step_by(7).chain([719]) {
+                    for x in (0..1280).step_by(13).chain([1279]) {
+                        grid.push(vec![f64::from(x), f64::from(y)]);
+                    }
+                }
+                grid
+            },
+            cpu: |x| {
+                atmos::frame::frame_view_direction(
+                    [x[0] as u32, x[1] as u32],
+                    &frame_camera_wgsl_and_rust(),
+                )
+                .to_vec()
+            },
+            reference: |x| {
+                let aspect = 1280.0 / 720.0;
+                let ndc_x = (2.0 * (x[0] + 0.5) / 1280.0 - 1.0) * 0.75 * aspect;
+                let ndc_y = (1.0 - 2.0 * (x[1] + 0.5) / 720.0) * 0.75;
+                let d = [1.0, -ndc_x, ndc_y];
+                let length = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                d.map(|c| c / length).to_vec()
+            },
+            tolerance: Tolerance {
+                abs: 4e-7,
+                rel: 0.0,
+                ulp: 8.0,
+                bound: None,
+                why: "pixel-centre NDC (4 roundings, ≤ 3u relative), the basis combination and \
+                      WGSL's normalize (inverseSqrt 2 ULP): 8 ULP of each component, and 4e-7 \
+                      absolute for components that cancel to ~0 (|d| = 1, so 3.4u)",
+            },
+        },
+    ]
+}

@@ -1,0 +1,149 @@
+//! Parity passes of `atmos::lut` (the precomputed rung): each LUT baked by the CPU
+//! f32 twin and by the GPU compute pass, at the small test sizes (lavapipe).
+//!
+//! There is no separate f64 bake: the "reference" column is the CPU f32 bake itself
+//! (its discretisation error against the f64 reference rung is measured by the
+//! trade-off study, not here), so these cases measure GPU-vs-CPU drift only. The
+//! tolerances come from what each texel accumulates: tens to hundreds of exp/sqrt
+//! evaluations (16 ULP measured on lavapipe) and bilinear lookups whose weights move
+//! with the coordinates' rounding (the parameterisation cases bound those).
+
+use super::*;
+use atmos::Atmosphere;
+use atmos::frame::FrameCamera;
+use atmos::lut::{FrameLuts, LutSettings, StaticLuts};
+
+fn settings() -> LutSettings {
+    LutSettings::small()
+}
+
+fn camera() -> FrameCamera {
+    FrameCamera::look_at(
+        glam::DVec3::new(0.0, 0.0, 6_360_000.0 + 500.0),
+        glam::DVec3::new(1.0, 0.2, 0.05),
+        glam::DVec3::Z,
+        1.2,
+        16,
+        12,
+        glam::DVec3::new(0.6, 0.3, 0.35),
+        Some(10_000.0),
+    )
+    .expect("a valid camera")
+}
+
+fn cpu_luts() -> Result<(StaticLuts, FrameLuts), String> {
+    let luts = StaticLuts::bake(&Atmosphere::earth(), &settings()).map_err(|e| e.to_string())?;
+    let frame = FrameLuts::bake(&luts, &camera());
+    Ok((luts, frame))
+}
+
+fn as_pass(texels: &[[f32; 4]]) -> PassCpu {
+    let values: Vec<f32> = bytemuck::cast_slice(texels).to_vec();
+    PassCpu {
+        inputs: texels.len(),
+        reference: values.iter().map(|&v| f64::from(v)).collect(),
+        bounds: None,
+        cpu: values,
+    }
+}
+
+#[derive(Clone, Copy)]
+enum Which {
+    Transmittance,
+    MultipleScattering,
+    SkyView,
+    AerialPerspective,
+}
+
+fn gpu_bake(gpu: &skyscape_harness::GpuContext, which: Which) -> Result<Vec<f32>, String> {
+    let baker = atmos::gpu::luts::LutBaker::new(&gpu.device, &Atmosphere::earth(), &settings())
+        .map_err(|e| e.to_string())?;
+    baker.prepare(&gpu.queue, &camera());
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    baker.encode_static_luts(&mut encoder, None);
+    baker.encode_frame_luts(&mut encoder, None);
+    gpu.queue.submit([encoder.finish()]);
+    let s = baker.settings();
+    let (buffer, texels) = match which {
+        Which::Transmittance => (
+            baker.transmittance_lut(),
+            s.transmittance_width * s.transmittance_height,
+        ),
+        Which::MultipleScattering => (
+            baker.multiple_scattering_lut(),
+            s.multiple_scattering_width * s.multiple_scattering_height,
+        ),
+        Which::SkyView => (baker.sky_view_lut(), s.sky_view_width * s.sky_view_height),
+        Which::AerialPerspective => (
+            baker.aerial_perspective_volume(),
+            2 * s.aerial_perspective_width
+                * s.aerial_perspective_height
+                * s.aerial_perspective_depth,
+        ),
+    };
+    let bytes = skyscape_harness::read_buffer(gpu, "atmos LUT", buffer, 0, u64::from(texels) * 16)
+        .map_err(|e| e.to_string())?;
+    Ok(bytemuck::cast_slice::<u8, f32>(&bytes).to_vec())
+}
+
+/// The pass cases of the precomputed rung, in report order.
+pub fn cases() -> Vec<PassCase> {
+    vec![
+        PassCase {
+            name: "atmos::lut transmittance bake (64x16)",
+            cpu: || Ok(as_pass(&cpu_luts()?.0.transmittance.texels)),
+            gpu: |gpu| gpu_bake(gpu, Which::Transmittance),
+            tolerance: Tolerance {
+                abs: 1e-6,
+                rel: 2e-5,
+                ulp: 0.0,
+                bound: None,
+                why: "40 log-linear steps (3 exp each, 16 ULP) summed, then exp of an \
+                      optical depth ≤ ~40 (3 + 2τ ULP → ≤ 1e-5 relative); 2e-5 relative, \
+                      1e-6 absolute where the grazing texels underflow towards 0",
+            },
+        },
+        PassCase {
+            name: "atmos::lut multiple-scattering bake (16x16)",
+            cpu: || Ok(as_pass(&cpu_luts()?.0.multiple_scattering.texels)),
+            gpu: |gpu| gpu_bake(gpu, Which::MultipleScattering),
+            tolerance: Tolerance {
+                abs: 1e-9,
+                rel: 2e-4,
+                ulp: 0.0,
+                bound: None,
+                why: "64 directions × 20 steps, each with a transmittance lookup whose \
+                      bilinear weights move with the uv rounding (≤ 1e-6 of a texel) and \
+                      the planet-shadow test, which may flip for a sample on the terminator: \
+                      2e-4 relative on sums of ~1300 positive terms",
+            },
+        },
+        PassCase {
+            name: "atmos::lut sky-view bake (48x28)",
+            cpu: || Ok(as_pass(&cpu_luts()?.1.sky_view.texels)),
+            gpu: |gpu| gpu_bake(gpu, Which::SkyView),
+            tolerance: Tolerance {
+                abs: 1e-7,
+                rel: 5e-4,
+                ulp: 0.0,
+                bound: None,
+                why: "texel directions through cos/atan2 (sky_view_lut_direction case), 30 \
+                      steps each reading two LUTs and the phase functions; near the horizon \
+                      the path length changes fast with μ: 5e-4 relative",
+            },
+        },
+        PassCase {
+            name: "atmos::lut aerial-perspective bake (8x8x16)",
+            cpu: || Ok(as_pass(&cpu_luts()?.1.aerial_perspective.texels)),
+            gpu: |gpu| gpu_bake(gpu, Which::AerialPerspective),
+            tolerance: Tolerance {
+                abs: 1e-7,
+                rel: 5e-4,
+                ulp: 0.0,
+                bound: None,
+                why: "froxel directions (normalize, dot) then 32 steps per column reading two \
+                      LUTs: the sky-view budget",
+            },
+        },
+    ]
+}
