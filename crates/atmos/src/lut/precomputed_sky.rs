@@ -126,29 +126,7 @@ pub fn shade_pixel(luts: &StaticLuts, frame: &FrameLuts, pixel: [u32; 2]) -> Sca
     let direction = frame_view_direction(pixel, camera);
     let [r, mu, mu_s, nu] = view_cosines(camera, direction, atmosphere.planet_radius);
     if camera.max_distance >= UNLIMITED_DISTANCE {
-        if r <= atmosphere.top_radius {
-            let cos_azimuth = view_sun_cos_azimuth(mu, mu_s, nu);
-            return ScatteringSegment {
-                radiance: lookup_sky_view(
-                    &frame.sky_view,
-                    settings,
-                    atmosphere.planet_radius,
-                    r,
-                    mu,
-                    cos_azimuth,
-                ),
-                transmittance: transmittance_to_boundary(&bindings, r, mu),
-            };
-        }
-        return march_view_segment(
-            &bindings,
-            r,
-            mu,
-            mu_s,
-            nu,
-            UNLIMITED_DISTANCE,
-            settings.pixel_samples,
-        );
+        return unlimited_view_segment(&bindings, &frame.sky_view, r, mu, mu_s, nu);
     }
     if camera.max_distance <= settings.aerial_perspective_range {
         let uv = [
@@ -171,6 +149,63 @@ pub fn shade_pixel(luts: &StaticLuts, frame: &FrameLuts, pixel: [u32; 2]) -> Sca
         camera.max_distance,
         settings.pixel_samples,
     )
+}
+
+/// Below the top of the atmosphere, within this band (m), the sky-view lookup is blended
+/// linearly into the LUT march that takes over above the top, so radiance is continuous
+/// as a camera crosses the top (seed 001's "painted shell" jump). Without it the step is
+/// the sky-view LUT's interpolation error, 3.7 % mean (8.2 % max) for ±1 m. Only
+/// viewers in the band (the top kilometre of a 100 km atmosphere) pay for both.
+pub const TOP_BLEND_BAND: f32 = 1_000.0;
+
+/// The whole view ray (no distance limit) seen from radius `r`: the sky-view lookup
+/// inside the atmosphere, the LUT march above it, blended over [`TOP_BLEND_BAND`].
+#[allow(clippy::too_many_arguments)]
+pub fn unlimited_view_segment(
+    bindings: &LutBindings<'_>,
+    sky_view: &Lut2d,
+    r: f32,
+    mu: f32,
+    mu_s: f32,
+    nu: f32,
+) -> ScatteringSegment {
+    let atmosphere = bindings.atmosphere;
+    let settings = bindings.settings;
+    let march = || {
+        march_view_segment(
+            bindings,
+            r,
+            mu,
+            mu_s,
+            nu,
+            UNLIMITED_DISTANCE,
+            settings.pixel_samples,
+        )
+    };
+    if r > atmosphere.top_radius {
+        return march();
+    }
+    let lookup = ScatteringSegment {
+        radiance: lookup_sky_view(
+            sky_view,
+            settings,
+            atmosphere.planet_radius,
+            r,
+            mu,
+            view_sun_cos_azimuth(mu, mu_s, nu),
+        ),
+        transmittance: transmittance_to_boundary(bindings, r, mu),
+    };
+    let blend = (r - (atmosphere.top_radius - TOP_BLEND_BAND)) / TOP_BLEND_BAND;
+    if blend <= 0.0 {
+        return lookup;
+    }
+    let marched = march();
+    let mix = |a: [f32; 3], b: [f32; 3]| std::array::from_fn(|i| a[i] + (b[i] - a[i]) * blend);
+    ScatteringSegment {
+        radiance: mix(lookup.radiance, marched.radiance),
+        transmittance: mix(lookup.transmittance, marched.transmittance),
+    }
 }
 
 /// How many sky-view LUTs [`PrecomputedSky`] keeps (one per viewer radius and sun
@@ -242,18 +277,8 @@ impl PrecomputedSky {
         let a = &self.luts.atmosphere;
         let r = (query.r() as f32).max(a.planet_radius);
         let (mu, mu_s, nu) = (query.mu() as f32, query.mu_s() as f32, query.nu() as f32);
-        let segment = if query.max_distance().is_infinite() && r <= a.top_radius {
-            ScatteringSegment {
-                radiance: lookup_sky_view(
-                    sky_view,
-                    &self.luts.settings,
-                    a.planet_radius,
-                    r,
-                    mu,
-                    view_sun_cos_azimuth(mu, mu_s, nu),
-                ),
-                transmittance: transmittance_to_boundary(&bindings, r, mu),
-            }
+        let segment = if query.max_distance().is_infinite() {
+            unlimited_view_segment(&bindings, sky_view, r, mu, mu_s, nu)
         } else {
             let max_distance = query.max_distance().min(f64::from(UNLIMITED_DISTANCE)) as f32;
             march_view_segment(
