@@ -20,6 +20,7 @@ use crate::closed_form_sky::ClosedFormSkyParameters;
 use crate::dome::DomeResolution;
 use crate::frame::FrameCamera;
 use crate::gpu::FrameOutput;
+use crate::gpu::resources::{compute_buffer_entry as buffer_entry, uniform_buffer};
 use crate::{AtmosError, Atmosphere};
 
 /// Where the closed form is evaluated.
@@ -44,19 +45,6 @@ pub struct ClosedFormRenderer {
     dome: wgpu::Buffer,
     parameters: ClosedFormSkyParameters,
     prepared: Option<FrameCamera>,
-}
-
-fn buffer_entry(binding: u32, ty: wgpu::BufferBindingType) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
 }
 
 /// The composed WGSL of the renderer.
@@ -130,19 +118,13 @@ impl ClosedFormRenderer {
                 pipeline("interpolate_dome"),
             )),
         };
-        let uniform = |label, size| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            })
-        };
-        let camera = uniform(
+        let camera = uniform_buffer(
+            device,
             "atmos closed form camera",
             std::mem::size_of::<FrameCamera>() as u64,
         );
-        let params = uniform(
+        let params = uniform_buffer(
+            device,
             "atmos closed form parameters",
             std::mem::size_of::<ClosedFormSkyParameters>() as u64,
         );

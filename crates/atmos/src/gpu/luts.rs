@@ -13,6 +13,7 @@
 use wgpu::util::DeviceExt as _;
 
 use crate::frame::FrameCamera;
+use crate::gpu::resources::{storage_entry, uniform_entry};
 use crate::lut::{LutSettings, LutSettingsUniform};
 use crate::{AtmosError, Atmosphere};
 
@@ -48,32 +49,6 @@ const TRANSMITTANCE: usize = 0;
 const MULTIPLE_SCATTERING: usize = 1;
 const SKY_VIEW: usize = 2;
 const AERIAL_PERSPECTIVE: usize = 3;
-
-fn storage_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
-fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
 
 /// Composes a WGSL module of this crate and creates its compute pipeline.
 pub(crate) fn compute_pipeline(

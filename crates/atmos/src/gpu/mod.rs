@@ -10,6 +10,7 @@ pub mod closed_form;
 pub mod frame_output;
 pub mod luts;
 pub mod precomputed;
+pub mod resources;
 pub mod single_scattering;
 
 pub use closed_form::{ClosedFormRenderer, EvaluationFrequency};

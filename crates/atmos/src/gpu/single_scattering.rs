@@ -21,6 +21,7 @@
 
 use crate::frame::FrameCamera;
 use crate::gpu::FrameOutput;
+use crate::gpu::resources::{compute_buffer_entry as buffer_entry, uniform_buffer};
 use crate::single_scattering::SingleScatteringSettings;
 use crate::{AtmosError, Atmosphere, AtmosphereParameters};
 
@@ -91,19 +92,6 @@ pub fn render_single_scattering_pixel(
     )
 }
 
-fn buffer_entry(binding: u32, ty: wgpu::BufferBindingType) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
 /// Single scattering as a compute pass writing a [`FrameOutput`].
 #[derive(Debug)]
 pub struct SingleScatteringRenderer {
@@ -161,24 +149,18 @@ impl SingleScatteringRenderer {
             },
             cache: None,
         });
-        let uniform = |label, size| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            })
-        };
         Ok(Self {
             device: device.clone(),
             settings,
             layout,
             pipeline,
-            camera: uniform(
+            camera: uniform_buffer(
+                device,
                 "atmos single scattering camera",
                 std::mem::size_of::<FrameCamera>() as u64,
             ),
-            atmosphere: uniform(
+            atmosphere: uniform_buffer(
+                device,
                 "atmos single scattering atmosphere",
                 std::mem::size_of::<AtmosphereParameters>() as u64,
             ),

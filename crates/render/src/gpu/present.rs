@@ -6,6 +6,7 @@ use atmos::gpu::FrameOutput;
 
 use crate::RenderError;
 use crate::present::PresentParameters;
+use atmos::gpu::resources::{compute_buffer_entry as entry, uniform_buffer};
 
 /// Compute pass turning a [`FrameOutput`] into packed RGBA8 pixels.
 #[derive(Debug)]
@@ -17,19 +18,6 @@ pub struct Presenter {
     params: wgpu::Buffer,
     pixels: Option<(u32, u32, wgpu::Buffer)>,
     prepared: Option<FrameCamera>,
-}
-
-fn entry(binding: u32, ty: wgpu::BufferBindingType) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
 }
 
 impl Presenter {
@@ -64,22 +52,19 @@ impl Presenter {
             compilation_options: Default::default(),
             cache: None,
         });
-        let uniform = |label, size: usize| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: size as u64,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            })
-        };
         Ok(Self {
             device: device.clone(),
             pipeline,
             layout,
-            camera: uniform("render present camera", std::mem::size_of::<FrameCamera>()),
-            params: uniform(
+            camera: uniform_buffer(
+                device,
+                "render present camera",
+                std::mem::size_of::<FrameCamera>() as u64,
+            ),
+            params: uniform_buffer(
+                device,
                 "render present parameters",
-                std::mem::size_of::<PresentParameters>(),
+                std::mem::size_of::<PresentParameters>() as u64,
             ),
             pixels: None,
             prepared: None,
