@@ -13,6 +13,85 @@ macro_rules! earth_wgsl {
     };
 }
 
+/// The stability sweep's extreme atmospheres, through the WGSL side: every Earth density
+/// ×100 with g = 0.9999 (optical depths of thousands on grazing paths, a needle-sharp
+/// forward lobe), and every density ×0 (vacuum). Literals, so both sides round alike.
+macro_rules! dense_wgsl {
+    () => {
+        "let earth = AtmosphereParameters(vec3<f32>(5.802e-4, 13.558e-4, 33.1e-4), 8000.0, \
+         vec3<f32>(3.996e-4), 1200.0, vec3<f32>(4.40e-4), 0.9999, \
+         vec3<f32>(0.650e-4, 1.881e-4, 0.085e-4), 25000.0, vec3<f32>(0.1), 15000.0, \
+         vec3<f32>(1.0), 0.004675, 6360000.0, 6460000.0, vec2<f32>(0.0)); "
+    };
+}
+
+macro_rules! vacuum_wgsl {
+    () => {
+        "let earth = AtmosphereParameters(vec3<f32>(0.0), 8000.0, vec3<f32>(0.0), 1200.0, \
+         vec3<f32>(0.0), 0.8, vec3<f32>(0.0), 25000.0, vec3<f32>(0.1), 15000.0, \
+         vec3<f32>(1.0), 0.004675, 6360000.0, 6460000.0, vec2<f32>(0.0)); "
+    };
+}
+
+fn dense_atmosphere() -> atmos::Atmosphere {
+    atmos::Atmosphere {
+        rayleigh_scattering: [5.802e-4, 13.558e-4, 33.1e-4],
+        mie_scattering: [3.996e-4; 3],
+        mie_extinction: [4.40e-4; 3],
+        mie_g: 0.9999,
+        ozone_absorption: [0.650e-4, 1.881e-4, 0.085e-4],
+        ..atmos::Atmosphere::earth()
+    }
+}
+
+fn vacuum_atmosphere() -> atmos::Atmosphere {
+    atmos::Atmosphere {
+        rayleigh_scattering: [0.0; 3],
+        mie_scattering: [0.0; 3],
+        mie_extinction: [0.0; 3],
+        ozone_absorption: [0.0; 3],
+        ..atmos::Atmosphere::earth()
+    }
+}
+
+/// An atmosphere's f32 uniforms read back as f64 (what both f32 sides see).
+fn uniforms_as_f64(atmosphere: &atmos::Atmosphere) -> atmos::Atmosphere {
+    let u = atmosphere
+        .to_uniforms()
+        .expect("the sweep's atmospheres are valid");
+    let f = |v: [f32; 3]| v.map(f64::from);
+    atmos::Atmosphere {
+        planet_radius: f64::from(u.planet_radius),
+        top_radius: f64::from(u.top_radius),
+        rayleigh_scattering: f(u.rayleigh_scattering),
+        rayleigh_scale_height: f64::from(u.rayleigh_scale_height),
+        mie_scattering: f(u.mie_scattering),
+        mie_extinction: f(u.mie_extinction),
+        mie_scale_height: f64::from(u.mie_scale_height),
+        mie_g: f64::from(u.mie_g),
+        ozone_absorption: f(u.ozone_absorption),
+        ozone_center_altitude: f64::from(u.ozone_center_altitude),
+        ozone_half_width: f64::from(u.ozone_half_width),
+        ground_albedo: f(u.ground_albedo),
+        sun_irradiance: f(u.sun_irradiance),
+        sun_angular_radius: f64::from(u.sun_angular_radius),
+    }
+}
+
+fn single_scattering_in(atmosphere: &atmos::Atmosphere, x: &[f32]) -> Vec<f32> {
+    let s = atmos::single_scattering::single_scattering(
+        &atmosphere.to_uniforms().expect("valid"),
+        x[0],
+        x[1],
+        x[2],
+        x[3],
+        x[4],
+        x[5] as u32,
+        x[6] as u32,
+    );
+    s.radiance.iter().chain(&s.transmittance).copied().collect()
+}
+
 fn earth32() -> atmos::AtmosphereParameters {
     atmos::Atmosphere::earth()
         .to_uniforms()
@@ -94,8 +173,12 @@ type SingleScatteringFn =
     fn(&atmos::Atmosphere, f64, f64, f64, f64, f64, u32, u32) -> atmos::SkySample;
 
 fn evaluate_f64(f: SingleScatteringFn, x: &[f64]) -> Vec<f64> {
+    evaluate_f64_in(&earth_f32_as_f64(), f, x)
+}
+
+fn evaluate_f64_in(atmosphere: &atmos::Atmosphere, f: SingleScatteringFn, x: &[f64]) -> Vec<f64> {
     let s = f(
-        &earth_f32_as_f64(),
+        atmosphere,
         x[0],
         x[1],
         x[2],
@@ -120,7 +203,15 @@ fn evaluate_f64(f: SingleScatteringFn, x: &[f64]) -> Vec<f64> {
 ///   bound (3 + 2|x| ULP) and the running sums add n·u each; the view transmittance
 ///   multiplies relative errors by (1 + τ): (n_view + n_light + 64)·u·(1 + τ)·|value|.
 fn single_scattering_bound(f: SingleScatteringFn, x: &[f64]) -> Vec<f64> {
-    let base = evaluate_f64(f, x);
+    single_scattering_bound_in(&earth_f32_as_f64(), f, x)
+}
+
+fn single_scattering_bound_in(
+    atmosphere: &atmos::Atmosphere,
+    f: SingleScatteringFn,
+    x: &[f64],
+) -> Vec<f64> {
+    let base = evaluate_f64_in(atmosphere, f, x);
     let ulp = |v: f64| super::super::compare::ulp_f32(v);
     let mut allowance = vec![0.0f64; 6];
     for pattern in [
@@ -137,7 +228,7 @@ fn single_scattering_bound(f: SingleScatteringFn, x: &[f64]) -> Vec<f64> {
         for (a, cosine) in y.iter_mut().enumerate().take(4).skip(1) {
             *cosine = (x[a] + pattern[a] * 32.0 * ulp(1.0)).clamp(-1.0, 1.0);
         }
-        let perturbed = evaluate_f64(f, &y);
+        let perturbed = evaluate_f64_in(atmosphere, f, &y);
         for k in 0..6 {
             allowance[k] = allowance[k].max((perturbed[k] - base[k]).abs());
         }
@@ -572,6 +663,70 @@ pub fn cases() -> Vec<Case> {
                 bound: Some(|x| single_scattering_bound(f64ref::single_scattering, x)),
                 why: "as single_scattering_inside; outside the shell the entry point (√D, \
                       r·mu_s + t·nu) adds its rounding, which the 8-ULP input moves cover",
+            },
+        },
+        Case {
+            name: "atmos::single_scattering (densities ×100, g 0.9999)",
+            imports: &["atmos::single_scattering"],
+            arity: (7, 6),
+            wgsl: concat!(
+                dense_wgsl!(),
+                "let s = single_scattering(earth, x0, x1, x2, x3, x4, u32(x5), u32(x6)); \
+                 y0 = s.radiance.x; y1 = s.radiance.y; y2 = s.radiance.z; \
+                 y3 = s.transmittance.x; y4 = s.transmittance.y; y5 = s.transmittance.z;"
+            ),
+            grid: || single_scattering_grid(f64::INFINITY, 17),
+            cpu: |x| single_scattering_in(&dense_atmosphere(), x),
+            reference: |x| {
+                evaluate_f64_in(
+                    &uniforms_as_f64(&dense_atmosphere()),
+                    f64ref::single_scattering,
+                    x,
+                )
+            },
+            tolerance: Tolerance {
+                abs: 1e-8,
+                rel: 0.0,
+                ulp: 8.0,
+                bound: Some(|x| {
+                    single_scattering_bound_in(
+                        &uniforms_as_f64(&dense_atmosphere()),
+                        f64ref::single_scattering,
+                        x,
+                    )
+                }),
+                why: "as atmos::single_scattering, in the stability sweep's densest medium: \
+                      the conditioning term (inputs moved by 32 ULPs) carries the needle-sharp \
+                      g = 0.9999 lobe and the steep transmittances, the arithmetic term grows \
+                      with τ (thousands on grazing paths)",
+            },
+        },
+        Case {
+            name: "atmos::single_scattering (densities ×0)",
+            imports: &["atmos::single_scattering"],
+            arity: (7, 6),
+            wgsl: concat!(
+                vacuum_wgsl!(),
+                "let s = single_scattering(earth, x0, x1, x2, x3, x4, u32(x5), u32(x6)); \
+                 y0 = s.radiance.x; y1 = s.radiance.y; y2 = s.radiance.z; \
+                 y3 = s.transmittance.x; y4 = s.transmittance.y; y5 = s.transmittance.z;"
+            ),
+            grid: || single_scattering_grid(f64::INFINITY, 17),
+            cpu: |x| single_scattering_in(&vacuum_atmosphere(), x),
+            reference: |x| {
+                evaluate_f64_in(
+                    &uniforms_as_f64(&vacuum_atmosphere()),
+                    f64ref::single_scattering,
+                    x,
+                )
+            },
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 0.0,
+                bound: None,
+                why: "a vacuum: no radiance and transmittance exactly 1 on both sides (0·x and \
+                      e^{-0} are exact); any NaN from 0/0 would fail",
             },
         },
     ]
