@@ -623,7 +623,11 @@ fn goals(rows: &[Row]) -> String {
             "* Precomputed within 1 % mean relative luminance error of the reference for sun ≥ \
              {DAY_THRESHOLD_DEG}°: **{:.2} %** — {} (twilight, reported apart: {:.1} %).",
             100.0 * p.day.mean(),
-            if p.day.mean() <= 0.01 { "met" } else { "**not met**" },
+            if p.day.mean() <= 0.01 {
+                "met"
+            } else {
+                "**not met**"
+            },
             100.0 * p.twilight.mean()
         );
     }
@@ -644,7 +648,11 @@ fn goals(rows: &[Row]) -> String {
         let _ = writeln!(
             md,
             " — {}. The criterion figures per lookup are in `crates/atmos/README.md`.",
-            if cpu >= 50.0 { "met on the CPU" } else { "**not met** here" }
+            if cpu >= 50.0 {
+                "met on the CPU"
+            } else {
+                "**not met** here"
+            }
         );
     }
     md
