@@ -54,30 +54,6 @@ fn vacuum_atmosphere() -> atmos::Atmosphere {
     }
 }
 
-/// An atmosphere's f32 uniforms read back as f64 (what both f32 sides see).
-fn uniforms_as_f64(atmosphere: &atmos::Atmosphere) -> atmos::Atmosphere {
-    let u = atmosphere
-        .to_uniforms()
-        .expect("the sweep's atmospheres are valid");
-    let f = |v: [f32; 3]| v.map(f64::from);
-    atmos::Atmosphere {
-        planet_radius: f64::from(u.planet_radius),
-        top_radius: f64::from(u.top_radius),
-        rayleigh_scattering: f(u.rayleigh_scattering),
-        rayleigh_scale_height: f64::from(u.rayleigh_scale_height),
-        mie_scattering: f(u.mie_scattering),
-        mie_extinction: f(u.mie_extinction),
-        mie_scale_height: f64::from(u.mie_scale_height),
-        mie_g: f64::from(u.mie_g),
-        ozone_absorption: f(u.ozone_absorption),
-        ozone_center_altitude: f64::from(u.ozone_center_altitude),
-        ozone_half_width: f64::from(u.ozone_half_width),
-        ground_albedo: f(u.ground_albedo),
-        sun_irradiance: f(u.sun_irradiance),
-        sun_angular_radius: f64::from(u.sun_angular_radius),
-    }
-}
-
 fn single_scattering_in(atmosphere: &atmos::Atmosphere, x: &[f32]) -> Vec<f32> {
     let s = atmos::single_scattering::single_scattering(
         &atmosphere.to_uniforms().expect("valid"),

@@ -287,9 +287,14 @@ fn srgb_bound(x: f64) -> f64 {
 /// The f64 view of the f32 Earth uniforms: the reference sees the parameters the f32
 /// sides see.
 fn earth_f32_as_f64() -> atmos::Atmosphere {
-    let u = atmos::Atmosphere::earth()
+    uniforms_as_f64(&atmos::Atmosphere::earth())
+}
+
+/// An atmosphere's f32 uniforms read back as f64 (what both f32 sides see).
+fn uniforms_as_f64(atmosphere: &atmos::Atmosphere) -> atmos::Atmosphere {
+    let u = atmosphere
         .to_uniforms()
-        .expect("Earth is valid");
+        .expect("the parity atmospheres are valid");
     let f = |v: [f32; 3]| v.map(f64::from);
     atmos::Atmosphere {
         planet_radius: f64::from(u.planet_radius),
