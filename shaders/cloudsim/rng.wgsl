@@ -5,21 +5,24 @@
 //   key      = hash_combine(hash_combine(hash_u32(seed), step), stream)
 //   word_key = hash_combine(key, word)        word = packed word of the cell
 //   plane_k  = hash_combine(word_key, k)      bit (15 - k) of all 32 lanes' numbers
-//   event  <=>  u < threshold,  threshold = floor(p * 2^16) in [0, 2^16], computed on the CPU
-//   mask draw: (u >> 8) < level,  level in [0, 256]
+//   event  <=>  u < threshold of the lane, base threshold = floor(p * 2^16) in [0, 2^16]
+//   (computed on the CPU), scaled per lane by the region-mask level (lane_threshold);
+//   thresholds are given as bit planes: LANE_PLANES words per word and stream.
 
 #import common::hash
 
 const STREAM_EXTINCTION: u32 = 0u;
 const STREAM_HUMIDITY: u32 = 1u;
 const STREAM_ACTIVATION: u32 = 2u;
-const STREAM_MASK_OFFSET: u32 = 3u;
 const UNIFORM_BITS: u32 = 16u;
 const THRESHOLD_ONE: u32 = 65536u;
 const MASK_BITS: u32 = 8u;
-const MASK_PLANES: u32 = 10u;
-const MASK_PLANE_FULL: u32 = 8u;
-const MASK_PLANE_ALIVE: u32 = 9u;
+const MASK_FULL: u32 = 256u;
+// 16 threshold bit planes (most significant first), then the lanes at 2^16, then the
+// lanes above 0.
+const LANE_PLANES: u32 = 18u;
+const PLANE_ALWAYS: u32 = 16u;
+const PLANE_NONZERO: u32 = 17u;
 
 fn stream_key(seed: u32, step: u32, stream: u32) -> u32 {
     return hash_combine(hash_combine(hash_u32(seed), step), stream);
@@ -33,44 +36,40 @@ fn plane_bits(word_key: u32, plane: u32) -> u32 {
     return hash_combine(word_key, plane);
 }
 
-// Lanes of `candidates` whose uniform 16-bit number is below `threshold` (shared by
-// the word), bit-sliced, most significant plane first; stops once no lane is equal.
-fn below_threshold(key: u32, word: u32, candidates: u32, threshold: u32) -> u32 {
-    if candidates == 0u || threshold == 0u {
-        return 0u;
+// The threshold of a lane at mask level `level` in [0, 256]: floor(t l / 256) for
+// supply and activation, floor(t (256 - l) / 256) for extinction (t l <= 2^24).
+fn lane_threshold(threshold: u32, level: u32, stream: u32) -> u32 {
+    var scale = level;
+    if stream == STREAM_EXTINCTION {
+        scale = MASK_FULL - level;
     }
-    if threshold >= THRESHOLD_ONE {
-        return candidates;
-    }
-    let wk = word_key(key, word);
-    var less = 0u;
-    var equal = candidates;
-    for (var k = 0u; k < UNIFORM_BITS; k++) {
-        let r = plane_bits(wk, k);
-        if ((threshold >> (UNIFORM_BITS - 1u - k)) & 1u) == 1u {
-            less |= equal & ~r;
-            equal &= r;
-        } else {
-            equal &= ~r;
-        }
-        if equal == 0u {
-            break;
-        }
-    }
-    return less;
+    return (threshold * scale) >> MASK_BITS;
 }
 
-// Lanes of `candidates` whose mask draw (u >> 8) is below their mask level; `planes`
-// are the word's mask planes (level bits 7..0, then full, then alive).
-fn below_mask_level(key: u32, word: u32, candidates: u32, planes: array<u32, 10>) -> u32 {
-    let full = candidates & planes[MASK_PLANE_FULL];
-    var equal = candidates & ~planes[MASK_PLANE_FULL] & planes[MASK_PLANE_ALIVE];
+// The planes of one threshold shared by all 32 lanes (no ellipsoids).
+fn uniform_threshold_planes(threshold: u32) -> array<u32, 18> {
+    var planes: array<u32, 18>;
+    if threshold >= THRESHOLD_ONE {
+        planes[PLANE_ALWAYS] = 0xffffffffu;
+    } else {
+        for (var k = 0u; k < UNIFORM_BITS; k++) {
+            planes[k] = 0u - ((threshold >> (UNIFORM_BITS - 1u - k)) & 1u);
+        }
+    }
+    planes[PLANE_NONZERO] = 0u - u32(threshold > 0u);
+    return planes;
+}
+
+// Lanes of `candidates` whose uniform 16-bit number is below their own threshold
+// (`planes`), bit-sliced, most significant plane first; stops once no lane is equal.
+fn below_lane_thresholds(key: u32, word: u32, candidates: u32, planes: array<u32, 18>) -> u32 {
+    var less = candidates & planes[PLANE_ALWAYS];
+    var equal = candidates & planes[PLANE_NONZERO] & ~planes[PLANE_ALWAYS];
     if equal == 0u {
-        return full;
+        return less;
     }
     let wk = word_key(key, word);
-    var less = 0u;
-    for (var k = 0u; k < MASK_BITS; k++) {
+    for (var k = 0u; k < UNIFORM_BITS; k++) {
         let r = plane_bits(wk, k);
         let t = planes[k];
         less |= equal & t & ~r;
@@ -79,7 +78,7 @@ fn below_mask_level(key: u32, word: u32, candidates: u32, planes: array<u32, 10>
             break;
         }
     }
-    return full | less;
+    return less;
 }
 
 // Cells a slice with 16.16 fixed-point velocity `velocity_q` moves during `step`:

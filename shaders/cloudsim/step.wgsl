@@ -24,7 +24,7 @@ struct Params {
     threshold_ext: u32,
     threshold_hum: u32,
     threshold_act: u32,
-    // 1 when ellipsoids scale the probabilities (mask draws), else 0
+    // 1 when ellipsoids scale the probabilities per lane (region table), else 0
     regions: u32,
 }
 
@@ -32,13 +32,18 @@ const HEADER_WORDS: u32 = 4u;
 const WORKGROUP_SIZE: u32 = 64u;
 
 @group(0) @binding(0) var<uniform> params: Params;
-// MASK_PLANES words per packed word: bit (7 - k) of every lane's mask level for
-// k < 8, then the lanes at level 256, then the lanes above level 0.
-@group(0) @binding(1) var<storage, read> mask_planes: array<u32>;
+// With ellipsoids: per packed word its entry in `region_entries`, or NO_REGION.
+@group(0) @binding(1) var<storage, read> region_index: array<u32>;
 // Per z slice: wind velocity in cells per step, 16.16 fixed point.
 @group(0) @binding(2) var<storage, read> wind: array<vec2<i32>>;
 @group(0) @binding(3) var<storage, read> src: array<u32>;
 @group(0) @binding(4) var<storage, read_write> dst: array<u32>;
+// REGION_ENTRY_WORDS per entry: the lanes above mask level 0, then LANE_PLANES
+// threshold planes of extinction, humidity and activation.
+@group(0) @binding(5) var<storage, read> region_entries: array<u32>;
+
+const NO_REGION: u32 = 0xffffffffu;
+const REGION_ENTRY_WORDS: u32 = 55u;
 
 fn field_base(field: u32) -> u32 {
     return HEADER_WORDS + field * params.word_count;
@@ -65,10 +70,12 @@ fn act_word(wx: u32, y: i32, z: i32) -> u32 {
     return act_at(row * params.words_per_row + wx);
 }
 
-fn word_mask_planes(word: u32) -> array<u32, 10> {
-    var planes: array<u32, 10>;
-    for (var k = 0u; k < MASK_PLANES; k++) {
-        planes[k] = mask_planes[word * MASK_PLANES + k];
+// The threshold planes of stream `stream` of region entry `entry`.
+fn entry_planes(entry: u32, stream: u32) -> array<u32, 18> {
+    var planes: array<u32, 18>;
+    let base = entry * REGION_ENTRY_WORDS + 1u + stream * LANE_PLANES;
+    for (var k = 0u; k < LANE_PLANES; k++) {
+        planes[k] = region_entries[base + k];
     }
     return planes;
 }
@@ -130,38 +137,38 @@ fn step_main(
     var cld_next = c | a;
     var act_next = ~a & h & f_act & valid;
 
-    // The stochastic terms, each drawn 32 lanes at a time for the lanes it can change.
-    let regions = params.regions != 0u;
-    var planes: array<u32, 10>;
+    // The stochastic terms, each drawn 32 lanes at a time for the lanes it can change
+    // and compared with each lane's own threshold.
     var alive = valid;
-    if regions {
-        planes = word_mask_planes(w);
-        alive = planes[MASK_PLANE_ALIVE];
+    var planes_ext: array<u32, 18>;
+    var planes_hum: array<u32, 18>;
+    var planes_act: array<u32, 18>;
+    if params.regions != 0u {
+        let entry = region_index[w];
+        if entry == NO_REGION {
+            // no cell above mask level 0: nothing can happen, clouds vanish
+            alive = 0u;
+        } else {
+            alive = region_entries[entry * REGION_ENTRY_WORDS];
+            planes_ext = entry_planes(entry, STREAM_EXTINCTION);
+            planes_hum = entry_planes(entry, STREAM_HUMIDITY);
+            planes_act = entry_planes(entry, STREAM_ACTIVATION);
+        }
+    } else {
+        planes_ext = uniform_threshold_planes(params.threshold_ext);
+        planes_hum = uniform_threshold_planes(params.threshold_hum);
+        planes_act = uniform_threshold_planes(params.threshold_act);
     }
     // Clouds vanish where the mask level is 0.
     cld_next &= alive;
     let seed = params.seed;
-    var ext = below_threshold(stream_key(seed, step, STREAM_EXTINCTION), w, cld_next,
-        params.threshold_ext);
-    if regions && ext != 0u {
-        let key = stream_key(seed, step, STREAM_EXTINCTION + STREAM_MASK_OFFSET);
-        ext &= ~below_mask_level(key, w, ext, planes);
-    }
+    let ext = below_lane_thresholds(stream_key(seed, step, STREAM_EXTINCTION), w, cld_next,
+        planes_ext);
     cld_next &= ~ext;
-    var sup = below_threshold(stream_key(seed, step, STREAM_HUMIDITY), w, ~hum_next & alive,
-        params.threshold_hum);
-    if regions && sup != 0u {
-        let key = stream_key(seed, step, STREAM_HUMIDITY + STREAM_MASK_OFFSET);
-        sup = below_mask_level(key, w, sup, planes);
-    }
-    hum_next |= sup;
-    var spark = below_threshold(stream_key(seed, step, STREAM_ACTIVATION), w,
-        ~act_next & alive, params.threshold_act);
-    if regions && spark != 0u {
-        let key = stream_key(seed, step, STREAM_ACTIVATION + STREAM_MASK_OFFSET);
-        spark = below_mask_level(key, w, spark, planes);
-    }
-    act_next |= spark;
+    hum_next |= below_lane_thresholds(stream_key(seed, step, STREAM_HUMIDITY), w,
+        ~hum_next & alive, planes_hum);
+    act_next |= below_lane_thresholds(stream_key(seed, step, STREAM_ACTIVATION), w,
+        ~act_next & alive, planes_act);
 
     dst[field_base(0u) + w] = hum_next;
     dst[field_base(1u) + w] = act_next;

@@ -86,7 +86,8 @@ pub struct GpuSimulation {
     step: u32,
     wind: bool,
     _params: wgpu::Buffer,
-    _mask: wgpu::Buffer,
+    _region_index: wgpu::Buffer,
+    _region_entries: wgpu::Buffer,
     _wind: wgpu::Buffer,
 }
 
@@ -121,8 +122,18 @@ impl GpuSimulation {
         check_state(model, state)?;
         let limit = device.limits().max_storage_buffer_binding_size;
         let state_bytes = state_bytes_of(model);
-        let mask_bytes = (model.all_mask_planes().len() * 4) as u64;
-        for (what, bytes) in [("state", state_bytes), ("mask_planes", mask_bytes)] {
+        // With ellipsoids the region table's GPU layout; without, one unused word each.
+        let (region_index, region_entries) = match model.regions() {
+            Some(table) => table.gpu_layout(size.words()),
+            None => (vec![0], vec![0]),
+        };
+        let index_bytes = (region_index.len() * 4) as u64;
+        let entries_bytes = (region_entries.len() * 4) as u64;
+        for (what, bytes) in [
+            ("state", state_bytes),
+            ("region_index", index_bytes),
+            ("region_entries", entries_bytes),
+        ] {
             if bytes > limit {
                 return Err(GpuError::BufferTooLarge { what, bytes, limit });
             }
@@ -149,6 +160,7 @@ impl GpuSimulation {
                 storage_entry(2, true),
                 storage_entry(3, true),
                 storage_entry(4, false),
+                storage_entry(5, true),
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -200,8 +212,10 @@ impl GpuSimulation {
         );
         queue.write_buffer(&params, 0, bytemuck::cast_slice(&params_data));
 
-        let mask = buffer("cloudsim mask planes", mask_bytes, storage);
-        queue.write_buffer(&mask, 0, bytemuck::cast_slice(model.all_mask_planes()));
+        let index = buffer("cloudsim region index", index_bytes, storage);
+        queue.write_buffer(&index, 0, bytemuck::cast_slice(&region_index));
+        let entries = buffer("cloudsim region entries", entries_bytes, storage);
+        queue.write_buffer(&entries, 0, bytemuck::cast_slice(&region_entries));
 
         let mut wind_data: Vec<i32> = model.wind_fixed().iter().flatten().copied().collect();
         if wind_data.is_empty() {
@@ -216,14 +230,15 @@ impl GpuSimulation {
             buffer("cloudsim state 1", state_bytes, state_usage),
         ];
         let bind_group = |from: usize| {
-            let entries = [
+            let resources = [
                 params.as_entire_binding(),
-                mask.as_entire_binding(),
+                index.as_entire_binding(),
                 wind.as_entire_binding(),
                 buffers[from].as_entire_binding(),
                 buffers[1 - from].as_entire_binding(),
+                entries.as_entire_binding(),
             ];
-            let entries: Vec<wgpu::BindGroupEntry> = entries
+            let resources: Vec<wgpu::BindGroupEntry> = resources
                 .into_iter()
                 .enumerate()
                 .map(|(binding, resource)| wgpu::BindGroupEntry {
@@ -234,7 +249,7 @@ impl GpuSimulation {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("cloudsim"),
                 layout: &layout,
-                entries: &entries,
+                entries: &resources,
             })
         };
         let bind_groups = [bind_group(0), bind_group(1)];
@@ -248,7 +263,8 @@ impl GpuSimulation {
             step,
             wind: model.has_wind(),
             _params: params,
-            _mask: mask,
+            _region_index: index,
+            _region_entries: entries,
             _wind: wind,
         };
         sim.upload(queue, state, step)?;

@@ -33,6 +33,7 @@ pub mod density;
 pub mod gpu;
 pub mod naive;
 pub mod packed;
+pub mod regions;
 pub mod rng;
 
 pub use density::density;

@@ -2,10 +2,8 @@
 //! derived tables every implementation reads: mask levels, thresholds, wind).
 
 use crate::Error;
-use crate::rng::{
-    MASK_FULL, MASK_PLANE_ALIVE, MASK_PLANE_FULL, MASK_PLANES, THRESHOLD_ONE,
-    probability_threshold, wind_velocity_fixed,
-};
+use crate::regions::RegionTable;
+use crate::rng::{MASK_FULL, THRESHOLD_ONE, probability_threshold, wind_velocity_fixed};
 
 /// Largest allowed `nx`, `ny` or `nz`.
 pub const MAX_DIMENSION: u32 = 1 << 16;
@@ -225,8 +223,8 @@ pub struct Model {
     mask: Vec<u16>,
     /// `[extinction, humidity, activation]` thresholds, `floor(p * 2^16)`.
     thresholds: [u32; 3],
-    /// Per packed word, [`MASK_PLANES`] words: the level bit planes, full, alive.
-    mask_planes: Vec<u32>,
+    /// With ellipsoids, the per-lane threshold planes of the words they touch.
+    regions: Option<RegionTable>,
     /// Wind per slice as 16.16 fixed point.
     wind_q: Vec<[i32; 2]>,
     slice_density: Vec<f32>,
@@ -329,7 +327,8 @@ impl Model {
         }
 
         let mask = mask_levels(size, &config.ellipsoids);
-        let mask_planes = mask_planes(size, &mask);
+        let regions =
+            (!config.ellipsoids.is_empty()).then(|| RegionTable::new(size, &mask, thresholds));
         let wind_q = config
             .wind
             .iter()
@@ -344,7 +343,7 @@ impl Model {
             config,
             mask,
             thresholds,
-            mask_planes,
+            regions,
             wind_q,
             slice_density,
         })
@@ -397,16 +396,11 @@ impl Model {
         self.thresholds
     }
 
-    /// The mask planes of packed word `word` ([`crate::rng::MASK_PLANES`] words: bit
-    /// `7 - k` of every lane's level for `k < 8`, then the lanes at level 256, then the
-    /// lanes above level 0; padding lanes are 0).
-    pub fn mask_planes(&self, word: usize) -> &[u32] {
-        &self.mask_planes[word * MASK_PLANES..(word + 1) * MASK_PLANES]
-    }
-
-    /// All words' mask planes, [`crate::rng::MASK_PLANES`] per word (the GPU's copy).
-    pub fn all_mask_planes(&self) -> &[u32] {
-        &self.mask_planes
+    /// With ellipsoids, the words they touch with their lanes' threshold planes
+    /// ([`crate::rng::lane_threshold`] of each cell's level); `None` without ellipsoids
+    /// (the base thresholds then apply to every cell).
+    pub fn regions(&self) -> Option<&RegionTable> {
+        self.regions.as_ref()
     }
 
     /// Wind per z slice as 16.16 fixed point `[vx, vy]`; empty when there is no wind.
@@ -488,25 +482,6 @@ fn mask_levels(size: GridSize, ellipsoids: &[Ellipsoid]) -> Vec<u16> {
         .into_iter()
         .map(|m| (m.clamp(0.0, 1.0) * f64::from(MASK_LEVEL_MAX)).round() as u16)
         .collect()
-}
-
-fn mask_planes(size: GridSize, mask: &[u16]) -> Vec<u32> {
-    let wpr = size.words_per_row();
-    let nx = size.nx as usize;
-    let mut planes = vec![0u32; size.words() * MASK_PLANES];
-    for (row, levels) in mask.chunks_exact(nx).enumerate() {
-        for (x, &level) in levels.iter().enumerate() {
-            let word = row * wpr + x / 32;
-            let lane = x % 32;
-            let p = &mut planes[word * MASK_PLANES..(word + 1) * MASK_PLANES];
-            for (k, plane) in p.iter_mut().take(8).enumerate() {
-                *plane |= u32::from((level & 0xff) >> (7 - k) & 1) << lane;
-            }
-            p[MASK_PLANE_FULL] |= u32::from(level == MASK_FULL) << lane;
-            p[MASK_PLANE_ALIVE] |= u32::from(level > 0) << lane;
-        }
-    }
-    planes
 }
 
 #[cfg(test)]
@@ -722,34 +697,49 @@ mod tests {
             m.thresholds(),
             [p.extinction, p.humidity, p.activation].map(|v| (f64::from(v) * 65536.0) as u32)
         );
-        // mask planes agree with the cells
+        // the region table's planes agree with the cells' own thresholds
         let size = m.size();
         let wpr = size.words_per_row();
-        for w in 0..size.words() {
-            let row = w / wpr;
-            let wx = w % wpr;
+        let table = m.regions().unwrap();
+        let mut seen = 0;
+        for row in 0..size.rows() {
             let (y, z) = ((row % 20) as u32, (row / 20) as u32);
-            let planes = m.mask_planes(w);
-            for lane in 0..32 {
-                let x = (wx * 32 + lane) as u32;
-                let bit = |k: usize| planes[k] >> lane & 1;
-                if x >= 40 {
-                    assert!((0..MASK_PLANES).all(|k| bit(k) == 0));
-                    continue;
+            let entries = table.row_entries(row);
+            let any_alive = (0..40).any(|x| m.mask_level(x, y, z) > 0);
+            assert_eq!(entries.is_empty(), !any_alive, "row {row}");
+            for e in entries {
+                seen += 1;
+                let w = table.word(e) as usize;
+                assert_eq!(w / wpr, row);
+                let wx = w % wpr;
+                for (s, stream) in crate::regions::STREAMS.iter().enumerate() {
+                    let planes = table.planes(e, s);
+                    for lane in 0..32 {
+                        let x = (wx * 32 + lane) as u32;
+                        let bit = |k: usize| planes[k] >> lane & 1;
+                        let t = if x >= 40 {
+                            0
+                        } else {
+                            let l = u32::from(m.mask_level(x, y, z));
+                            assert_eq!(table.alive(e) >> lane & 1 == 1, l > 0);
+                            crate::rng::lane_threshold(m.thresholds()[s], l, *stream)
+                        };
+                        let low: u32 = (0..16).fold(0, |v, k| v << 1 | bit(k));
+                        let always = bit(crate::rng::PLANE_ALWAYS) == 1;
+                        assert_eq!(if always { 65536 } else { low }, t);
+                        assert_eq!(bit(crate::rng::PLANE_NONZERO) == 1, t > 0);
+                    }
                 }
-                let l = m.mask_level(x, y, z);
-                let low: u32 = (0..8).fold(0, |v, k| v << 1 | bit(k));
-                assert_eq!(low, u32::from(l & 0xff));
-                assert_eq!(bit(MASK_PLANE_FULL) == 1, l == 256);
-                assert_eq!(bit(MASK_PLANE_ALIVE) == 1, l > 0);
             }
         }
+        assert_eq!(seen, table.len());
     }
 
     #[test]
     fn uniform_without_ellipsoids() {
         let m = Model::new(config()).unwrap();
         assert!(!m.has_regions());
+        assert!(m.regions().is_none());
         assert!(m.mask_levels().iter().all(|&l| l == 256));
     }
 }

@@ -2,8 +2,7 @@
 //! The fast ([`crate::packed`]) and GPU implementations must match it bit for bit.
 
 use crate::rng::{
-    MASK_BITS, MASK_FULL, STREAM_ACTIVATION, STREAM_EXTINCTION, STREAM_HUMIDITY,
-    STREAM_MASK_OFFSET, UNIFORM_BITS, stream_key, uniform16,
+    STREAM_ACTIVATION, STREAM_EXTINCTION, STREAM_HUMIDITY, lane_threshold, stream_key, uniform16,
 };
 use crate::{Boundary, Error, GridSize, Model, NaiveState};
 
@@ -43,35 +42,23 @@ fn resolve(size: GridSize, boundary: Boundary, x: i64, y: i64, z: i64) -> Option
 }
 
 /// Whether the event of stream `stream` happens in cell `(x, y, z)` during `step`,
-/// spelled out cell by cell (see [`crate::rng`]): the cell's uniform 16-bit number is
-/// below the base threshold and, with ellipsoids, its mask draw (the top 8 bits of a
-/// second number) is below the mask level (supply, activation) or not below it
-/// (extinction: probability `1 - m`).
+/// spelled out cell by cell (see [`crate::rng`]): the cell's one uniform 16-bit number
+/// is below its threshold, the base threshold scaled by the cell's mask level with
+/// ellipsoids ([`lane_threshold`]: `l / 256` for supply and activation, `1 - l / 256`
+/// for extinction), the base threshold itself without.
 fn event(model: &Model, stream: u32, step: u32, x: u32, y: u32, z: u32) -> bool {
     let size = model.size();
-    let seed = model.seed();
     let wpr = size.words_per_row() as u32;
     let word = x / 32 + wpr * (y + size.ny * z);
     let lane = x % 32;
-    let threshold = model.thresholds()[stream as usize];
-    // `&&` only skips draws whose value cannot change the outcome.
-    let base =
-        || threshold > 0 && uniform16(stream_key(seed, step, stream), word, lane) < threshold;
-    if !model.has_regions() {
-        return base();
-    }
-    let level = u32::from(model.mask_level(x, y, z));
-    let in_mask = || {
-        let mask_key = stream_key(seed, step, stream + STREAM_MASK_OFFSET);
-        let mask_draw = uniform16(mask_key, word, lane) >> (UNIFORM_BITS - MASK_BITS);
-        level == u32::from(MASK_FULL) || (level > 0 && mask_draw < level)
-    };
-    if stream == STREAM_EXTINCTION {
-        base() && !in_mask()
+    let base = model.thresholds()[stream as usize];
+    let threshold = if model.has_regions() {
+        lane_threshold(base, u32::from(model.mask_level(x, y, z)), stream)
     } else {
-        // mask 0: probability 0
-        level > 0 && base() && in_mask()
-    }
+        base
+    };
+    // `&&` only skips a draw that cannot fire.
+    threshold > 0 && uniform16(stream_key(model.seed(), step, stream), word, lane) < threshold
 }
 
 /// One automaton step `step` → `step + 1`, read entirely from `src`.

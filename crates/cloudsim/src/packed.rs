@@ -5,11 +5,23 @@
 //! state and its own counter-based draws, so the output is independent of the thread
 //! count and bit-identical to [`crate::naive`].
 
+use crate::regions::RegionTable;
 use crate::rng::{
-    MASK_PLANE_ALIVE, MASK_PLANES, STREAM_ACTIVATION, STREAM_EXTINCTION, STREAM_HUMIDITY,
-    STREAM_MASK_OFFSET, below_mask_level, below_threshold, stream_key,
+    LANE_PLANES, Lanes, STREAM_ACTIVATION, STREAM_EXTINCTION, STREAM_HUMIDITY, WORD_BATCH,
+    below_lane_thresholds_batch, stream_key, uniform_threshold_planes, word_key,
 };
 use crate::{Boundary, Error, GridSize, Model, PackedState};
+
+/// Where the draws' thresholds come from.
+enum Draws<'a> {
+    /// All three probabilities are 0: the rules alone.
+    None,
+    /// No ellipsoids: one threshold per stream for every cell, as planes (plane `k`
+    /// of the three streams of 8 words, as the region table's groups).
+    Uniform(Box<[[Lanes; 3]; LANE_PLANES]>),
+    /// Ellipsoids: the per-lane planes of the words they touch.
+    Regions(&'a RegionTable),
+}
 
 /// Everything one step's row kernel reads.
 struct Rules<'a> {
@@ -17,142 +29,342 @@ struct Rules<'a> {
     size: GridSize,
     wpr: usize,
     periodic: bool,
-    regions: bool,
-    mask_planes: &'a [u32],
-    /// `[extinction, humidity, activation]` base thresholds.
-    thresholds: [u32; 3],
-    /// Base-draw keys of the three streams, then their mask-draw keys.
-    keys: [u32; 6],
-    zero_row: Vec<u32>,
+    draws: Draws<'a>,
+    /// Keys of the extinction, humidity and activation streams of this step.
+    keys: [u32; 3],
+}
+
+/// `dst[i] |= src[i]` (a loop the compiler vectorises).
+#[inline(always)]
+fn or_into(dst: &mut [u32], src: &[u32]) {
+    for (d, &s) in dst.iter_mut().zip(src) {
+        *d |= s;
+    }
+}
+
+/// Bits `x - 1` and `x - 2` of the cells at the start of a word, from the word before.
+#[inline(always)]
+fn carry_from_previous(previous: u32) -> u32 {
+    previous >> 31 | previous >> 30
+}
+
+/// Bits `x + 1` and `x + 2` of the cells at the end of a word, from the word after.
+#[inline(always)]
+fn carry_from_next(next: u32) -> u32 {
+    next << 31 | next << 30
 }
 
 impl Rules<'_> {
-    /// The `act` row at `(y, z)` after the boundary rule (a zero row outside).
-    fn act_row(&self, y: i64, z: i64) -> &[u32] {
-        let (ny, nz) = (i64::from(self.size.ny), i64::from(self.size.nz));
-        if !(0..nz).contains(&z) {
-            return &self.zero_row;
-        }
-        let y = if self.periodic {
-            y.rem_euclid(ny)
-        } else if (0..ny).contains(&y) {
-            y
-        } else {
-            return &self.zero_row;
-        };
-        let row = (y + ny * z) as usize;
-        &self.src.act[row * self.wpr..(row + 1) * self.wpr]
-    }
-
-    /// The three stochastic terms of one word (rules already applied), fused into the
-    /// row pass: each draw is built 32 lanes at a time, bit-sliced, and only for the
-    /// lanes it can change (see [`crate::rng`]).
-    #[inline]
-    fn stochastic(&self, word: usize, valid: u32, hum: &mut u32, act: &mut u32, cld: &mut u32) {
-        let [t_ext, t_hum, t_act] = self.thresholds;
-        let [k_ext, k_hum, k_act, m_ext, m_hum, m_act] = self.keys;
-        let w = word as u32;
-        let planes = if self.regions {
-            &self.mask_planes[word * MASK_PLANES..(word + 1) * MASK_PLANES]
-        } else {
-            &[]
-        };
-        let alive = if self.regions {
-            planes[MASK_PLANE_ALIVE]
-        } else {
-            valid
-        };
-        // Clouds vanish where the mask level is 0 (seed 002); outside every ellipsoid
-        // (most words) nothing can happen, so no draw is needed.
-        *cld &= alive;
-        if alive == 0 {
-            return;
-        }
-        let mut ext = below_threshold(k_ext, w, *cld, t_ext);
-        if self.regions && ext != 0 {
-            // extinction grows away from the centres: probability p (1 - m)
-            ext &= !below_mask_level(m_ext, w, ext, planes);
-        }
-        *cld &= !ext;
-        let mut sup = below_threshold(k_hum, w, !*hum & alive, t_hum);
-        if self.regions && sup != 0 {
-            sup = below_mask_level(m_hum, w, sup, planes);
-        }
-        *hum |= sup;
-        let mut spark = below_threshold(k_act, w, !*act & alive, t_act);
-        if self.regions && spark != 0 {
-            spark = below_mask_level(m_act, w, spark, planes);
-        }
-        *act |= spark;
-    }
-
-    /// Computes whole rows `first_row..` into the output slices.
+    /// Computes rows `first_row..first_row + hum_out.len() / wpr` into the output
+    /// slices, one run of rows of the same z slice at a time: every neighbour term is
+    /// a contiguous range of another row run, ORed in with vectorised loops.
+    #[inline(always)]
     fn run(&self, first_row: usize, hum_out: &mut [u32], act_out: &mut [u32], cld_out: &mut [u32]) {
         let wpr = self.wpr;
         let ny = self.size.ny as usize;
-        let last_mask = self.size.last_word_mask();
         let rows = hum_out.len() / wpr;
-        for local in 0..rows {
+        let mut f_act = vec![0u32; ny.min(rows) * wpr];
+        let mut carry = vec![0u32; ny.min(rows) * wpr];
+        let mut local = 0;
+        while local < rows {
             let row = first_row + local;
-            let (y, z) = ((row % ny) as i64, (row / ny) as i64);
-            let base = row * wpr;
-            let act = &self.src.act[base..base + wpr];
-            let hum = &self.src.hum[base..base + wpr];
-            let cld = &self.src.cld[base..base + wpr];
-            let (ym1, yp1, ym2, yp2) = (
-                &self.act_row(y - 1, z)[..wpr],
-                &self.act_row(y + 1, z)[..wpr],
-                &self.act_row(y - 2, z)[..wpr],
-                &self.act_row(y + 2, z)[..wpr],
+            let (y0, z) = (row % ny, row / ny);
+            let run_rows = (ny - y0).min(rows - local);
+            let words = local * wpr..(local + run_rows) * wpr;
+            self.rules_run(
+                z,
+                y0,
+                run_rows,
+                &mut f_act,
+                &mut carry,
+                &mut hum_out[words.clone()],
+                &mut act_out[words.clone()],
+                &mut cld_out[words.clone()],
             );
-            let (zp1, zm1, zm2) = (
-                &self.act_row(y, z + 1)[..wpr],
-                &self.act_row(y, z - 1)[..wpr],
-                &self.act_row(y, z - 2)[..wpr],
+            self.stochastic_run(
+                row,
+                run_rows,
+                &mut hum_out[words.clone()],
+                &mut act_out[words.clone()],
+                &mut cld_out[words],
             );
-            let out_h = &mut hum_out[local * wpr..(local + 1) * wpr];
-            let out_a = &mut act_out[local * wpr..(local + 1) * wpr];
-            let out_c = &mut cld_out[local * wpr..(local + 1) * wpr];
-            // The words just outside the row along x (wrapped when periodic).
+            local += run_rows;
+        }
+    }
+
+    /// The deterministic rules for rows `y0..y0 + run_rows` of slice `z`.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn rules_run(
+        &self,
+        z: usize,
+        y0: usize,
+        run_rows: usize,
+        f_act: &mut [u32],
+        carry: &mut [u32],
+        hum_out: &mut [u32],
+        act_out: &mut [u32],
+        cld_out: &mut [u32],
+    ) {
+        let wpr = self.wpr;
+        let (ny, nz) = (self.size.ny as usize, self.size.nz as usize);
+        let n = run_rows * wpr;
+        let slice_words = ny * wpr;
+        let base = (z * ny + y0) * wpr;
+        let act = &self.src.act[base..base + n];
+        let f = &mut f_act[..n];
+        // x ± 1, x ± 2 inside each word
+        for (f, &a) in f.iter_mut().zip(act) {
+            *f = a << 1 | a << 2 | a >> 1 | a >> 2;
+        }
+        // z + 1, z - 1, z - 2: the same rows of the other slices (z never wraps)
+        for dz in [1isize, -1, -2] {
+            let zz = z as isize + dz;
+            if (0..nz as isize).contains(&zz) {
+                let from = base.wrapping_add_signed(dz * slice_words as isize);
+                or_into(f, &self.src.act[from..from + n]);
+            }
+        }
+        // y ± 1, y ± 2: rows of the same slice, wrapped when periodic
+        let slice = &self.src.act[z * slice_words..(z + 1) * slice_words];
+        for dy in [1isize, -1, 2, -2] {
+            // rows y of the run whose y + dy lies inside the slice
+            let lo = (y0 as isize).max(-dy) as usize;
+            let hi = ((y0 + run_rows) as isize)
+                .min(ny as isize - dy)
+                .max(lo as isize) as usize;
+            if hi > lo {
+                let from = (lo as isize + dy) as usize * wpr;
+                or_into(
+                    &mut f[(lo - y0) * wpr..(hi - y0) * wpr],
+                    &slice[from..from + (hi - lo) * wpr],
+                );
+            }
+            if self.periodic {
+                for y in y0..y0 + run_rows {
+                    let yy = y as isize + dy;
+                    if !(0..ny as isize).contains(&yy) {
+                        let from = yy.rem_euclid(ny as isize) as usize * wpr;
+                        or_into(
+                            &mut f[(y - y0) * wpr..(y - y0 + 1) * wpr],
+                            &slice[from..from + wpr],
+                        );
+                    }
+                }
+            }
+        }
+        // x carries across words: flat over the run, then the row ends redone
+        let carry = &mut carry[..n];
+        carry[0] = 0;
+        for (c, &previous) in carry[1..].iter_mut().zip(act) {
+            *c = carry_from_previous(previous);
+        }
+        for (c, &next) in carry.iter_mut().zip(&act[1..]) {
+            *c |= carry_from_next(next);
+        }
+        for r in 0..run_rows {
+            let row = &act[r * wpr..(r + 1) * wpr];
+            // the words just outside the row along x (wrapped when periodic)
             let (before, after) = if self.periodic {
-                (act[wpr - 1], act[0])
+                (row[wpr - 1], row[0])
             } else {
                 (0, 0)
             };
-            for wx in 0..wpr {
-                let a = act[wx];
-                let prev = if wx > 0 { act[wx - 1] } else { before };
-                let next = if wx + 1 < wpr { act[wx + 1] } else { after };
-                // Funnel shifts across words: bit i of `a << 1 | prev >> 31` is
-                // act(x - 1), and so on.
-                let f_act = (a << 1 | prev >> 31)
-                    | (a << 2 | prev >> 30)
-                    | (a >> 1 | next << 31)
-                    | (a >> 2 | next << 30)
-                    | ym1[wx]
-                    | yp1[wx]
-                    | ym2[wx]
-                    | yp2[wx]
-                    | zp1[wx]
-                    | zm1[wx]
-                    | zm2[wx];
-                let h = hum[wx];
-                let valid = if wx + 1 == wpr { last_mask } else { u32::MAX };
-                let mut hum_next = h & !a;
-                let mut cld_next = cld[wx] | a;
-                let mut act_next = !a & h & f_act & valid;
-                self.stochastic(
-                    base + wx,
-                    valid,
-                    &mut hum_next,
-                    &mut act_next,
-                    &mut cld_next,
-                );
-                out_h[wx] = hum_next;
-                out_a[wx] = act_next;
-                out_c[wx] = cld_next;
+            let first = r * wpr;
+            let last = first + wpr - 1;
+            let inner_next = if wpr > 1 { row[1] } else { after };
+            let inner_previous = if wpr > 1 { row[wpr - 2] } else { before };
+            carry[first] = carry_from_previous(before) | carry_from_next(inner_next);
+            carry[last] = carry_from_previous(inner_previous) | carry_from_next(after);
+        }
+        or_into(f, carry);
+        // the rules
+        let hum = &self.src.hum[base..base + n];
+        let cld = &self.src.cld[base..base + n];
+        for i in 0..n {
+            let (h, a) = (hum[i], act[i]);
+            hum_out[i] = h & !a;
+            cld_out[i] = cld[i] | a;
+            act_out[i] = !a & h & f[i];
+        }
+        // the last word's padding lanes stay empty
+        let last_mask = self.size.last_word_mask();
+        for r in 0..run_rows {
+            act_out[r * wpr + wpr - 1] &= last_mask;
+        }
+    }
+
+    /// The three stochastic terms for `run_rows` rows from `first_row` (rules already
+    /// applied to the outputs), 8 words at a time: each draw is compared bit-sliced
+    /// with the lanes' thresholds and only for the lanes it can change.
+    #[inline(always)]
+    fn stochastic_run(
+        &self,
+        first_row: usize,
+        run_rows: usize,
+        hum_out: &mut [u32],
+        act_out: &mut [u32],
+        cld_out: &mut [u32],
+    ) {
+        let wpr = self.wpr;
+        let first_word = first_row * wpr;
+        match &self.draws {
+            Draws::None => {}
+            Draws::Uniform(planes) => {
+                let last_mask = self.size.last_word_mask();
+                let n = run_rows * wpr;
+                for start in (0..n).step_by(WORD_BATCH) {
+                    let count = WORD_BATCH.min(n - start);
+                    let local: [usize; WORD_BATCH] =
+                        std::array::from_fn(|i| start + i.min(count - 1));
+                    let words = local.map(|l| (first_word + l) as u32);
+                    let live = local.map(|l| {
+                        if l % wpr == wpr - 1 {
+                            last_mask
+                        } else {
+                            u32::MAX
+                        }
+                    });
+                    self.draw_batch(
+                        words,
+                        local,
+                        live,
+                        0..count,
+                        hum_out,
+                        act_out,
+                        cld_out,
+                        |k| planes[k],
+                    );
+                }
+            }
+            Draws::Regions(table) => {
+                // clouds vanish outside the entries (no cell above level 0 there)
+                let first_entry = table.row_entries(first_row).start;
+                let mut end_entry = first_entry;
+                for r in 0..run_rows {
+                    let row_entries = table.row_entries(first_row + r);
+                    let row_words = &mut cld_out[r * wpr..(r + 1) * wpr];
+                    if row_entries.is_empty() {
+                        row_words.fill(0);
+                        continue;
+                    }
+                    let first = table.word(row_entries.start) as usize % wpr;
+                    let last = table.word(row_entries.end - 1) as usize % wpr;
+                    row_words[..first].fill(0);
+                    row_words[last + 1..].fill(0);
+                    end_entry = row_entries.end;
+                }
+                if end_entry == first_entry {
+                    return;
+                }
+                // whole groups of the table; the run's entries are lanes `lo..hi` of
+                // its first and last group (the neighbouring runs draw the others)
+                for group in first_entry / WORD_BATCH..end_entry.div_ceil(WORD_BATCH) {
+                    let e0 = group * WORD_BATCH;
+                    let lo = first_entry.saturating_sub(e0);
+                    let hi = WORD_BATCH.min(end_entry - e0);
+                    let real = |i: usize| (lo..hi).contains(&i);
+                    let entry = |i: usize| if real(i) { e0 + i } else { e0 + lo };
+                    let words: [u32; WORD_BATCH] = std::array::from_fn(|i| table.word(entry(i)));
+                    let local: [usize; WORD_BATCH] =
+                        std::array::from_fn(|i| words[i] as usize - first_word);
+                    let alive = table.group_alive(group);
+                    let live = std::array::from_fn(|i| if real(i) { alive[i] } else { 0 });
+                    self.draw_batch(words, local, live, lo..hi, hum_out, act_out, cld_out, |k| {
+                        *table.group_plane(group, k)
+                    });
+                }
             }
         }
+    }
+
+    /// The three draws of 8 words (`local`: their index in the outputs; `live`: the
+    /// lanes that hold a cell above mask level 0, 0 in slots that are not drawn) and
+    /// the write-back of slots `real`.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn draw_batch(
+        &self,
+        words: [u32; WORD_BATCH],
+        local: [usize; WORD_BATCH],
+        live: [u32; WORD_BATCH],
+        real: std::ops::Range<usize>,
+        hum_out: &mut [u32],
+        act_out: &mut [u32],
+        cld_out: &mut [u32],
+        planes: impl Fn(usize) -> [Lanes; 3],
+    ) {
+        const B: usize = WORD_BATCH;
+        let mut cld = [0u32; B];
+        let mut hum = [0u32; B];
+        let mut act = [0u32; B];
+        for i in 0..B {
+            cld[i] = cld_out[local[i]] & live[i];
+            hum[i] = hum_out[local[i]];
+            act[i] = act_out[local[i]];
+        }
+        // the three streams side by side: extinction, humidity, activation
+        let mut keys = [[0u32; B]; 3];
+        let mut candidates = [[0u32; B]; 3];
+        for i in 0..B {
+            for (s, stream_keys) in keys.iter_mut().enumerate() {
+                stream_keys[i] = word_key(self.keys[s], words[i]);
+            }
+            candidates[0][i] = cld[i];
+            candidates[1][i] = !hum[i] & live[i];
+            candidates[2][i] = !act[i] & live[i];
+        }
+        let [ext, sup, spark] = below_lane_thresholds_batch(&keys, &candidates, planes);
+        for i in 0..B {
+            cld[i] &= !ext[i];
+            hum[i] |= sup[i];
+            act[i] |= spark[i];
+        }
+        for i in real {
+            cld_out[local[i]] = cld[i];
+            hum_out[local[i]] = hum[i];
+            act_out[local[i]] = act[i];
+        }
+    }
+}
+
+/// Runtime CPU-feature dispatch of the row kernel: every function of the kernel is
+/// `#[inline(always)]`, so [`Rules::run`] is compiled twice, for the crate's target and
+/// (on x86-64) with AVX2, where the 8 words of a draw fit one register and 32-bit
+/// multiplies are native. Integer operations only: both builds give the same bits.
+mod dispatch {
+    #![allow(unsafe_code)]
+
+    use super::Rules;
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn run_avx2(
+        rules: &Rules,
+        first_row: usize,
+        hum: &mut [u32],
+        act: &mut [u32],
+        cld: &mut [u32],
+    ) {
+        rules.run(first_row, hum, act, cld);
+    }
+
+    /// [`Rules::run`], with AVX2 when the CPU has it.
+    pub(super) fn run(
+        rules: &Rules,
+        first_row: usize,
+        hum: &mut [u32],
+        act: &mut [u32],
+        cld: &mut [u32],
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the only precondition of calling a `#[target_feature(enable =
+            // "avx2")]` function is that the CPU supports AVX2, checked just above.
+            unsafe { run_avx2(rules, first_row, hum, act, cld) };
+            return;
+        }
+        rules.run(first_row, hum, act, cld);
     }
 }
 
@@ -233,21 +445,27 @@ pub fn step_rules(
     let size = model.size();
     let seed = model.seed();
     let streams = [STREAM_EXTINCTION, STREAM_HUMIDITY, STREAM_ACTIVATION];
-    let base = streams.map(|s| stream_key(seed, step, s));
-    let mask = streams.map(|s| stream_key(seed, step, s + STREAM_MASK_OFFSET));
+    let thresholds = model.thresholds();
+    let draws = match model.regions() {
+        Some(table) => Draws::Regions(table),
+        None if thresholds == [0; 3] => Draws::None,
+        None => {
+            let planes = thresholds.map(uniform_threshold_planes);
+            Draws::Uniform(Box::new(std::array::from_fn(|k| {
+                std::array::from_fn(|s| [planes[s][k]; WORD_BATCH])
+            })))
+        }
+    };
     let rules = Rules {
         src,
         size,
         wpr: size.words_per_row(),
         periodic: model.boundary() == Boundary::Periodic,
-        regions: model.has_regions(),
-        mask_planes: model.all_mask_planes(),
-        thresholds: model.thresholds(),
-        keys: [base[0], base[1], base[2], mask[0], mask[1], mask[2]],
-        zero_row: vec![0; size.words_per_row()],
+        draws,
+        keys: streams.map(|s| stream_key(seed, step, s)),
     };
     split_rows(size, dst, threads, |first, h, a, c| {
-        rules.run(first, h, a, c)
+        dispatch::run(&rules, first, h, a, c)
     });
     Ok(())
 }

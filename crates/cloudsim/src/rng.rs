@@ -16,19 +16,20 @@
 //! Plane `k` holds bit `15 - k` of all 32 lanes' numbers, so a word's 32 comparisons
 //! `u < t` run *bit-sliced*, most significant plane first, with a running
 //! "still equal" mask that usually empties after ~6 planes (`log2(lanes) + 1.3` on
-//! average). [`below_threshold`] draws the planes in batches of 8 (SIMD-friendly) and
-//! stops after the first batch that leaves no lane equal (88% of full words after 8
-//! planes); the WGSL twin stops after any plane. Stopping is only an optimisation: the
-//! result is exactly the full 16-bit (or 8-bit) comparison that [`uniform16`] spells
-//! out one cell at a time for the naive reference.
+//! average). Each lane compares with its own threshold, also given as bit planes
+//! ([`below_lane_thresholds`]); the CPU compares 8 words at once in SIMD lanes and stops
+//! once no lane of the 8 is equal, the WGSL twin stops per word. Stopping is only an
+//! optimisation: the result is exactly the full 16-bit comparison that [`uniform16`]
+//! spells out one cell at a time for the naive reference.
 //!
 //! Probabilities are therefore quantised to multiples of 2^-16:
 //! `threshold = floor(p * 2^16)` in `[0, 2^16]` ([`probability_threshold`]); `p = 1`
 //! gives 2^16, which every `u` is below, `p = 0` gives 0, which none is.
-//! Region masks scale a probability through a *second, independent* draw compared with
-//! the cell's 8-bit mask level `l` in `[0, 256]` (`u >> 8 < l`, probability `l / 256`),
-//! so the event probability is exactly `t / 2^16 * l / 256` (supply, activation) or
-//! `t / 2^16 * (1 - l / 256)` (extinction).
+//! Region masks scale the threshold of each lane: a cell at mask level `l` in `[0, 256]`
+//! compares its one draw with [`lane_threshold`] (`floor(t l / 256)` for supply and
+//! activation, `floor(t (256 - l) / 256)` for extinction), so every event keeps a
+//! single draw per cell and the bit-sliced comparison reads per-lane threshold planes
+//! ([`lane_threshold_planes`], built once per model) instead of one shared threshold.
 //! Because nothing depends on evaluation order, the naive, the bit-packed (any thread
 //! count) and the WGSL implementations draw identical numbers.
 
@@ -40,9 +41,6 @@ pub const STREAM_EXTINCTION: u32 = 0;
 pub const STREAM_HUMIDITY: u32 = 1;
 /// Stream of the activation draw (`STREAM_ACTIVATION` in WGSL).
 pub const STREAM_ACTIVATION: u32 = 2;
-/// Added to a stream id for its region-mask draw (`STREAM_MASK_OFFSET` in WGSL): the
-/// mask draws of the three events are streams 3, 4 and 5.
-pub const STREAM_MASK_OFFSET: u32 = 3;
 
 /// Bits of a uniform draw (and of a probability threshold's resolution).
 pub const UNIFORM_BITS: u32 = 16;
@@ -52,6 +50,15 @@ pub const THRESHOLD_ONE: u32 = 1 << UNIFORM_BITS;
 pub const MASK_BITS: u32 = 8;
 /// The mask level of mask 1 (`MASK_FULL` in WGSL).
 pub const MASK_FULL: u16 = 1 << MASK_BITS;
+
+/// Planes of a word's per-lane thresholds ([`lane_threshold_planes`]): 16 bit planes
+/// (most significant first), then [`PLANE_ALWAYS`] and [`PLANE_NONZERO`]
+/// (`LANE_PLANES` in WGSL).
+pub const LANE_PLANES: usize = 18;
+/// Index of the plane of lanes whose threshold is 2^16 (the event always happens).
+pub const PLANE_ALWAYS: usize = 16;
+/// Index of the plane of lanes whose threshold is above 0 (the event can happen).
+pub const PLANE_NONZERO: usize = 17;
 
 /// Fixed-point scale of wind velocities: 16.16, i.e. `velocity_q = round(v * 65536)`.
 pub const WIND_FIXED_ONE: f64 = 65_536.0;
@@ -85,21 +92,100 @@ pub fn uniform16(key: u32, word: u32, lane: u32) -> u32 {
     })
 }
 
-/// Planes computed together before the "still equal" mask is tested: independent
-/// hashes overlap in the CPU's pipelines (and vectorise), where one data-dependent exit
-/// per plane would serialise them behind a mispredicted branch. With 32 candidate lanes
-/// the first batch of 8 decides all lanes 88% of the time (`1 - (1 - 2^-8)^32`).
-const PLANE_BATCH: u32 = 8;
+/// The threshold of a lane at region-mask level `level` in `[0, 256]` for event stream
+/// `stream`, from the base threshold `threshold` in `[0, 2^16]` (`lane_threshold` in
+/// WGSL): supply and activation grow toward the ellipsoid centres, `floor(t l / 256)`;
+/// extinction grows away from them, `floor(t (256 - l) / 256)`. Exact integer
+/// arithmetic (`t l ≤ 2^24`); without ellipsoids the base threshold applies unscaled.
+pub fn lane_threshold(threshold: u32, level: u32, stream: u32) -> u32 {
+    let scale = if stream == STREAM_EXTINCTION {
+        u32::from(MASK_FULL) - level
+    } else {
+        level
+    };
+    (threshold * scale) >> MASK_BITS
+}
 
-/// One batch of planes: `plane_bits(wk, first + k)` for `k < PLANE_BATCH`, spelled
-/// out step by step over the whole batch (`hash_combine` then `hash_u32` of
-/// `skyscape_wgsl::common`, pinned by a test) so that the compiler runs the 8
-/// independent hashes in SIMD lanes.
+/// The [`LANE_PLANES`] planes of 32 lanes' thresholds (each in `[0, 2^16]`): plane `k <
+/// 16` holds bit `15 - k` of every lane's threshold, [`PLANE_ALWAYS`] the lanes at
+/// 2^16, [`PLANE_NONZERO`] the lanes above 0. CPU only: the model builds them once and
+/// the GPU reads them from a buffer.
+pub fn lane_threshold_planes(thresholds: &[u32; 32]) -> [u32; LANE_PLANES] {
+    let mut planes = [0u32; LANE_PLANES];
+    for (lane, &t) in thresholds.iter().enumerate() {
+        if t >= THRESHOLD_ONE {
+            planes[PLANE_ALWAYS] |= 1 << lane;
+        } else {
+            for (k, plane) in planes[..UNIFORM_BITS as usize].iter_mut().enumerate() {
+                *plane |= (t >> (UNIFORM_BITS as usize - 1 - k) & 1) << lane;
+            }
+        }
+        planes[PLANE_NONZERO] |= u32::from(t > 0) << lane;
+    }
+    planes
+}
+
+/// The planes of one threshold shared by all 32 lanes (`uniform_threshold_planes` in
+/// WGSL): the model without ellipsoids.
+pub fn uniform_threshold_planes(threshold: u32) -> [u32; LANE_PLANES] {
+    let mut planes = [0u32; LANE_PLANES];
+    if threshold >= THRESHOLD_ONE {
+        planes[PLANE_ALWAYS] = u32::MAX;
+    } else {
+        for (k, plane) in planes[..UNIFORM_BITS as usize].iter_mut().enumerate() {
+            *plane = 0u32.wrapping_sub(threshold >> (UNIFORM_BITS as usize - 1 - k) & 1);
+        }
+    }
+    planes[PLANE_NONZERO] = 0u32.wrapping_sub(u32::from(threshold > 0));
+    planes
+}
+
+/// The lanes of `candidates` whose uniform number is below their own threshold, given
+/// as planes ([`lane_threshold_planes`]), compared bit-sliced, most significant plane
+/// first, stopping once no lane is still equal (`below_lane_thresholds` in WGSL).
+/// Lanes outside `candidates` are 0. Equal to comparing [`uniform16`] with each lane's
+/// threshold one cell at a time.
+pub fn below_lane_thresholds(
+    key: u32,
+    word: u32,
+    candidates: u32,
+    planes: &[u32; LANE_PLANES],
+) -> u32 {
+    let mut less = candidates & planes[PLANE_ALWAYS];
+    let mut equal = candidates & planes[PLANE_NONZERO] & !planes[PLANE_ALWAYS];
+    if equal == 0 {
+        return less;
+    }
+    let wk = word_key(key, word);
+    for (k, &t) in (0..UNIFORM_BITS).zip(planes) {
+        // threshold bit 1: lanes with bit 0 are below, lanes with 1 stay equal;
+        // threshold bit 0: lanes with bit 1 are above, lanes with 0 stay equal
+        let r = plane_bits(wk, k);
+        less |= equal & t & !r;
+        equal &= !(t ^ r);
+        if equal == 0 {
+            break;
+        }
+    }
+    less
+}
+
+/// Words per batch of the CPU's fast path: each draw of a step runs over 8 words.
+pub(crate) const WORD_BATCH: usize = 8;
+
+/// Eight words' lanes: one AVX2 register, two SSE2 registers.
+pub(crate) type Lanes = [u32; WORD_BATCH];
+
+/// `plane_bits` of 8 word keys for plane `k`, spelled out step by step over the 8
+/// (`hash_combine` then `hash_u32` of `skyscape_wgsl::common`, pinned by a test) so
+/// that the compiler keeps them in one SIMD register; `offset` is the per-key part of
+/// `hash_combine` (`0x9e3779b9 + (wk << 6) + (wk >> 2)`).
 #[inline(always)]
-fn plane_batch(wk: u32, first: u32) -> [u32; PLANE_BATCH as usize] {
-    let offset = 0x9e37_79b9u32.wrapping_add(wk << 6).wrapping_add(wk >> 2);
-    let mut x: [u32; PLANE_BATCH as usize] =
-        std::array::from_fn(|k| wk ^ (first + k as u32).wrapping_add(offset));
+fn plane_bits_x8(word_keys: &Lanes, offset: &Lanes, k: u32) -> Lanes {
+    let mut x = [0u32; WORD_BATCH];
+    for i in 0..WORD_BATCH {
+        x[i] = word_keys[i] ^ k.wrapping_add(offset[i]);
+    }
     for v in &mut x {
         *v ^= *v >> 16;
     }
@@ -118,66 +204,52 @@ fn plane_batch(wk: u32, first: u32) -> [u32; PLANE_BATCH as usize] {
     x
 }
 
-/// The lanes of `candidates` whose uniform number is below `threshold` (in `[0,
-/// 2^16]`, shared by the word), compared bit-sliced, most significant plane first
-/// (`below_threshold` in WGSL). Lanes outside `candidates` are 0. Planes are drawn in
-/// batches of 8 and the comparison stops after a batch once no lane is still equal:
-/// the WGSL twin stops after any plane; both equal the full 16-plane comparison.
-#[inline]
-pub fn below_threshold(key: u32, word: u32, candidates: u32, threshold: u32) -> u32 {
-    if candidates == 0 || threshold == 0 {
-        return 0;
-    }
-    if threshold >= THRESHOLD_ONE {
-        return candidates;
-    }
-    let wk = word_key(key, word);
-    let mut less = 0u32;
-    let mut equal = candidates;
-    for first in (0..UNIFORM_BITS).step_by(PLANE_BATCH as usize) {
-        for (k, r) in (first..).zip(plane_batch(wk, first)) {
-            // threshold bit 1: lanes with bit 0 are below, lanes with 1 stay equal;
-            // threshold bit 0: lanes with bit 1 are above, lanes with 0 stay equal
-            let t = 0u32.wrapping_sub((threshold >> (UNIFORM_BITS - 1 - k)) & 1);
-            less |= equal & t & !r;
-            equal &= !(t ^ r);
+/// [`below_lane_thresholds`] for `S` draws of 8 words each at once (the CPU's fast
+/// path: the three streams of 8 words, `S = 3`), given their word keys
+/// ([`word_key`]); `planes(k)` gives plane `k` of every word. Each draw's 8 words sit
+/// in one SIMD register, and one exit test serves all of them: the comparison stops
+/// once no lane of any word is still equal. The result is the full comparison's.
+#[inline(always)]
+pub(crate) fn below_lane_thresholds_batch<const S: usize>(
+    word_keys: &[Lanes; S],
+    candidates: &[Lanes; S],
+    planes: impl Fn(usize) -> [Lanes; S],
+) -> [Lanes; S] {
+    let always = planes(PLANE_ALWAYS);
+    let nonzero = planes(PLANE_NONZERO);
+    let mut less = [[0u32; WORD_BATCH]; S];
+    let mut equal = [[0u32; WORD_BATCH]; S];
+    let mut offset = [[0u32; WORD_BATCH]; S];
+    let mut any_equal = 0;
+    for s in 0..S {
+        for i in 0..WORD_BATCH {
+            less[s][i] = candidates[s][i] & always[s][i];
+            equal[s][i] = candidates[s][i] & nonzero[s][i] & !always[s][i];
+            any_equal |= equal[s][i];
+            let w = word_keys[s][i];
+            offset[s][i] = 0x9e37_79b9u32.wrapping_add(w << 6).wrapping_add(w >> 2);
         }
-        if equal == 0 {
+    }
+    if any_equal == 0 {
+        return less;
+    }
+    for k in 0..UNIFORM_BITS {
+        let t = planes(k as usize);
+        let mut any_equal = 0;
+        for s in 0..S {
+            let r = plane_bits_x8(&word_keys[s], &offset[s], k);
+            for i in 0..WORD_BATCH {
+                less[s][i] |= equal[s][i] & t[s][i] & !r[i];
+                equal[s][i] &= !(t[s][i] ^ r[i]);
+                any_equal |= equal[s][i];
+            }
+        }
+        if any_equal == 0 {
             break;
         }
     }
     less
 }
-
-/// The lanes of `candidates` whose mask draw `u >> 8` is below their mask level
-/// (`below_mask_level` in WGSL). `planes` are the word's mask planes
-/// ([`crate::Model::mask_planes`]): `planes[k]` for `k < 8` is bit `7 - k` of every
-/// lane's level, `planes[MASK_PLANE_FULL]` the lanes at level 256 (always below),
-/// `planes[MASK_PLANE_ALIVE]` the lanes above level 0.
-#[inline]
-pub fn below_mask_level(key: u32, word: u32, candidates: u32, planes: &[u32]) -> u32 {
-    let full = candidates & planes[MASK_PLANE_FULL];
-    let mut equal = candidates & !planes[MASK_PLANE_FULL] & planes[MASK_PLANE_ALIVE];
-    if equal == 0 {
-        return full;
-    }
-    let wk = word_key(key, word);
-    let mut less = 0u32;
-    // the 8 mask-draw planes in one batch (see PLANE_BATCH)
-    for (&t, r) in planes[..MASK_BITS as usize].iter().zip(plane_batch(wk, 0)) {
-        less |= equal & t & !r;
-        equal &= !(t ^ r);
-    }
-    full | less
-}
-
-/// Mask planes per packed word: 8 level bits (most significant first), then
-/// [`MASK_PLANE_FULL`] and [`MASK_PLANE_ALIVE`].
-pub const MASK_PLANES: usize = 10;
-/// Index of the "level is 256" plane.
-pub const MASK_PLANE_FULL: usize = 8;
-/// Index of the "level is above 0" plane (clouds survive there).
-pub const MASK_PLANE_ALIVE: usize = 9;
 
 /// `floor(p * 2^16)`, the integer threshold of probability `p` in `[0, 1]` (exact in
 /// f64). CPU only: the shader receives the result. `None` for NaN or values outside
@@ -207,27 +279,33 @@ pub fn wind_shift(velocity_q: i32, step: u32) -> i32 {
 mod tests {
     use super::*;
 
-    /// The mask planes of 32 lanes' levels.
-    fn planes_of(levels: &[u16; 32]) -> [u32; MASK_PLANES] {
-        let mut p = [0u32; MASK_PLANES];
-        for (lane, &l) in levels.iter().enumerate() {
-            for (k, plane) in p.iter_mut().take(8).enumerate() {
-                *plane |= u32::from((l & 0xff) >> (7 - k) & 1) << lane;
-            }
-            p[MASK_PLANE_FULL] |= u32::from(l == MASK_FULL) << lane;
-            p[MASK_PLANE_ALIVE] |= u32::from(l > 0) << lane;
-        }
-        p
+    /// Per-lane thresholds of a word: the ends, values next to the lanes' own draws
+    /// (the `u == t` corner) and hashed values.
+    fn lane_thresholds(u: &[u32], word: u32) -> [u32; 32] {
+        std::array::from_fn(|lane| match (word as usize + lane) % 6 {
+            0 => 0,
+            1 => THRESHOLD_ONE,
+            2 => u[lane], // equal: not below
+            3 => u[lane] + 1,
+            4 => hash_u32(word * 32 + lane as u32) % (THRESHOLD_ONE + 1),
+            _ => hash_u32(word * 32 + lane as u32) % 200, // small: long equal runs
+        })
     }
 
     #[test]
-    fn plane_batches_are_the_plane_hashes() {
-        for wk in [0u32, 1, 0x9e37_79b9, u32::MAX, 0x1234_5678] {
-            for first in [0, 8] {
-                let batch = plane_batch(wk, first);
-                for (k, &p) in batch.iter().enumerate() {
-                    assert_eq!(p, plane_bits(wk, first + k as u32));
-                }
+    fn batched_hashes_are_the_plane_hashes() {
+        // below_lane_thresholds_batch spells out hash_combine + hash_u32; with every
+        // lane at threshold 2^15 the first plane decides, so the result is !plane 0.
+        let half = uniform_threshold_planes(1 << 15);
+        for key in [0u32, 1, 0x9e37_79b9, u32::MAX] {
+            let words: [u32; WORD_BATCH] =
+                std::array::from_fn(|i| (i as u32 * 977).wrapping_add(key));
+            let keys = [words.map(|w| word_key(key, w))];
+            let got = below_lane_thresholds_batch(&keys, &[[u32::MAX; WORD_BATCH]], |k| {
+                [[half[k]; WORD_BATCH]]
+            });
+            for (i, &w) in words.iter().enumerate() {
+                assert_eq!(got[0][i], !plane_bits(word_key(key, w), 0));
             }
         }
     }
@@ -250,36 +328,71 @@ mod tests {
     #[test]
     fn bit_sliced_comparisons_equal_the_per_cell_ones() {
         let key = stream_key(3, 4, STREAM_ACTIVATION);
-        for word in 0..300u32 {
+        let mut batch = Vec::new();
+        for word in 0..304u32 {
             let u: Vec<u32> = (0..32).map(|lane| uniform16(key, word, lane)).collect();
             let candidates = hash_u32(word + 77) | hash_u32(word + 78);
-            // thresholds around this word's own draws hit the u == t corner
-            let thresholds = [0, 1, 65, 6553, 32768, 65535, 65536, u[0], u[0] + 1, u[7]];
-            for t in thresholds {
-                let got = below_threshold(key, word, candidates, t);
+            // one threshold for all lanes, around this word's own draws
+            let shared = [0, 1, 65, 6553, 32768, 65535, 65536, u[0], u[0] + 1, u[7]];
+            for t in shared {
+                let got =
+                    below_lane_thresholds(key, word, candidates, &uniform_threshold_planes(t));
                 for (lane, &ul) in u.iter().enumerate() {
                     let want = (candidates >> lane & 1 == 1) && ul < t;
                     assert_eq!(got >> lane & 1 == 1, want, "word {word} lane {lane} t {t}");
                 }
             }
-            let mut levels = [0u16; 32];
-            for (lane, l) in levels.iter_mut().enumerate() {
-                *l = match (word as usize + lane) % 5 {
-                    0 => 0,
-                    1 => MASK_FULL,
-                    2 => (u[lane] >> 8) as u16, // equal: not below
-                    3 => (u[lane] >> 8) as u16 + 1,
-                    _ => (hash_u32(word * 32 + lane as u32) % 257) as u16,
-                };
-            }
-            let planes = planes_of(&levels);
-            let got = below_mask_level(key, word, candidates, &planes);
+            // a threshold per lane
+            let thresholds = lane_thresholds(&u, word);
+            let planes = lane_threshold_planes(&thresholds);
+            let got = below_lane_thresholds(key, word, candidates, &planes);
             for (lane, &ul) in u.iter().enumerate() {
-                let l = u32::from(levels[lane]);
-                let want = (candidates >> lane & 1 == 1) && (ul >> 8) < l;
-                assert_eq!(got >> lane & 1 == 1, want, "mask word {word} lane {lane}");
+                let want = (candidates >> lane & 1 == 1) && ul < thresholds[lane];
+                assert_eq!(got >> lane & 1 == 1, want, "lanes word {word} lane {lane}");
+            }
+            batch.push((word, candidates, planes, got));
+        }
+        // the batched fast path gives the same lanes
+        for group in batch.chunks_exact(WORD_BATCH) {
+            // two draws side by side: the group's words, and the same words with all
+            // candidates (checked against the single-word comparison too)
+            let keys = [std::array::from_fn(|i| word_key(key, group[i].0)); 2];
+            let candidates = [std::array::from_fn(|i| group[i].1), [u32::MAX; WORD_BATCH]];
+            let got = below_lane_thresholds_batch(&keys, &candidates, |k| {
+                [std::array::from_fn(|i| group[i].2[k]); 2]
+            });
+            for (i, entry) in group.iter().enumerate() {
+                assert_eq!(got[0][i], entry.3, "batched word {}", entry.0);
+                let all = below_lane_thresholds(key, entry.0, u32::MAX, &entry.2);
+                assert_eq!(got[1][i], all, "batched word {}, all lanes", entry.0);
             }
         }
+    }
+
+    #[test]
+    fn lane_thresholds_scale_with_the_mask() {
+        let t = 6553;
+        assert_eq!(lane_threshold(t, 256, STREAM_HUMIDITY), t);
+        assert_eq!(lane_threshold(t, 256, STREAM_ACTIVATION), t);
+        assert_eq!(lane_threshold(t, 256, STREAM_EXTINCTION), 0);
+        assert_eq!(lane_threshold(t, 0, STREAM_HUMIDITY), 0);
+        assert_eq!(lane_threshold(t, 0, STREAM_EXTINCTION), t);
+        assert_eq!(lane_threshold(t, 64, STREAM_HUMIDITY), t / 4);
+        assert_eq!(lane_threshold(t, 64, STREAM_EXTINCTION), 6553 * 192 / 256);
+        assert_eq!(
+            lane_threshold(THRESHOLD_ONE, 256, STREAM_ACTIVATION),
+            THRESHOLD_ONE
+        );
+        // planes of a lane at 2^16 and at 0
+        let mut ts = [0u32; 32];
+        ts[3] = THRESHOLD_ONE;
+        ts[4] = 0x8001;
+        let p = lane_threshold_planes(&ts);
+        assert_eq!(p[PLANE_ALWAYS], 1 << 3);
+        assert_eq!(p[PLANE_NONZERO], 1 << 3 | 1 << 4);
+        assert_eq!(p[0], 1 << 4);
+        assert_eq!(p[15], 1 << 4);
+        assert!(p[1..15].iter().all(|&x| x == 0));
     }
 
     #[test]
@@ -291,8 +404,10 @@ mod tests {
         assert_eq!(probability_threshold(1.0 / 3.0), Some(21_845));
         assert_eq!(probability_threshold(f64::NAN), None);
         assert_eq!(probability_threshold(1.0 + 1e-9), None);
-        assert_eq!(below_threshold(7, 1, u32::MAX, THRESHOLD_ONE), u32::MAX);
-        assert_eq!(below_threshold(7, 1, u32::MAX, 0), 0);
+        let always = uniform_threshold_planes(THRESHOLD_ONE);
+        assert_eq!(below_lane_thresholds(7, 1, u32::MAX, &always), u32::MAX);
+        let never = uniform_threshold_planes(0);
+        assert_eq!(below_lane_thresholds(7, 1, u32::MAX, &never), 0);
     }
 
     #[test]

@@ -333,16 +333,17 @@ fn ellipsoid_masks_scale_the_frequencies() {
         let mut var = 0.0;
         let mut count = 0usize;
         for i in 0..size.cells() {
-            // p = t / 2^16 * m (supply, activation) or t / 2^16 * (1 - m) (extinction)
-            // with m = level / 256: the product of two independent draws. A mask draw
-            // that reused the base draw's number would give min(p, m) instead.
+            // p = floor(t l / 256) / 2^16 (supply, activation) or floor(t (256 - l) /
+            // 256) / 2^16 (extinction): one draw per cell against its own threshold
             let level = m.mask_levels()[i];
-            let base = f64::from(m.thresholds()[stream]) / 65536.0;
-            let mask = f64::from(level) / 256.0;
+            let threshold = cloudsim::rng::lane_threshold(
+                m.thresholds()[stream],
+                u32::from(level),
+                stream as u32,
+            );
             let p = match stream {
                 0 if level == 0 => 1.0, // removed outside the mask
-                0 => base * (1.0 - mask),
-                _ => base * mask,
+                _ => f64::from(threshold) / 65536.0,
             };
             mean += p;
             var += p * (1.0 - p);
