@@ -9,6 +9,7 @@ mod atmos_closed_form_sky_cases;
 mod atmos_lut_cases;
 mod atmos_single_scattering_cases;
 mod cloudlight_cases;
+mod cloudsim_cases;
 mod common_cases;
 mod render_cases;
 mod terrain_cases;
@@ -354,6 +355,7 @@ pub fn all() -> Vec<Case> {
         vec![render_cases::present_case()],
         terrain_cases::cases(),
         cloudlight_cases::cases(),
+        cloudsim_cases::cases(),
         common_cases::cases(),
     ]
     .into_iter()
