@@ -2,7 +2,7 @@
 //! 256×256×64 grid with three ellipsoids and all stochastic terms, and for the rules
 //! alone. On a shared machine wall-clock benches (criterion) include the time other
 //! processes hold the core; the thread's own CPU time (`/proc/thread-self/stat`, 10 ms
-//! ticks, best of 8 rounds of 60 steps) does not, so it complements `benches/step.rs`.
+//! ticks, best of 20 rounds of 60 steps) does not, so it complements `benches/step.rs`.
 //! Linux only.
 //!
 //! `cargo run --release -p cloudsim --no-default-features --example step_cpu_time`
@@ -67,7 +67,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let mut scratch = PackedState::empty(size)?;
         let steps = 60u32;
         let mut best = f64::MAX;
-        for round in 0..8 {
+        for round in 0..20 {
             let start = thread_cpu_seconds()?;
             for k in 0..steps {
                 packed::step(m, &mut state, &mut scratch, 60 + round * steps + k, 1)?;

@@ -1,9 +1,13 @@
-//! The fast CPU implementation: 32 cells per `u32` word along x, bitwise rules,
-//! funnel shifts across neighbouring words, random masks built 32 lanes at a time
-//! (bit-sliced comparisons, [`crate::rng`]) fused into the same pass over each row,
-//! blocks of rows dealt over `std::thread::scope` threads. Every cell's result depends only on the previous
-//! state and its own counter-based draws, so the output is independent of the thread
-//! count and bit-identical to [`crate::naive`].
+//! The fast CPU implementation: 32 cells per `u32` word along x. For each run of rows
+//! of one z slice, the bitwise rules run as vectorised loops over contiguous word
+//! ranges (every neighbour row is another contiguous range; funnel shifts carry x
+//! across words); then the three draws of 8 words at a time are compared bit-sliced
+//! with the lanes' thresholds in SIMD registers ([`crate::rng`]), only on the words
+//! an ellipsoid touches ([`crate::regions`]). Blocks of rows are dealt over
+//! `std::thread::scope` threads, and the kernel is compiled a second time with AVX2,
+//! picked at run time on x86-64 CPUs that have it. Every cell's result depends only on
+//! the previous state and its own counter-based draws, so the output is independent of
+//! the thread count and the instruction set, and bit-identical to [`crate::naive`].
 
 use crate::regions::RegionTable;
 use crate::rng::{
