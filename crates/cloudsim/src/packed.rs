@@ -36,6 +36,8 @@ struct Rules<'a> {
     draws: Draws<'a>,
     /// Keys of the extinction, humidity and activation streams of this step.
     keys: [u32; 3],
+    /// Zeros, one z slice long: the `act` of a slice outside the grid.
+    zero_run: Vec<u32>,
 }
 
 /// `dst[i] |= src[i]` (a loop the compiler vectorises).
@@ -117,17 +119,22 @@ impl Rules<'_> {
         let base = (z * ny + y0) * wpr;
         let act = &self.src.act[base..base + n];
         let f = &mut f_act[..n];
-        // x ± 1, x ± 2 inside each word
-        for (f, &a) in f.iter_mut().zip(act) {
-            *f = a << 1 | a << 2 | a >> 1 | a >> 2;
-        }
-        // z + 1, z - 1, z - 2: the same rows of the other slices (z never wraps)
-        for dz in [1isize, -1, -2] {
+        // z + 1, z - 1, z - 2: the same rows of the other slices (z never wraps; a
+        // slice outside reads as the zero run)
+        let z_neighbour = |dz: isize| -> &[u32] {
             let zz = z as isize + dz;
             if (0..nz as isize).contains(&zz) {
                 let from = base.wrapping_add_signed(dz * slice_words as isize);
-                or_into(f, &self.src.act[from..from + n]);
+                &self.src.act[from..from + n]
+            } else {
+                &self.zero_run[..n]
             }
+        };
+        let (zp1, zm1, zm2) = (z_neighbour(1), z_neighbour(-1), z_neighbour(-2));
+        // x ± 1, x ± 2 inside each word, and the z terms, in one pass
+        for i in 0..n {
+            let a = act[i];
+            f[i] = a << 1 | a << 2 | a >> 1 | a >> 2 | zp1[i] | zm1[i] | zm2[i];
         }
         // y ± 1, y ± 2: rows of the same slice, wrapped when periodic
         let slice = &self.src.act[z * slice_words..(z + 1) * slice_words];
@@ -159,12 +166,11 @@ impl Rules<'_> {
         }
         // x carries across words: flat over the run, then the row ends redone
         let carry = &mut carry[..n];
-        carry[0] = 0;
-        for (c, &previous) in carry[1..].iter_mut().zip(act) {
-            *c = carry_from_previous(previous);
-        }
-        for (c, &next) in carry.iter_mut().zip(&act[1..]) {
-            *c |= carry_from_next(next);
+        if n >= 2 {
+            let inner = carry[1..n - 1].iter_mut().zip(&act[..n - 2]).zip(&act[2..]);
+            for ((c, &previous), &next) in inner {
+                *c = carry_from_previous(previous) | carry_from_next(next);
+            }
         }
         for r in 0..run_rows {
             let row = &act[r * wpr..(r + 1) * wpr];
@@ -181,7 +187,6 @@ impl Rules<'_> {
             carry[first] = carry_from_previous(before) | carry_from_next(inner_next);
             carry[last] = carry_from_previous(inner_previous) | carry_from_next(after);
         }
-        or_into(f, carry);
         // the rules
         let hum = &self.src.hum[base..base + n];
         let cld = &self.src.cld[base..base + n];
@@ -189,7 +194,7 @@ impl Rules<'_> {
             let (h, a) = (hum[i], act[i]);
             hum_out[i] = h & !a;
             cld_out[i] = cld[i] | a;
-            act_out[i] = !a & h & f[i];
+            act_out[i] = !a & h & (f[i] | carry[i]);
         }
         // the last word's padding lanes stay empty
         let last_mask = self.size.last_word_mask();
@@ -467,6 +472,7 @@ pub fn step_rules(
         periodic: model.boundary() == Boundary::Periodic,
         draws,
         keys: streams.map(|s| stream_key(seed, step, s)),
+        zero_run: vec![0; size.ny as usize * size.words_per_row()],
     };
     split_rows(size, dst, threads, |first, h, a, c| {
         dispatch::run(&rules, first, h, a, c)

@@ -235,16 +235,17 @@ pub(crate) fn below_lane_thresholds_batch<const S: usize>(
     }
     for k in 0..UNIFORM_BITS {
         let t = planes(k as usize);
-        let mut any_equal = 0;
+        // OR the draws' lanes together first: one horizontal reduction per plane
+        let mut any_equal = [0u32; WORD_BATCH];
         for s in 0..S {
             let r = plane_bits_x8(&word_keys[s], &offset[s], k);
             for i in 0..WORD_BATCH {
                 less[s][i] |= equal[s][i] & t[s][i] & !r[i];
                 equal[s][i] &= !(t[s][i] ^ r[i]);
-                any_equal |= equal[s][i];
+                any_equal[i] |= equal[s][i];
             }
         }
-        if any_equal == 0 {
+        if any_equal.iter().fold(0, |a, &e| a | e) == 0 {
             break;
         }
     }
