@@ -61,8 +61,9 @@ fn bench(c: &mut Criterion) {
     bakes.bench_function("transmittance 256x64 (static)", |b| {
         b.iter(|| bake_transmittance_lut(black_box(&luts.atmosphere), &luts.settings))
     });
-    bakes.bench_function("multiple scattering 32x32 (static)", |b| {
-        b.iter(|| bake_multiple_scattering_lut(black_box(&bindings)))
+    let orders = LutSettings::default().multiple_scattering_orders;
+    bakes.bench_function("multiple scattering 32x32, orders 2-5 (static)", |b| {
+        b.iter(|| bake_multiple_scattering_lut(black_box(&bindings), orders))
     });
     let r = (earth.planet_radius + 1_000.0) as f32;
     let mu_s = 30f32.to_radians().sin();

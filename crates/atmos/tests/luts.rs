@@ -66,6 +66,18 @@ fn settings_reject_bad_sizes_naming_the_field() {
             .to_string()
             .contains("aerial_perspective_range")
     );
+    for orders in [1, 17] {
+        let bad = LutSettings {
+            multiple_scattering_orders: orders,
+            ..LutSettings::default()
+        };
+        assert!(
+            bad.validate()
+                .unwrap_err()
+                .to_string()
+                .contains("multiple_scattering_orders")
+        );
+    }
     LutSettings::default().validate().unwrap();
 }
 
@@ -766,7 +778,7 @@ fn gpu_pass_timings() {
         time("transmittance 256x64", &|e, t| {
             baker.encode_transmittance(e, t)
         });
-        time("multiple scattering 32x32", &|e, t| {
+        time("multiple scattering 32x32, orders 2-5", &|e, t| {
             baker.encode_multiple_scattering(e, t)
         });
         time("sky view 192x108", &|e, t| baker.encode_sky_view(e, t));

@@ -257,6 +257,8 @@ struct Row {
     twilight: ErrorStats,
     /// Day errors per camera altitude (same order as `ALTITUDES`).
     day_by_altitude: Vec<ErrorStats>,
+    /// Errors per sun elevation, all altitudes (same order as `SUN_ELEVATIONS_DEG`).
+    by_sun: Vec<ErrorStats>,
     cpu_setup: f64,
     cpu_query: f64,
     gpu_frame: Option<f64>,
@@ -403,7 +405,12 @@ pub fn run(options: &super::Options) -> Result<(), String> {
         let mut day = ErrorStats::default();
         let mut twilight = ErrorStats::default();
         let mut day_by_altitude = vec![ErrorStats::default(); ALTITUDES.len()];
+        let mut by_sun = vec![ErrorStats::default(); SUN_ELEVATIONS_DEG.len()];
         for ((viewpoint, reference), model) in set.iter().zip(&truth).zip(&samples) {
+            let sun_index = SUN_ELEVATIONS_DEG
+                .iter()
+                .position(|&e| e == viewpoint.sun_elevation_deg)
+                .expect("viewpoints use the fixed sun elevations");
             let is_day = viewpoint.sun_elevation_deg >= DAY_THRESHOLD_DEG;
             let altitude_index = ALTITUDES
                 .iter()
@@ -411,6 +418,7 @@ pub fn run(options: &super::Options) -> Result<(), String> {
                 .expect("viewpoints use the fixed altitudes");
             for (r, m) in reference.iter().zip(model) {
                 let (r, m) = (luminance(r.radiance), luminance(m.radiance));
+                by_sun[sun_index].add(r, m);
                 if is_day {
                     day.add(r, m);
                     day_by_altitude[altitude_index].add(r, m);
@@ -442,6 +450,7 @@ pub fn run(options: &super::Options) -> Result<(), String> {
             day,
             twilight,
             day_by_altitude,
+            by_sun,
             cpu_setup,
             cpu_query,
             gpu_frame,
@@ -591,6 +600,27 @@ fn markdown(
     for row in rows {
         let _ = write!(md, "| {} | {} |", row.rung, row.label);
         for stats in &row.day_by_altitude {
+            let _ = write!(md, " {:.2} % |", 100.0 * stats.mean());
+        }
+        let _ = writeln!(md);
+    }
+    let _ = writeln!(
+        md,
+        "\n**Mean error by sun elevation** (all camera altitudes; below \
+         {DAY_THRESHOLD_DEG}° is twilight):\n"
+    );
+    let _ = write!(md, "| rung | setting |");
+    for elevation in SUN_ELEVATIONS_DEG {
+        let _ = write!(md, " {elevation}° |");
+    }
+    let _ = writeln!(
+        md,
+        "\n|---|---|{}",
+        "---:|".repeat(SUN_ELEVATIONS_DEG.len())
+    );
+    for row in rows {
+        let _ = write!(md, "| {} | {} |", row.rung, row.label);
+        for stats in &row.by_sun {
             let _ = write!(md, " {:.2} % |", 100.0 * stats.mean());
         }
         let _ = writeln!(md);

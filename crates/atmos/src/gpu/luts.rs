@@ -34,6 +34,9 @@ pub struct LutBaker {
     pub(crate) uniforms: wgpu::BindGroup,
     pub(crate) render_luts: wgpu::BindGroup,
     passes: [BakePass; 4],
+    /// Orders 3… of the multiple-scattering bake, each reading the order before (two
+    /// ping-pong buffers) and adding to the LUT; recorded right after its order-2 pass.
+    higher_orders: Vec<BakePass>,
 }
 
 #[derive(Debug)]
@@ -112,6 +115,10 @@ impl LutBaker {
         };
         let transmittance = lut_buffer("atmos transmittance LUT", sizes[0]);
         let multiple_scattering = lut_buffer("atmos multiple-scattering LUT", sizes[1]);
+        let scattering_orders = [
+            lut_buffer("atmos multiple-scattering order (even)", sizes[1]),
+            lut_buffer("atmos multiple-scattering order (odd)", sizes[1]),
+        ];
         let sky_view = lut_buffer("atmos sky-view LUT", sizes[2]);
         let aerial_perspective = lut_buffer("atmos aerial-perspective volume", sizes[3]);
         let placeholder_read = lut_buffer("atmos LUT placeholder (read)", 1);
@@ -193,22 +200,24 @@ impl LutBaker {
                 entries: &entries,
             })
         };
-        let output = |label: &str, buffer: &wgpu::Buffer| {
+        let outputs = |label: &str, first: &wgpu::Buffer, second: &wgpu::Buffer| {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(label),
                 layout: &output_layout,
                 entries: &[
                     wgpu::BindGroupEntry {
                         binding: 0,
-                        resource: buffer.as_entire_binding(),
+                        resource: first.as_entire_binding(),
                     },
                     wgpu::BindGroupEntry {
                         binding: 1,
-                        resource: placeholder_write.as_entire_binding(),
+                        resource: second.as_entire_binding(),
                     },
                 ],
             })
         };
+        let output =
+            |label: &str, buffer: &wgpu::Buffer| outputs(label, buffer, &placeholder_write);
         let p = &placeholder_read;
         let groups = |n: u32| n.div_ceil(WORKGROUP);
         let passes = [
@@ -238,7 +247,11 @@ impl LutBaker {
                     "atmos LUTs for multiple scattering",
                     [&transmittance, p, p, p],
                 ),
-                output: output("atmos multiple-scattering output", &multiple_scattering),
+                output: outputs(
+                    "atmos multiple-scattering outputs (order 2)",
+                    &scattering_orders[0],
+                    &multiple_scattering,
+                ),
                 workgroups: [
                     groups(s.multiple_scattering_width),
                     groups(s.multiple_scattering_height),
@@ -279,6 +292,36 @@ impl LutBaker {
                 label: "atmos aerial-perspective volume",
             },
         ];
+        let next_order_pipeline = compute_pipeline(
+            device,
+            &layout,
+            "atmos::lut_multiple_scattering",
+            "bake_multiple_scattering_next_order",
+        )?;
+        let higher_orders = (3..=settings.multiple_scattering_orders)
+            .map(|order| {
+                // Order k reads order k − 1 (even orders sit in buffer 0).
+                let previous = &scattering_orders[(order as usize - 1) % 2];
+                let next = &scattering_orders[order as usize % 2];
+                BakePass {
+                    pipeline: next_order_pipeline.clone(),
+                    luts: luts(
+                        "atmos LUTs for a multiple-scattering order",
+                        [&transmittance, previous, p, p],
+                    ),
+                    output: outputs(
+                        "atmos multiple-scattering outputs (next order)",
+                        next,
+                        &multiple_scattering,
+                    ),
+                    workgroups: [
+                        groups(s.multiple_scattering_width),
+                        groups(s.multiple_scattering_height),
+                    ],
+                    label: "atmos multiple-scattering order",
+                }
+            })
+            .collect();
         let render_luts = luts(
             "atmos LUTs for rendering",
             [
@@ -301,6 +344,7 @@ impl LutBaker {
             uniforms,
             render_luts,
             passes,
+            higher_orders,
         })
     }
 
@@ -322,6 +366,14 @@ impl LutBaker {
         pass.set_bind_group(1, &bake.luts, &[]);
         pass.set_bind_group(2, &bake.output, &[]);
         pass.dispatch_workgroups(bake.workgroups[0], bake.workgroups[1], 1);
+        if which == MULTIPLE_SCATTERING {
+            for order in &self.higher_orders {
+                pass.set_pipeline(&order.pipeline);
+                pass.set_bind_group(1, &order.luts, &[]);
+                pass.set_bind_group(2, &order.output, &[]);
+                pass.dispatch_workgroups(order.workgroups[0], order.workgroups[1], 1);
+            }
+        }
     }
 
     fn encode_passes(
@@ -354,7 +406,8 @@ impl LutBaker {
         );
     }
 
-    /// Records the multiple-scattering bake (one pass; reads the transmittance LUT).
+    /// Records the multiple-scattering bake (one pass of one dispatch per scattering
+    /// order; reads the transmittance LUT).
     pub fn encode_multiple_scattering(
         &self,
         encoder: &mut wgpu::CommandEncoder,

@@ -8,7 +8,7 @@
 //! | table | default size | depends on | what a texel holds |
 //! |---|---|---|---|
 //! | transmittance | 256 × 64, 40 log-linear steps | atmosphere | transmittance to the top of the atmosphere for (r, μ) |
-//! | multiple scattering | 32 × 32, 64 directions × 20 samples | atmosphere | Ψ_ms(altitude, μ_s): all orders ≥ 2, isotropic, per unit scattering |
+//! | multiple scattering | 32 × 32, 64 directions × 20 samples, orders 2…5 | atmosphere | Ψ_ms(altitude, μ_s): orders ≥ 2 arriving from all directions (mean), per unit scattering |
 //! | sky view | 192 × 108, 30 samples | camera altitude, sun zenith | radiance for (view elevation, azimuth from the sun) |
 //! | aerial perspective | 32 × 32 × 32 over 32 km, 2 steps per slice | camera frame | in-scatter and transmittance per froxel |
 //!
@@ -80,6 +80,9 @@ pub struct LutSettings {
     pub multiple_scattering_samples: u32,
     /// √(directions) of the multiple-scattering bake (8 → Hillaire's 64).
     pub multiple_scattering_direction_sqrt: u32,
+    /// Highest scattering order in the multiple-scattering LUT (≥ 2): one bake pass per
+    /// order from 2 on (host side only: the passes are the same shader).
+    pub multiple_scattering_orders: u32,
     /// Sky-view LUT size (azimuth, elevation); the height must be even (the horizon
     /// lies between the two middle rows).
     pub sky_view_size: [u32; 2],
@@ -104,12 +107,15 @@ impl Default for LutSettings {
             multiple_scattering_size: [32, 32],
             multiple_scattering_samples: 20,
             multiple_scattering_direction_sqrt: 8,
+            multiple_scattering_orders: 5,
             sky_view_size: [192, 108],
             sky_view_samples: 30,
             aerial_perspective_size: [32, 32, 32],
             aerial_perspective_range: 32_000.0,
             aerial_perspective_steps_per_slice: 2,
-            pixel_samples: 32,
+            // 32 read 0.25 % (day mean) worse for viewers at 100 km and above, whose
+            // rays are marched from the top of the atmosphere per pixel.
+            pixel_samples: 64,
         }
     }
 }
@@ -123,6 +129,7 @@ impl LutSettings {
             multiple_scattering_size: [16, 16],
             multiple_scattering_samples: 20,
             multiple_scattering_direction_sqrt: 8,
+            multiple_scattering_orders: 5,
             sky_view_size: [48, 28],
             sky_view_samples: 30,
             aerial_perspective_size: [8, 8, 16],
@@ -210,6 +217,13 @@ impl LutSettings {
             if !(1..=1024).contains(&count) {
                 return invalid(field, f64::from(count), "must be in 1..=1024 samples");
             }
+        }
+        if !(2..=16).contains(&self.multiple_scattering_orders) {
+            return invalid(
+                "multiple_scattering_orders",
+                f64::from(self.multiple_scattering_orders),
+                "must be in 2..=16 scattering orders",
+            );
         }
         let range = self.aerial_perspective_range;
         if !(range.is_finite() && range > 0.0) {

@@ -53,22 +53,26 @@ impl StaticLuts {
     /// Validates and bakes both tables on the CPU (threaded).
     pub fn bake(atmosphere: &Atmosphere, settings: &LutSettings) -> Result<Self, AtmosError> {
         let atmosphere = atmosphere.to_uniforms()?;
-        let settings = settings.to_uniforms()?;
-        let transmittance = bake_transmittance_lut(&atmosphere, &settings);
+        let uniforms = settings.to_uniforms()?;
+        let transmittance = bake_transmittance_lut(&atmosphere, &uniforms);
         let unused = Lut2d {
             width: 0,
             height: 0,
             texels: Vec::new(),
         };
-        let multiple_scattering = bake_multiple_scattering_lut(&LutBindings {
-            atmosphere: &atmosphere,
-            settings: &settings,
-            transmittance: &transmittance,
-            multiple_scattering: &unused,
-        });
+        let orders = settings.multiple_scattering_orders;
+        let multiple_scattering = bake_multiple_scattering_lut(
+            &LutBindings {
+                atmosphere: &atmosphere,
+                settings: &uniforms,
+                transmittance: &transmittance,
+                multiple_scattering: &unused,
+            },
+            orders,
+        );
         Ok(Self {
             atmosphere,
-            settings,
+            settings: uniforms,
             transmittance,
             multiple_scattering,
         })

@@ -112,10 +112,12 @@ pub fn cases() -> Vec<PassCase> {
                 rel: 2e-4,
                 ulp: 0.0,
                 bound: None,
-                why: "64 directions × 20 steps, each with a transmittance lookup whose \
-                      bilinear weights move with the uv rounding (≤ 1e-6 of a texel) and \
-                      the planet-shadow test, which may flip for a sample on the terminator: \
-                      2e-4 relative on sums of ~1300 positive terms",
+                why: "orders 2…5 summed; each 64 directions × 20 steps with a LUT lookup \
+                      (transmittance, then the previous order) whose bilinear weights move \
+                      with the uv rounding (≤ 1e-6 of a texel), the phase functions of ν \
+                      (cos of the azimuth, order 2) and the planet-shadow test, which may \
+                      flip for a sample on the terminator: 2e-4 relative on sums of ~1300 \
+                      positive terms per order",
             },
         },
         PassCase {
