@@ -280,7 +280,7 @@ impl Rules<'_> {
                     let alive = table.group_alive(group);
                     let live = std::array::from_fn(|i| if real(i) { alive[i] } else { 0 });
                     self.draw_batch(words, local, live, lo..hi, hum_out, act_out, cld_out, |k| {
-                        *table.group_plane(group, k)
+                        table.group_plane(group, k)
                     });
                 }
             }

@@ -9,8 +9,8 @@
 
 use crate::GridSize;
 use crate::rng::{
-    LANE_PLANES, STREAM_ACTIVATION, STREAM_EXTINCTION, STREAM_HUMIDITY, lane_threshold,
-    lane_threshold_planes,
+    LANE_PLANES, PLANE_ALWAYS, PLANE_NONZERO, STREAM_ACTIVATION, STREAM_EXTINCTION,
+    STREAM_HUMIDITY, THRESHOLD_ONE, UNIFORM_BITS, lane_threshold, lane_threshold_planes,
 };
 
 /// The three event streams in the order of [`crate::Model::thresholds`].
@@ -37,10 +37,44 @@ pub struct RegionTable {
     word: Vec<u32>,
     /// Lanes above mask level 0 of each group of 8 entries (0 past the last entry).
     alive: Vec<[u32; GROUP]>,
-    /// Group-major: plane `k` of group `g` at `g LANE_PLANES + k`, holding the 8
-    /// entries of extinction, then of humidity, then of activation, so that one plane
-    /// of a group's three draws is one 96-byte read and the group one 1.7 KB block.
-    planes: Vec<[[u32; GROUP]; 3]>,
+    /// Group-major: the planes of the 8 entries of group `g` in the block `g stride ..
+    /// (g + 1) stride` (one contiguous read per group), laid out by `layout`. Only the
+    /// planes that can be non-zero are stored: every lane's threshold is at most its
+    /// stream's base threshold, so the planes above the base's leading one are zero in
+    /// every lane (9 of the activation stream's 16 at p = 0.001), and "always" is zero
+    /// unless the base is 2^16. This is most of what a step reads from memory.
+    planes: Vec<[u32; GROUP]>,
+    /// Words of a group's block.
+    stride: usize,
+    /// Where each stream's planes sit in a block.
+    layout: [StreamPlanes; 3],
+}
+
+/// The stored planes of one event stream within a group's block.
+#[derive(Debug, Clone, Copy)]
+struct StreamPlanes {
+    /// The "non-zero" plane.
+    nonzero: usize,
+    /// The "always" plane, when the base threshold is 2^16.
+    always: Option<usize>,
+    /// The first bit plane that can be non-zero (the base threshold's leading zeros).
+    first_plane: usize,
+    /// Where bit plane `first_plane` is (the later ones follow).
+    offset: usize,
+}
+
+impl StreamPlanes {
+    /// The block index of plane `k` ([`LANE_PLANES`] numbering), or `None` when the
+    /// plane is zero in every lane and not stored.
+    #[inline(always)]
+    fn index(&self, k: usize) -> Option<usize> {
+        match k {
+            PLANE_NONZERO => Some(self.nonzero),
+            PLANE_ALWAYS => self.always,
+            _ if k < self.first_plane => None,
+            _ => Some(self.offset + k - self.first_plane),
+        }
+    }
 }
 
 impl RegionTable {
@@ -83,13 +117,46 @@ impl RegionTable {
         row_start.push(word.len() as u32);
         let groups = word.len().div_ceil(GROUP);
         let mut grouped_alive = vec![[0u32; GROUP]; groups];
-        let mut planes = vec![[[0u32; GROUP]; 3]; groups * LANE_PLANES];
+        // the block layout: the three non-zero planes, the "always" planes that can be
+        // set, then each stream's bit planes from its base threshold's leading one on
+        let mut next = 3;
+        let layout: [StreamPlanes; 3] = std::array::from_fn(|s| {
+            let always = (thresholds[s] >= THRESHOLD_ONE).then(|| {
+                next += 1;
+                next - 1
+            });
+            StreamPlanes {
+                nonzero: s,
+                always,
+                first_plane: 0,
+                offset: 0,
+            }
+        });
+        let mut layout = layout;
+        for (s, stream) in layout.iter_mut().enumerate() {
+            // a threshold below 2^16 with b bits has 16 - b leading zero planes
+            let bits = (u32::BITS - thresholds[s].min(THRESHOLD_ONE - 1).leading_zeros()) as usize;
+            stream.first_plane = if thresholds[s] >= THRESHOLD_ONE {
+                0
+            } else {
+                UNIFORM_BITS as usize - bits
+            };
+            stream.offset = next;
+            next += UNIFORM_BITS as usize - stream.first_plane;
+        }
+        let stride = next;
+        let mut planes = vec![[0u32; GROUP]; groups * stride];
         for (e, entry) in lane_planes.iter().enumerate() {
             let (g, i) = (e / GROUP, e % GROUP);
             grouped_alive[g][i] = alive[e];
             for (s, stream_planes) in entry.iter().enumerate() {
                 for (k, &p) in stream_planes.iter().enumerate() {
-                    planes[g * LANE_PLANES + k][s][i] = p;
+                    match layout[s].index(k) {
+                        Some(at) => planes[g * stride + at][i] = p,
+                        // planes that are not stored are zero in every lane (asserted
+                        // by the table's tests through `planes`)
+                        None => debug_assert_eq!(p, 0),
+                    }
                 }
             }
         }
@@ -98,6 +165,8 @@ impl RegionTable {
             word,
             alive: grouped_alive,
             planes,
+            stride,
+            layout,
         }
     }
 
@@ -130,15 +199,20 @@ impl RegionTable {
     /// extinction, `1` humidity, `2` activation).
     pub fn planes(&self, entry: usize, s: usize) -> [u32; LANE_PLANES] {
         let (g, i) = (entry / GROUP, entry % GROUP);
-        std::array::from_fn(|k| self.planes[g * LANE_PLANES + k][s][i])
+        std::array::from_fn(|k| {
+            self.layout[s]
+                .index(k)
+                .map_or(0, |at| self.planes[g * self.stride + at][i])
+        })
     }
 
     /// Plane `k` of the three streams of the 8 entries of group `group` (entries
     /// `8 group..8 group + 8`, extinction then humidity then activation; entries past
     /// the end read as 0).
     #[inline(always)]
-    pub(crate) fn group_plane(&self, group: usize, k: usize) -> &[[u32; GROUP]; 3] {
-        &self.planes[group * LANE_PLANES + k]
+    pub(crate) fn group_plane(&self, group: usize, k: usize) -> [[u32; GROUP]; 3] {
+        let block = &self.planes[group * self.stride..(group + 1) * self.stride];
+        std::array::from_fn(|s| self.layout[s].index(k).map_or([0; GROUP], |at| block[at]))
     }
 
     /// Alive lanes of the 8 entries of group `group` (0 past the end).
