@@ -1,11 +1,11 @@
 //! The fast CPU implementation: 32 cells per `u32` word along x. For each run of rows
 //! of one z slice, the bitwise rules run as vectorised loops over contiguous word
 //! ranges (every neighbour row is another contiguous range; funnel shifts carry x
-//! across words); then the three draws of 8 words at a time are compared bit-sliced
+//! across words); then the three draws of 16 words at a time are compared bit-sliced
 //! with the lanes' thresholds in SIMD registers ([`crate::rng`]), only on the words
 //! an ellipsoid touches ([`crate::regions`]). Blocks of rows are dealt over
-//! `std::thread::scope` threads, and the kernel is compiled a second time with AVX2,
-//! picked at run time on x86-64 CPUs that have it. Every cell's result depends only on
+//! `std::thread::scope` threads, and the kernel is compiled again for AVX-512 and for
+//! AVX2, picked at run time on x86-64 CPUs that have them. Every cell's result depends only on
 //! the previous state and its own counter-based draws, so the output is independent of
 //! the thread count and the instruction set, and bit-identical to [`crate::naive`].
 
@@ -21,7 +21,7 @@ enum Draws<'a> {
     /// All three probabilities are 0: the rules alone.
     None,
     /// No ellipsoids: one threshold per stream for every cell, as planes (plane `k`
-    /// of the three streams of 8 words, as the region table's groups).
+    /// of the three streams of 16 words, as the region table's groups).
     Uniform(Box<[[Lanes; 3]; LANE_PLANES]>),
     /// Ellipsoids: the per-lane planes of the words they touch.
     Regions(&'a RegionTable),
@@ -204,7 +204,7 @@ impl Rules<'_> {
     }
 
     /// The three stochastic terms for `run_rows` rows from `first_row` (rules already
-    /// applied to the outputs), 8 words at a time: each draw is compared bit-sliced
+    /// applied to the outputs), 16 words at a time: each draw is compared bit-sliced
     /// with the lanes' thresholds and only for the lanes it can change.
     #[inline(always)]
     fn stochastic_run(
@@ -287,7 +287,7 @@ impl Rules<'_> {
         }
     }
 
-    /// The three draws of 8 words (`local`: their index in the outputs; `live`: the
+    /// The three draws of 16 words (`local`: their index in the outputs; `live`: the
     /// lanes that hold a cell above mask level 0, 0 in slots that are not drawn) and
     /// the write-back of slots `real`.
     #[allow(clippy::too_many_arguments)]
@@ -338,9 +338,10 @@ impl Rules<'_> {
 }
 
 /// Runtime CPU-feature dispatch of the row kernel: every function of the kernel is
-/// `#[inline(always)]`, so [`Rules::run`] is compiled twice, for the crate's target and
-/// (on x86-64) with AVX2, where the 8 words of a draw fit one register and 32-bit
-/// multiplies are native. Integer operations only: both builds give the same bits.
+/// `#[inline(always)]`, so [`Rules::run`] is compiled for the crate's target and (on
+/// x86-64) with AVX-512 (the 16 words of a draw fill one register) and with AVX2 (two
+/// registers), both with native 32-bit multiplies, picked at run time. Integer
+/// operations only: every build gives the same bits.
 mod dispatch {
     #![allow(unsafe_code)]
 
@@ -358,7 +359,19 @@ mod dispatch {
         rules.run(first_row, hum, act, cld);
     }
 
-    /// [`Rules::run`], with AVX2 when the CPU has it.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f,avx512bw,avx512vl")]
+    fn run_avx512(
+        rules: &Rules,
+        first_row: usize,
+        hum: &mut [u32],
+        act: &mut [u32],
+        cld: &mut [u32],
+    ) {
+        rules.run(first_row, hum, act, cld);
+    }
+
+    /// [`Rules::run`], with AVX-512 or AVX2 when the CPU has it.
     pub(super) fn run(
         rules: &Rules,
         first_row: usize,
@@ -366,6 +379,17 @@ mod dispatch {
         act: &mut [u32],
         cld: &mut [u32],
     ) {
+        #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx512f")
+            && std::is_x86_feature_detected!("avx512bw")
+            && std::is_x86_feature_detected!("avx512vl")
+        {
+            // SAFETY: the only precondition of calling a `#[target_feature(enable =
+            // "avx512f,avx512bw,avx512vl")]` function is that the CPU supports those
+            // features, checked just above.
+            unsafe { run_avx512(rules, first_row, hum, act, cld) };
+            return;
+        }
         #[cfg(target_arch = "x86_64")]
         if std::is_x86_feature_detected!("avx2") {
             // SAFETY: the only precondition of calling a `#[target_feature(enable =
@@ -587,7 +611,7 @@ mod tests {
     use crate::{Config, Ellipsoid, Probabilities};
 
     /// The kernel built for the crate's target (no run-time dispatch) gives the same
-    /// bits as the dispatched one (AVX2 where the machine has it), with regions and
+    /// bits as the dispatched one (AVX-512 or AVX2 where the machine has it), with regions and
     /// without, periodic and not.
     #[test]
     fn baseline_and_dispatched_kernels_agree() {

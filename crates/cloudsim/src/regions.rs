@@ -24,7 +24,7 @@ pub const REGION_ENTRY_WORDS: usize = 1 + 3 * LANE_PLANES;
 /// WGSL).
 pub const NO_REGION: u32 = u32::MAX;
 
-/// Entries per group: the CPU reads each plane of 8 consecutive entries at once.
+/// Entries per group: the CPU reads each plane of 16 consecutive entries at once.
 const GROUP: usize = crate::rng::WORD_BATCH;
 
 /// Per-lane threshold planes of the words inside the ellipsoids' rows (see the module
@@ -35,9 +35,9 @@ pub struct RegionTable {
     row_start: Vec<u32>,
     /// Packed word index of each entry.
     word: Vec<u32>,
-    /// Lanes above mask level 0 of each group of 8 entries (0 past the last entry).
+    /// Lanes above mask level 0 of each group of 16 entries (0 past the last entry).
     alive: Vec<[u32; GROUP]>,
-    /// Group-major: the planes of the 8 entries of group `g` in the block `g stride ..
+    /// Group-major: the planes of the 16 entries of group `g` in the block `g stride ..
     /// (g + 1) stride` (one contiguous read per group), laid out by `layout`. Only the
     /// planes that can be non-zero are stored: every lane's threshold is at most its
     /// stream's base threshold, so the planes above the base's leading one are zero in
@@ -206,8 +206,8 @@ impl RegionTable {
         })
     }
 
-    /// Plane `k` of the three streams of the 8 entries of group `group` (entries
-    /// `8 group..8 group + 8`, extinction then humidity then activation; entries past
+    /// Plane `k` of the three streams of the 16 entries of group `group` (entries
+    /// `16 group..16 group + 16`, extinction then humidity then activation; entries past
     /// the end read as 0).
     #[inline(always)]
     pub(crate) fn group_plane(&self, group: usize, k: usize) -> [[u32; GROUP]; 3] {
@@ -215,7 +215,7 @@ impl RegionTable {
         std::array::from_fn(|s| self.layout[s].index(k).map_or([0; GROUP], |at| block[at]))
     }
 
-    /// Alive lanes of the 8 entries of group `group` (0 past the end).
+    /// Alive lanes of the 16 entries of group `group` (0 past the end).
     #[inline(always)]
     pub(crate) fn group_alive(&self, group: usize) -> [u32; GROUP] {
         self.alive[group]

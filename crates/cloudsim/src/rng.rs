@@ -17,7 +17,7 @@
 //! `u < t` run *bit-sliced*, most significant plane first, with a running
 //! "still equal" mask that usually empties after ~6 planes (`log2(lanes) + 1.3` on
 //! average). Each lane compares with its own threshold, also given as bit planes
-//! ([`below_lane_thresholds`]); the CPU compares 8 words at once in SIMD lanes and stops
+//! ([`below_lane_thresholds`]); the CPU compares 16 words at once in SIMD lanes and stops
 //! once no lane of the 8 is equal, the WGSL twin stops per word. Stopping is only an
 //! optimisation: the result is exactly the full 16-bit comparison that [`uniform16`]
 //! spells out one cell at a time for the naive reference.
@@ -170,18 +170,18 @@ pub fn below_lane_thresholds(
     less
 }
 
-/// Words per batch of the CPU's fast path: each draw of a step runs over 8 words.
-pub(crate) const WORD_BATCH: usize = 8;
+/// Words per batch of the CPU's fast path: each draw of a step runs over 16 words.
+pub(crate) const WORD_BATCH: usize = 16;
 
-/// Eight words' lanes: one AVX2 register, two SSE2 registers.
+/// Sixteen words' lanes: one AVX-512 register, two AVX2 registers, four SSE2 ones.
 pub(crate) type Lanes = [u32; WORD_BATCH];
 
-/// `plane_bits` of 8 word keys for plane `k`, spelled out step by step over the 8
-/// (`hash_combine` then `hash_u32` of `skyscape_wgsl::common`, pinned by a test) so
-/// that the compiler keeps them in one SIMD register; `offset` is the per-key part of
-/// `hash_combine` (`0x9e3779b9 + (wk << 6) + (wk >> 2)`).
+/// `plane_bits` of a batch of word keys for plane `k`, spelled out step by step over
+/// the batch (`hash_combine` then `hash_u32` of `skyscape_wgsl::common`, pinned by a
+/// test) so that the compiler keeps it in SIMD registers; `offset` is the per-key part
+/// of `hash_combine` (`0x9e3779b9 + (wk << 6) + (wk >> 2)`).
 #[inline(always)]
-fn plane_bits_x8(word_keys: &Lanes, offset: &Lanes, k: u32) -> Lanes {
+fn plane_bits_batch(word_keys: &Lanes, offset: &Lanes, k: u32) -> Lanes {
     let mut x = [0u32; WORD_BATCH];
     for i in 0..WORD_BATCH {
         x[i] = word_keys[i] ^ k.wrapping_add(offset[i]);
@@ -204,10 +204,10 @@ fn plane_bits_x8(word_keys: &Lanes, offset: &Lanes, k: u32) -> Lanes {
     x
 }
 
-/// [`below_lane_thresholds`] for `S` draws of 8 words each at once (the CPU's fast
-/// path: the three streams of 8 words, `S = 3`), given their word keys
-/// ([`word_key`]); `planes(k)` gives plane `k` of every word. Each draw's 8 words sit
-/// in one SIMD register, and one exit test serves all of them: the comparison stops
+/// [`below_lane_thresholds`] for `S` draws of 16 words each at once (the CPU's fast
+/// path: the three streams of 16 words, `S = 3`), given their word keys
+/// ([`word_key`]); `planes(k)` gives plane `k` of every word. Each draw's 16 words sit
+/// in SIMD registers, and one exit test serves all of them: the comparison stops
 /// once no lane of any word is still equal. The result is the full comparison's.
 #[inline(always)]
 pub(crate) fn below_lane_thresholds_batch<const S: usize>(
@@ -238,7 +238,7 @@ pub(crate) fn below_lane_thresholds_batch<const S: usize>(
         // OR the draws' lanes together first: one horizontal reduction per plane
         let mut any_equal = [0u32; WORD_BATCH];
         for s in 0..S {
-            let r = plane_bits_x8(&word_keys[s], &offset[s], k);
+            let r = plane_bits_batch(&word_keys[s], &offset[s], k);
             for i in 0..WORD_BATCH {
                 less[s][i] |= equal[s][i] & t[s][i] & !r[i];
                 equal[s][i] &= !(t[s][i] ^ r[i]);
