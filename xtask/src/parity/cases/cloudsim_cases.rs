@@ -41,7 +41,7 @@ fn stream_key_case() -> Case {
                y0 = f32(k & 0xffffu); y1 = f32(k >> 16u);",
         grid: || {
             let mut v = Vec::new();
-            for i in 0..4_000u32 {
+            for i in 0..10_000u32 {
                 let step = [0, 1, 999, 65_535, 16_777_215][i as usize % 5];
                 v.push(vec![
                     hashed_half(i, 1),
@@ -77,7 +77,7 @@ fn plane_bits_case() -> Case {
                let p = plane_bits(wk, u32(x3)); y0 = f32(p & 0xffffu); y1 = f32(p >> 16u);",
         grid: || {
             let mut v = Vec::new();
-            for i in 0..4_000u32 {
+            for i in 0..10_000u32 {
                 let word = [0, 1, 31, 131_071, 16_777_215][i as usize % 5];
                 v.push(vec![
                     hashed_half(i, 3),
@@ -108,7 +108,10 @@ fn lane_threshold_case() -> Case {
         wgsl: "y0 = f32(lane_threshold(u32(x0), u32(x1), u32(x2)));",
         grid: || {
             let mut v = Vec::new();
-            for t in [0u32, 1, 65, 6_553, 32_768, 65_535, 65_536] {
+            let thresholds = [
+                0u32, 1, 2, 65, 255, 256, 257, 6_553, 32_767, 32_768, 65_280, 65_535, 65_536,
+            ];
+            for t in thresholds {
                 for level in 0..=256u32 {
                     for stream in 0..3u32 {
                         v.push(vec![f64::from(t), f64::from(level), f64::from(stream)]);
@@ -142,7 +145,7 @@ fn below_lane_thresholds_case() -> Case {
                y0 = f32(less & 0xffffu); y1 = f32(less >> 16u);",
         grid: || {
             let mut v = Vec::new();
-            for i in 0..6_000u32 {
+            for i in 0..12_000u32 {
                 let threshold = match i % 8 {
                     0 => 0,
                     1 => 65_536,
@@ -193,7 +196,7 @@ fn wind_shift_case() -> Case {
                 let q = cloudsim::rng::wind_velocity_fixed(velocity);
                 for sign in [-1.0, 1.0] {
                     for step in (0..5_000u32)
-                        .step_by(37)
+                        .step_by(7)
                         .chain([65_535, 65_536, 16_777_215])
                     {
                         v.push(vec![sign, f64::from(q), f64::from(step)]);
