@@ -176,6 +176,13 @@ pub trait SkyModel {
     fn label(&self) -> String;
     /// Radiance and transmittance along the query's segment.
     fn evaluate(&self, query: &SkyQuery) -> SkySample;
+    /// [`SkyModel::evaluate`] of every query, in order: a frame's pixels. Models with
+    /// per-viewpoint work (a per-frame LUT) look it up once for the queries that share
+    /// the first query's viewer and sun, instead of once per query; the results are the
+    /// same as one call per query.
+    fn evaluate_batch(&self, queries: &[SkyQuery]) -> Vec<SkySample> {
+        queries.iter().map(|query| self.evaluate(query)).collect()
+    }
 }
 
 #[cfg(test)]

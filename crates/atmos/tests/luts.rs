@@ -791,3 +791,32 @@ fn gpu_pass_timings() {
         );
     }
 }
+
+#[test]
+fn batched_evaluation_equals_one_query_at_a_time() {
+    let earth = Atmosphere::earth();
+    let sky = PrecomputedSky::new(&earth, &LutSettings::small()).unwrap();
+    let sun = DVec3::new(0.5, 0.0, 0.8).normalize();
+    // two viewpoints (the batch shares the first one's sky-view LUT only where it
+    // applies), above the top too, and a finite segment
+    let mut queries = Vec::new();
+    for altitude in [1_000.0, 1_000.0, 25_000.0, 200_000.0] {
+        let position = DVec3::new(0.0, 0.0, earth.planet_radius + altitude);
+        for i in 0..24 {
+            let z = 1.0 - 2.0 * (f64::from(i) + 0.5) / 24.0;
+            let phi = 2.399_963 * f64::from(i);
+            let radius = (1.0 - z * z).sqrt();
+            let view = DVec3::new(radius * phi.cos(), radius * phi.sin(), z);
+            let max_distance = if i % 5 == 0 { 3_000.0 } else { f64::INFINITY };
+            let query =
+                SkyQuery::with_max_distance(earth.planet_radius, position, view, sun, max_distance)
+                    .unwrap();
+            queries.push(query);
+        }
+    }
+    let batched = sky.evaluate_batch(&queries);
+    assert_eq!(batched.len(), queries.len());
+    for (query, sample) in queries.iter().zip(&batched) {
+        assert_eq!(*sample, sky.evaluate(query));
+    }
+}

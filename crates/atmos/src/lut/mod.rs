@@ -284,7 +284,7 @@ pub struct LutSettingsUniform {
 }
 
 /// A 2D table of `[f32; 4]` texels, row-major (`x + width · y`).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct Lut2d {
     /// Columns.
     pub width: u32,

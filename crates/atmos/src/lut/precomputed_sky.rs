@@ -273,6 +273,12 @@ impl PrecomputedSky {
             .unwrap_or_else(std::sync::PoisonError::into_inner)
     }
 
+    /// Whether `query` reads a sky-view LUT (an unlimited segment seen from inside the
+    /// atmosphere).
+    fn needs_sky_view(&self, query: &SkyQuery) -> bool {
+        query.max_distance().is_infinite() && query.r() as f32 <= self.luts.atmosphere.top_radius
+    }
+
     /// The per-pixel part: a query answered with a sky-view LUT from
     /// [`PrecomputedSky::prepare`] for the query's viewer and sun (it is read only for
     /// unlimited segments seen from inside the atmosphere).
@@ -318,18 +324,34 @@ impl SkyModel for PrecomputedSky {
     }
 
     fn evaluate(&self, query: &SkyQuery) -> SkySample {
-        let a = &self.luts.atmosphere;
-        let needs_sky_view = query.max_distance().is_infinite() && query.r() as f32 <= a.top_radius;
-        if needs_sky_view {
+        if self.needs_sky_view(query) {
             let lut = self.sky_view_for(query.r() as f32, query.mu_s() as f32);
             self.evaluate_prepared(&lut, query)
         } else {
-            let empty = Lut2d {
-                width: 0,
-                height: 0,
-                texels: Vec::new(),
-            };
-            self.evaluate_prepared(&empty, query)
+            self.evaluate_prepared(&Lut2d::default(), query)
         }
+    }
+
+    fn evaluate_batch(&self, queries: &[SkyQuery]) -> Vec<SkySample> {
+        let Some(first) = queries.first() else {
+            return Vec::new();
+        };
+        // one cache lookup for the queries seen from the first one's viewpoint (the
+        // sky-view LUT depends only on the viewer's radius and the sun's zenith cosine)
+        let key = |q: &SkyQuery| [(q.r() as f32).to_bits(), (q.mu_s() as f32).to_bits()];
+        let shared_key = key(first);
+        let shared = self.sky_view_for(first.r() as f32, first.mu_s() as f32);
+        queries
+            .iter()
+            .map(|query| {
+                if !self.needs_sky_view(query) {
+                    self.evaluate_prepared(&Lut2d::default(), query)
+                } else if key(query) == shared_key {
+                    self.evaluate_prepared(&shared, query)
+                } else {
+                    self.evaluate(query)
+                }
+            })
+            .collect()
     }
 }

@@ -195,10 +195,7 @@ fn wind_shift_case() -> Case {
             for velocity in [0.0f32, 0.25, 0.3, 1.0, 1.75, 2.6, 15.9, 16.0] {
                 let q = cloudsim::rng::wind_velocity_fixed(velocity);
                 for sign in [-1.0, 1.0] {
-                    for step in (0..5_000u32)
-                        .step_by(7)
-                        .chain([65_535, 65_536, 16_777_215])
-                    {
+                    for step in (0..5_000u32).step_by(7).chain([65_535, 65_536, 16_777_215]) {
                         v.push(vec![sign, f64::from(q), f64::from(step)]);
                     }
                 }
