@@ -616,17 +616,32 @@ mod tests {
     #[test]
     fn baseline_and_dispatched_kernels_agree() {
         let size = GridSize::new(80, 24, 10);
-        for (periodic, regions) in [(false, true), (true, false), (false, false)] {
+        // the last case has probabilities 1, 1 and 0: "always" planes and a stream
+        // with no stored bit plane in the region table
+        for (periodic, regions, extremes) in [
+            (false, true, false),
+            (true, false, false),
+            (false, false, false),
+            (false, true, true),
+        ] {
             let mut c = Config::new(if periodic {
                 GridSize::new(64, 24, 10)
             } else {
                 size
             });
             c.seed = 17;
-            c.probabilities = Probabilities {
-                extinction: 0.3,
-                humidity: 0.2,
-                activation: 0.05,
+            c.probabilities = if extremes {
+                Probabilities {
+                    extinction: 1.0,
+                    humidity: 1.0,
+                    activation: 0.0,
+                }
+            } else {
+                Probabilities {
+                    extinction: 0.3,
+                    humidity: 0.2,
+                    activation: 0.05,
+                }
             };
             if periodic {
                 c.boundary = Boundary::Periodic;
@@ -644,12 +659,10 @@ mod tests {
             let mut baseline = PackedState::empty(model.size()).unwrap();
             let rules = Rules::new(&model, &src, 9);
             rules.run(0, &mut baseline.hum, &mut baseline.act, &mut baseline.cld);
-            assert_eq!(
-                baseline, dispatched,
-                "periodic {periodic} regions {regions}"
-            );
+            let case = format!("periodic {periodic} regions {regions} extremes {extremes}");
+            assert_eq!(baseline, dispatched, "{case}");
             let naive = crate::naive::step(&model, &src.to_naive(), 9).unwrap();
-            assert_eq!(baseline.to_naive(), naive);
+            assert_eq!(baseline.to_naive(), naive, "{case}");
         }
     }
 }

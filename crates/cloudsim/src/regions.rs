@@ -117,33 +117,24 @@ impl RegionTable {
         row_start.push(word.len() as u32);
         let groups = word.len().div_ceil(GROUP);
         let mut grouped_alive = vec![[0u32; GROUP]; groups];
-        // the block layout: the three non-zero planes, the "always" planes that can be
-        // set, then each stream's bit planes from its base threshold's leading one on
-        let mut next = 3;
+        // the block layout, stream by stream: its non-zero plane, its "always" plane if
+        // the base threshold is 2^16, its bit planes from the base's leading one on
+        let mut next = 0;
         let layout: [StreamPlanes; 3] = std::array::from_fn(|s| {
-            let always = (thresholds[s] >= THRESHOLD_ONE).then(|| {
-                next += 1;
-                next - 1
-            });
+            let threshold = thresholds[s];
+            // below 2^16, a threshold of b bits has 16 - b leading zero planes
+            let first_plane = (threshold.leading_zeros() as usize).saturating_sub(16);
+            let mut reserve = |count: usize| {
+                next += count;
+                next - count
+            };
             StreamPlanes {
-                nonzero: s,
-                always,
-                first_plane: 0,
-                offset: 0,
+                nonzero: reserve(1),
+                always: (threshold >= THRESHOLD_ONE).then(|| reserve(1)),
+                first_plane,
+                offset: reserve(UNIFORM_BITS as usize - first_plane),
             }
         });
-        let mut layout = layout;
-        for (s, stream) in layout.iter_mut().enumerate() {
-            // a threshold below 2^16 with b bits has 16 - b leading zero planes
-            let bits = (u32::BITS - thresholds[s].min(THRESHOLD_ONE - 1).leading_zeros()) as usize;
-            stream.first_plane = if thresholds[s] >= THRESHOLD_ONE {
-                0
-            } else {
-                UNIFORM_BITS as usize - bits
-            };
-            stream.offset = next;
-            next += UNIFORM_BITS as usize - stream.first_plane;
-        }
         let stride = next;
         let mut planes = vec![[0u32; GROUP]; groups * stride];
         for (e, entry) in lane_planes.iter().enumerate() {
