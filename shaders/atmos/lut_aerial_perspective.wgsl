@@ -37,9 +37,10 @@ fn bake_aerial_perspective(@builtin(global_invocation_id) id: vec3<u32>) {
                 let dt = hi - lo;
                 let t = lo + 0.5 * dt;
                 let r_t = radius_along_ray(r, mu, t);
+                let mu_t = clamp((r * mu + t) / r_t, -1.0, 1.0);
                 let mu_s_t = clamp((r * mu_s + t * nu) / r_t, -1.0, 1.0);
                 let medium = medium_at_altitude(lut_atmosphere, r_t - lut_atmosphere.planet_radius);
-                let source = scattering_source(medium, r_t, mu_s_t, rayleigh_phase_value, mie_phase_value);
+                let source = scattering_source(medium, r_t, mu_t, mu_s_t, nu, rayleigh_phase_value, mie_phase_value);
                 let weight = vec3<f32>(
                     scattering_step_fraction(medium.extinction.x, dt),
                     scattering_step_fraction(medium.extinction.y, dt),

@@ -1,12 +1,15 @@
-// Bake of the multiple-scattering LUT (after Hillaire 2020 §5.5): one invocation per
-// texel, n × n stratified directions, each marched with uniform midpoint steps.
-// Ψ_ms = Σ_{k≥2} Ψ_k, one pass per order: `bake_multiple_scattering_lut` writes Ψ₂
-// (true phases of the sun's scattering, ground bounce) to both outputs;
-// `bake_multiple_scattering_next_order` reads Ψ_k (group 1 binding 1), writes Ψ_{k+1}
-// and adds it to the sum. Twin: atmos::lut::multiple_scattering_lut.
+// Bake of the multiple-scattering LUT (after Hillaire 2020 §5.5, direction-dependent):
+// one invocation per texel; n zenith samples crowding at the horizon (see
+// direction_zenith_sample) × n azimuths, each marched with uniform midpoint steps; the
+// moments Ψ, d and A of the field of orders 1 … N−1 (atmos::lut::multiple_scattering_lut
+// has the theory). One pass per order: `bake_multiple_scattering_lut` writes F₁'s
+// moments (true phases of the sun's scattering, the sun's ground bounce) to both
+// outputs; `bake_multiple_scattering_next_order` reads F_k's (group 1 binding 1),
+// writes F_{k+1}'s and adds them to the sum. Planar layout: layer m of texel (x, y)
+// at x + w·(y + h·m). Twin: atmos::lut::multiple_scattering_lut.
 #import atmos::lut_sampling
 
-// Ψ₂ or Ψ_{k+1}: this pass's order.
+// This pass's order.
 @group(2) @binding(0) var<storage, read_write> multiple_scattering_out: array<vec4<f32>>;
 // Σ of the orders so far: the LUT the other passes read.
 @group(2) @binding(1) var<storage, read_write> multiple_scattering_sum: array<vec4<f32>>;
@@ -19,25 +22,72 @@ fn texel_r_mu_s(x: u32, y: u32) -> vec2<f32> {
     return multiple_scattering_lut_r_mu_s(uv, lut_atmosphere.planet_radius, lut_atmosphere.top_radius, w, h);
 }
 
-fn multiple_scattering_texel(x: u32, y: u32) -> vec4<f32> {
+// Weighted sums over the direction quadrature: of F, F ω, F ω ωᵀ, and of ω, ω ωᵀ
+// alone (the quadrature's own means, subtracted so an isotropic field has no
+// anisotropy).
+struct MomentSums {
+    radiance: vec3<f32>,
+    radiance_x: vec3<f32>,
+    radiance_z: vec3<f32>,
+    radiance_xx: vec3<f32>,
+    radiance_zz: vec3<f32>,
+    radiance_xz: vec3<f32>,
+    weight: f32,
+    x: f32,
+    z: f32,
+    xx: f32,
+    zz: f32,
+}
+
+fn moment_sums_add(sums: ptr<function, MomentSums>, radiance: vec3<f32>, x: f32, z: f32, weight: f32) {
+    let f = radiance * weight;
+    (*sums).radiance += f;
+    (*sums).radiance_x += f * x;
+    (*sums).radiance_z += f * z;
+    (*sums).radiance_xx += f * x * x;
+    (*sums).radiance_zz += f * z * z;
+    (*sums).radiance_xz += f * x * z;
+    (*sums).weight += weight;
+    (*sums).x += weight * x;
+    (*sums).z += weight * z;
+    (*sums).xx += weight * x * x;
+    (*sums).zz += weight * z * z;
+}
+
+fn moment_sums_moments(sums: MomentSums) -> MultipleScatteringMoments {
+    let psi = sums.radiance / sums.weight;
+    return MultipleScatteringMoments(
+        psi,
+        sums.radiance_x / sums.weight - sums.x / sums.weight * psi,
+        sums.radiance_z / sums.weight - sums.z / sums.weight * psi,
+        sums.radiance_xx / sums.weight - sums.xx / sums.weight * psi,
+        sums.radiance_zz / sums.weight - sums.zz / sums.weight * psi,
+        sums.radiance_xz / sums.weight,
+    );
+}
+
+fn multiple_scattering_texel(x: u32, y: u32) -> MultipleScatteringMoments {
     let r_mu_s = texel_r_mu_s(x, y);
     let r = r_mu_s.x;
     let mu_s = r_mu_s.y;
     let sin_s = sqrt(max((1.0 - mu_s) * (1.0 + mu_s), 0.0));
     let k = lut_settings.multiple_scattering_direction_sqrt;
-    var second_order = vec3<f32>(0.0);
+    var sums = MomentSums(vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), 0.0, 0.0, 0.0, 0.0, 0.0);
     for (var i = 0u; i < k; i++) {
-        let mu = -1.0 + (f32(i) + 0.5) * 2.0 / f32(k);
+        let zenith = direction_zenith_sample(r, lut_atmosphere.planet_radius, i, k);
+        let mu = zenith.x;
         let sin_v = sqrt(max((1.0 - mu) * (1.0 + mu), 0.0));
         let segment = ray_segment_in_atmosphere(r, mu, lut_atmosphere.planet_radius, lut_atmosphere.top_radius);
         let n = lut_settings.multiple_scattering_samples;
         let dt = (segment.y - segment.x) / f32(n);
         for (var j = 0u; j < k; j++) {
             let azimuth = 2.0 * PI * (f32(j) + 0.5) / f32(k);
-            let nu = mu * mu_s + sin_v * sin_s * cos(azimuth);
+            let cos_azimuth = cos(azimuth);
+            let nu = mu * mu_s + sin_v * sin_s * cos_azimuth;
             // Sunlight scattered at p into −ω turns by the angle whose cosine is ω·s = ν.
             let rayleigh_phase_value = rayleigh_phase(nu);
             let mie_phase_value = cornette_shanks_phase(nu, lut_atmosphere.mie_g);
+            var radiance = vec3<f32>(0.0);
             var throughput = vec3<f32>(1.0);
             for (var step = 0u; step < n; step++) {
                 let t = segment.x + (f32(step) + 0.5) * dt;
@@ -52,7 +102,7 @@ fn multiple_scattering_texel(x: u32, y: u32) -> vec4<f32> {
                     scattering_step_fraction(medium.extinction.y, dt),
                     scattering_step_fraction(medium.extinction.z, dt),
                 );
-                second_order += throughput * scattering * sun * weight;
+                radiance += throughput * scattering * sun * weight;
                 throughput *= exp(-medium.extinction * dt);
             }
             if segment.z > 0.5 {
@@ -60,80 +110,100 @@ fn multiple_scattering_texel(x: u32, y: u32) -> vec4<f32> {
                 let r_g = radius_along_ray(r, mu, segment.y);
                 let mu_s_g = clamp((r * mu_s + segment.y * nu) / r_g, -1.0, 1.0);
                 let sun = sun_transmittance(r_g, mu_s_g);
-                second_order += throughput * sun * max(mu_s_g, 0.0) * lut_atmosphere.ground_albedo / PI;
+                radiance += throughput * sun * max(mu_s_g, 0.0) * lut_atmosphere.ground_albedo / PI;
             }
+            moment_sums_add(&sums, radiance, sin_v * cos_azimuth, mu, zenith.y);
         }
     }
-    let directions = f32(k * k);
-    return vec4<f32>(second_order / directions, 1.0);
+    return moment_sums_moments(sums);
 }
 
-fn multiple_scattering_next_order_texel(x: u32, y: u32) -> vec4<f32> {
+fn multiple_scattering_next_order_texel(x: u32, y: u32) -> MultipleScatteringMoments {
     let r_mu_s = texel_r_mu_s(x, y);
     let r = r_mu_s.x;
     let mu_s = r_mu_s.y;
     let sin_s = sqrt(max((1.0 - mu_s) * (1.0 + mu_s), 0.0));
     let k = lut_settings.multiple_scattering_direction_sqrt;
-    var next_order = vec3<f32>(0.0);
+    var sums = MomentSums(vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), 0.0, 0.0, 0.0, 0.0, 0.0);
     for (var i = 0u; i < k; i++) {
-        let mu = -1.0 + (f32(i) + 0.5) * 2.0 / f32(k);
+        let zenith = direction_zenith_sample(r, lut_atmosphere.planet_radius, i, k);
+        let mu = zenith.x;
         let sin_v = sqrt(max((1.0 - mu) * (1.0 + mu), 0.0));
         let segment = ray_segment_in_atmosphere(r, mu, lut_atmosphere.planet_radius, lut_atmosphere.top_radius);
         let n = lut_settings.multiple_scattering_samples;
         let dt = (segment.y - segment.x) / f32(n);
         for (var j = 0u; j < k; j++) {
             let azimuth = 2.0 * PI * (f32(j) + 0.5) / f32(k);
-            let nu = mu * mu_s + sin_v * sin_s * cos(azimuth);
+            let cos_azimuth = cos(azimuth);
+            let nu = mu * mu_s + sin_v * sin_s * cos_azimuth;
+            var radiance = vec3<f32>(0.0);
             var throughput = vec3<f32>(1.0);
             for (var step = 0u; step < n; step++) {
                 let t = segment.x + (f32(step) + 0.5) * dt;
                 let r_t = radius_along_ray(r, mu, t);
+                let mu_t = clamp((r * mu + t) / r_t, -1.0, 1.0);
                 let mu_s_t = clamp((r * mu_s + t * nu) / r_t, -1.0, 1.0);
                 let medium = medium_at_altitude(lut_atmosphere, r_t - lut_atmosphere.planet_radius);
-                let previous = lookup_multiple_scattering(r_t, mu_s_t);
-                let scattering = medium.rayleigh_scattering + medium.mie_scattering;
+                let source = multiple_scattering_source(medium, r_t, mu_t, mu_s_t, nu);
                 let weight = vec3<f32>(
                     scattering_step_fraction(medium.extinction.x, dt),
                     scattering_step_fraction(medium.extinction.y, dt),
                     scattering_step_fraction(medium.extinction.z, dt),
                 );
-                next_order += throughput * scattering * previous * weight;
+                radiance += throughput * source * weight;
                 throughput *= exp(-medium.extinction * dt);
             }
             if segment.z > 0.5 {
-                // The ground under an isotropic field Ψ_k receives π Ψ_k and reflects
-                // ρ/π of it as radiance.
+                // The ground reflects ρ/π of the previous order's irradiance.
                 let r_g = radius_along_ray(r, mu, segment.y);
                 let mu_s_g = clamp((r * mu_s + segment.y * nu) / r_g, -1.0, 1.0);
-                let previous = lookup_multiple_scattering(r_g, mu_s_g);
-                next_order += throughput * previous * lut_atmosphere.ground_albedo;
+                let irradiance = multiple_scattering_ground_irradiance(lookup_multiple_scattering(r_g, mu_s_g));
+                radiance += throughput * irradiance * lut_atmosphere.ground_albedo;
             }
+            moment_sums_add(&sums, radiance, sin_v * cos_azimuth, mu, zenith.y);
         }
     }
-    let directions = f32(k * k);
-    return vec4<f32>(next_order / directions, 1.0);
+    return moment_sums_moments(sums);
+}
+
+fn layers_of(moments: MultipleScatteringMoments) -> array<vec3<f32>, 6> {
+    return array<vec3<f32>, 6>(
+        moments.mean,
+        moments.first_moment_x,
+        moments.first_moment_z,
+        moments.anisotropy_xx,
+        moments.anisotropy_zz,
+        moments.anisotropy_xz,
+    );
 }
 
 @compute @workgroup_size(8, 8)
 fn bake_multiple_scattering_lut(@builtin(global_invocation_id) id: vec3<u32>) {
     let w = lut_settings.multiple_scattering_width;
-    if id.x >= w || id.y >= lut_settings.multiple_scattering_height {
+    let h = lut_settings.multiple_scattering_height;
+    if id.x >= w || id.y >= h {
         return;
     }
-    let texel = multiple_scattering_texel(id.x, id.y);
-    multiple_scattering_out[id.x + w * id.y] = texel;
-    multiple_scattering_sum[id.x + w * id.y] = texel;
+    var layers = layers_of(multiple_scattering_texel(id.x, id.y));
+    for (var m = 0u; m < 6u; m++) {
+        let index = id.x + w * (id.y + h * m);
+        multiple_scattering_out[index] = vec4<f32>(layers[m], 1.0);
+        multiple_scattering_sum[index] = vec4<f32>(layers[m], 1.0);
+    }
 }
 
 @compute @workgroup_size(8, 8)
 fn bake_multiple_scattering_next_order(@builtin(global_invocation_id) id: vec3<u32>) {
     let w = lut_settings.multiple_scattering_width;
-    if id.x >= w || id.y >= lut_settings.multiple_scattering_height {
+    let h = lut_settings.multiple_scattering_height;
+    if id.x >= w || id.y >= h {
         return;
     }
-    let index = id.x + w * id.y;
-    let texel = multiple_scattering_next_order_texel(id.x, id.y);
-    multiple_scattering_out[index] = texel;
-    let total = multiple_scattering_sum[index];
-    multiple_scattering_sum[index] = vec4<f32>(total.xyz + texel.xyz, 1.0);
+    var layers = layers_of(multiple_scattering_next_order_texel(id.x, id.y));
+    for (var m = 0u; m < 6u; m++) {
+        let index = id.x + w * (id.y + h * m);
+        multiple_scattering_out[index] = vec4<f32>(layers[m], 1.0);
+        let total = multiple_scattering_sum[index];
+        multiple_scattering_sum[index] = vec4<f32>(total.xyz + layers[m], 1.0);
+    }
 }

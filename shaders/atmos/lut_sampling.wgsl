@@ -14,6 +14,7 @@
 #import atmos::atmosphere
 #import atmos::phase
 #import atmos::lut_parameterization
+#import atmos::lut_multiple_scattering_moments
 
 // Sizes and sample counts (Rust: LutSettingsUniform).
 struct LutSettings {
@@ -103,20 +104,46 @@ fn sun_transmittance(r: f32, mu_s: f32) -> vec3<f32> {
     return lookup_transmittance(r, mu_s) * sun_visibility(r, mu_s, lut_atmosphere.planet_radius);
 }
 
-// Ψ_ms(r, mu_s), bilinear.
-fn lookup_multiple_scattering(r: f32, mu_s: f32) -> vec3<f32> {
+// One layer of the multiple-scattering LUT (planar: layer m of texel (x, y) at
+// x + w·(y + h·m)), bilinear over a footprint.
+fn multiple_scattering_layer(f: BilinearFootprint, layer: u32) -> vec3<f32> {
+    let w = lut_settings.multiple_scattering_width;
+    let base = w * lut_settings.multiple_scattering_height * layer;
+    return bilinear_blend(
+        multiple_scattering_lut[base + f.x0 + w * f.y0].xyz,
+        multiple_scattering_lut[base + f.x1 + w * f.y0].xyz,
+        multiple_scattering_lut[base + f.x0 + w * f.y1].xyz,
+        multiple_scattering_lut[base + f.x1 + w * f.y1].xyz,
+        f.fx,
+        f.fy,
+    );
+}
+
+// The field's moments at (r, mu_s), bilinear.
+fn lookup_multiple_scattering(r: f32, mu_s: f32) -> MultipleScatteringMoments {
     let w = lut_settings.multiple_scattering_width;
     let h = lut_settings.multiple_scattering_height;
     let uv = multiple_scattering_lut_uv(r, mu_s, lut_atmosphere.planet_radius, lut_atmosphere.top_radius, w, h);
     let f = bilinear_footprint(uv, w, h, 0u, h - 1u);
-    return bilinear_blend(
-        multiple_scattering_lut[f.x0 + w * f.y0].xyz,
-        multiple_scattering_lut[f.x1 + w * f.y0].xyz,
-        multiple_scattering_lut[f.x0 + w * f.y1].xyz,
-        multiple_scattering_lut[f.x1 + w * f.y1].xyz,
-        f.fx,
-        f.fy,
+    return MultipleScatteringMoments(
+        multiple_scattering_layer(f, 0u),
+        multiple_scattering_layer(f, 1u),
+        multiple_scattering_layer(f, 2u),
+        multiple_scattering_layer(f, 3u),
+        multiple_scattering_layer(f, 4u),
+        multiple_scattering_layer(f, 5u),
     );
+}
+
+// In-scatter source of orders ≥ 2 per metre per unit sun irradiance at radius r (sun
+// zenith cosine mu_s) towards a viewer looking along (mu, nu): Rayleigh and Mie
+// scattering of the table's field with each phase function's Legendre moments.
+fn multiple_scattering_source(medium: MediumSample, r: f32, mu: f32, mu_s: f32, nu: f32) -> vec3<f32> {
+    let moments = lookup_multiple_scattering(r, mu_s);
+    let direction = sun_frame_direction(mu, mu_s, nu);
+    let rayleigh = scattered_multiple_scattering(moments, direction, RAYLEIGH_LEGENDRE_MOMENTS);
+    let mie = scattered_multiple_scattering(moments, direction, cornette_shanks_legendre_moments(lut_atmosphere.mie_g));
+    return medium.rayleigh_scattering * rayleigh + medium.mie_scattering * mie;
 }
 
 // Radiance of the sky view towards (mu, cos_azimuth) from radius r; sky directions
@@ -180,13 +207,14 @@ fn lookup_aerial_perspective(uv: vec2<f32>, distance: f32) -> ScatteringSegment 
     return ScatteringSegment(radiance, transmittance);
 }
 
-// In-scatter source per metre per unit sun irradiance: single scattering lit through
+// In-scatter source per metre per unit sun irradiance at radius r towards a viewer
+// looking along (mu, nu) (sun zenith cosine mu_s there): single scattering lit through
 // the transmittance LUT plus all higher orders from the multiple-scattering LUT.
-fn scattering_source(medium: MediumSample, r: f32, mu_s: f32, rayleigh_phase_value: f32, mie_phase_value: f32) -> vec3<f32> {
+fn scattering_source(medium: MediumSample, r: f32, mu: f32, mu_s: f32, nu: f32, rayleigh_phase_value: f32, mie_phase_value: f32) -> vec3<f32> {
     let sun = sun_transmittance(r, mu_s);
-    let multiple = lookup_multiple_scattering(r, mu_s);
+    let multiple = multiple_scattering_source(medium, r, mu, mu_s, nu);
     return sun * (medium.rayleigh_scattering * rayleigh_phase_value + medium.mie_scattering * mie_phase_value)
-        + multiple * (medium.rayleigh_scattering + medium.mie_scattering);
+        + multiple;
 }
 
 // Marches (r, mu) from t_start to t_end, steps spaced quadratically, each sampled at
@@ -207,9 +235,10 @@ fn raymarch_scattering(r: f32, mu: f32, mu_s: f32, nu: f32, t_start: f32, t_end:
         let t = t_previous + 0.5 * dt;
         t_previous = t_next;
         let r_t = radius_along_ray(r, mu, t);
+        let mu_t = clamp((r * mu + t) / r_t, -1.0, 1.0);
         let mu_s_t = clamp((r * mu_s + t * nu) / r_t, -1.0, 1.0);
         let medium = medium_at_altitude(lut_atmosphere, r_t - lut_atmosphere.planet_radius);
-        let source = scattering_source(medium, r_t, mu_s_t, rayleigh_phase_value, mie_phase_value);
+        let source = scattering_source(medium, r_t, mu_t, mu_s_t, nu, rayleigh_phase_value, mie_phase_value);
         let weight = vec3<f32>(
             scattering_step_fraction(medium.extinction.x, dt),
             scattering_step_fraction(medium.extinction.y, dt),

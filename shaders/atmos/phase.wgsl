@@ -33,3 +33,13 @@ fn cornette_shanks_phase(cos_theta: f32, g: f32) -> f32 {
     return 3.0 / (8.0 * PI) * (1.0 - g) * (1.0 + g) * (1.0 + cos_theta * cos_theta)
         / ((2.0 + g * g) * base * sqrt(base));
 }
+
+// The first two Legendre moments (g1, g2) of the Cornette–Shanks phase function,
+// g_l = 2π ∫ p(μ) P_l(μ) dμ; g = 0 gives Rayleigh's (0, 1/10).
+fn cornette_shanks_legendre_moments(g: f32) -> vec2<f32> {
+    let g2 = g * g;
+    let normalisation = 3.0 / (2.0 * (2.0 + g2));
+    let first = normalisation * g * (8.0 + 2.0 * g2) / 5.0;
+    let second = normalisation * (2.0 / 15.0 + 32.0 / 21.0 * g2 + 12.0 / 35.0 * g2 * g2);
+    return vec2<f32>(first, second);
+}

@@ -158,6 +158,18 @@ impl SkyQuery {
     pub fn nu(&self) -> f64 {
         self.view.dot(self.sun)
     }
+    /// `[r, μ, μ_s, ν]` at once (one square root and one division instead of one per
+    /// accessor): what a per-pixel evaluation reads.
+    pub fn cosines(&self) -> [f64; 4] {
+        let r = self.position.length();
+        let up = self.position * r.recip(); // = position.normalize(), as mu() and mu_s()
+        [
+            r,
+            self.view.dot(up),
+            self.sun.dot(up),
+            self.view.dot(self.sun),
+        ]
+    }
 }
 
 /// What a rung answers.

@@ -32,6 +32,23 @@ pub fn cornette_shanks_phase(cos_theta: f32, g: f32) -> f32 {
         / ((2.0 + g * g) * base * base.sqrt())
 }
 
+/// The first two Legendre moments (g₁, g₂) of the Cornette–Shanks phase function,
+/// g_l = 2π ∫₋₁¹ p(μ) P_l(μ) dμ: p = Σ_l (2l + 1) g_l P_l(μ) / 4π. Closed form from
+/// p_CS = 3(1 + μ²) p_HG / (2(2 + g²)), the Henyey–Greenstein moments g^l and μ²
+/// written in Legendre polynomials: g₁ = 3g(4 + g²)/(5(2 + g²)),
+/// g₂ = 3(2/15 + 32g²/21 + 12g⁴/35)/(2(2 + g²)). g = 0 gives Rayleigh's (0, 1/10).
+///
+/// They are what a phase function does to the smooth (degree ≤ 2) part of a
+/// radiance field: the multiple-scattering LUT stores that part
+/// ([`crate::lut::multiple_scattering_lut`]).
+pub fn cornette_shanks_legendre_moments(g: f32) -> [f32; 2] {
+    let g2 = g * g;
+    let normalisation = 3.0 / (2.0 * (2.0 + g2));
+    let first = normalisation * g * (8.0 + 2.0 * g2) / 5.0;
+    let second = normalisation * (2.0 / 15.0 + 32.0 / 21.0 * g2 + 12.0 / 35.0 * g2 * g2);
+    [first, second]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -68,6 +85,24 @@ mod tests {
                 max_relative = 1e-6
             );
         }
+    }
+
+    #[test]
+    fn cornette_shanks_legendre_moments_match_quadrature() {
+        for g in [-0.9f32, -0.3, 0.0, 0.5, 0.8, 0.95] {
+            let gd = f64::from(g);
+            let first = sphere_integral(|mu| mu * reference::cornette_shanks_phase(mu, gd));
+            let second = sphere_integral(|mu| {
+                0.5 * (3.0 * mu * mu - 1.0) * reference::cornette_shanks_phase(mu, gd)
+            });
+            let [g1, g2] = cornette_shanks_legendre_moments(g);
+            approx::assert_abs_diff_eq!(f64::from(g1), first, epsilon = 2e-6);
+            approx::assert_abs_diff_eq!(f64::from(g2), second, epsilon = 2e-6);
+        }
+        // Rayleigh = Cornette–Shanks at g = 0: p = (1 + P₂/2)/4π.
+        let [g1, g2] = cornette_shanks_legendre_moments(0.0);
+        assert_eq!(g1, 0.0);
+        approx::assert_abs_diff_eq!(g2, 0.1, epsilon = 1e-7);
     }
 
     #[test]

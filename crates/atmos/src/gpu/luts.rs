@@ -14,6 +14,7 @@ use wgpu::util::DeviceExt as _;
 
 use crate::frame::FrameCamera;
 use crate::gpu::resources::{storage_entry, uniform_entry};
+use crate::lut::multiple_scattering_moments::MULTIPLE_SCATTERING_LAYERS;
 use crate::lut::{LutSettings, LutSettingsUniform};
 use crate::{AtmosError, Atmosphere};
 
@@ -91,7 +92,8 @@ impl LutBaker {
         let texel_bytes = 16u64;
         let sizes = [
             u64::from(s.transmittance_width * s.transmittance_height),
-            u64::from(s.multiple_scattering_width * s.multiple_scattering_height),
+            u64::from(s.multiple_scattering_width * s.multiple_scattering_height)
+                * u64::from(MULTIPLE_SCATTERING_LAYERS),
             u64::from(s.sky_view_width * s.sky_view_height),
             2 * u64::from(
                 s.aerial_perspective_width

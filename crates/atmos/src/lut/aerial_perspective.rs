@@ -88,13 +88,16 @@ pub fn aerial_perspective_column(
                 let dt = hi - lo;
                 let t = lo + 0.5 * dt;
                 let r_t = radius_along_ray(r, mu, t);
+                let mu_t = ((r * mu + t) / r_t).clamp(-1.0, 1.0);
                 let mu_s_t = ((r * mu_s + t * nu) / r_t).clamp(-1.0, 1.0);
                 let medium = medium_at_altitude(atmosphere, r_t - atmosphere.planet_radius);
                 let source = scattering_source(
                     bindings,
                     &medium,
                     r_t,
+                    mu_t,
                     mu_s_t,
+                    nu,
                     rayleigh_phase_value,
                     mie_phase_value,
                 );

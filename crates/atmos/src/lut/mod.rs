@@ -8,7 +8,7 @@
 //! | table | default size | depends on | what a texel holds |
 //! |---|---|---|---|
 //! | transmittance | 256 × 64, 40 log-linear steps | atmosphere | transmittance to the top of the atmosphere for (r, μ) |
-//! | multiple scattering | 32 × 32, 64 directions × 20 samples, orders 2…5 | atmosphere | Ψ_ms(altitude, μ_s): orders ≥ 2 arriving from all directions (mean), per unit scattering |
+//! | multiple scattering | 32 × 32 × 6 layers, 64 directions × 20 samples, orders 2…5 | atmosphere | the field of orders 1…4 arriving at (altitude, μ_s): its mean, first moment and traceless second moment (bands 0–2), per unit sun irradiance |
 //! | sky view | 192 × 108, 30 samples | camera altitude, sun zenith | radiance for (view elevation, azimuth from the sun) |
 //! | aerial perspective | 32 × 32 × 32 over 32 km, 2 steps per slice | camera frame | in-scatter and transmittance per froxel |
 //!
@@ -23,6 +23,7 @@
 
 pub mod aerial_perspective;
 pub mod multiple_scattering_lut;
+pub mod multiple_scattering_moments;
 pub mod parameterization;
 pub mod precomputed_sky;
 pub mod raymarch;
@@ -40,6 +41,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {
         name: "atmos::lut_parameterization",
         source: include_str!("../../shaders/lut_parameterization.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "atmos::lut_multiple_scattering_moments",
+        source: include_str!("../../shaders/lut_multiple_scattering_moments.wgsl"),
     },
     skyscape_wgsl::Module {
         name: "atmos::lut_sampling",
@@ -78,7 +83,8 @@ pub struct LutSettings {
     pub multiple_scattering_size: [u32; 2],
     /// Raymarch samples per direction in the multiple-scattering bake.
     pub multiple_scattering_samples: u32,
-    /// √(directions) of the multiple-scattering bake (8 → Hillaire's 64).
+    /// √(directions) of the multiple-scattering bake, ≥ 2 (8 → Hillaire's 64): that
+    /// many zenith samples (half below the horizon, crowding at it) × azimuths.
     pub multiple_scattering_direction_sqrt: u32,
     /// Highest scattering order in the multiple-scattering LUT (≥ 2): one bake pass per
     /// order from 2 on (host side only: the passes are the same shader).
@@ -218,6 +224,13 @@ impl LutSettings {
                 return invalid(field, f64::from(count), "must be in 1..=1024 samples");
             }
         }
+        if self.multiple_scattering_direction_sqrt < 2 {
+            return invalid(
+                "multiple_scattering_direction_sqrt",
+                f64::from(self.multiple_scattering_direction_sqrt),
+                "must be ≥ 2 (the zenith samples are split between the ground and the sky)",
+            );
+        }
         if !(2..=16).contains(&self.multiple_scattering_orders) {
             return invalid(
                 "multiple_scattering_orders",
@@ -326,15 +339,16 @@ pub fn bilinear_blend(a: f32, b: f32, c: f32, d: f32, fx: f32, fy: f32) -> f32 {
 
 /// Evaluates `texel(index)` for `0..count` on all cores (`std::thread::scope`, one
 /// contiguous chunk per thread).
-pub fn fill_parallel<F>(count: usize, texel: F) -> Vec<[f32; 4]>
+pub fn fill_parallel<T, F>(count: usize, texel: F) -> Vec<T>
 where
-    F: Fn(usize) -> [f32; 4] + Sync,
+    T: Copy + Default + Send,
+    F: Fn(usize) -> T + Sync,
 {
     let threads = std::thread::available_parallelism()
         .map(|n| n.get())
         .unwrap_or(1)
         .min(count.max(1));
-    let mut out = vec![[0.0f32; 4]; count];
+    let mut out = vec![T::default(); count];
     if threads <= 1 || count < 64 {
         for (i, t) in out.iter_mut().enumerate() {
             *t = texel(i);

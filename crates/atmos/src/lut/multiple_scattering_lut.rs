@@ -1,40 +1,82 @@
-//! Multiple-scattering LUT (after Hillaire 2020 §5.5): for a point at radius r lit by
-//! the sun at zenith cosine μ_s, Ψ_ms = Σ_{k≥2} Ψ_k, where Ψ_k is the radiance of
-//! scattering order k averaged over all directions arriving at the point, per unit sun
-//! irradiance. The view raymarch scatters it with an isotropic phase (σ_s·Ψ_ms):
-//! Hillaire's approximation, which makes the table 2D.
+//! Multiple-scattering LUT (after Hillaire 2020 §5.5, made direction-dependent): for
+//! a point at radius r lit by the sun at zenith cosine μ_s, the radiance field F of
+//! scattering orders 1 … N−1 arriving there (per unit sun irradiance), reduced to its
+//! smooth part: the mean Ψ = ⟨F⟩, the first moment d = ⟨F ω⟩ and the traceless second
+//! moment A = ⟨F (ω ωᵀ − I/3)⟩, ⟨·⟩ the mean over the sphere of directions ω, in the
+//! point's sun frame (z up, x towards the sun's horizontal direction; the field is
+//! mirror-symmetric in y, so d_y = A_xy = A_yz = 0 and A_yy = −A_xx − A_zz).
 //!
-//! * Ψ₂ = ∮ [∫ T(x→p) (σ_R p_R(ν) + σ_M p_M(ν)) T_sun(p) dt + T(x→g) T_sun(g) max(μ_s,g, 0) ρ/π] dω / 4π
-//!   — single-scattered light (with the true Rayleigh and Cornette–Shanks phases of the
-//!   sun's scattering angle ν = ω·s, like the view raymarch) and the sun's Lambert bounce
-//!   off the ground, arriving from every direction ω;
-//! * Ψ_{k+1} = ∮ [∫ T(x→p) σ_s(p) Ψ_k(p) dt + T(x→g) ρ Ψ_k(g)] dω / 4π — the next order
-//!   from the previous order's table, looked up where the light scatters (so a point's
-//!   neighbourhood is lit as it is, not as the point), and the ground's bounce of that
-//!   order (irradiance π Ψ_k(g) of an isotropic field, reflected with albedo ρ).
+//! Those are F's spherical-harmonic bands 0, 1 and 2, and a phase function with
+//! Legendre moments (g₁, g₂) scatters them exactly:
+//! ∮ p(ω·v) F(ω) dω = Ψ + 3 g₁ d·v + (15/2) g₂ vᵀA v. Rayleigh's phase has degree 2
+//! (g₁ = 0, g₂ = 1/10), so its multiple scattering is exact up to the table's
+//! quadrature; Cornette–Shanks' forward peak keeps higher bands, which F (smooth) hardly
+//! has. Hillaire's table is band 0 alone: it scatters F as if it were isotropic, which
+//! read 5–9 % low against the reference's orders ≥ 2.
+//!
+//! * F₁ = sunlight single-scattered towards the point (true Rayleigh and
+//!   Cornette–Shanks phases of the sun's scattering angle ν = ω·s) and the sun's
+//!   Lambert bounce off the ground, arriving from every direction ω;
+//! * F_{k+1} = ∫ T(x→p) σ_s(p) ⟨p ∗ F_k⟩(p, ω) dt + T(x→g) ρ E_k(g)/π — the next order
+//!   from the previous order's table, scattered towards the point where the light
+//!   scatters (so a point's neighbourhood is lit as it is, not as the point), and the
+//!   ground's Lambert bounce of the irradiance E_k = π(Ψ + 2 d_z + (15/8) A_zz) of
+//!   the previous order's field (its bands ≤ 2 against the clamped cosine: exact for
+//!   a field constant over each hemisphere, sky above and ground below).
 //!
 //! Orders are iterated explicitly up to [`super::LutSettings::multiple_scattering_orders`]
 //! (the reference, rung 4, stops at 7; orders 6 and 7 add < 0.1 % of the luminance),
-//! one bake pass per order. Hillaire's isotropic first bounce and geometric series
-//! Ψ₂/(1 − f_ms) read 3–16 % low (sun 90…10°) against the reference's orders ≥ 2;
-//! these orders read 5–9 % low, the cost of the isotropic second scattering (see the
-//! atmos README, "Speed against accuracy").
+//! one bake pass per order.
 //!
 //! The sphere is sampled with n × n stratified directions (zenith cosine and azimuth
 //! at stratum midpoints; 8 × 8 = Hillaire's 64), each marched with uniform midpoint
-//! steps. Twin of `shaders/atmos/lut_multiple_scattering.wgsl`.
+//! steps. The moments subtract the quadrature's own means of ω and ω ωᵀ, so an
+//! isotropic field gives d = A = 0 exactly. The table is planar: layer m of texel
+//! (x, y) is entry x + w·(y + h·m), layers Ψ, d_x, d_z, A_xx, A_zz, A_xz (rgb + 1).
+//! Twin of `shaders/atmos/lut_multiple_scattering.wgsl` and the lookups of
+//! `shaders/atmos/lut_sampling.wgsl`.
 
 use skyscape_wgsl::common::PI;
 
+use super::multiple_scattering_moments::{
+    MULTIPLE_SCATTERING_LAYERS, MultipleScatteringMoments, RAYLEIGH_LEGENDRE_MOMENTS,
+    direction_zenith_sample, multiple_scattering_ground_irradiance, scattered_multiple_scattering,
+    sun_frame_direction,
+};
 use super::parameterization::{
     bilinear_footprint, multiple_scattering_lut_r_mu_s, multiple_scattering_lut_uv,
 };
 use super::raymarch::{
-    LutBindings, medium_at_altitude, radius_along_ray, ray_segment_in_atmosphere,
+    LutBindings, MediumSample, medium_at_altitude, radius_along_ray, ray_segment_in_atmosphere,
     scattering_step_fraction, sun_transmittance,
 };
-use super::{Lut2d, fill_parallel};
-use crate::phase::{cornette_shanks_phase, rayleigh_phase};
+use super::{Lut2d, bilinear_blend, fill_parallel};
+use crate::phase::{cornette_shanks_legendre_moments, cornette_shanks_phase, rayleigh_phase};
+
+/// In-scatter source of orders ≥ 2 per metre per unit sun irradiance at a point of
+/// radius `r` (sun zenith cosine `mu_s`) towards a viewer looking along (zenith cosine
+/// `mu`, sun cosine `nu`): Rayleigh and Mie scattering of the table's field with each
+/// phase function's Legendre moments.
+pub fn multiple_scattering_source(
+    bindings: &LutBindings<'_>,
+    medium: &MediumSample,
+    r: f32,
+    mu: f32,
+    mu_s: f32,
+    nu: f32,
+) -> [f32; 3] {
+    let moments = lookup_multiple_scattering(bindings, r, mu_s);
+    let direction = sun_frame_direction(mu, mu_s, nu);
+    let rayleigh = scattered_multiple_scattering(&moments, direction, RAYLEIGH_LEGENDRE_MOMENTS);
+    let mie = scattered_multiple_scattering(
+        &moments,
+        direction,
+        cornette_shanks_legendre_moments(bindings.atmosphere.mie_g),
+    );
+    std::array::from_fn(|c| {
+        medium.rayleigh_scattering[c] * rayleigh[c] + medium.mie_scattering[c] * mie[c]
+    })
+}
 
 /// The (r, μ_s) of texel (x, y) of the multiple-scattering LUT.
 fn texel_r_mu_s(bindings: &LutBindings<'_>, x: u32, y: u32) -> [f32; 2] {
@@ -53,17 +95,72 @@ fn texel_r_mu_s(bindings: &LutBindings<'_>, x: u32, y: u32) -> [f32; 2] {
     )
 }
 
-/// One texel of the second order: Ψ₂ per unit sun irradiance (w = 1). Reads only the
-/// transmittance LUT.
-pub fn multiple_scattering_texel(bindings: &LutBindings<'_>, x: u32, y: u32) -> [f32; 4] {
+/// Sums over the direction quadrature: of F, F ω and F ω ωᵀ, and of ω and ω ωᵀ alone
+/// (the quadrature's own means, subtracted so an isotropic field has no anisotropy).
+#[derive(Default)]
+struct MomentSums {
+    radiance: [f32; 3],
+    radiance_x: [f32; 3],
+    radiance_z: [f32; 3],
+    radiance_xx: [f32; 3],
+    radiance_zz: [f32; 3],
+    radiance_xz: [f32; 3],
+    weight: f32,
+    x: f32,
+    z: f32,
+    xx: f32,
+    zz: f32,
+}
+
+impl MomentSums {
+    fn add(&mut self, radiance: [f32; 3], x: f32, z: f32, weight: f32) {
+        for (c, radiance) in radiance.iter().enumerate() {
+            let f = radiance * weight;
+            self.radiance[c] += f;
+            self.radiance_x[c] += f * x;
+            self.radiance_z[c] += f * z;
+            self.radiance_xx[c] += f * x * x;
+            self.radiance_zz[c] += f * z * z;
+            self.radiance_xz[c] += f * x * z;
+        }
+        self.weight += weight;
+        self.x += weight * x;
+        self.z += weight * z;
+        self.xx += weight * x * x;
+        self.zz += weight * z * z;
+    }
+
+    /// The weighted means, less the quadrature's own means of ω and ω ωᵀ.
+    fn moments(&self) -> MultipleScatteringMoments {
+        let mean = |sum: f32| sum / self.weight;
+        let (x, z, xx, zz) = (mean(self.x), mean(self.z), mean(self.xx), mean(self.zz));
+        let psi = self.radiance.map(mean);
+        MultipleScatteringMoments {
+            mean: psi,
+            first_moment_x: std::array::from_fn(|c| mean(self.radiance_x[c]) - x * psi[c]),
+            first_moment_z: std::array::from_fn(|c| mean(self.radiance_z[c]) - z * psi[c]),
+            anisotropy_xx: std::array::from_fn(|c| mean(self.radiance_xx[c]) - xx * psi[c]),
+            anisotropy_zz: std::array::from_fn(|c| mean(self.radiance_zz[c]) - zz * psi[c]),
+            anisotropy_xz: self.radiance_xz.map(mean),
+        }
+    }
+}
+
+/// One texel of F₁'s moments (the second order's source), per unit sun irradiance,
+/// Reads only the transmittance LUT.
+pub fn multiple_scattering_texel(
+    bindings: &LutBindings<'_>,
+    x: u32,
+    y: u32,
+) -> MultipleScatteringMoments {
     let atmosphere = bindings.atmosphere;
     let s = bindings.settings;
     let [r, mu_s] = texel_r_mu_s(bindings, x, y);
     let sin_s = ((1.0 - mu_s) * (1.0 + mu_s)).max(0.0).sqrt();
     let k = s.multiple_scattering_direction_sqrt;
-    let mut second_order = [0.0f32; 3];
+    let mut sums = MomentSums::default();
     for i in 0..k {
-        let mu = -1.0 + (i as f32 + 0.5) * 2.0 / k as f32;
+        let [mu, mu_weight] = direction_zenith_sample(r, atmosphere.planet_radius, i, k);
         let sin_v = ((1.0 - mu) * (1.0 + mu)).max(0.0).sqrt();
         let segment =
             ray_segment_in_atmosphere(r, mu, atmosphere.planet_radius, atmosphere.top_radius);
@@ -71,10 +168,12 @@ pub fn multiple_scattering_texel(bindings: &LutBindings<'_>, x: u32, y: u32) -> 
         let dt = (segment[1] - segment[0]) / n as f32;
         for j in 0..k {
             let azimuth = 2.0 * PI * (j as f32 + 0.5) / k as f32;
-            let nu = mu * mu_s + sin_v * sin_s * azimuth.cos();
+            let cos_azimuth = azimuth.cos();
+            let nu = mu * mu_s + sin_v * sin_s * cos_azimuth;
             // Sunlight scattered at p into −ω turns by the angle whose cosine is ω·s = ν.
             let rayleigh_phase_value = rayleigh_phase(nu);
             let mie_phase_value = cornette_shanks_phase(nu, atmosphere.mie_g);
+            let mut radiance = [0.0f32; 3];
             let mut throughput = [1.0f32; 3];
             for step in 0..n {
                 let t = segment[0] + (step as f32 + 0.5) * dt;
@@ -86,7 +185,7 @@ pub fn multiple_scattering_texel(bindings: &LutBindings<'_>, x: u32, y: u32) -> 
                     let scattering = medium.rayleigh_scattering[c] * rayleigh_phase_value
                         + medium.mie_scattering[c] * mie_phase_value;
                     let weight = scattering_step_fraction(medium.extinction[c], dt);
-                    second_order[c] += throughput[c] * scattering * sun[c] * weight;
+                    radiance[c] += throughput[c] * scattering * sun[c] * weight;
                     throughput[c] *= (-medium.extinction[c] * dt).exp();
                 }
             }
@@ -96,36 +195,31 @@ pub fn multiple_scattering_texel(bindings: &LutBindings<'_>, x: u32, y: u32) -> 
                 let mu_s_g = ((r * mu_s + segment[1] * nu) / r_g).clamp(-1.0, 1.0);
                 let sun = sun_transmittance(bindings, r_g, mu_s_g);
                 for c in 0..3 {
-                    second_order[c] +=
+                    radiance[c] +=
                         throughput[c] * sun[c] * mu_s_g.max(0.0) * atmosphere.ground_albedo[c] / PI;
                 }
             }
+            sums.add(radiance, sin_v * cos_azimuth, mu, mu_weight);
         }
     }
-    let directions = (k * k) as f32;
-    [
-        second_order[0] / directions,
-        second_order[1] / directions,
-        second_order[2] / directions,
-        1.0,
-    ]
+    sums.moments()
 }
 
-/// One texel of the next order: Ψ_{k+1} from the order-k table in
-/// `bindings.multiple_scattering` (w = 1).
+/// One texel of the next order: F_{k+1}'s moments from F_k's table in
+/// `bindings.multiple_scattering`.
 pub fn multiple_scattering_next_order_texel(
     bindings: &LutBindings<'_>,
     x: u32,
     y: u32,
-) -> [f32; 4] {
+) -> MultipleScatteringMoments {
     let atmosphere = bindings.atmosphere;
     let s = bindings.settings;
     let [r, mu_s] = texel_r_mu_s(bindings, x, y);
     let sin_s = ((1.0 - mu_s) * (1.0 + mu_s)).max(0.0).sqrt();
     let k = s.multiple_scattering_direction_sqrt;
-    let mut next_order = [0.0f32; 3];
+    let mut sums = MomentSums::default();
     for i in 0..k {
-        let mu = -1.0 + (i as f32 + 0.5) * 2.0 / k as f32;
+        let [mu, mu_weight] = direction_zenith_sample(r, atmosphere.planet_radius, i, k);
         let sin_v = ((1.0 - mu) * (1.0 + mu)).max(0.0).sqrt();
         let segment =
             ray_segment_in_atmosphere(r, mu, atmosphere.planet_radius, atmosphere.top_radius);
@@ -133,57 +227,68 @@ pub fn multiple_scattering_next_order_texel(
         let dt = (segment[1] - segment[0]) / n as f32;
         for j in 0..k {
             let azimuth = 2.0 * PI * (j as f32 + 0.5) / k as f32;
-            let nu = mu * mu_s + sin_v * sin_s * azimuth.cos();
+            let cos_azimuth = azimuth.cos();
+            let nu = mu * mu_s + sin_v * sin_s * cos_azimuth;
+            let mut radiance = [0.0f32; 3];
             let mut throughput = [1.0f32; 3];
             for step in 0..n {
                 let t = segment[0] + (step as f32 + 0.5) * dt;
                 let r_t = radius_along_ray(r, mu, t);
+                let mu_t = ((r * mu + t) / r_t).clamp(-1.0, 1.0);
                 let mu_s_t = ((r * mu_s + t * nu) / r_t).clamp(-1.0, 1.0);
                 let medium = medium_at_altitude(atmosphere, r_t - atmosphere.planet_radius);
-                let previous = lookup_multiple_scattering(bindings, r_t, mu_s_t);
+                let source = multiple_scattering_source(bindings, &medium, r_t, mu_t, mu_s_t, nu);
                 for c in 0..3 {
-                    let scattering = medium.rayleigh_scattering[c] + medium.mie_scattering[c];
                     let weight = scattering_step_fraction(medium.extinction[c], dt);
-                    next_order[c] += throughput[c] * scattering * previous[c] * weight;
+                    radiance[c] += throughput[c] * source[c] * weight;
                     throughput[c] *= (-medium.extinction[c] * dt).exp();
                 }
             }
             if segment[2] > 0.5 {
-                // The ground under an isotropic field Ψ_k receives π Ψ_k and reflects
-                // ρ/π of it as radiance.
+                // The ground reflects ρ/π of the previous order's irradiance.
                 let r_g = radius_along_ray(r, mu, segment[1]);
                 let mu_s_g = ((r * mu_s + segment[1] * nu) / r_g).clamp(-1.0, 1.0);
                 let previous = lookup_multiple_scattering(bindings, r_g, mu_s_g);
+                let irradiance = multiple_scattering_ground_irradiance(&previous);
                 for c in 0..3 {
-                    next_order[c] += throughput[c] * previous[c] * atmosphere.ground_albedo[c];
+                    radiance[c] += throughput[c] * irradiance[c] * atmosphere.ground_albedo[c];
                 }
             }
+            sums.add(radiance, sin_v * cos_azimuth, mu, mu_weight);
         }
     }
-    let directions = (k * k) as f32;
-    [
-        next_order[0] / directions,
-        next_order[1] / directions,
-        next_order[2] / directions,
-        1.0,
-    ]
+    sums.moments()
 }
 
-/// Bakes the whole LUT (threaded): Ψ₂, then each order up to `orders` from the one
-/// before, summed. `bindings.multiple_scattering` is not read.
+/// One order's texels as the planar table (layer-major, rgb + 1).
+fn planar_table(width: u32, height: u32, texels: &[MultipleScatteringMoments]) -> Lut2d {
+    let mut out = Vec::with_capacity(texels.len() * MULTIPLE_SCATTERING_LAYERS as usize);
+    for layer in 0..MULTIPLE_SCATTERING_LAYERS as usize {
+        out.extend(texels.iter().map(|t| {
+            let l = t.layers()[layer];
+            [l[0], l[1], l[2], 1.0]
+        }));
+    }
+    Lut2d {
+        width,
+        height: height * MULTIPLE_SCATTERING_LAYERS,
+        texels: out,
+    }
+}
+
+/// Bakes the whole LUT (threaded): F₁'s moments, then each order's up to `orders − 1`
+/// from the one before, summed. `bindings.multiple_scattering` is not read. The table
+/// is `width × (6 · height)`: the six layers stacked.
 pub fn bake_multiple_scattering_lut(bindings: &LutBindings<'_>, orders: u32) -> Lut2d {
     let (width, height) = (
         bindings.settings.multiple_scattering_width,
         bindings.settings.multiple_scattering_height,
     );
     let count = (width * height) as usize;
-    let mut order = Lut2d {
-        width,
-        height,
-        texels: fill_parallel(count, |i| {
-            multiple_scattering_texel(bindings, i as u32 % width, i as u32 / width)
-        }),
-    };
+    let first = fill_parallel(count, |i| {
+        multiple_scattering_texel(bindings, i as u32 % width, i as u32 / width)
+    });
+    let mut order = planar_table(width, height, &first);
     let mut sum = order.clone();
     for _ in 3..=orders {
         let previous = LutBindings {
@@ -193,33 +298,44 @@ pub fn bake_multiple_scattering_lut(bindings: &LutBindings<'_>, orders: u32) -> 
         let next = fill_parallel(count, |i| {
             multiple_scattering_next_order_texel(&previous, i as u32 % width, i as u32 / width)
         });
-        for (total, texel) in sum.texels.iter_mut().zip(&next) {
+        order = planar_table(width, height, &next);
+        for (total, texel) in sum.texels.iter_mut().zip(&order.texels) {
             for c in 0..3 {
                 total[c] += texel[c];
             }
         }
-        order.texels = next;
     }
     sum
 }
 
-/// Bilinear lookup of Ψ_ms at (r, μ_s).
-pub fn lookup_multiple_scattering(bindings: &LutBindings<'_>, r: f32, mu_s: f32) -> [f32; 3] {
+/// Bilinear lookup of the field's moments at (r, μ_s).
+pub fn lookup_multiple_scattering(
+    bindings: &LutBindings<'_>,
+    r: f32,
+    mu_s: f32,
+) -> MultipleScatteringMoments {
     let s = bindings.settings;
+    let (width, height) = (s.multiple_scattering_width, s.multiple_scattering_height);
     let uv = multiple_scattering_lut_uv(
         r,
         mu_s,
         bindings.atmosphere.planet_radius,
         bindings.atmosphere.top_radius,
-        s.multiple_scattering_width,
-        s.multiple_scattering_height,
+        width,
+        height,
     );
-    let footprint = bilinear_footprint(
-        uv,
-        s.multiple_scattering_width,
-        s.multiple_scattering_height,
-        0,
-        s.multiple_scattering_height - 1,
-    );
-    bindings.multiple_scattering.blend(&footprint)
+    let f = bilinear_footprint(uv, width, height, 0, height - 1);
+    let table = &bindings.multiple_scattering.texels;
+    let layers = std::array::from_fn(|layer| {
+        let base = (width * height) as usize * layer;
+        let at = |x: u32, y: u32| table[base + (x + width * y) as usize];
+        let (a, b, c, d) = (
+            at(f.x0, f.y0),
+            at(f.x1, f.y0),
+            at(f.x0, f.y1),
+            at(f.x1, f.y1),
+        );
+        std::array::from_fn(|i| bilinear_blend(a[i], b[i], c[i], d[i], f.fx, f.fy))
+    });
+    MultipleScatteringMoments::from_layers(layers)
 }

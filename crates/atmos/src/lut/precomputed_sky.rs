@@ -276,17 +276,31 @@ impl PrecomputedSky {
     /// Whether `query` reads a sky-view LUT (an unlimited segment seen from inside the
     /// atmosphere).
     fn needs_sky_view(&self, query: &SkyQuery) -> bool {
-        query.max_distance().is_infinite() && query.r() as f32 <= self.luts.atmosphere.top_radius
+        self.needs_sky_view_at(query, query.r())
+    }
+
+    fn needs_sky_view_at(&self, query: &SkyQuery, r: f64) -> bool {
+        query.max_distance().is_infinite() && r as f32 <= self.luts.atmosphere.top_radius
     }
 
     /// The per-pixel part: a query answered with a sky-view LUT from
     /// [`PrecomputedSky::prepare`] for the query's viewer and sun (it is read only for
     /// unlimited segments seen from inside the atmosphere).
     pub fn evaluate_prepared(&self, sky_view: &Lut2d, query: &SkyQuery) -> SkySample {
+        self.evaluate_prepared_at(sky_view, query, query.cosines())
+    }
+
+    /// [`Self::evaluate_prepared`] with the query's `[r, μ, μ_s, ν]` already computed.
+    fn evaluate_prepared_at(
+        &self,
+        sky_view: &Lut2d,
+        query: &SkyQuery,
+        cosines: [f64; 4],
+    ) -> SkySample {
         let bindings = self.luts.bindings();
         let a = &self.luts.atmosphere;
-        let r = (query.r() as f32).max(a.planet_radius);
-        let (mu, mu_s, nu) = (query.mu() as f32, query.mu_s() as f32, query.nu() as f32);
+        let [r, mu, mu_s, nu] = cosines.map(|c| c as f32);
+        let r = r.max(a.planet_radius);
         let segment = if query.max_distance().is_infinite() {
             unlimited_view_segment(&bindings, sky_view, r, mu, mu_s, nu)
         } else {
@@ -338,16 +352,18 @@ impl SkyModel for PrecomputedSky {
         };
         // one cache lookup for the queries seen from the first one's viewpoint (the
         // sky-view LUT depends only on the viewer's radius and the sun's zenith cosine)
-        let key = |q: &SkyQuery| [(q.r() as f32).to_bits(), (q.mu_s() as f32).to_bits()];
-        let shared_key = key(first);
-        let shared = self.sky_view_for(first.r() as f32, first.mu_s() as f32);
+        let key = |c: &[f64; 4]| [(c[0] as f32).to_bits(), (c[2] as f32).to_bits()];
+        let first_cosines = first.cosines();
+        let shared_key = key(&first_cosines);
+        let shared = self.sky_view_for(first_cosines[0] as f32, first_cosines[2] as f32);
         queries
             .iter()
             .map(|query| {
-                if !self.needs_sky_view(query) {
-                    self.evaluate_prepared(&Lut2d::default(), query)
-                } else if key(query) == shared_key {
-                    self.evaluate_prepared(&shared, query)
+                let cosines = query.cosines();
+                if !self.needs_sky_view_at(query, cosines[0]) {
+                    self.evaluate_prepared_at(&Lut2d::default(), query, cosines)
+                } else if key(&cosines) == shared_key {
+                    self.evaluate_prepared_at(&shared, query, cosines)
                 } else {
                     self.evaluate(query)
                 }

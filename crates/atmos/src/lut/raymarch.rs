@@ -11,7 +11,7 @@ use crate::geometry::ray_sphere_intersect;
 use crate::phase::{cornette_shanks_phase, rayleigh_phase};
 use crate::transmittance::one_minus_exp_neg;
 
-use super::multiple_scattering_lut::lookup_multiple_scattering;
+use super::multiple_scattering_lut::multiple_scattering_source;
 use super::transmittance_lut::{lookup_transmittance, transmittance_to_boundary};
 use super::{Lut2d, LutSettingsUniform};
 
@@ -116,24 +116,28 @@ pub struct ScatteringSegment {
     pub transmittance: [f32; 3],
 }
 
-/// In-scatter source (per metre, per unit sun irradiance) at a point: single
-/// scattering lit by the sun through the transmittance LUT plus all higher orders from
-/// the multiple-scattering LUT.
+/// In-scatter source (per metre, per unit sun irradiance) at a point of radius `r`
+/// towards a viewer looking along (zenith cosine `mu`, sun cosine `nu`; sun zenith
+/// cosine `mu_s` there): single scattering lit by the sun through the transmittance
+/// LUT plus all higher orders from the multiple-scattering LUT.
+#[allow(clippy::too_many_arguments)]
 pub fn scattering_source(
     bindings: &LutBindings<'_>,
     medium: &MediumSample,
     r: f32,
+    mu: f32,
     mu_s: f32,
+    nu: f32,
     rayleigh_phase_value: f32,
     mie_phase_value: f32,
 ) -> [f32; 3] {
     let sun = sun_transmittance(bindings, r, mu_s);
-    let multiple = lookup_multiple_scattering(bindings, r, mu_s);
+    let multiple = multiple_scattering_source(bindings, medium, r, mu, mu_s, nu);
     std::array::from_fn(|i| {
         sun[i]
             * (medium.rayleigh_scattering[i] * rayleigh_phase_value
                 + medium.mie_scattering[i] * mie_phase_value)
-            + multiple[i] * (medium.rayleigh_scattering[i] + medium.mie_scattering[i])
+            + multiple[i]
     })
 }
 
@@ -168,13 +172,16 @@ pub fn raymarch_scattering(
         let t = t_previous + 0.5 * dt;
         t_previous = t_next;
         let r_t = radius_along_ray(r, mu, t);
+        let mu_t = ((r * mu + t) / r_t).clamp(-1.0, 1.0);
         let mu_s_t = ((r * mu_s + t * nu) / r_t).clamp(-1.0, 1.0);
         let medium = medium_at_altitude(atmosphere, r_t - atmosphere.planet_radius);
         let source = scattering_source(
             bindings,
             &medium,
             r_t,
+            mu_t,
             mu_s_t,
+            nu,
             rayleigh_phase_value,
             mie_phase_value,
         );

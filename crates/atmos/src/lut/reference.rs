@@ -196,3 +196,61 @@ pub fn exponential_step_integral(x0: f64, x1: f64, dt: f64) -> f64 {
     }
     dt * start * (-(-delta).exp_m1() / delta)
 }
+
+/// f64 [`super::multiple_scattering_moments::sun_frame_direction`].
+pub fn sun_frame_direction(mu: f64, mu_s: f64, nu: f64) -> [f64; 3] {
+    let horizontal = ((1.0 - mu) * (1.0 + mu)).max(0.0).sqrt();
+    let sin_s = ((1.0 - mu_s) * (1.0 + mu_s)).max(0.0).sqrt();
+    let x = if sin_s > 1e-4 {
+        ((nu - mu * mu_s) / sin_s).clamp(-horizontal, horizontal)
+    } else {
+        0.0
+    };
+    let y = ((horizontal - x) * (horizontal + x)).max(0.0).sqrt();
+    [x, y, mu]
+}
+
+/// f64 [`super::multiple_scattering_moments::scattered_multiple_scattering`], one
+/// channel: `moments` = [Ψ, d_x, d_z, A_xx, A_zz, A_xz].
+pub fn scattered_multiple_scattering(
+    moments: [f64; 6],
+    direction: [f64; 3],
+    legendre: [f64; 2],
+) -> f64 {
+    let [mean, dx, dz, axx, azz, axz] = moments;
+    let [x, y, z] = direction;
+    let first = dx * x + dz * z;
+    let second = axx * (x * x - y * y) + azz * (z * z - y * y) + 2.0 * axz * x * z;
+    (mean + 3.0 * legendre[0] * first + 7.5 * legendre[1] * second).max(0.0)
+}
+
+/// f64 [`super::multiple_scattering_moments::multiple_scattering_ground_irradiance`],
+/// one channel.
+pub fn multiple_scattering_ground_irradiance(
+    mean: f64,
+    first_moment_z: f64,
+    anisotropy_zz: f64,
+) -> f64 {
+    (mean + 2.0 * first_moment_z + 1.875 * anisotropy_zz).max(0.0)
+}
+
+/// f64 [`super::multiple_scattering_moments::direction_zenith_sample`].
+pub fn direction_zenith_sample(r: f64, planet_radius: f64, i: u32, k: u32) -> [f64; 2] {
+    let ratio = (planet_radius / r).min(1.0);
+    let mu_h = -((1.0 - ratio) * (1.0 + ratio)).max(0.0).sqrt();
+    let ground = k / 2;
+    if i < ground {
+        let u = (f64::from(i) + 0.5) / f64::from(ground);
+        [
+            mu_h - (1.0 + mu_h) * u * u,
+            (1.0 + mu_h) * 2.0 * u / f64::from(ground),
+        ]
+    } else {
+        let sky = k - ground;
+        let u = (f64::from(i - ground) + 0.5) / f64::from(sky);
+        [
+            mu_h + (1.0 - mu_h) * u * u,
+            (1.0 - mu_h) * 2.0 * u / f64::from(sky),
+        ]
+    }
+}

@@ -33,6 +33,16 @@ pub fn cornette_shanks_phase(cos_theta: f64, g: f64) -> f64 {
         / ((2.0 + g * g) * base * base.sqrt())
 }
 
+/// f64 [`crate::phase::cornette_shanks_legendre_moments`].
+pub fn cornette_shanks_legendre_moments(g: f64) -> [f64; 2] {
+    let g2 = g * g;
+    let normalisation = 3.0 / (2.0 * (2.0 + g2));
+    [
+        normalisation * g * (8.0 + 2.0 * g2) / 5.0,
+        normalisation * (2.0 / 15.0 + 32.0 / 21.0 * g2 + 12.0 / 35.0 * g2 * g2),
+    ]
+}
+
 /// f64 [`crate::geometry::ray_sphere_intersect`] (miss: both `-1`).
 pub fn ray_sphere_intersect(r: f64, mu: f64, sphere_radius: f64) -> [f64; 2] {
     let b = r * mu;
