@@ -685,9 +685,9 @@ fn gpu_frame_matches_the_cpu_shading() {
     }
 }
 
-/// Error against the Reference (rung 4), for the report: mean and max relative
-/// luminance error over sun elevations ≥ 5°, viewer altitudes 0–10 km, directions
-/// over the upper hemisphere and just below the horizon. Heavy (the Reference's
+/// Error against the Reference (rung 4): mean and max relative luminance error per
+/// sun elevation, viewer altitudes 0–10 km, directions over the upper hemisphere and
+/// just below the horizon; the mean must stay below 1 % for suns ≥ 5°. Heavy (the Reference's
 /// tables): `cargo test --release -p atmos --test luts -- --ignored --nocapture`.
 #[test]
 #[ignore = "release only: builds the Reference's tables"]
@@ -722,11 +722,15 @@ fn precomputed_against_the_reference() {
                 }
             }
         }
+        let mean = sum / f64::from(count);
         eprintln!(
-            "sun {sun_deg:>5.1}°: mean relative luminance error {:.4} (signed {:+.4}), max {worst:.4} ({count} queries)",
-            sum / f64::from(count),
+            "sun {sun_deg:>5.1}°: mean relative luminance error {mean:.4} (signed {:+.4}), max {worst:.4} ({count} queries)",
             signed / f64::from(count)
         );
+        // The goal for day suns (twilight is reported, not bounded).
+        if sun_deg >= 5.0 {
+            assert!(mean < 0.01, "sun {sun_deg}°: mean error {mean}");
+        }
     }
 }
 

@@ -219,14 +219,17 @@ pub fn bilinear_footprint(
 ) -> BilinearFootprint {
     let x = (uv[0] * width as f32 - 0.5).clamp(0.0, (width - 1) as f32);
     let y = (uv[1] * height as f32 - 0.5).clamp(first_row as f32, last_row as f32);
-    let x0 = x.floor();
-    let y0 = y.floor();
+    // x, y ≥ 0 after the clamps, where truncation is floor (WGSL's `floor`): a
+    // conversion instead of a libm call on CPUs without SSE4.1's round instruction
+    // (a tenth of a sky-view lookup's cost).
+    let x0 = x as u32;
+    let y0 = y as u32;
     BilinearFootprint {
-        x0: x0 as u32,
-        y0: y0 as u32,
-        x1: (x0 as u32 + 1).min(width - 1),
-        y1: (y0 as u32 + 1).min(last_row),
-        fx: x - x0,
-        fy: y - y0,
+        x0,
+        y0,
+        x1: (x0 + 1).min(width - 1),
+        y1: (y0 + 1).min(last_row),
+        fx: x - x0 as f32,
+        fy: y - y0 as f32,
     }
 }
