@@ -18,10 +18,7 @@ fn unlimited_view_segment(r: f32, mu: f32, mu_s: f32, nu: f32) -> ScatteringSegm
     if r > lut_atmosphere.top_radius {
         return march_view_segment(r, mu, mu_s, nu, UNLIMITED_DISTANCE, lut_settings.pixel_samples);
     }
-    let lookup = ScatteringSegment(
-        lookup_sky_view(r, mu, view_sun_cos_azimuth(mu, mu_s, nu)),
-        transmittance_to_boundary(r, mu),
-    );
+    let lookup = lookup_sky_view(r, mu, view_sun_cos_azimuth(mu, mu_s, nu));
     let blend = (r - (lut_atmosphere.top_radius - TOP_BLEND_BAND)) / TOP_BLEND_BAND;
     if blend <= 0.0 {
         return lookup;

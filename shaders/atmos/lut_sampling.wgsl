@@ -146,9 +146,10 @@ fn multiple_scattering_source(medium: MediumSample, r: f32, mu: f32, mu_s: f32, 
     return medium.rayleigh_scattering * rayleigh + medium.mie_scattering * mie;
 }
 
-// Radiance of the sky view towards (mu, cos_azimuth) from radius r; sky directions
-// read sky rows only, ground directions ground rows only.
-fn lookup_sky_view(r: f32, mu: f32, cos_azimuth: f32) -> vec3<f32> {
+// Radiance and transmittance of the sky view towards (mu, cos_azimuth) from radius r
+// (entries 2i and 2i + 1); sky directions read sky rows only, ground directions ground
+// rows only.
+fn lookup_sky_view(r: f32, mu: f32, cos_azimuth: f32) -> ScatteringSegment {
     let w = lut_settings.sky_view_width;
     let h = lut_settings.sky_view_height;
     let uv = sky_view_lut_uv(r, mu, cos_azimuth, lut_atmosphere.planet_radius, w, h);
@@ -159,13 +160,20 @@ fn lookup_sky_view(r: f32, mu: f32, cos_azimuth: f32) -> vec3<f32> {
     } else {
         f = bilinear_footprint(uv, w, h, half_height, h - 1u);
     }
-    return bilinear_blend(
-        sky_view_lut[f.x0 + w * f.y0].xyz,
-        sky_view_lut[f.x1 + w * f.y0].xyz,
-        sky_view_lut[f.x0 + w * f.y1].xyz,
-        sky_view_lut[f.x1 + w * f.y1].xyz,
-        f.fx,
-        f.fy,
+    let i00 = 2u * (f.x0 + w * f.y0);
+    let i10 = 2u * (f.x1 + w * f.y0);
+    let i01 = 2u * (f.x0 + w * f.y1);
+    let i11 = 2u * (f.x1 + w * f.y1);
+    return ScatteringSegment(
+        bilinear_blend(sky_view_lut[i00].xyz, sky_view_lut[i10].xyz, sky_view_lut[i01].xyz, sky_view_lut[i11].xyz, f.fx, f.fy),
+        bilinear_blend(
+            sky_view_lut[i00 + 1u].xyz,
+            sky_view_lut[i10 + 1u].xyz,
+            sky_view_lut[i01 + 1u].xyz,
+            sky_view_lut[i11 + 1u].xyz,
+            f.fx,
+            f.fy,
+        ),
     );
 }
 

@@ -324,7 +324,8 @@ fn sky_view_single_scattering_matches_brute_force_f64() {
                 let cos_azimuth = azimuth_deg.to_radians().cos();
                 let nu =
                     mu * mu_s + (1.0 - mu * mu).sqrt() * (1.0 - mu_s * mu_s).sqrt() * cos_azimuth;
-                let got = lookup_sky_view(&sky_view, &luts.settings, R, r, mu, cos_azimuth);
+                let got =
+                    lookup_sky_view(&sky_view, &luts.settings, R, r, mu, cos_azimuth).radiance;
                 let exact = single_scattering_f64(
                     f64::from(r),
                     f64::from(mu),
@@ -362,8 +363,8 @@ fn multiple_scattering_adds_a_plausible_fraction() {
     let mu_s = 0.8f32;
     let full = bake_sky_view_lut(&luts.bindings(), r, mu_s);
     let single = bake_sky_view_lut(&single_bindings, r, mu_s);
-    let total = lookup_sky_view(&full, &luts.settings, R, r, 1.0, 1.0);
-    let first = lookup_sky_view(&single, &luts.settings, R, r, 1.0, 1.0);
+    let total = lookup_sky_view(&full, &luts.settings, R, r, 1.0, 1.0).radiance;
+    let first = lookup_sky_view(&single, &luts.settings, R, r, 1.0, 1.0).radiance;
     for c in 0..3 {
         let extra = total[c] / first[c] - 1.0;
         assert!((0.01..0.6).contains(&extra), "channel {c}: +{extra}");

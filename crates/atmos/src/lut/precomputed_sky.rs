@@ -8,8 +8,9 @@
 //! * [`PrecomputedSky::evaluate_prepared`] / [`shade_pixel`] — per pixel: lookups.
 //!
 //! What a query gets:
-//! * unlimited segment, viewer inside the atmosphere: sky-view lookup for the radiance,
-//!   transmittance LUT (Bruneton's ratio for ground rays) for the transmittance;
+//! * unlimited segment, viewer inside the atmosphere: sky-view lookup for the radiance
+//!   and the transmittance (which the sky-view bake took from the transmittance LUT,
+//!   Bruneton's ratio for ground rays);
 //! * unlimited segment, viewer above the atmosphere: the sky-view LUT does not apply
 //!   (each ray enters the shell at a different zenith); the ray is marched from its
 //!   entry point with the LUTs ([`march_view_segment`], `pixel_samples` steps);
@@ -33,7 +34,7 @@ use super::multiple_scattering_lut::bake_multiple_scattering_lut;
 use super::parameterization::view_sun_cos_azimuth;
 use super::raymarch::{LutBindings, ScatteringSegment, march_view_segment};
 use super::sky_view_lut::{bake_sky_view_lut, lookup_sky_view, sky_view_r_mu_s};
-use super::transmittance_lut::{bake_transmittance_lut, transmittance_to_boundary};
+use super::transmittance_lut::bake_transmittance_lut;
 use super::{Lut2d, LutSettings, LutSettingsUniform};
 
 /// The per-atmosphere tables.
@@ -189,17 +190,14 @@ pub fn unlimited_view_segment(
     if r > atmosphere.top_radius {
         return march();
     }
-    let lookup = ScatteringSegment {
-        radiance: lookup_sky_view(
-            sky_view,
-            settings,
-            atmosphere.planet_radius,
-            r,
-            mu,
-            view_sun_cos_azimuth(mu, mu_s, nu),
-        ),
-        transmittance: transmittance_to_boundary(bindings, r, mu),
-    };
+    let lookup = lookup_sky_view(
+        sky_view,
+        settings,
+        atmosphere.planet_radius,
+        r,
+        mu,
+        view_sun_cos_azimuth(mu, mu_s, nu),
+    );
     let blend = (r - (atmosphere.top_radius - TOP_BLEND_BAND)) / TOP_BLEND_BAND;
     if blend <= 0.0 {
         return lookup;

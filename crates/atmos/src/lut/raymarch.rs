@@ -108,7 +108,7 @@ pub fn ray_segment_in_atmosphere(r: f32, mu: f32, planet_radius: f32, top_radius
 }
 
 /// Radiance and transmittance of a segment.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ScatteringSegment {
     /// In-scattered radiance (unit of `sun_irradiance` per sr).
     pub radiance: [f32; 3],

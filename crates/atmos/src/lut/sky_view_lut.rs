@@ -1,6 +1,10 @@
 //! Sky-view LUT (Hillaire 2020 §5.3): radiance of the whole sky for one viewer
 //! altitude and one sun zenith angle, per (azimuth from the sun, view zenith angle),
-//! baked per frame. Its rows are mapped non-linearly so the horizon, where radiance
+//! baked per frame. Each texel also holds the transmittance of its view ray (to the
+//! ground or space, from the transmittance LUT): a pixel then reads one footprint for
+//! both, instead of a ray–sphere test and one or two transmittance lookups (half of a
+//! CPU query's cost). Two entries per texel, radiance at 2i and transmittance at
+//! 2i + 1, i = x + width·y. Its rows are mapped non-linearly so the horizon, where radiance
 //! changes fastest, gets the most texels; the horizon itself lies between the two
 //! middle rows, and lookups never blend a sky row with a ground row.
 //!
@@ -12,8 +16,11 @@
 use crate::frame::FrameCamera;
 
 use super::parameterization::{bilinear_footprint, sky_view_lut_direction, sky_view_lut_uv};
-use super::raymarch::{LutBindings, ray_segment_in_atmosphere, raymarch_scattering};
-use super::{Lut2d, LutSettingsUniform, fill_parallel};
+use super::raymarch::{
+    LutBindings, ScatteringSegment, ray_segment_in_atmosphere, raymarch_scattering,
+};
+use super::transmittance_lut::transmittance_to_boundary;
+use super::{Lut2d, LutSettingsUniform, bilinear_blend, fill_parallel};
 
 /// The viewer radius (clamped to the atmosphere) and sun zenith cosine a sky-view LUT
 /// is baked for, from a frame camera.
@@ -27,8 +34,15 @@ pub fn sky_view_r_mu_s(camera: &FrameCamera, planet_radius: f32, top_radius: f32
     ]
 }
 
-/// One texel: radiance along the view ray of this texel's direction (w = 1).
-pub fn sky_view_texel(bindings: &LutBindings<'_>, r: f32, mu_s: f32, x: u32, y: u32) -> [f32; 4] {
+/// One texel: radiance along the view ray of this texel's direction and the ray's
+/// transmittance to the ground or space.
+pub fn sky_view_texel(
+    bindings: &LutBindings<'_>,
+    r: f32,
+    mu_s: f32,
+    x: u32,
+    y: u32,
+) -> ScatteringSegment {
     let atmosphere = bindings.atmosphere;
     let s = bindings.settings;
     let (width, height) = (s.sky_view_width, s.sky_view_height);
@@ -51,12 +65,10 @@ pub fn sky_view_texel(bindings: &LutBindings<'_>, r: f32, mu_s: f32, x: u32, y: 
         segment[1],
         s.sky_view_samples,
     );
-    [
-        result.radiance[0],
-        result.radiance[1],
-        result.radiance[2],
-        1.0,
-    ]
+    ScatteringSegment {
+        radiance: result.radiance,
+        transmittance: transmittance_to_boundary(bindings, r, mu),
+    }
 }
 
 /// Bakes the LUT for a viewer at radius `r` with the sun at zenith cosine `mu_s`.
@@ -65,9 +77,17 @@ pub fn bake_sky_view_lut(bindings: &LutBindings<'_>, r: f32, mu_s: f32) -> Lut2d
         bindings.settings.sky_view_width,
         bindings.settings.sky_view_height,
     );
-    let texels = fill_parallel((width * height) as usize, |i| {
+    let segments = fill_parallel((width * height) as usize, |i| {
         sky_view_texel(bindings, r, mu_s, i as u32 % width, i as u32 / width)
     });
+    let texels = segments
+        .iter()
+        .flat_map(|s| {
+            let [r, g, b] = s.radiance;
+            let [tr, tg, tb] = s.transmittance;
+            [[r, g, b, 1.0], [tr, tg, tb, 1.0]]
+        })
+        .collect();
     Lut2d {
         width,
         height,
@@ -85,14 +105,27 @@ pub fn lookup_sky_view(
     r: f32,
     mu: f32,
     cos_azimuth: f32,
-) -> [f32; 3] {
+) -> ScatteringSegment {
     let (width, height) = (settings.sky_view_width, settings.sky_view_height);
     let uv = sky_view_lut_uv(r, mu, cos_azimuth, planet_radius, width, height);
     let half = height / 2;
-    let footprint = if uv[1] < 0.5 {
+    let f = if uv[1] < 0.5 {
         bilinear_footprint(uv, width, height, 0, half - 1)
     } else {
         bilinear_footprint(uv, width, height, half, height - 1)
     };
-    sky_view.blend(&footprint)
+    let blend = |which: usize| -> [f32; 3] {
+        let at = |x: u32, y: u32| sky_view.texels[2 * (x + width * y) as usize + which];
+        let (a, b, c, d) = (
+            at(f.x0, f.y0),
+            at(f.x1, f.y0),
+            at(f.x0, f.y1),
+            at(f.x1, f.y1),
+        );
+        std::array::from_fn(|i| bilinear_blend(a[i], b[i], c[i], d[i], f.fx, f.fy))
+    };
+    ScatteringSegment {
+        radiance: blend(0),
+        transmittance: blend(1),
+    }
 }
