@@ -9,15 +9,16 @@
 //! |---|---|---|---|
 //! | transmittance | 256 × 64, 40 log-linear steps | atmosphere | transmittance to the top of the atmosphere for (r, μ) |
 //! | multiple scattering | 32 × 32 × 6 layers, 64 directions × 20 samples, orders 2…5 | atmosphere | the field of orders 1…4 arriving at (altitude, μ_s): its mean, first moment and traceless second moment (bands 0–2), per unit sun irradiance |
-//! | sky view | 192 × 108, 30 samples | camera altitude, sun zenith | radiance for (view elevation, azimuth from the sun) |
+//! | sky view | 192 × 108, 30 samples | camera altitude, sun zenith | radiance and transmittance of the view ray for (view elevation, azimuth from the sun) |
 //! | aerial perspective | 32 × 32 × 32 over 32 km, 2 steps per slice | camera frame | in-scatter and transmittance per froxel |
 //!
 //! The first two are *static* (bake once per atmosphere); the last two are *per
 //! frame* ([`precomputed_sky::PrecomputedSky::prepare`] on the CPU, the renderer's
 //! frame passes on the GPU); a pixel then costs a few lookups.
 //!
-//! All LUTs store `[f32; 4]` texels (rgb + 1) in row-major order, the layout of the
-//! GPU's `array<vec4<f32>>` storage buffers: lookups filter manually (bilinear /
+//! All LUTs store `[f32; 4]` texels (rgb + 1) in row-major order (the multiple-scattering
+//! table as six planar layers, the sky view and aerial perspective as two entries per
+//! texel), the layout of the GPU's `array<vec4<f32>>` storage buffers: lookups filter manually (bilinear /
 //! trilinear), so they work on adapters without float32 filtering (llvmpipe GL) and
 //! the CPU twin reads exactly what the GPU reads.
 
