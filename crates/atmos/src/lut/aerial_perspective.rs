@@ -18,7 +18,7 @@ use super::raymarch::{
     LutBindings, medium_at_altitude, radius_along_ray, ray_segment_in_atmosphere,
     scattering_source, scattering_step_fraction,
 };
-use super::{LutSettingsUniform, bilinear_blend};
+use super::{LutSettingsUniform, blend_footprint};
 
 /// The baked volume.
 #[derive(Debug, Clone, PartialEq)]
@@ -181,14 +181,9 @@ pub fn lookup_aerial_perspective(
             return if which == 0 { [0.0; 3] } else { [1.0; 3] };
         }
         let z = z as u32;
-        let at = |x: u32, y: u32| volume.texels[2 * (x + w * (y + h * z)) as usize + which];
-        let (a, b, c, e) = (
-            at(f.x0, f.y0),
-            at(f.x1, f.y0),
-            at(f.x0, f.y1),
-            at(f.x1, f.y1),
-        );
-        std::array::from_fn(|i| bilinear_blend(a[i], b[i], c[i], e[i], f.fx, f.fy))
+        blend_footprint(&volume.texels, &f, |x, y| {
+            2 * (x + w * (y + h * z)) as usize + which
+        })
     };
     let z1 = (z0 + 1.0).min((d - 1) as f32);
     std::array::from_fn(|which| {

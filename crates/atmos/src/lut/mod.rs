@@ -317,17 +317,28 @@ impl Lut2d {
     /// Bilinear interpolation over a footprint (same arithmetic as the WGSL
     /// `bilinear_blend`).
     pub fn blend(&self, f: &parameterization::BilinearFootprint) -> [f32; 3] {
-        let a = self.texel(f.x0, f.y0);
-        let b = self.texel(f.x1, f.y0);
-        let c = self.texel(f.x0, f.y1);
-        let d = self.texel(f.x1, f.y1);
-        std::array::from_fn(|i| bilinear_blend(a[i], b[i], c[i], d[i], f.fx, f.fy))
+        blend_footprint(&self.texels, f, |x, y| (x + self.width * y) as usize)
     }
 
     /// All texels flattened (`[r, g, b, 1]` each), as uploaded to the GPU.
     pub fn as_floats(&self) -> &[f32] {
         bytemuck::cast_slice(&self.texels)
     }
+}
+
+/// Bilinear interpolation over a footprint of a table whose texel (x, y) is entry
+/// `index(x, y)` (planar layers, interleaved entries): the four reads and
+/// [`bilinear_blend`] per channel.
+pub fn blend_footprint(
+    texels: &[[f32; 4]],
+    f: &parameterization::BilinearFootprint,
+    index: impl Fn(u32, u32) -> usize,
+) -> [f32; 3] {
+    let a = texels[index(f.x0, f.y0)];
+    let b = texels[index(f.x1, f.y0)];
+    let c = texels[index(f.x0, f.y1)];
+    let d = texels[index(f.x1, f.y1)];
+    std::array::from_fn(|i| bilinear_blend(a[i], b[i], c[i], d[i], f.fx, f.fy))
 }
 
 /// (1 − fy)·((1 − fx)·a + fx·b) + fy·((1 − fx)·c + fx·d): twin of WGSL `mix(mix(a, b,

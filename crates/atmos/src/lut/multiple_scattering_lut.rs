@@ -50,7 +50,7 @@ use super::raymarch::{
     LutBindings, MediumSample, medium_at_altitude, radius_along_ray, ray_segment_in_atmosphere,
     scattering_step_fraction, sun_transmittance,
 };
-use super::{Lut2d, bilinear_blend, fill_parallel};
+use super::{Lut2d, blend_footprint, fill_parallel};
 use crate::phase::{cornette_shanks_legendre_moments, cornette_shanks_phase, rayleigh_phase};
 
 /// In-scatter source of orders ≥ 2 per metre per unit sun irradiance at a point of
@@ -328,14 +328,7 @@ pub fn lookup_multiple_scattering(
     let table = &bindings.multiple_scattering.texels;
     let layers = std::array::from_fn(|layer| {
         let base = (width * height) as usize * layer;
-        let at = |x: u32, y: u32| table[base + (x + width * y) as usize];
-        let (a, b, c, d) = (
-            at(f.x0, f.y0),
-            at(f.x1, f.y0),
-            at(f.x0, f.y1),
-            at(f.x1, f.y1),
-        );
-        std::array::from_fn(|i| bilinear_blend(a[i], b[i], c[i], d[i], f.fx, f.fy))
+        blend_footprint(table, &f, |x, y| base + (x + width * y) as usize)
     });
     MultipleScatteringMoments::from_layers(layers)
 }

@@ -20,7 +20,7 @@ use super::raymarch::{
     LutBindings, ScatteringSegment, ray_segment_in_atmosphere, raymarch_scattering,
 };
 use super::transmittance_lut::transmittance_to_boundary;
-use super::{Lut2d, LutSettingsUniform, bilinear_blend, fill_parallel};
+use super::{Lut2d, LutSettingsUniform, blend_footprint, fill_parallel};
 
 /// The viewer radius (clamped to the atmosphere) and sun zenith cosine a sky-view LUT
 /// is baked for, from a frame camera.
@@ -114,15 +114,10 @@ pub fn lookup_sky_view(
     } else {
         bilinear_footprint(uv, width, height, half, height - 1)
     };
-    let blend = |which: usize| -> [f32; 3] {
-        let at = |x: u32, y: u32| sky_view.texels[2 * (x + width * y) as usize + which];
-        let (a, b, c, d) = (
-            at(f.x0, f.y0),
-            at(f.x1, f.y0),
-            at(f.x0, f.y1),
-            at(f.x1, f.y1),
-        );
-        std::array::from_fn(|i| bilinear_blend(a[i], b[i], c[i], d[i], f.fx, f.fy))
+    let blend = |which: usize| {
+        blend_footprint(&sky_view.texels, &f, |x, y| {
+            2 * (x + width * y) as usize + which
+        })
     };
     ScatteringSegment {
         radiance: blend(0),
