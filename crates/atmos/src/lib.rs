@@ -1,7 +1,7 @@
 //! `atmos`: atmospheric scattering math, once in Rust and once in WGSL.
 //!
 //! Every public function here has a WGSL twin of the same name, arguments and units in
-//! `shaders/atmos/` (embedded as [`WGSL_MODULES`]); [`reference`] holds f64 versions
+//! `shaders/atmos/` (embedded as [`WGSL_MODULES`]); [`reference`](mod@reference) holds f64 versions
 //! used as ground truth by `cargo xtask parity`. Conventions (SI units, `r`/`mu`
 //! naming) are in `docs/architecture.md`.
 //!

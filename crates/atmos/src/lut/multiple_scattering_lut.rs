@@ -11,8 +11,9 @@
 //! ∮ p(ω·v) F(ω) dω = Ψ + 3 g₁ d·v + (15/2) g₂ vᵀA v. Rayleigh's phase has degree 2
 //! (g₁ = 0, g₂ = 1/10), so its multiple scattering is exact up to the table's
 //! quadrature; Cornette–Shanks' forward peak keeps higher bands, which F (smooth) hardly
-//! has. Hillaire's table is band 0 alone: it scatters F as if it were isotropic, which
-//! read 5–9 % low against the reference's orders ≥ 2.
+//! has. Hillaire's table is band 0 alone: it scatters F as if it were isotropic. On
+//! the trade-off set that alone left a 1.10 % day-mean luminance error (errors of both
+//! signs by view direction); with bands 0–2, 0.60 %.
 //!
 //! * F₁ = sunlight single-scattered towards the point (true Rayleigh and
 //!   Cornette–Shanks phases of the sun's scattering angle ν = ω·s) and the sun's
@@ -28,9 +29,11 @@
 //! (the reference, rung 4, stops at 7; orders 6 and 7 add < 0.1 % of the luminance),
 //! one bake pass per order.
 //!
-//! The sphere is sampled with n × n stratified directions (zenith cosine and azimuth
-//! at stratum midpoints; 8 × 8 = Hillaire's 64), each marched with uniform midpoint
-//! steps. The moments subtract the quadrature's own means of ω and ω ωᵀ, so an
+//! The sphere is sampled with n zenith × n azimuth directions (8 × 8 = Hillaire's 64):
+//! azimuths at stratum midpoints, zenith samples split at the texel's horizon and
+//! crowding towards it ([`direction_zenith_sample`]; Hillaire's uniform strata in μ
+//! read orders ≥ 2 about 7 % low, the bright grazing rays falling between them), each
+//! direction marched with uniform midpoint steps. The moments subtract the quadrature's own means of ω and ω ωᵀ, so an
 //! isotropic field gives d = A = 0 exactly. The table is planar: layer m of texel
 //! (x, y) is entry x + w·(y + h·m), layers Ψ, d_x, d_z, A_xx, A_zz, A_xz (rgb + 1).
 //! Twin of `shaders/atmos/lut_multiple_scattering.wgsl` and the lookups of
