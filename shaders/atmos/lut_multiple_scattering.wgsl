@@ -66,7 +66,11 @@ fn moment_sums_moments(sums: MomentSums) -> MultipleScatteringMoments {
     );
 }
 
-fn multiple_scattering_texel(x: u32, y: u32) -> MultipleScatteringMoments {
+// One texel of one order's field moments: F₁ (sunlight scattered once, the sun's
+// ground bounce) when next_order is false, else F_{k+1} from F_k's table. Both
+// integrate the same directions and rays; only the source along a ray and the
+// ground's bounce differ.
+fn multiple_scattering_order_texel(x: u32, y: u32, next_order: bool) -> MultipleScatteringMoments {
     let r_mu_s = texel_r_mu_s(x, y);
     let r = r_mu_s.x;
     let mu_s = r_mu_s.y;
@@ -92,59 +96,16 @@ fn multiple_scattering_texel(x: u32, y: u32) -> MultipleScatteringMoments {
             for (var step = 0u; step < n; step++) {
                 let t = segment.x + (f32(step) + 0.5) * dt;
                 let r_t = radius_along_ray(r, mu, t);
-                let mu_s_t = clamp((r * mu_s + t * nu) / r_t, -1.0, 1.0);
-                let medium = medium_at_altitude(lut_atmosphere, r_t - lut_atmosphere.planet_radius);
-                let sun = sun_transmittance(r_t, mu_s_t);
-                let scattering = medium.rayleigh_scattering * rayleigh_phase_value
-                    + medium.mie_scattering * mie_phase_value;
-                let weight = vec3<f32>(
-                    scattering_step_fraction(medium.extinction.x, dt),
-                    scattering_step_fraction(medium.extinction.y, dt),
-                    scattering_step_fraction(medium.extinction.z, dt),
-                );
-                radiance += throughput * scattering * sun * weight;
-                throughput *= exp(-medium.extinction * dt);
-            }
-            if segment.z > 0.5 {
-                // Lambertian ground lit by the sun at the hit point.
-                let r_g = radius_along_ray(r, mu, segment.y);
-                let mu_s_g = clamp((r * mu_s + segment.y * nu) / r_g, -1.0, 1.0);
-                let sun = sun_transmittance(r_g, mu_s_g);
-                radiance += throughput * sun * max(mu_s_g, 0.0) * lut_atmosphere.ground_albedo / PI;
-            }
-            moment_sums_add(&sums, radiance, sin_v * cos_azimuth, mu, zenith.y);
-        }
-    }
-    return moment_sums_moments(sums);
-}
-
-fn multiple_scattering_next_order_texel(x: u32, y: u32) -> MultipleScatteringMoments {
-    let r_mu_s = texel_r_mu_s(x, y);
-    let r = r_mu_s.x;
-    let mu_s = r_mu_s.y;
-    let sin_s = sqrt(max((1.0 - mu_s) * (1.0 + mu_s), 0.0));
-    let k = lut_settings.multiple_scattering_direction_sqrt;
-    var sums = MomentSums(vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), 0.0, 0.0, 0.0, 0.0, 0.0);
-    for (var i = 0u; i < k; i++) {
-        let zenith = direction_zenith_sample(r, lut_atmosphere.planet_radius, i, k);
-        let mu = zenith.x;
-        let sin_v = sqrt(max((1.0 - mu) * (1.0 + mu), 0.0));
-        let segment = ray_segment_in_atmosphere(r, mu, lut_atmosphere.planet_radius, lut_atmosphere.top_radius);
-        let n = lut_settings.multiple_scattering_samples;
-        let dt = (segment.y - segment.x) / f32(n);
-        for (var j = 0u; j < k; j++) {
-            let azimuth = 2.0 * PI * (f32(j) + 0.5) / f32(k);
-            let cos_azimuth = cos(azimuth);
-            let nu = mu * mu_s + sin_v * sin_s * cos_azimuth;
-            var radiance = vec3<f32>(0.0);
-            var throughput = vec3<f32>(1.0);
-            for (var step = 0u; step < n; step++) {
-                let t = segment.x + (f32(step) + 0.5) * dt;
-                let r_t = radius_along_ray(r, mu, t);
                 let mu_t = clamp((r * mu + t) / r_t, -1.0, 1.0);
                 let mu_s_t = clamp((r * mu_s + t * nu) / r_t, -1.0, 1.0);
                 let medium = medium_at_altitude(lut_atmosphere, r_t - lut_atmosphere.planet_radius);
-                let source = multiple_scattering_source(medium, r_t, mu_t, mu_s_t, nu);
+                var source: vec3<f32>;
+                if next_order {
+                    source = multiple_scattering_source(medium, r_t, mu_t, mu_s_t, nu);
+                } else {
+                    source = (medium.rayleigh_scattering * rayleigh_phase_value
+                        + medium.mie_scattering * mie_phase_value) * sun_transmittance(r_t, mu_s_t);
+                }
                 let weight = vec3<f32>(
                     scattering_step_fraction(medium.extinction.x, dt),
                     scattering_step_fraction(medium.extinction.y, dt),
@@ -154,11 +115,17 @@ fn multiple_scattering_next_order_texel(x: u32, y: u32) -> MultipleScatteringMom
                 throughput *= exp(-medium.extinction * dt);
             }
             if segment.z > 0.5 {
-                // The ground reflects ρ/π of the previous order's irradiance.
+                // A Lambertian ground reflects ρ/π of its irradiance: the sun's at the hit
+                // point (F₁), or the previous order's field's (F_{k+1}).
                 let r_g = radius_along_ray(r, mu, segment.y);
                 let mu_s_g = clamp((r * mu_s + segment.y * nu) / r_g, -1.0, 1.0);
-                let irradiance = multiple_scattering_ground_irradiance(lookup_multiple_scattering(r_g, mu_s_g));
-                radiance += throughput * irradiance * lut_atmosphere.ground_albedo;
+                var irradiance_over_pi: vec3<f32>;
+                if next_order {
+                    irradiance_over_pi = multiple_scattering_ground_irradiance(lookup_multiple_scattering(r_g, mu_s_g));
+                } else {
+                    irradiance_over_pi = sun_transmittance(r_g, mu_s_g) * max(mu_s_g, 0.0) / PI;
+                }
+                radiance += throughput * irradiance_over_pi * lut_atmosphere.ground_albedo;
             }
             moment_sums_add(&sums, radiance, sin_v * cos_azimuth, mu, zenith.y);
         }
@@ -184,7 +151,7 @@ fn bake_multiple_scattering_lut(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= w || id.y >= h {
         return;
     }
-    var layers = layers_of(multiple_scattering_texel(id.x, id.y));
+    var layers = layers_of(multiple_scattering_order_texel(id.x, id.y, false));
     for (var m = 0u; m < 6u; m++) {
         let index = id.x + w * (id.y + h * m);
         multiple_scattering_out[index] = vec4<f32>(layers[m], 1.0);
@@ -199,7 +166,7 @@ fn bake_multiple_scattering_next_order(@builtin(global_invocation_id) id: vec3<u
     if id.x >= w || id.y >= h {
         return;
     }
-    var layers = layers_of(multiple_scattering_next_order_texel(id.x, id.y));
+    var layers = layers_of(multiple_scattering_order_texel(id.x, id.y, true));
     for (var m = 0u; m < 6u; m++) {
         let index = id.x + w * (id.y + h * m);
         multiple_scattering_out[index] = vec4<f32>(layers[m], 1.0);

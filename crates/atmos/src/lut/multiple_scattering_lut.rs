@@ -149,12 +149,16 @@ impl MomentSums {
     }
 }
 
-/// One texel of F₁'s moments (the second order's source), per unit sun irradiance,
-/// Reads only the transmittance LUT.
-pub fn multiple_scattering_texel(
+/// One texel of one order's field moments, per unit sun irradiance: F₁ (sunlight
+/// scattered once, and the sun's ground bounce; reads only the transmittance LUT)
+/// when `next_order` is false, else F_{k+1} from F_k's table in
+/// `bindings.multiple_scattering`. Both integrate the same directions and rays; only
+/// the source along a ray and the ground's bounce differ.
+pub fn multiple_scattering_order_texel(
     bindings: &LutBindings<'_>,
     x: u32,
     y: u32,
+    next_order: bool,
 ) -> MultipleScatteringMoments {
     let atmosphere = bindings.atmosphere;
     let s = bindings.settings;
@@ -181,66 +185,19 @@ pub fn multiple_scattering_texel(
             for step in 0..n {
                 let t = segment[0] + (step as f32 + 0.5) * dt;
                 let r_t = radius_along_ray(r, mu, t);
-                let mu_s_t = ((r * mu_s + t * nu) / r_t).clamp(-1.0, 1.0);
-                let medium = medium_at_altitude(atmosphere, r_t - atmosphere.planet_radius);
-                let sun = sun_transmittance(bindings, r_t, mu_s_t);
-                for c in 0..3 {
-                    let scattering = medium.rayleigh_scattering[c] * rayleigh_phase_value
-                        + medium.mie_scattering[c] * mie_phase_value;
-                    let weight = scattering_step_fraction(medium.extinction[c], dt);
-                    radiance[c] += throughput[c] * scattering * sun[c] * weight;
-                    throughput[c] *= (-medium.extinction[c] * dt).exp();
-                }
-            }
-            if segment[2] > 0.5 {
-                // Lambertian ground, lit by the sun at the hit point.
-                let r_g = radius_along_ray(r, mu, segment[1]);
-                let mu_s_g = ((r * mu_s + segment[1] * nu) / r_g).clamp(-1.0, 1.0);
-                let sun = sun_transmittance(bindings, r_g, mu_s_g);
-                for c in 0..3 {
-                    radiance[c] +=
-                        throughput[c] * sun[c] * mu_s_g.max(0.0) * atmosphere.ground_albedo[c] / PI;
-                }
-            }
-            sums.add(radiance, sin_v * cos_azimuth, mu, mu_weight);
-        }
-    }
-    sums.moments()
-}
-
-/// One texel of the next order: F_{k+1}'s moments from F_k's table in
-/// `bindings.multiple_scattering`.
-pub fn multiple_scattering_next_order_texel(
-    bindings: &LutBindings<'_>,
-    x: u32,
-    y: u32,
-) -> MultipleScatteringMoments {
-    let atmosphere = bindings.atmosphere;
-    let s = bindings.settings;
-    let [r, mu_s] = texel_r_mu_s(bindings, x, y);
-    let sin_s = ((1.0 - mu_s) * (1.0 + mu_s)).max(0.0).sqrt();
-    let k = s.multiple_scattering_direction_sqrt;
-    let mut sums = MomentSums::default();
-    for i in 0..k {
-        let [mu, mu_weight] = direction_zenith_sample(r, atmosphere.planet_radius, i, k);
-        let sin_v = ((1.0 - mu) * (1.0 + mu)).max(0.0).sqrt();
-        let segment =
-            ray_segment_in_atmosphere(r, mu, atmosphere.planet_radius, atmosphere.top_radius);
-        let n = s.multiple_scattering_samples;
-        let dt = (segment[1] - segment[0]) / n as f32;
-        for j in 0..k {
-            let azimuth = 2.0 * PI * (j as f32 + 0.5) / k as f32;
-            let cos_azimuth = azimuth.cos();
-            let nu = mu * mu_s + sin_v * sin_s * cos_azimuth;
-            let mut radiance = [0.0f32; 3];
-            let mut throughput = [1.0f32; 3];
-            for step in 0..n {
-                let t = segment[0] + (step as f32 + 0.5) * dt;
-                let r_t = radius_along_ray(r, mu, t);
                 let mu_t = ((r * mu + t) / r_t).clamp(-1.0, 1.0);
                 let mu_s_t = ((r * mu_s + t * nu) / r_t).clamp(-1.0, 1.0);
                 let medium = medium_at_altitude(atmosphere, r_t - atmosphere.planet_radius);
-                let source = multiple_scattering_source(bindings, &medium, r_t, mu_t, mu_s_t, nu);
+                let source = if next_order {
+                    multiple_scattering_source(bindings, &medium, r_t, mu_t, mu_s_t, nu)
+                } else {
+                    let sun = sun_transmittance(bindings, r_t, mu_s_t);
+                    std::array::from_fn(|c| {
+                        (medium.rayleigh_scattering[c] * rayleigh_phase_value
+                            + medium.mie_scattering[c] * mie_phase_value)
+                            * sun[c]
+                    })
+                };
                 for c in 0..3 {
                     let weight = scattering_step_fraction(medium.extinction[c], dt);
                     radiance[c] += throughput[c] * source[c] * weight;
@@ -248,13 +205,20 @@ pub fn multiple_scattering_next_order_texel(
                 }
             }
             if segment[2] > 0.5 {
-                // The ground reflects ρ/π of the previous order's irradiance.
+                // A Lambertian ground reflects ρ/π of its irradiance: the sun's at the
+                // hit point (F₁), or the previous order's field's (F_{k+1}).
                 let r_g = radius_along_ray(r, mu, segment[1]);
                 let mu_s_g = ((r * mu_s + segment[1] * nu) / r_g).clamp(-1.0, 1.0);
-                let previous = lookup_multiple_scattering(bindings, r_g, mu_s_g);
-                let irradiance = multiple_scattering_ground_irradiance(&previous);
+                let irradiance_over_pi: [f32; 3] = if next_order {
+                    let previous = lookup_multiple_scattering(bindings, r_g, mu_s_g);
+                    multiple_scattering_ground_irradiance(&previous)
+                } else {
+                    let sun = sun_transmittance(bindings, r_g, mu_s_g);
+                    sun.map(|t| t * mu_s_g.max(0.0) / PI)
+                };
                 for c in 0..3 {
-                    radiance[c] += throughput[c] * irradiance[c] * atmosphere.ground_albedo[c];
+                    radiance[c] +=
+                        throughput[c] * irradiance_over_pi[c] * atmosphere.ground_albedo[c];
                 }
             }
             sums.add(radiance, sin_v * cos_azimuth, mu, mu_weight);
@@ -289,7 +253,7 @@ pub fn bake_multiple_scattering_lut(bindings: &LutBindings<'_>, orders: u32) -> 
     );
     let count = (width * height) as usize;
     let first = fill_parallel(count, |i| {
-        multiple_scattering_texel(bindings, i as u32 % width, i as u32 / width)
+        multiple_scattering_order_texel(bindings, i as u32 % width, i as u32 / width, false)
     });
     let mut order = planar_table(width, height, &first);
     let mut sum = order.clone();
@@ -299,7 +263,7 @@ pub fn bake_multiple_scattering_lut(bindings: &LutBindings<'_>, orders: u32) -> 
             ..*bindings
         };
         let next = fill_parallel(count, |i| {
-            multiple_scattering_next_order_texel(&previous, i as u32 % width, i as u32 / width)
+            multiple_scattering_order_texel(&previous, i as u32 % width, i as u32 / width, true)
         });
         order = planar_table(width, height, &next);
         for (total, texel) in sum.texels.iter_mut().zip(&order.texels) {
