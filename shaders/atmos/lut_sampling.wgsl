@@ -28,6 +28,8 @@ struct LutSettings {
     sky_view_width: u32,
     sky_view_height: u32,
     sky_view_samples: u32,
+    // 1: the sky-view LUT stores each texel's transmittance; 0: radiance only.
+    sky_view_transmittance: u32,
     aerial_perspective_width: u32,
     aerial_perspective_height: u32,
     aerial_perspective_depth: u32,
@@ -146,9 +148,16 @@ fn multiple_scattering_source(medium: MediumSample, r: f32, mu: f32, mu_s: f32, 
     return medium.rayleigh_scattering * rayleigh + medium.mie_scattering * mie;
 }
 
-// Radiance and transmittance of the sky view towards (mu, cos_azimuth) from radius r
-// (entries 2i and 2i + 1); sky directions read sky rows only, ground directions ground
-// rows only.
+// Entries per sky-view texel: radiance at e·i, transmittance (when stored) at e·i + 1.
+// Twin: atmos::lut::LutSettingsUniform::sky_view_entries_per_texel.
+fn sky_view_entries_per_texel() -> u32 {
+    return 1u + lut_settings.sky_view_transmittance;
+}
+
+// Radiance and transmittance of the whole view ray towards (mu, cos_azimuth) from
+// radius r: the radiance by a bilinear lookup (sky directions read sky rows only,
+// ground directions ground rows only), the transmittance from the same footprint or,
+// for a radiance-only table, from the transmittance LUT (a uniform branch).
 fn lookup_sky_view(r: f32, mu: f32, cos_azimuth: f32) -> ScatteringSegment {
     let w = lut_settings.sky_view_width;
     let h = lut_settings.sky_view_height;
@@ -160,21 +169,24 @@ fn lookup_sky_view(r: f32, mu: f32, cos_azimuth: f32) -> ScatteringSegment {
     } else {
         f = bilinear_footprint(uv, w, h, half_height, h - 1u);
     }
-    let i00 = 2u * (f.x0 + w * f.y0);
-    let i10 = 2u * (f.x1 + w * f.y0);
-    let i01 = 2u * (f.x0 + w * f.y1);
-    let i11 = 2u * (f.x1 + w * f.y1);
-    return ScatteringSegment(
-        bilinear_blend(sky_view_lut[i00].xyz, sky_view_lut[i10].xyz, sky_view_lut[i01].xyz, sky_view_lut[i11].xyz, f.fx, f.fy),
-        bilinear_blend(
-            sky_view_lut[i00 + 1u].xyz,
-            sky_view_lut[i10 + 1u].xyz,
-            sky_view_lut[i01 + 1u].xyz,
-            sky_view_lut[i11 + 1u].xyz,
-            f.fx,
-            f.fy,
-        ),
+    let entries = sky_view_entries_per_texel();
+    let i00 = entries * (f.x0 + w * f.y0);
+    let i10 = entries * (f.x1 + w * f.y0);
+    let i01 = entries * (f.x0 + w * f.y1);
+    let i11 = entries * (f.x1 + w * f.y1);
+    let radiance = bilinear_blend(sky_view_lut[i00].xyz, sky_view_lut[i10].xyz, sky_view_lut[i01].xyz, sky_view_lut[i11].xyz, f.fx, f.fy);
+    if lut_settings.sky_view_transmittance == 0u {
+        return ScatteringSegment(radiance, transmittance_to_boundary(r, mu));
+    }
+    let transmittance = bilinear_blend(
+        sky_view_lut[i00 + 1u].xyz,
+        sky_view_lut[i10 + 1u].xyz,
+        sky_view_lut[i01 + 1u].xyz,
+        sky_view_lut[i11 + 1u].xyz,
+        f.fx,
+        f.fy,
     );
+    return ScatteringSegment(radiance, transmittance);
 }
 
 fn aerial_perspective_slice(f: BilinearFootprint, z: f32, which: u32) -> vec3<f32> {

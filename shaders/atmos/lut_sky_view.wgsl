@@ -1,7 +1,7 @@
 // Bake of the sky-view LUT for the frame camera's altitude and sun (per frame): one
-// invocation per texel, writing the radiance of its view ray (entry 2i) and the ray's
-// transmittance to the ground or space (entry 2i + 1), i = x + width·y. Twin:
-// atmos::lut::sky_view_lut.
+// invocation per texel, writing the radiance of its view ray (entry e·i) and, when the
+// table stores it, the ray's transmittance to the ground or space (entry e·i + 1),
+// i = x + width·y, e = sky_view_entries_per_texel(). Twin: atmos::lut::sky_view_lut.
 #import atmos::lut_sampling
 
 @group(2) @binding(0) var<storage, read_write> sky_view_out: array<vec4<f32>>;
@@ -14,6 +14,9 @@ fn sky_view_r_mu_s(camera: FrameCamera, planet_radius: f32, top_radius: f32) -> 
     return vec2<f32>(clamp(len, planet_radius, top_radius), clamp(mu_s, -1.0, 1.0));
 }
 
+// Radiance of the texel's view ray and, when the table stores it, the ray's
+// transmittance to the ground or space (else not looked up and left 0: the Rust twin
+// returns it as an Option).
 fn sky_view_texel(r: f32, mu_s: f32, x: u32, y: u32) -> ScatteringSegment {
     let w = lut_settings.sky_view_width;
     let h = lut_settings.sky_view_height;
@@ -25,7 +28,11 @@ fn sky_view_texel(r: f32, mu_s: f32, x: u32, y: u32) -> ScatteringSegment {
     let nu = clamp(mu * mu_s + sin_v * sin_s * direction.y, -1.0, 1.0);
     let segment = ray_segment_in_atmosphere(r, mu, lut_atmosphere.planet_radius, lut_atmosphere.top_radius);
     let result = raymarch_scattering(r, mu, mu_s, nu, segment.x, segment.y, lut_settings.sky_view_samples);
-    return ScatteringSegment(result.radiance, transmittance_to_boundary(r, mu));
+    var transmittance = vec3<f32>(0.0);
+    if lut_settings.sky_view_transmittance != 0u {
+        transmittance = transmittance_to_boundary(r, mu);
+    }
+    return ScatteringSegment(result.radiance, transmittance);
 }
 
 @compute @workgroup_size(8, 8)
@@ -36,7 +43,9 @@ fn bake_sky_view_lut(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let r_mu_s = sky_view_r_mu_s(frame_camera, lut_atmosphere.planet_radius, lut_atmosphere.top_radius);
     let texel = sky_view_texel(r_mu_s.x, r_mu_s.y, id.x, id.y);
-    let index = id.x + w * id.y;
-    sky_view_out[2u * index] = vec4<f32>(texel.radiance, 1.0);
-    sky_view_out[2u * index + 1u] = vec4<f32>(texel.transmittance, 1.0);
+    let index = sky_view_entries_per_texel() * (id.x + w * id.y);
+    sky_view_out[index] = vec4<f32>(texel.radiance, 1.0);
+    if lut_settings.sky_view_transmittance != 0u {
+        sky_view_out[index + 1u] = vec4<f32>(texel.transmittance, 1.0);
+    }
 }

@@ -2,7 +2,8 @@
 //! the static bakes (transmittance, multiple scattering; once per atmosphere), the
 //! per-frame bakes (sky view for a viewer altitude and sun; aerial-perspective volume
 //! for a frame camera), and per-pixel lookups (256 queries through
-//! `PrecomputedSky::evaluate_prepared`, and `shade_pixel` of a frame).
+//! `PrecomputedSky::evaluate_prepared`, and `shade_pixel` of a frame), each
+//! [`ViewTransmittance`] source where it changes the cost.
 //! Bakes are threaded over all cores (`std::thread::scope`).
 //! `cargo bench -p atmos --bench ladder_precomputed`
 
@@ -14,7 +15,7 @@ use atmos::lut::multiple_scattering_lut::bake_multiple_scattering_lut;
 use atmos::lut::precomputed_sky::shade_pixel;
 use atmos::lut::sky_view_lut::bake_sky_view_lut;
 use atmos::lut::transmittance_lut::bake_transmittance_lut;
-use atmos::lut::{FrameLuts, LutSettings, PrecomputedSky};
+use atmos::lut::{FrameLuts, LutSettings, PrecomputedSky, ViewTransmittance};
 use criterion::{Criterion, criterion_group, criterion_main};
 use glam::DVec3;
 use std::hint::black_box;
@@ -70,6 +71,18 @@ fn bench(c: &mut Criterion) {
     bakes.bench_function("sky view 192x108/30 (per frame)", |b| {
         b.iter(|| bake_sky_view_lut(black_box(&bindings), r, mu_s))
     });
+    let radiance_only = PrecomputedSky::new(
+        &earth,
+        &LutSettings {
+            view_transmittance: ViewTransmittance::TransmittanceLut,
+            ..settings
+        },
+    )
+    .expect("Earth is valid");
+    let radiance_only_bindings = radiance_only.static_luts().bindings();
+    bakes.bench_function("sky view 192x108/30, radiance only (per frame)", |b| {
+        b.iter(|| bake_sky_view_lut(black_box(&radiance_only_bindings), r, mu_s))
+    });
     bakes.bench_function("aerial perspective 32x32x32 (per frame)", |b| {
         b.iter(|| bake_aerial_perspective(black_box(&bindings), &camera))
     });
@@ -85,13 +98,28 @@ fn bench(c: &mut Criterion) {
         },
     );
     let mut pixels = c.benchmark_group("ladder rung 3 per pixel (256 lookups)");
-    pixels.bench_function("evaluate_prepared (sky view + transmittance)", |b| {
+    pixels.bench_function("evaluate_prepared (sky view with its transmittance)", |b| {
         b.iter(|| {
             set.iter()
                 .map(|q| sky.evaluate_prepared(&sky_view, black_box(q)).radiance[2])
                 .sum::<f64>()
         })
     });
+    let radiance_only_sky_view = radiance_only.prepare(set[0].position(), sun);
+    pixels.bench_function(
+        "evaluate_prepared (sky view, transmittance LUT per pixel)",
+        |b| {
+            b.iter(|| {
+                set.iter()
+                    .map(|q| {
+                        radiance_only
+                            .evaluate_prepared(&radiance_only_sky_view, black_box(q))
+                            .radiance[2]
+                    })
+                    .sum::<f64>()
+            })
+        },
+    );
     pixels.bench_function("shade_pixel (GPU twin, sky)", |b| {
         b.iter(|| {
             (0..256u32)

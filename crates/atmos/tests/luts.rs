@@ -13,7 +13,7 @@ use atmos::lut::precomputed_sky::shade_pixel;
 use atmos::lut::raymarch::LutBindings;
 use atmos::lut::sky_view_lut::{bake_sky_view_lut, lookup_sky_view};
 use atmos::lut::transmittance_lut::{lookup_transmittance, transmittance_to_boundary};
-use atmos::lut::{FrameLuts, Lut2d, LutSettings, PrecomputedSky, StaticLuts};
+use atmos::lut::{FrameLuts, Lut2d, LutSettings, PrecomputedSky, StaticLuts, ViewTransmittance};
 use atmos::{Atmosphere, SkyModel, SkyQuery};
 use glam::DVec3;
 
@@ -324,8 +324,7 @@ fn sky_view_single_scattering_matches_brute_force_f64() {
                 let cos_azimuth = azimuth_deg.to_radians().cos();
                 let nu =
                     mu * mu_s + (1.0 - mu * mu).sqrt() * (1.0 - mu_s * mu_s).sqrt() * cos_azimuth;
-                let got =
-                    lookup_sky_view(&sky_view, &luts.settings, R, r, mu, cos_azimuth).radiance;
+                let got = lookup_sky_view(&b, &sky_view, r, mu, cos_azimuth).radiance;
                 let exact = single_scattering_f64(
                     f64::from(r),
                     f64::from(mu),
@@ -363,8 +362,8 @@ fn multiple_scattering_adds_a_plausible_fraction() {
     let mu_s = 0.8f32;
     let full = bake_sky_view_lut(&luts.bindings(), r, mu_s);
     let single = bake_sky_view_lut(&single_bindings, r, mu_s);
-    let total = lookup_sky_view(&full, &luts.settings, R, r, 1.0, 1.0).radiance;
-    let first = lookup_sky_view(&single, &luts.settings, R, r, 1.0, 1.0).radiance;
+    let total = lookup_sky_view(&luts.bindings(), &full, r, 1.0, 1.0).radiance;
+    let first = lookup_sky_view(&single_bindings, &single, r, 1.0, 1.0).radiance;
     for c in 0..3 {
         let extra = total[c] / first[c] - 1.0;
         assert!((0.01..0.6).contains(&extra), "channel {c}: +{extra}");
@@ -647,7 +646,24 @@ fn gpu_frame_matches_the_cpu_shading() {
     else {
         return;
     };
-    let settings = LutSettings::small();
+    // Both view-transmittance sources: the unlimited frames read the sky view's
+    // transmittance entries, or (radiance-only table) the transmittance LUT per pixel.
+    for view_transmittance in [
+        ViewTransmittance::SkyViewLut,
+        ViewTransmittance::TransmittanceLut,
+    ] {
+        let settings = LutSettings {
+            view_transmittance,
+            ..LutSettings::small()
+        };
+        gpu_frame_matches_the_cpu_shading_with(gpu, settings);
+    }
+}
+
+fn gpu_frame_matches_the_cpu_shading_with(
+    gpu: &skyscape_harness::GpuContext,
+    settings: LutSettings,
+) {
     let luts = StaticLuts::bake(&Atmosphere::earth(), &settings).unwrap();
     let mut renderer = atmos::gpu::precomputed::PrecomputedRenderer::new(
         &gpu.device,
@@ -681,7 +697,10 @@ fn gpu_frame_matches_the_cpu_shading() {
         }
         let dr = max_relative_difference(&radiance, &cpu_radiance, 1e-5);
         let dt = max_relative_difference(&transmittance, &cpu_transmittance, 1e-5);
-        eprintln!("GPU vs CPU frame ({max_distance:?}): radiance {dr:.2e}, transmittance {dt:.2e}");
+        eprintln!(
+            "GPU vs CPU frame ({:?}, {max_distance:?}): radiance {dr:.2e}, transmittance {dt:.2e}",
+            settings.view_transmittance
+        );
         assert!(dr < 5e-3 && dt < 5e-3, "{max_distance:?}: {dr} {dt}");
     }
 }
@@ -732,6 +751,72 @@ fn precomputed_against_the_reference() {
         if sun_deg >= 5.0 {
             assert!(mean < 0.01, "sun {sun_deg}°: mean error {mean}");
         }
+    }
+}
+
+/// The price of [`ViewTransmittance`]: whole-ray transmittance of each source against
+/// the Reference on 2,304 queries (viewers 0 – 50 km, suns −6° … 90°, directions over
+/// the sphere), absolute error per channel. Heavy (the Reference's tables):
+/// `cargo test --release -p atmos --test luts -- --ignored --nocapture
+/// view_transmittance_against_the_reference`.
+#[test]
+#[ignore = "release only: builds the Reference's tables"]
+fn view_transmittance_against_the_reference() {
+    let earth = Atmosphere::earth();
+    let reference = atmos::reference::multiple_scattering::ReferenceSky::new(
+        &earth,
+        atmos::reference::multiple_scattering::ReferenceSettings::default(),
+    )
+    .unwrap();
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    let mut queries = Vec::new();
+    for sun_deg in [-6.0f64, 0.0, 10.0, 30.0, 60.0, 90.0] {
+        let sun = DVec3::new(sun_deg.to_radians().cos(), 0.0, sun_deg.to_radians().sin());
+        for altitude in [0.0, 1_000.0, 10_000.0, 50_000.0] {
+            let position = DVec3::new(0.0, 0.0, 6_360_000.0 + altitude);
+            for i in 0..96 {
+                let z = 1.0 - 2.0 * (f64::from(i) + 0.5) / 96.0;
+                let radius = (1.0 - z * z).sqrt();
+                let phi = golden * f64::from(i);
+                let view = DVec3::new(radius * phi.cos(), radius * phi.sin(), z);
+                queries.push(SkyQuery::new(6_360_000.0, position, view, sun).unwrap());
+            }
+        }
+    }
+    let want: Vec<[f64; 3]> = queries
+        .iter()
+        .map(|q| reference.evaluate(q).transmittance)
+        .collect();
+    // (mean, max) absolute error each source must stay within: the measured figures
+    // (atmos README) with headroom, so a regression of either source fails.
+    for (view_transmittance, mean_bound, max_bound) in [
+        (ViewTransmittance::SkyViewLut, 3e-4, 3e-2),
+        (ViewTransmittance::TransmittanceLut, 2e-4, 3e-3),
+    ] {
+        let settings = LutSettings {
+            view_transmittance,
+            ..LutSettings::default()
+        };
+        let sky = PrecomputedSky::new(&earth, &settings).unwrap();
+        let (mut sum, mut worst, mut count) = (0.0, 0.0f64, 0);
+        for (q, want) in queries.iter().zip(&want) {
+            let got = sky.evaluate(q).transmittance;
+            for c in 0..3 {
+                let e = (got[c] - want[c]).abs();
+                sum += e;
+                worst = worst.max(e);
+                count += 1;
+            }
+        }
+        let mean = sum / f64::from(count);
+        eprintln!(
+            "{view_transmittance:?}: transmittance error mean {mean:.2e}, max {worst:.2e} ({} queries)",
+            queries.len()
+        );
+        assert!(
+            mean < mean_bound && worst < max_bound,
+            "{view_transmittance:?}: mean {mean:e}, max {worst:e}"
+        );
     }
 }
 
@@ -794,6 +879,51 @@ fn gpu_pass_timings() {
             &format!("per-pixel pass 1280x720 (max_distance {max_distance:?})"),
             &|e, t| renderer.encode_pixels(e, &output, t).unwrap(),
         );
+    }
+    // The other view-transmittance source: a radiance-only sky view, the transmittance
+    // LUT read per pixel (only the unlimited frame reads the sky view).
+    let mut renderer = atmos::gpu::precomputed::PrecomputedRenderer::new(
+        &gpu.device,
+        &earth,
+        LutSettings {
+            view_transmittance: ViewTransmittance::TransmittanceLut,
+            ..LutSettings::default()
+        },
+    )
+    .unwrap();
+    let camera = FrameCamera::look_at(
+        DVec3::new(0.0, 0.0, 6_361_000.0),
+        DVec3::new(1.0, 0.0, 0.1),
+        DVec3::Z,
+        1.0,
+        1280,
+        720,
+        sun,
+        None,
+    )
+    .unwrap();
+    let output = atmos::gpu::FrameOutput::new(&gpu.device, 1280, 720).unwrap();
+    renderer.prepare(&gpu.queue, &camera);
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    renderer.encode_static_luts(&mut encoder, None);
+    gpu.queue.submit([encoder.finish()]);
+    for (name, pixels) in [
+        ("sky view 192x108, radiance only", false),
+        (
+            "per-pixel pass 1280x720 (None), transmittance LUT per pixel",
+            true,
+        ),
+    ] {
+        let seconds = skyscape_harness::median_pass_seconds(gpu, 5, |encoder, timer, span| {
+            let writes = Some(timer.compute_writes(span));
+            if pixels {
+                renderer.encode_pixels(encoder, &output, writes).unwrap();
+            } else {
+                renderer.baker().encode_sky_view(encoder, writes);
+            }
+        })
+        .unwrap();
+        eprintln!("{name}: {:.3} ms on {label}", seconds * 1e3);
     }
 }
 

@@ -94,8 +94,8 @@ impl LutBaker {
             u64::from(s.transmittance_width * s.transmittance_height),
             u64::from(s.multiple_scattering_width * s.multiple_scattering_height)
                 * u64::from(MULTIPLE_SCATTERING_LAYERS),
-            // radiance and transmittance per texel
-            2 * u64::from(s.sky_view_width * s.sky_view_height),
+            // radiance, and the transmittance when the table stores it
+            u64::from(s.sky_view_entries_per_texel() * s.sky_view_width * s.sky_view_height),
             2 * u64::from(
                 s.aerial_perspective_width
                     * s.aerial_perspective_height

@@ -73,6 +73,27 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     },
 ];
 
+/// Where the precomputed rung takes the transmittance of a whole view ray (to the
+/// ground or to space) for a viewer inside the atmosphere: a speed-for-accuracy choice.
+///
+/// Measured against the default-settings reference on 2,304 queries (viewers 0 – 50 km,
+/// suns −6° … 90°; `cargo test --release -p atmos --test luts -- --ignored
+/// view_transmittance_against_the_reference --nocapture`); see the atmos README for
+/// the figures and the per-query cost of each choice.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ViewTransmittance {
+    /// Stored in the sky-view LUT beside each texel's radiance (two entries per
+    /// texel): a pixel reads one footprint for both. Coarser than the transmittance
+    /// LUT just below the horizon seen from high up, where the sky view's rows are
+    /// sparser.
+    #[default]
+    SkyViewLut,
+    /// Looked up per pixel in the transmittance LUT (a ray–sphere test and one or two
+    /// lookups): more accurate at the horizon, dearer per pixel; the sky-view LUT then
+    /// holds radiance only (half the memory, no transmittance lookup in its bake).
+    TransmittanceLut,
+}
+
 /// Sizes and sample counts of the precomputed rung.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LutSettings {
@@ -95,6 +116,8 @@ pub struct LutSettings {
     pub sky_view_size: [u32; 2],
     /// Raymarch samples per sky-view texel (quadratically spaced).
     pub sky_view_samples: u32,
+    /// Where a view ray's transmittance comes from (sky-view LUT or transmittance LUT).
+    pub view_transmittance: ViewTransmittance,
     /// Aerial-perspective froxels (screen x, screen y, depth slices).
     pub aerial_perspective_size: [u32; 3],
     /// Depth covered by the aerial-perspective volume (m).
@@ -117,6 +140,7 @@ impl Default for LutSettings {
             multiple_scattering_orders: 5,
             sky_view_size: [192, 108],
             sky_view_samples: 30,
+            view_transmittance: ViewTransmittance::SkyViewLut,
             aerial_perspective_size: [32, 32, 32],
             aerial_perspective_range: 32_000.0,
             aerial_perspective_steps_per_slice: 2,
@@ -139,6 +163,7 @@ impl LutSettings {
             multiple_scattering_orders: 5,
             sky_view_size: [48, 28],
             sky_view_samples: 30,
+            view_transmittance: ViewTransmittance::SkyViewLut,
             aerial_perspective_size: [8, 8, 16],
             aerial_perspective_range: 32_000.0,
             aerial_perspective_steps_per_slice: 2,
@@ -264,6 +289,9 @@ impl LutSettings {
             sky_view_width: self.sky_view_size[0],
             sky_view_height: self.sky_view_size[1],
             sky_view_samples: self.sky_view_samples,
+            sky_view_transmittance: u32::from(
+                self.view_transmittance == ViewTransmittance::SkyViewLut,
+            ),
             aerial_perspective_width: self.aerial_perspective_size[0],
             aerial_perspective_height: self.aerial_perspective_size[1],
             aerial_perspective_depth: self.aerial_perspective_size[2],
@@ -274,7 +302,7 @@ impl LutSettings {
     }
 }
 
-/// The settings as WGSL `LutSettings` (64 bytes, scalars only).
+/// The settings as WGSL `LutSettings` (68 bytes, scalars only).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 #[allow(missing_docs)]
@@ -289,12 +317,24 @@ pub struct LutSettingsUniform {
     pub sky_view_width: u32,
     pub sky_view_height: u32,
     pub sky_view_samples: u32,
+    /// 1: the sky-view LUT stores each texel's transmittance
+    /// ([`ViewTransmittance::SkyViewLut`]); 0: radiance only.
+    pub sky_view_transmittance: u32,
     pub aerial_perspective_width: u32,
     pub aerial_perspective_height: u32,
     pub aerial_perspective_depth: u32,
     pub aerial_perspective_steps_per_slice: u32,
     pub aerial_perspective_range: f32,
     pub pixel_samples: u32,
+}
+
+impl LutSettingsUniform {
+    /// Entries per sky-view texel: radiance at `entries · i`, and with
+    /// [`ViewTransmittance::SkyViewLut`] the transmittance at `entries · i + 1`
+    /// (i = x + width · y). Twin: `sky_view_entries_per_texel` in `lut_sampling.wgsl`.
+    pub fn sky_view_entries_per_texel(&self) -> u32 {
+        1 + self.sky_view_transmittance
+    }
 }
 
 /// A 2D table of `[f32; 4]` texels, row-major (`x + width · y`).

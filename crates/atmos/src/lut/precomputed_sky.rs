@@ -8,9 +8,9 @@
 //! * [`PrecomputedSky::evaluate_prepared`] / [`shade_pixel`] — per pixel: lookups.
 //!
 //! What a query gets:
-//! * unlimited segment, viewer inside the atmosphere: sky-view lookup for the radiance
-//!   and the transmittance (which the sky-view bake took from the transmittance LUT,
-//!   Bruneton's ratio for ground rays);
+//! * unlimited segment, viewer inside the atmosphere: sky-view lookup for the radiance;
+//!   the transmittance (Bruneton's ratio for ground rays) from the same footprint or
+//!   from the transmittance LUT, as [`super::ViewTransmittance`] chose;
 //! * unlimited segment, viewer above the atmosphere: the sky-view LUT does not apply
 //!   (each ray enters the shell at a different zenith); the ray is marched from its
 //!   entry point with the LUTs ([`march_view_segment`], `pixel_samples` steps);
@@ -191,9 +191,8 @@ pub fn unlimited_view_segment(
         return march();
     }
     let lookup = lookup_sky_view(
+        bindings,
         sky_view,
-        settings,
-        atmosphere.planet_radius,
         r,
         mu,
         view_sun_cos_azimuth(mu, mu_s, nu),

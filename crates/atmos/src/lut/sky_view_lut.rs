@@ -1,10 +1,12 @@
 //! Sky-view LUT (Hillaire 2020 §5.3): radiance of the whole sky for one viewer
 //! altitude and one sun zenith angle, per (azimuth from the sun, view zenith angle),
-//! baked per frame. Each texel also holds the transmittance of its view ray (to the
-//! ground or space, from the transmittance LUT): a pixel then reads one footprint for
-//! both, instead of a ray–sphere test and one or two transmittance lookups (half of a
-//! CPU query's cost). Two entries per texel, radiance at 2i and transmittance at
-//! 2i + 1, i = x + width·y. Its rows are mapped non-linearly so the horizon, where radiance
+//! baked per frame. With [`super::ViewTransmittance::SkyViewLut`] (the default) each texel
+//! also holds the transmittance of its view ray (to the ground or space, from the
+//! transmittance LUT): a pixel then reads one footprint for both, instead of a
+//! ray–sphere test and one or two transmittance lookups (half of a CPU query's cost).
+//! Entries per texel ([`super::LutSettingsUniform::sky_view_entries_per_texel`]) e = 2 or 1:
+//! radiance at e·i, transmittance at e·i + 1, i = x + width·y. Its rows are mapped
+//! non-linearly so the horizon, where radiance
 //! changes fastest, gets the most texels; the horizon itself lies between the two
 //! middle rows, and lookups never blend a sky row with a ground row.
 //!
@@ -20,7 +22,7 @@ use super::raymarch::{
     LutBindings, ScatteringSegment, ray_segment_in_atmosphere, raymarch_scattering,
 };
 use super::transmittance_lut::transmittance_to_boundary;
-use super::{Lut2d, LutSettingsUniform, blend_footprint, fill_parallel};
+use super::{Lut2d, blend_footprint, fill_parallel};
 
 /// The viewer radius (clamped to the atmosphere) and sun zenith cosine a sky-view LUT
 /// is baked for, from a frame camera.
@@ -34,15 +36,16 @@ pub fn sky_view_r_mu_s(camera: &FrameCamera, planet_radius: f32, top_radius: f32
     ]
 }
 
-/// One texel: radiance along the view ray of this texel's direction and the ray's
-/// transmittance to the ground or space.
+/// One texel: radiance along the view ray of this texel's direction and, when the
+/// table stores it, the ray's transmittance to the ground or space (`None` for a
+/// radiance-only table: no transmittance lookup is made).
 pub fn sky_view_texel(
     bindings: &LutBindings<'_>,
     r: f32,
     mu_s: f32,
     x: u32,
     y: u32,
-) -> ScatteringSegment {
+) -> ([f32; 3], Option<[f32; 3]>) {
     let atmosphere = bindings.atmosphere;
     let s = bindings.settings;
     let (width, height) = (s.sky_view_width, s.sky_view_height);
@@ -65,10 +68,9 @@ pub fn sky_view_texel(
         segment[1],
         s.sky_view_samples,
     );
-    ScatteringSegment {
-        radiance: result.radiance,
-        transmittance: transmittance_to_boundary(bindings, r, mu),
-    }
+    let transmittance =
+        (s.sky_view_transmittance != 0).then(|| transmittance_to_boundary(bindings, r, mu));
+    (result.radiance, transmittance)
 }
 
 /// Bakes the LUT for a viewer at radius `r` with the sun at zenith cosine `mu_s`.
@@ -77,15 +79,15 @@ pub fn bake_sky_view_lut(bindings: &LutBindings<'_>, r: f32, mu_s: f32) -> Lut2d
         bindings.settings.sky_view_width,
         bindings.settings.sky_view_height,
     );
-    let segments = fill_parallel((width * height) as usize, |i| {
+    let entries = fill_parallel((width * height) as usize, |i| {
         sky_view_texel(bindings, r, mu_s, i as u32 % width, i as u32 / width)
     });
-    let texels = segments
+    let texels = entries
         .iter()
-        .flat_map(|s| {
-            let [r, g, b] = s.radiance;
-            let [tr, tg, tb] = s.transmittance;
-            [[r, g, b, 1.0], [tr, tg, tb, 1.0]]
+        .flat_map(|&(radiance, transmittance)| {
+            std::iter::once(radiance)
+                .chain(transmittance)
+                .map(|[r, g, b]| [r, g, b, 1.0])
         })
         .collect();
     Lut2d {
@@ -95,32 +97,47 @@ pub fn bake_sky_view_lut(bindings: &LutBindings<'_>, r: f32, mu_s: f32) -> Lut2d
     }
 }
 
-/// Bilinear lookup of the radiance towards (μ, cos φ) for a viewer at radius `r`
-/// (the radius the LUT was baked for). Sky directions read only sky rows, ground
-/// directions only ground rows.
+/// Radiance and transmittance of the whole view ray towards (μ, cos φ) for a viewer at
+/// radius `r` (the radius the LUT was baked for): the radiance by a bilinear lookup
+/// (sky directions read only sky rows, ground directions only ground rows), the
+/// transmittance from the same footprint or from the transmittance LUT, as
+/// [`super::ViewTransmittance`] chose.
 pub fn lookup_sky_view(
+    bindings: &LutBindings<'_>,
     sky_view: &Lut2d,
-    settings: &LutSettingsUniform,
-    planet_radius: f32,
     r: f32,
     mu: f32,
     cos_azimuth: f32,
 ) -> ScatteringSegment {
+    let settings = bindings.settings;
     let (width, height) = (settings.sky_view_width, settings.sky_view_height);
-    let uv = sky_view_lut_uv(r, mu, cos_azimuth, planet_radius, width, height);
+    let uv = sky_view_lut_uv(
+        r,
+        mu,
+        cos_azimuth,
+        bindings.atmosphere.planet_radius,
+        width,
+        height,
+    );
     let half = height / 2;
     let f = if uv[1] < 0.5 {
         bilinear_footprint(uv, width, height, 0, half - 1)
     } else {
         bilinear_footprint(uv, width, height, half, height - 1)
     };
+    let entries = settings.sky_view_entries_per_texel() as usize;
     let blend = |which: usize| {
         blend_footprint(&sky_view.texels, &f, |x, y| {
-            2 * (x + width * y) as usize + which
+            entries * (x + width * y) as usize + which
         })
+    };
+    let transmittance = if settings.sky_view_transmittance != 0 {
+        blend(1)
+    } else {
+        transmittance_to_boundary(bindings, r, mu)
     };
     ScatteringSegment {
         radiance: blend(0),
-        transmittance: blend(1),
+        transmittance,
     }
 }

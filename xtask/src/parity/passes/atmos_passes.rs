@@ -11,10 +11,18 @@
 use super::*;
 use atmos::Atmosphere;
 use atmos::frame::FrameCamera;
-use atmos::lut::{FrameLuts, LutSettings, StaticLuts};
+use atmos::lut::{FrameLuts, LutSettings, StaticLuts, ViewTransmittance};
 
 fn settings() -> LutSettings {
     LutSettings::small()
+}
+
+/// The small settings with a radiance-only sky view (transmittance per pixel).
+fn radiance_only_settings() -> LutSettings {
+    LutSettings {
+        view_transmittance: ViewTransmittance::TransmittanceLut,
+        ..LutSettings::small()
+    }
 }
 
 fn camera() -> FrameCamera {
@@ -32,7 +40,11 @@ fn camera() -> FrameCamera {
 }
 
 fn cpu_luts() -> Result<(StaticLuts, FrameLuts), String> {
-    let luts = StaticLuts::bake(&Atmosphere::earth(), &settings()).map_err(|e| e.to_string())?;
+    cpu_luts_with(&settings())
+}
+
+fn cpu_luts_with(settings: &LutSettings) -> Result<(StaticLuts, FrameLuts), String> {
+    let luts = StaticLuts::bake(&Atmosphere::earth(), settings).map_err(|e| e.to_string())?;
     let frame = FrameLuts::bake(&luts, &camera());
     Ok((luts, frame))
 }
@@ -82,7 +94,15 @@ enum Which {
 }
 
 fn gpu_bake(gpu: &skyscape_harness::GpuContext, which: Which) -> Result<Vec<f32>, String> {
-    let baker = atmos::gpu::luts::LutBaker::new(&gpu.device, &Atmosphere::earth(), &settings())
+    gpu_bake_with(gpu, which, &settings())
+}
+
+fn gpu_bake_with(
+    gpu: &skyscape_harness::GpuContext,
+    which: Which,
+    settings: &LutSettings,
+) -> Result<Vec<f32>, String> {
+    let baker = atmos::gpu::luts::LutBaker::new(&gpu.device, &Atmosphere::earth(), settings)
         .map_err(|e| e.to_string())?;
     baker.prepare(&gpu.queue, &camera());
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
@@ -103,7 +123,7 @@ fn gpu_bake(gpu: &skyscape_harness::GpuContext, which: Which) -> Result<Vec<f32>
         ),
         Which::SkyView => (
             baker.sky_view_lut(),
-            2 * s.sky_view_width * s.sky_view_height,
+            s.sky_view_entries_per_texel() * s.sky_view_width * s.sky_view_height,
         ),
         Which::AerialPerspective => (
             baker.aerial_perspective_volume(),
@@ -166,6 +186,23 @@ pub fn cases() -> Vec<PassCase> {
                       the path length changes fast with μ: 5e-4 relative. The texels' \
                       transmittance entries (transmittance_to_boundary: one or two \
                       transmittance lookups and their ratio) sit well inside it",
+            },
+        },
+        PassCase {
+            name: "atmos::lut sky-view radiance (48x28)",
+            cpu: || {
+                Ok(as_pass(
+                    &cpu_luts_with(&radiance_only_settings())?.1.sky_view.texels,
+                ))
+            },
+            gpu: |gpu| gpu_bake_with(gpu, Which::SkyView, &radiance_only_settings()),
+            tolerance: Tolerance {
+                abs: 1e-7,
+                rel: 5e-4,
+                ulp: 0.0,
+                bound: None,
+                why: "ViewTransmittance::TransmittanceLut: one entry per texel, the same \
+                      radiance march as the full sky view (its budget)",
             },
         },
         PassCase {
