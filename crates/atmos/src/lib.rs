@@ -103,4 +103,29 @@ mod wgsl_tests {
             skyscape_wgsl::validate(module.name, &source).unwrap();
         }
     }
+
+    /// The `#[repr(C)]` uniform twins have the byte size of their WGSL structs (a field
+    /// added on one side only would shift every later field on the GPU).
+    #[test]
+    fn uniform_twins_match_their_wgsl_sizes() {
+        let composer = super::composer();
+        let source = composer.compose_module("atmos::lut_sampling").unwrap();
+        let module = skyscape_wgsl::validate("atmos::lut_sampling", &source).unwrap();
+        for (name, size) in [
+            (
+                "LutSettings",
+                std::mem::size_of::<crate::lut::LutSettingsUniform>(),
+            ),
+            (
+                "AtmosphereParameters",
+                std::mem::size_of::<crate::AtmosphereParameters>(),
+            ),
+        ] {
+            assert_eq!(
+                skyscape_wgsl::struct_size(&module, name),
+                Some(size as u32),
+                "{name}"
+            );
+        }
+    }
 }

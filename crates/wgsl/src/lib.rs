@@ -323,6 +323,16 @@ pub fn validate(name: &str, source: &str) -> Result<naga::Module, ValidateError>
     Ok(module)
 }
 
+/// Byte size (naga's `span`) of the struct `name` in a parsed module: tests compare it
+/// with `size_of` of the `#[repr(C)]` Rust twin of a uniform block.
+#[cfg(feature = "validate")]
+pub fn struct_size(module: &naga::Module, name: &str) -> Option<u32> {
+    module.types.iter().find_map(|(_, ty)| match ty.inner {
+        naga::TypeInner::Struct { span, .. } if ty.name.as_deref() == Some(name) => Some(span),
+        _ => None,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
