@@ -161,4 +161,6 @@ pub use single_scattering::{
 pub mod multiple_scattering;
 mod transmittance_table;
 pub use multiple_scattering::{ReferenceSettings, ReferenceSky};
+pub mod spectral;
+pub use spectral::SpectralReferenceSky;
 pub use transmittance_table::TransmittanceTable;

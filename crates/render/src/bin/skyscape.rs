@@ -38,6 +38,8 @@ OPTIONS:
                                  precomputed         ladder rung 3, Hillaire-style LUTs
                                  reference           ladder rung 4, the f64 reference (CPU
                                                      only, slow: use a small --width/--height)
+                                 reference-spectral  rung 4 at 18 wavelengths through the
+                                                     CIE 1931 observer (CPU only, 6× slower)
                                Ladder rungs show the atmosphere alone: in-scatter, the sun
                                disc through it, the ground dark behind aerial perspective.
         --cpu                  render on the CPU even if a GPU adapter exists
@@ -56,6 +58,7 @@ enum Rung {
     Single,
     Precomputed,
     Reference,
+    ReferenceSpectral,
 }
 
 impl Rung {
@@ -67,9 +70,10 @@ impl Rung {
             "single" => Self::Single,
             "precomputed" => Self::Precomputed,
             "reference" => Self::Reference,
+            "reference-spectral" => Self::ReferenceSpectral,
             other => {
                 return Err(format!(
-                    "--rung: `{other}` is not one of sky, closed-form, closed-form-vertex, single, precomputed, reference"
+                    "--rung: `{other}` is not one of sky, closed-form, closed-form-vertex, single, precomputed, reference, reference-spectral"
                 ));
             }
         })
@@ -289,6 +293,10 @@ fn ladder_model(
         Rung::Reference => Box::new(
             atmos::reference::ReferenceSky::new(atmosphere, Default::default()).map_err(e)?,
         ),
+        Rung::ReferenceSpectral => Box::new(
+            atmos::reference::SpectralReferenceSky::new(atmosphere, Default::default())
+                .map_err(e)?,
+        ),
     })
 }
 
@@ -347,7 +355,9 @@ fn render_ladder_gpu(rung: Rung, scene: &SkyScene) -> Result<(Vec<u32>, String),
             sky.prepare(&queue, &camera);
             sky.encode(&mut encoder, &frame, None).map_err(e)?;
         }
-        Rung::Reference => return Err("the reference rung runs on the CPU only".into()),
+        Rung::Reference | Rung::ReferenceSpectral => {
+            return Err("the reference rung runs on the CPU only".into());
+        }
     }
     let mut presenter = render::gpu::Presenter::new(&device).map_err(|e| e.to_string())?;
     presenter.prepare(&queue, &camera, &present);
@@ -398,7 +408,7 @@ fn main() -> ExitCode {
         Rung::Sky => render::sky::render_sky_cpu(scene).map_err(|e| e.to_string()),
         _ => render_ladder_cpu(rung, scene),
     };
-    let result = if rung == Rung::Reference {
+    let result = if matches!(rung, Rung::Reference | Rung::ReferenceSpectral) {
         cpu().map(|p| {
             (
                 p,
