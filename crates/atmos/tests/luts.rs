@@ -839,8 +839,9 @@ fn gpu_pass_timings() {
     )
     .unwrap();
     let sun = DVec3::new(30f64.to_radians().cos(), 0.0, 30f64.to_radians().sin());
-    for max_distance in [None, Some(10_000.0)] {
-        let camera = FrameCamera::look_at(
+    // 1 km up, looking just above the horizon, 1280×720
+    let camera_for = |max_distance: Option<f64>| {
+        FrameCamera::look_at(
             DVec3::new(0.0, 0.0, 6_361_000.0),
             DVec3::new(1.0, 0.0, 0.1),
             DVec3::Z,
@@ -850,7 +851,10 @@ fn gpu_pass_timings() {
             sun,
             max_distance,
         )
-        .unwrap();
+        .unwrap()
+    };
+    for max_distance in [None, Some(10_000.0)] {
+        let camera = camera_for(max_distance);
         let output = atmos::gpu::FrameOutput::new(&gpu.device, 1280, 720).unwrap();
         renderer.prepare(&gpu.queue, &camera);
         let baker = renderer.baker();
@@ -891,19 +895,8 @@ fn gpu_pass_timings() {
         },
     )
     .unwrap();
-    let camera = FrameCamera::look_at(
-        DVec3::new(0.0, 0.0, 6_361_000.0),
-        DVec3::new(1.0, 0.0, 0.1),
-        DVec3::Z,
-        1.0,
-        1280,
-        720,
-        sun,
-        None,
-    )
-    .unwrap();
     let output = atmos::gpu::FrameOutput::new(&gpu.device, 1280, 720).unwrap();
-    renderer.prepare(&gpu.queue, &camera);
+    renderer.prepare(&gpu.queue, &camera_for(None));
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     renderer.encode_static_luts(&mut encoder, None);
     gpu.queue.submit([encoder.finish()]);

@@ -309,16 +309,18 @@ mod tests {
         l * 1e-9
     }
 
+    /// x̄, ȳ, z̄ summed at 1 nm over 360–830 nm (an equal-energy spectrum's XYZ).
+    fn color_matching_sums() -> [f64; 3] {
+        (360..=830).fold([0.0; 3], |sum, l| {
+            let cmf = cie_1931_color_matching(nm(f64::from(l)));
+            std::array::from_fn(|i| sum[i] + cmf[i])
+        })
+    }
+
     #[test]
     fn color_matching_fit_integrates_like_the_cie_tables() {
         // CIE 1931 2°, 1 nm sums over 360–830 nm: x̄ 106.866, ȳ 106.857, z̄ 106.892.
-        let mut sum = [0.0; 3];
-        for l in 360..=830 {
-            let cmf = cie_1931_color_matching(nm(f64::from(l)));
-            for i in 0..3 {
-                sum[i] += cmf[i];
-            }
-        }
+        let sum = color_matching_sums();
         for (i, want) in [106.866, 106.857, 106.892].into_iter().enumerate() {
             assert!((sum[i] / want - 1.0).abs() < 0.01, "{i}: {}", sum[i]);
         }
@@ -329,13 +331,7 @@ mod tests {
 
     #[test]
     fn equal_energy_is_white_and_d65_maps_to_srgb_white() {
-        let mut xyz = [0.0; 3];
-        for l in 360..=830 {
-            let cmf = cie_1931_color_matching(nm(f64::from(l)));
-            for i in 0..3 {
-                xyz[i] += cmf[i];
-            }
-        }
+        let xyz = color_matching_sums();
         let total: f64 = xyz.iter().sum();
         // illuminant E: chromaticity (1/3, 1/3)
         assert!((xyz[0] / total - 1.0 / 3.0).abs() < 0.005, "{xyz:?}");
