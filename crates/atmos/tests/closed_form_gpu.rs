@@ -130,3 +130,27 @@ fn per_vertex_matches_the_cpu_dome() {
     }
     assert!(worst < 5e-3, "worst relative difference {worst}");
 }
+
+#[test]
+fn encode_reports_a_missing_prepare_and_a_mismatched_output() {
+    let Some(gpu) = skyscape_harness::gpu_or_skip(
+        "atmos::closed_form_gpu encode_reports_a_missing_prepare_and_a_mismatched_output",
+    ) else {
+        return;
+    };
+    let mut renderer = ClosedFormRenderer::new(
+        &gpu.device,
+        &Atmosphere::earth(),
+        EvaluationFrequency::PerPixel,
+    )
+    .unwrap();
+    let output = FrameOutput::new(&gpu.device, WIDTH, HEIGHT).unwrap();
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    let error = renderer.encode(&mut encoder, &output, None).unwrap_err();
+    assert!(error.to_string().contains("before prepare"), "{error}");
+    renderer.prepare(&gpu.queue, &camera(2.0, 0.1));
+    let small = FrameOutput::new(&gpu.device, WIDTH / 2, HEIGHT).unwrap();
+    assert!(renderer.encode(&mut encoder, &small, None).is_err());
+    renderer.encode(&mut encoder, &output, None).unwrap();
+    gpu.queue.submit([encoder.finish()]);
+}

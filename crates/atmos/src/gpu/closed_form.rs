@@ -20,7 +20,7 @@ use crate::closed_form_sky::ClosedFormSkyParameters;
 use crate::dome::DomeResolution;
 use crate::frame::FrameCamera;
 use crate::gpu::FrameOutput;
-use crate::gpu::resources::{compute_buffer_entry as buffer_entry, uniform_buffer};
+use crate::gpu::resources::{FramePassLayout, uniform_buffer};
 use crate::{AtmosError, Atmosphere};
 
 /// Where the closed form is evaluated.
@@ -37,7 +37,7 @@ pub enum EvaluationFrequency {
 pub struct ClosedFormRenderer {
     device: wgpu::Device,
     frequency: EvaluationFrequency,
-    layout: wgpu::BindGroupLayout,
+    layout: FramePassLayout,
     pixels: wgpu::ComputePipeline,
     vertices: Option<(wgpu::ComputePipeline, wgpu::ComputePipeline)>,
     camera: wgpu::Buffer,
@@ -77,22 +77,8 @@ impl ClosedFormRenderer {
             label: Some("atmos render_closed_form"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
         });
-        let storage = wgpu::BufferBindingType::Storage { read_only: false };
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("atmos closed form"),
-            entries: &[
-                buffer_entry(0, wgpu::BufferBindingType::Uniform),
-                buffer_entry(1, wgpu::BufferBindingType::Uniform),
-                buffer_entry(2, storage),
-                buffer_entry(3, storage),
-                buffer_entry(4, storage),
-            ],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("atmos closed form"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
+        // binding 4: the dome's vertices
+        let layout = FramePassLayout::new(device, "atmos closed form", 1);
         let constants = [
             ("dome_rings", f64::from(rings)),
             ("dome_segments", f64::from(segments)),
@@ -100,7 +86,7 @@ impl ClosedFormRenderer {
         let pipeline = |entry: &str| {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(entry),
-                layout: Some(&pipeline_layout),
+                layout: Some(&layout.pipeline),
                 module: &module,
                 entry_point: Some(entry),
                 compilation_options: wgpu::PipelineCompilationOptions {
@@ -169,31 +155,14 @@ impl ClosedFormRenderer {
         output: &FrameOutput,
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), AtmosError> {
-        let camera = self
-            .prepared
-            .ok_or_else(|| AtmosError::Gpu("encode called before prepare".into()))?;
-        output.check_camera(&camera)?;
-        let [radiance, transmittance] = output.bind_group_entries(2);
-        let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("atmos closed form"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: self.camera.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: self.params.as_entire_binding(),
-                },
-                radiance,
-                transmittance,
-                wgpu::BindGroupEntry {
-                    binding: 4,
-                    resource: self.dome.as_entire_binding(),
-                },
-            ],
-        });
+        let (camera, bind_group) = self.layout.bind(
+            &self.device,
+            self.prepared,
+            &self.camera,
+            &self.params,
+            output,
+            &[&self.dome],
+        )?;
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("atmos closed form"),
             timestamp_writes,

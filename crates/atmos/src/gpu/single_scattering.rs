@@ -21,7 +21,7 @@
 
 use crate::frame::FrameCamera;
 use crate::gpu::FrameOutput;
-use crate::gpu::resources::{compute_buffer_entry as buffer_entry, uniform_buffer};
+use crate::gpu::resources::{FramePassLayout, uniform_buffer};
 use crate::single_scattering::SingleScatteringSettings;
 use crate::{AtmosError, Atmosphere, AtmosphereParameters};
 
@@ -97,7 +97,7 @@ pub fn render_single_scattering_pixel(
 pub struct SingleScatteringRenderer {
     device: wgpu::Device,
     settings: SingleScatteringSettings,
-    layout: wgpu::BindGroupLayout,
+    layout: FramePassLayout,
     pipeline: wgpu::ComputePipeline,
     camera: wgpu::Buffer,
     atmosphere: wgpu::Buffer,
@@ -119,28 +119,14 @@ impl SingleScatteringRenderer {
             label: Some("atmos render_single_scattering"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
         });
-        let storage = wgpu::BufferBindingType::Storage { read_only: false };
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("atmos single scattering"),
-            entries: &[
-                buffer_entry(0, wgpu::BufferBindingType::Uniform),
-                buffer_entry(1, wgpu::BufferBindingType::Uniform),
-                buffer_entry(2, storage),
-                buffer_entry(3, storage),
-            ],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("atmos single scattering"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
+        let layout = FramePassLayout::new(device, "atmos single scattering", 0);
         let constants = [
             ("view_samples", f64::from(settings.view_samples)),
             ("light_samples", f64::from(settings.light_samples)),
         ];
         let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some("render_single_scattering"),
-            layout: Some(&pipeline_layout),
+            layout: Some(&layout.pipeline),
             module: &module,
             entry_point: Some("render_single_scattering"),
             compilation_options: wgpu::PipelineCompilationOptions {
@@ -188,27 +174,14 @@ impl SingleScatteringRenderer {
         output: &FrameOutput,
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), AtmosError> {
-        let camera = self
-            .prepared
-            .ok_or_else(|| AtmosError::Gpu("encode called before prepare".into()))?;
-        output.check_camera(&camera)?;
-        let [radiance, transmittance] = output.bind_group_entries(2);
-        let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("atmos single scattering"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: self.camera.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: self.atmosphere.as_entire_binding(),
-                },
-                radiance,
-                transmittance,
-            ],
-        });
+        let (camera, bind_group) = self.layout.bind(
+            &self.device,
+            self.prepared,
+            &self.camera,
+            &self.atmosphere,
+            output,
+            &[],
+        )?;
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("atmos single scattering"),
             timestamp_writes,

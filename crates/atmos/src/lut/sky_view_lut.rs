@@ -1,14 +1,15 @@
 //! Sky-view LUT (Hillaire 2020 §5.3): radiance of the whole sky for one viewer
 //! altitude and one sun zenith angle, per (azimuth from the sun, view zenith angle),
-//! baked per frame. With [`super::ViewTransmittance::SkyViewLut`] (the default) each texel
-//! also holds the transmittance of its view ray (to the ground or space, from the
-//! transmittance LUT): a pixel then reads one footprint for both, instead of a
+//! baked per frame. With [`super::ViewTransmittance::SkyViewLut`] (the default) each
+//! texel also holds the transmittance of its view ray (to the ground or space, from
+//! the transmittance LUT): a pixel then reads one footprint for both, instead of a
 //! ray–sphere test and one or two transmittance lookups (half of a CPU query's cost).
-//! Entries per texel ([`super::LutSettingsUniform::sky_view_entries_per_texel`]) e = 2 or 1:
-//! radiance at e·i, transmittance at e·i + 1, i = x + width·y. Its rows are mapped
-//! non-linearly so the horizon, where radiance
-//! changes fastest, gets the most texels; the horizon itself lies between the two
-//! middle rows, and lookups never blend a sky row with a ground row.
+//! Entries per texel
+//! ([`super::LutSettingsUniform::sky_view_entries_per_texel`]) e = 2 or 1: radiance at
+//! e·i, transmittance at e·i + 1, i = x + width·y. Its rows are mapped non-linearly so
+//! the horizon, where radiance changes fastest, gets the most texels; the horizon
+//! itself lies between the two middle rows, and lookups never blend a sky row with a
+//! ground row.
 //!
 //! Valid for viewers inside the atmosphere (r ≤ top); above it the renderer marches
 //! each pixel from where its ray enters the shell
