@@ -137,6 +137,70 @@ fn gpu_bake_with(
     Ok(bytemuck::cast_slice::<u8, f32>(&bytes).to_vec())
 }
 
+/// A 20×12 frame from 300 m looking at the horizon (sky and ground rows), with no
+/// distance limit: every pixel goes through the sky-view lookup.
+fn frame_camera() -> FrameCamera {
+    FrameCamera::look_at(
+        glam::DVec3::new(0.0, 0.0, 6_360_000.0 + 300.0),
+        glam::DVec3::new(0.3, 1.0, 0.02),
+        glam::DVec3::Z,
+        1.4,
+        20,
+        12,
+        glam::DVec3::new(0.2, 0.5, 0.3),
+        None,
+    )
+    .expect("a valid camera")
+}
+
+/// `shade_pixel` over the frame: radiance, then transmittance (RGBA each).
+fn frame_cpu(settings: &LutSettings) -> Result<PassCpu, String> {
+    let luts = StaticLuts::bake(&Atmosphere::earth(), settings).map_err(|e| e.to_string())?;
+    let camera = frame_camera();
+    let frame = FrameLuts::bake(&luts, &camera);
+    let pixels: Vec<_> = (0..camera.height)
+        .flat_map(|y| (0..camera.width).map(move |x| [x, y]))
+        .map(|pixel| atmos::lut::precomputed_sky::shade_pixel(&luts, &frame, pixel))
+        .collect();
+    let texels: Vec<[f32; 4]> = pixels
+        .iter()
+        .map(|s| s.radiance)
+        .chain(pixels.iter().map(|s| s.transmittance))
+        .map(|[r, g, b]| [r, g, b, 1.0])
+        .collect();
+    Ok(as_pass(&texels))
+}
+
+/// The precomputed renderer's whole frame (LUT bakes and the per-pixel pass).
+fn frame_gpu(
+    gpu: &skyscape_harness::GpuContext,
+    settings: LutSettings,
+) -> Result<Vec<f32>, String> {
+    let camera = frame_camera();
+    let mut renderer = atmos::gpu::precomputed::PrecomputedRenderer::new(
+        &gpu.device,
+        &Atmosphere::earth(),
+        settings,
+    )
+    .map_err(|e| e.to_string())?;
+    let output = atmos::gpu::FrameOutput::new(&gpu.device, camera.width, camera.height)
+        .map_err(|e| e.to_string())?;
+    renderer.prepare(&gpu.queue, &camera);
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    renderer
+        .encode(&mut encoder, &output, None)
+        .map_err(|e| e.to_string())?;
+    gpu.queue.submit([encoder.finish()]);
+    let bytes = u64::from(camera.width * camera.height) * 16;
+    let mut values = Vec::new();
+    for buffer in [output.radiance(), output.transmittance()] {
+        let read = skyscape_harness::read_buffer(gpu, "atmos frame", buffer, 0, bytes)
+            .map_err(|e| e.to_string())?;
+        values.extend_from_slice(bytemuck::cast_slice::<u8, f32>(&read));
+    }
+    Ok(values)
+}
+
 /// The pass cases of the precomputed rung, in report order.
 pub fn cases() -> Vec<PassCase> {
     vec![
@@ -203,6 +267,34 @@ pub fn cases() -> Vec<PassCase> {
                 bound: None,
                 why: "ViewTransmittance::TransmittanceLut: one entry per texel, the same \
                       radiance march as the full sky view (its budget)",
+            },
+        },
+        PassCase {
+            name: "atmos::lut precomputed frame (20x12)",
+            cpu: || frame_cpu(&settings()),
+            gpu: |gpu| frame_gpu(gpu, settings()),
+            tolerance: Tolerance {
+                abs: 1e-7,
+                rel: 5e-4,
+                ulp: 0.0,
+                bound: None,
+                why: "shade_pixel: the frame's view directions (normalize, dot), then a \
+                      bilinear sky-view lookup of the bakes above (their 5e-4 budget) whose \
+                      weights move with the uv rounding (sky_view_lut_uv case)",
+            },
+        },
+        PassCase {
+            name: "atmos::lut frame, T per pixel (20x12)",
+            cpu: || frame_cpu(&radiance_only_settings()),
+            gpu: |gpu| frame_gpu(gpu, radiance_only_settings()),
+            tolerance: Tolerance {
+                abs: 1e-7,
+                rel: 5e-4,
+                ulp: 0.0,
+                bound: None,
+                why: "ViewTransmittance::TransmittanceLut: the same radiance lookup; the \
+                      transmittance per pixel from one or two transmittance lookups and \
+                      their ratio (the transmittance bake's 2e-5 each)",
             },
         },
         PassCase {
