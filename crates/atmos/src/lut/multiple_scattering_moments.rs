@@ -170,15 +170,7 @@ mod tests {
                 m[k] += f * t;
             }
         }
-        let c = |v: f64| [v as f32; 3];
-        MultipleScatteringMoments {
-            mean: c(m[0]),
-            first_moment_x: c(m[1]),
-            first_moment_z: c(m[2]),
-            anisotropy_xx: c(m[3]),
-            anisotropy_zz: c(m[4]),
-            anisotropy_xz: c(m[5]),
-        }
+        MultipleScatteringMoments::from_layers(m.map(|v| [v as f32; 3]))
     }
 
     /// A smooth, sun-plane-symmetric field of degree ≤ 2: the representation is exact

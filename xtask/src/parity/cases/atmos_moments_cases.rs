@@ -224,15 +224,9 @@ pub fn cases() -> Vec<Case> {
                    y0 = scattered_multiple_scattering(m, vec3<f32>(x6, x7, x8), vec2<f32>(x9, x10)).x;",
             grid: scattered_grid,
             cpu: |x| {
-                let c = |v: f32| [v; 3];
-                let m = moments32::MultipleScatteringMoments {
-                    mean: c(x[0]),
-                    first_moment_x: c(x[1]),
-                    first_moment_z: c(x[2]),
-                    anisotropy_xx: c(x[3]),
-                    anisotropy_zz: c(x[4]),
-                    anisotropy_xz: c(x[5]),
-                };
+                let m = moments32::MultipleScatteringMoments::from_layers(std::array::from_fn(
+                    |layer| [x[layer]; 3],
+                ));
                 vec![
                     moments32::scattered_multiple_scattering(&m, [x[6], x[7], x[8]], [x[9], x[10]])
                         [0],
