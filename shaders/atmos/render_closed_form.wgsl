@@ -4,6 +4,7 @@
 // CPU twins: atmos::closed_form_sky::ClosedFormSky and atmos::dome::DomeInterpolated.
 
 #import atmos::frame
+#import atmos::dome
 #import atmos::closed_form_sky
 
 @group(0) @binding(0) var<uniform> camera: FrameCamera;
@@ -14,9 +15,13 @@
 // vec4 per vertex: [2i] radiance, [2i + 1] transmittance.
 @group(0) @binding(4) var<storage, read_write> dome: array<vec4<f32>>;
 
-// Mesh resolution of the dome (per-vertex variant only).
+// Mesh resolution of the dome (per-vertex variant only): `dome_rings` bands plus the
+// horizon seam, so dome_rings + 2 rows of dome_segments + 1 vertices.
 override dome_rings: u32 = 16u;
 override dome_segments: u32 = 32u;
+// The radii the dome's rows are placed for (m): the ground and the atmosphere's top.
+override dome_planet_radius: f32 = 6360000.0;
+override dome_top_radius: f32 = 6460000.0;
 
 const HALF_PI: f32 = 1.5707963267948966;
 const TWO_PI: f32 = 6.283185307179586;
@@ -71,16 +76,18 @@ fn render_closed_form_pixels(@builtin(global_invocation_id) gid: vec3<u32>) {
 @compute @workgroup_size(64)
 fn evaluate_dome_vertices(@builtin(global_invocation_id) gid: vec3<u32>) {
     let stride = dome_segments + 1u;
-    if gid.x >= (dome_rings + 1u) * stride {
+    if gid.x >= (dome_rings + 2u) * stride {
         return;
     }
-    let ring = gid.x / stride;
+    let row = gid.x / stride;
     let segment = gid.x % stride;
     let frame = local_frame();
-    let elevation = -HALF_PI + 3.141592653589793 * f32(ring) / f32(dome_rings);
+    let r = length(camera.position);
+    let mu = dome_row_mu(row, dome_rings, r, dome_planet_radius, dome_top_radius);
+    let horizontal = sqrt(max(1.0 - mu * mu, 0.0));
     let azimuth = TWO_PI * f32(segment) / f32(dome_segments);
-    let view = normalize(frame.zenith * sin(elevation)
-        + cos(elevation) * (frame.east * cos(azimuth) + frame.north * sin(azimuth)));
+    let view = normalize(frame.zenith * mu
+        + horizontal * (frame.east * cos(azimuth) + frame.north * sin(azimuth)));
     let result = shade(view);
     dome[2u * gid.x] = vec4<f32>(result[0], 1.0);
     dome[2u * gid.x + 1u] = vec4<f32>(result[1], 1.0);
@@ -93,16 +100,15 @@ fn interpolate_dome(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let view = frame_view_direction(gid.xy, camera);
     let frame = local_frame();
-    let elevation = asin(clamp(dot(view, frame.zenith), -1.0, 1.0));
+    let mu = clamp(dot(view, frame.zenith), -1.0, 1.0);
     var azimuth = atan2(dot(view, frame.north), dot(view, frame.east));
     if azimuth < 0.0 {
         azimuth += TWO_PI;
     }
-    let rings = f32(dome_rings);
     let segments = f32(dome_segments);
-    let v = clamp((elevation + HALF_PI) / 3.141592653589793 * rings, 0.0, rings);
+    let v = dome_row_coordinate(mu, dome_rings, length(camera.position), dome_planet_radius, dome_top_radius);
     let u = clamp(azimuth / TWO_PI * segments, 0.0, segments);
-    let i0 = min(u32(floor(v)), dome_rings - 1u);
+    let i0 = min(u32(floor(v)), dome_rings);
     let j0 = min(u32(floor(u)), dome_segments - 1u);
     let fv = v - f32(i0);
     let fu = u - f32(j0);

@@ -42,7 +42,7 @@ fn bench(c: &mut Criterion) {
         let dome = DomeInterpolated::new(
             ClosedFormSky::new(&earth).expect("Earth is valid"),
             DomeResolution { rings, segments },
-            earth.planet_radius,
+            &earth,
         )
         .expect("valid dome");
         // The dome is built on the first query of a viewer and sun; later queries only
@@ -68,7 +68,7 @@ fn bench(c: &mut Criterion) {
                 let dome = DomeInterpolated::new(
                     ClosedFormSky::new(&earth).expect("Earth is valid"),
                     DomeResolution { rings, segments },
-                    earth.planet_radius,
+                    &earth,
                 )
                 .expect("valid dome");
                 dome.evaluate(black_box(&set[0])).radiance[2]

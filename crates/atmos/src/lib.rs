@@ -59,6 +59,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/closed_form_sky.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "atmos::dome",
+        source: include_str!("../shaders/dome.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "atmos::render_closed_form",
         source: include_str!("../shaders/render_closed_form.wgsl"),
     },

@@ -108,27 +108,43 @@ fn per_vertex_matches_the_cpu_dome() {
     let dome = DomeInterpolated::new(
         atmos::closed_form_sky::ClosedFormSky::new(&earth).unwrap(),
         resolution,
-        earth.planet_radius,
+        &earth,
     )
     .unwrap();
-    let cam = camera(2.0, 0.2);
-    let (radiance, _) = render(gpu, EvaluationFrequency::PerVertex(resolution), &cam);
-    let position = DVec3::from_array(cam.position.map(f64::from));
-    let sun = DVec3::from_array(cam.sun.map(f64::from)).normalize();
-    let mut worst = 0.0f64;
-    for y in 0..HEIGHT {
-        for x in 0..WIDTH {
-            let view = DVec3::from_array(frame_view_direction([x, y], &cam).map(f64::from));
-            let q = SkyQuery::new(earth.planet_radius, position, view.normalize(), sun).unwrap();
-            let cpu = dome.evaluate(&q).radiance;
-            let i = (x + WIDTH * y) as usize;
+    // On the ground, inside the atmosphere and above it (the dome's rows then cover the
+    // band between the horizon and the atmosphere's limb).
+    for (altitude, pitch) in [(2.0, 0.2), (20_000.0, -0.3), (1.0e6, -0.55)] {
+        let cam = camera(altitude, pitch);
+        let (radiance, _) = render(gpu, EvaluationFrequency::PerVertex(resolution), &cam);
+        let position = DVec3::from_array(cam.position.map(f64::from));
+        let sun = DVec3::from_array(cam.sun.map(f64::from)).normalize();
+        let cpu: Vec<[f64; 3]> = (0..HEIGHT)
+            .flat_map(|y| (0..WIDTH).map(move |x| (x, y)))
+            .map(|(x, y)| {
+                let view = DVec3::from_array(frame_view_direction([x, y], &cam).map(f64::from));
+                let q =
+                    SkyQuery::new(earth.planet_radius, position, view.normalize(), sun).unwrap();
+                dome.evaluate(&q).radiance
+            })
+            .collect();
+        // The GPU evaluates the vertices in f32: near-tangent rays (the horizon, and the
+        // limb seen from above the atmosphere, where the rows crowd) lose digits in f32
+        // whatever the formula (the ray_sphere_intersect parity case), so differences
+        // are relative to the value or to 1 % of the frame's brightest, whichever is larger.
+        let brightest = cpu.iter().flatten().fold(0.0f64, |m, v| m.max(*v));
+        let mut worst = 0.0f64;
+        for (i, cpu) in cpu.iter().enumerate() {
             for c in 0..3 {
-                let d = (f64::from(radiance[i][c]) - cpu[c]).abs() / cpu[c].abs().max(1e-3);
-                worst = worst.max(d);
+                let scale = cpu[c].abs().max(1e-2 * brightest).max(1e-3);
+                worst = worst.max((f64::from(radiance[i][c]) - cpu[c]).abs() / scale);
             }
         }
+        eprintln!("{altitude} m: worst relative difference {worst:.2e}");
+        assert!(
+            worst < 1e-3,
+            "{altitude} m: worst relative difference {worst}"
+        );
     }
-    assert!(worst < 5e-3, "worst relative difference {worst}");
 }
 
 #[test]

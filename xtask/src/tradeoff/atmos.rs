@@ -109,7 +109,7 @@ fn rungs(atmosphere: &Atmosphere, quick: bool) -> Result<Vec<Rung>, String> {
                 DomeInterpolated::new(
                     ClosedFormSky::new(atmosphere).map_err(e)?,
                     resolution,
-                    atmosphere.planet_radius,
+                    atmosphere,
                 )
                 .map_err(e)?,
             ),

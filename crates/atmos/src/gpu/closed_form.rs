@@ -63,12 +63,7 @@ impl ClosedFormRenderer {
         let (rings, segments) = match frequency {
             EvaluationFrequency::PerPixel => (2, 3),
             EvaluationFrequency::PerVertex(resolution) => {
-                // Reuse the CPU wrapper's validation of the resolution.
-                crate::dome::DomeInterpolated::new(
-                    crate::closed_form_sky::ClosedFormSky::new(atmosphere)?,
-                    resolution,
-                    atmosphere.planet_radius,
-                )?;
+                resolution.validate()?;
                 (resolution.rings, resolution.segments)
             }
         };
@@ -82,6 +77,8 @@ impl ClosedFormRenderer {
         let constants = [
             ("dome_rings", f64::from(rings)),
             ("dome_segments", f64::from(segments)),
+            ("dome_planet_radius", atmosphere.planet_radius),
+            ("dome_top_radius", atmosphere.top_radius),
         ];
         let pipeline = |entry: &str| {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
@@ -114,7 +111,8 @@ impl ClosedFormRenderer {
             "atmos closed form parameters",
             std::mem::size_of::<ClosedFormSkyParameters>() as u64,
         );
-        let vertex_count = (u64::from(rings) + 1) * (u64::from(segments) + 1);
+        // Rows: the rings plus the horizon seam's second row (see `atmos::dome`).
+        let vertex_count = (u64::from(rings) + 2) * (u64::from(segments) + 1);
         let dome = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("atmos closed form dome vertices"),
             size: 32 * vertex_count,

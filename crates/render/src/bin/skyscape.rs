@@ -279,7 +279,7 @@ fn ladder_model(
             atmos::dome::DomeInterpolated::new(
                 atmos::closed_form_sky::ClosedFormSky::new(atmosphere).map_err(e)?,
                 DOME,
-                atmosphere.planet_radius,
+                atmosphere,
             )
             .map_err(e)?,
         ),

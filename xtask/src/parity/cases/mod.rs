@@ -6,6 +6,7 @@ use atmos::reference as f64ref;
 
 mod atmos_cases;
 mod atmos_closed_form_sky_cases;
+mod atmos_dome_cases;
 mod atmos_lut_cases;
 mod atmos_moments_cases;
 mod atmos_single_scattering_cases;
@@ -351,6 +352,7 @@ pub fn all() -> Vec<Case> {
         atmos_cases::cases(),
         atmos_single_scattering_cases::cases(),
         atmos_closed_form_sky_cases::cases(),
+        atmos_dome_cases::cases(),
         atmos_lut_cases::cases(),
         atmos_moments_cases::cases(),
         render_cases::cases(),
