@@ -24,6 +24,7 @@ pub mod ladder;
 pub mod lut;
 pub mod optical_depth;
 pub mod phase;
+pub mod real;
 pub mod reference;
 pub mod single_scattering;
 pub mod transmittance;

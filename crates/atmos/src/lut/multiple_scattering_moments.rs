@@ -1,8 +1,11 @@
 //! The smooth part of a radiance field that the multiple-scattering LUT stores, and
 //! what a phase function and the ground do with it (the theory is in
 //! [`super::multiple_scattering_lut`]). Pure functions, no tables: twin of
-//! `shaders/atmos/lut_multiple_scattering_moments.wgsl`; f64 references in
-//! [`super::reference`].
+//! `shaders/atmos/lut_multiple_scattering_moments.wgsl`. The per-channel formulas are
+//! generic over [`Real`]; their f64 instantiations are the parity references
+//! (re-exported by [`super::reference`]).
+
+use crate::real::{Real, count};
 
 /// Layers of the multiple-scattering LUT: Ψ, d_x, d_z, A_xx, A_zz, A_xz.
 pub const MULTIPLE_SCATTERING_LAYERS: u32 = 6;
@@ -60,15 +63,16 @@ impl MultipleScatteringMoments {
 /// of zenith cosine `mu` and sun cosine `nu` at a point where the sun's zenith cosine
 /// is `mu_s` (v_y ≥ 0: the field is mirror-symmetric in y). With the sun at the zenith
 /// the frame's x is arbitrary and v_x = 0.
-pub fn sun_frame_direction(mu: f32, mu_s: f32, nu: f32) -> [f32; 3] {
-    let horizontal = ((1.0 - mu) * (1.0 + mu)).max(0.0).sqrt();
-    let sin_s = ((1.0 - mu_s) * (1.0 + mu_s)).max(0.0).sqrt();
-    let x = if sin_s > 1e-4 {
+pub fn sun_frame_direction<F: Real>(mu: F, mu_s: F, nu: F) -> [F; 3] {
+    let (zero, one) = (F::zero(), F::one());
+    let horizontal = ((one - mu) * (one + mu)).max(zero).sqrt();
+    let sin_s = ((one - mu_s) * (one + mu_s)).max(zero).sqrt();
+    let x = if sin_s > F::of(1e-4) {
         ((nu - mu * mu_s) / sin_s).clamp(-horizontal, horizontal)
     } else {
-        0.0
+        zero
     };
-    let y = ((horizontal - x) * (horizontal + x)).max(0.0).sqrt();
+    let y = ((horizontal - x) * (horizontal + x)).max(zero).sqrt();
     [x, y, mu]
 }
 
@@ -82,23 +86,55 @@ pub fn scattered_multiple_scattering(
     direction: [f32; 3],
     legendre: [f32; 2],
 ) -> [f32; 3] {
-    let [x, y, z] = direction;
     std::array::from_fn(|c| {
-        let first = moments.first_moment_x[c] * x + moments.first_moment_z[c] * z;
-        let second = moments.anisotropy_xx[c] * (x * x - y * y)
-            + moments.anisotropy_zz[c] * (z * z - y * y)
-            + 2.0 * moments.anisotropy_xz[c] * x * z;
-        (moments.mean[c] + 3.0 * legendre[0] * first + 7.5 * legendre[1] * second).max(0.0)
+        scattered_multiple_scattering_channel(
+            [
+                moments.mean[c],
+                moments.first_moment_x[c],
+                moments.first_moment_z[c],
+                moments.anisotropy_xx[c],
+                moments.anisotropy_zz[c],
+                moments.anisotropy_xz[c],
+            ],
+            direction,
+            legendre,
+        )
     })
+}
+
+/// One channel of [`scattered_multiple_scattering`]: `moments` = [Ψ, d_x, d_z, A_xx,
+/// A_zz, A_xz] (the f64 instantiation is the parity reference).
+pub fn scattered_multiple_scattering_channel<F: Real>(
+    moments: [F; 6],
+    direction: [F; 3],
+    legendre: [F; 2],
+) -> F {
+    let [mean, dx, dz, axx, azz, axz] = moments;
+    let [x, y, z] = direction;
+    let first = dx * x + dz * z;
+    let second = axx * (x * x - y * y) + azz * (z * z - y * y) + F::of(2.0) * axz * x * z;
+    (mean + F::of(3.0) * legendre[0] * first + F::of(7.5) * legendre[1] * second).max(F::zero())
 }
 
 /// Irradiance over π that a horizontal surface receives from the upper hemisphere of
 /// the field: Ψ + 2 d_z + (15/8) A_zz (bands ≤ 2 of the clamped cosine), ≥ 0.
 pub fn multiple_scattering_ground_irradiance(moments: &MultipleScatteringMoments) -> [f32; 3] {
     std::array::from_fn(|c| {
-        (moments.mean[c] + 2.0 * moments.first_moment_z[c] + 1.875 * moments.anisotropy_zz[c])
-            .max(0.0)
+        multiple_scattering_ground_irradiance_channel(
+            moments.mean[c],
+            moments.first_moment_z[c],
+            moments.anisotropy_zz[c],
+        )
     })
+}
+
+/// One channel of [`multiple_scattering_ground_irradiance`].
+pub fn multiple_scattering_ground_irradiance_channel<F: Real>(
+    mean: F,
+    first_moment_z: F,
+    anisotropy_zz: F,
+) -> F {
+    (mean + F::of(2.0) * first_moment_z + F::of(1.875) * anisotropy_zz).max(F::zero())
 }
 
 /// Zenith sample `i` of `k` (k ≥ 2) of the bake's direction quadrature at radius `r`:
@@ -109,22 +145,23 @@ pub fn multiple_scattering_ground_irradiance(moments: &MultipleScatteringMoments
 /// where rays graze the ground and cross the most air, and across the step between
 /// sky and ground. Uniform strata in μ (Hillaire's) under-weight the bright grazing
 /// rays: at 8 × 8 directions they read orders ≥ 2 about 7 % low.
-pub fn direction_zenith_sample(r: f32, planet_radius: f32, i: u32, k: u32) -> [f32; 2] {
-    let ratio = (planet_radius / r).min(1.0);
-    let mu_h = -((1.0 - ratio) * (1.0 + ratio)).max(0.0).sqrt();
+pub fn direction_zenith_sample<F: Real>(r: F, planet_radius: F, i: u32, k: u32) -> [F; 2] {
+    let (zero, one, two, half) = (F::zero(), F::one(), F::of(2.0), F::of(0.5));
+    let ratio = (planet_radius / r).min(one);
+    let mu_h = -((one - ratio) * (one + ratio)).max(zero).sqrt();
     let ground = k / 2;
     if i < ground {
-        let u = (i as f32 + 0.5) / ground as f32;
+        let u = (count::<F>(i) + half) / count::<F>(ground);
         [
-            mu_h - (1.0 + mu_h) * u * u,
-            (1.0 + mu_h) * 2.0 * u / ground as f32,
+            mu_h - (one + mu_h) * u * u,
+            (one + mu_h) * two * u / count::<F>(ground),
         ]
     } else {
         let sky = k - ground;
-        let u = ((i - ground) as f32 + 0.5) / sky as f32;
+        let u = (count::<F>(i - ground) + half) / count::<F>(sky);
         [
-            mu_h + (1.0 - mu_h) * u * u,
-            (1.0 - mu_h) * 2.0 * u / sky as f32,
+            mu_h + (one - mu_h) * u * u,
+            (one - mu_h) * two * u / count::<F>(sky),
         ]
     }
 }

@@ -1,6 +1,9 @@
 //! Texture parameterisations of the LUTs: how (r, μ, …) map to texture coordinates
 //! and back. Twin of `shaders/atmos/lut_parameterization.wgsl` (same names, argument
-//! order and units: metres, cosines).
+//! order and units: metres, cosines). Each mapping is written once, generic over
+//! [`Real`]: the f32 instantiation mirrors the WGSL operation for operation, the f64
+//! one is the reference `cargo xtask parity` compares both with
+//! ([`super::reference`] re-exports them).
 //!
 //! * Texel-centre mapping (Bruneton 2017): a unit-range coordinate x ∈ [0, 1] lands on
 //!   the centres of the first (x = 0) and last (x = 1) texels, so the LUT holds values
@@ -15,45 +18,44 @@
 //!   azimuth relative to the sun as sin(φ/2), concentrating texels at the horizon and
 //!   near the sun.
 
-use crate::geometry::ray_sphere_intersect;
-use skyscape_wgsl::common::PI;
+use crate::real::{Real, count};
 
 /// x ∈ [0, 1] → texture coordinate whose 0 and 1 are the first and last texel centres.
-pub fn unit_range_to_texel_uv(x: f32, texel_count: u32) -> f32 {
-    let n = texel_count as f32;
-    0.5 / n + x * (1.0 - 1.0 / n)
+pub fn unit_range_to_texel_uv<F: Real>(x: F, texel_count: u32) -> F {
+    let n = count::<F>(texel_count);
+    F::of(0.5) / n + x * (F::one() - F::one() / n)
 }
 
 /// Inverse of [`unit_range_to_texel_uv`].
-pub fn texel_uv_to_unit_range(u: f32, texel_count: u32) -> f32 {
-    let n = texel_count as f32;
-    (u - 0.5 / n) / (1.0 - 1.0 / n)
+pub fn texel_uv_to_unit_range<F: Real>(u: F, texel_count: u32) -> F {
+    let n = count::<F>(texel_count);
+    (u - F::of(0.5) / n) / (F::one() - F::one() / n)
 }
 
 /// √((a − b)(a + b)) for a ≥ b ≥ 0 (0 otherwise): a horizon distance without the
 /// cancellation of a² − b² at Earth radii.
-pub fn horizon_distance(a: f32, b: f32) -> f32 {
-    ((a - b) * (a + b)).max(0.0).sqrt()
+pub fn horizon_distance<F: Real>(a: F, b: F) -> F {
+    ((a - b) * (a + b)).max(F::zero()).sqrt()
 }
 
 /// Transmittance LUT coordinates of a ray from radius `r` (clamped to
 /// [planet_radius, top_radius], the LUT's domain) with zenith cosine `mu`.
-pub fn transmittance_lut_uv(
-    r: f32,
-    mu: f32,
-    planet_radius: f32,
-    top_radius: f32,
+pub fn transmittance_lut_uv<F: Real>(
+    r: F,
+    mu: F,
+    planet_radius: F,
+    top_radius: F,
     width: u32,
     height: u32,
-) -> [f32; 2] {
+) -> [F; 2] {
     let r = r.clamp(planet_radius, top_radius);
     let top_horizon = horizon_distance(top_radius, planet_radius);
     let rho = horizon_distance(r, planet_radius);
     // Distance to the top boundary (the far root: the origin is inside the shell).
-    let d = ray_sphere_intersect(r, mu, top_radius)[1].max(0.0);
+    let d = F::ray_sphere_intersect(r, mu, top_radius)[1].max(F::zero());
     let d_min = top_radius - r;
     let d_max = rho + top_horizon;
-    let x_mu = ((d - d_min) / (d_max - d_min)).clamp(0.0, 1.0);
+    let x_mu = ((d - d_min) / (d_max - d_min)).clamp(F::zero(), F::one());
     let x_r = rho / top_horizon;
     [
         unit_range_to_texel_uv(x_mu, width),
@@ -62,15 +64,15 @@ pub fn transmittance_lut_uv(
 }
 
 /// Inverse of [`transmittance_lut_uv`]: `[r, mu]` of a texture coordinate.
-pub fn transmittance_lut_r_mu(
-    uv: [f32; 2],
-    planet_radius: f32,
-    top_radius: f32,
+pub fn transmittance_lut_r_mu<F: Real>(
+    uv: [F; 2],
+    planet_radius: F,
+    top_radius: F,
     width: u32,
     height: u32,
-) -> [f32; 2] {
-    let x_mu = texel_uv_to_unit_range(uv[0], width).clamp(0.0, 1.0);
-    let x_r = texel_uv_to_unit_range(uv[1], height).clamp(0.0, 1.0);
+) -> [F; 2] {
+    let x_mu = texel_uv_to_unit_range(uv[0], width).clamp(F::zero(), F::one());
+    let x_r = texel_uv_to_unit_range(uv[1], height).clamp(F::zero(), F::one());
     let top_horizon = horizon_distance(top_radius, planet_radius);
     let rho = top_horizon * x_r;
     let r = (rho * rho + planet_radius * planet_radius).sqrt();
@@ -78,25 +80,26 @@ pub fn transmittance_lut_r_mu(
     let d_max = rho + top_horizon;
     let d = d_min + x_mu * (d_max - d_min);
     // Law of cosines: top² = r² + d² + 2 r d μ, with top² − r² = H² − ρ².
-    let mu = if d == 0.0 {
-        1.0
+    let mu = if d == F::zero() {
+        F::one()
     } else {
-        ((top_horizon - rho) * (top_horizon + rho) - d * d) / (2.0 * r * d)
+        ((top_horizon - rho) * (top_horizon + rho) - d * d) / (F::of(2.0) * r * d)
     };
-    [r, mu.clamp(-1.0, 1.0)]
+    [r, mu.clamp(-F::one(), F::one())]
 }
 
 /// Multiple-scattering LUT coordinates of (altitude via `r`, sun zenith cosine `mu_s`).
-pub fn multiple_scattering_lut_uv(
-    r: f32,
-    mu_s: f32,
-    planet_radius: f32,
-    top_radius: f32,
+pub fn multiple_scattering_lut_uv<F: Real>(
+    r: F,
+    mu_s: F,
+    planet_radius: F,
+    top_radius: F,
     width: u32,
     height: u32,
-) -> [f32; 2] {
-    let x_mu_s = (mu_s * 0.5 + 0.5).clamp(0.0, 1.0);
-    let x_r = ((r - planet_radius) / (top_radius - planet_radius)).clamp(0.0, 1.0);
+) -> [F; 2] {
+    let half = F::of(0.5);
+    let x_mu_s = (mu_s * half + half).clamp(F::zero(), F::one());
+    let x_r = ((r - planet_radius) / (top_radius - planet_radius)).clamp(F::zero(), F::one());
     [
         unit_range_to_texel_uv(x_mu_s, width),
         unit_range_to_texel_uv(x_r, height),
@@ -104,51 +107,53 @@ pub fn multiple_scattering_lut_uv(
 }
 
 /// Inverse of [`multiple_scattering_lut_uv`]: `[r, mu_s]`.
-pub fn multiple_scattering_lut_r_mu_s(
-    uv: [f32; 2],
-    planet_radius: f32,
-    top_radius: f32,
+pub fn multiple_scattering_lut_r_mu_s<F: Real>(
+    uv: [F; 2],
+    planet_radius: F,
+    top_radius: F,
     width: u32,
     height: u32,
-) -> [f32; 2] {
-    let x_mu_s = texel_uv_to_unit_range(uv[0], width).clamp(0.0, 1.0);
-    let x_r = texel_uv_to_unit_range(uv[1], height).clamp(0.0, 1.0);
+) -> [F; 2] {
+    let x_mu_s = texel_uv_to_unit_range(uv[0], width).clamp(F::zero(), F::one());
+    let x_r = texel_uv_to_unit_range(uv[1], height).clamp(F::zero(), F::one());
     [
         planet_radius + x_r * (top_radius - planet_radius),
-        x_mu_s * 2.0 - 1.0,
+        x_mu_s * F::of(2.0) - F::one(),
     ]
 }
 
 /// Zenith angle (rad) of the horizon seen from radius `r` ≥ planet_radius:
 /// atan2(R, −ρ) ∈ [π/2, π).
-pub fn horizon_zenith_angle(r: f32, planet_radius: f32) -> f32 {
+pub fn horizon_zenith_angle<F: Real>(r: F, planet_radius: F) -> F {
     let r = r.max(planet_radius);
     planet_radius.atan2(-horizon_distance(r, planet_radius))
 }
 
 /// Sky-view LUT coordinates of a view direction (zenith cosine `mu`, cosine of the
 /// azimuth from the sun's vertical plane `cos_azimuth`) seen from radius `r`.
-pub fn sky_view_lut_uv(
-    r: f32,
-    mu: f32,
-    cos_azimuth: f32,
-    planet_radius: f32,
+pub fn sky_view_lut_uv<F: Real>(
+    r: F,
+    mu: F,
+    cos_azimuth: F,
+    planet_radius: F,
     width: u32,
     height: u32,
-) -> [f32; 2] {
+) -> [F; 2] {
+    let (zero, one, half) = (F::zero(), F::one(), F::of(0.5));
+    let pi = F::of(std::f64::consts::PI);
     let horizon = horizon_zenith_angle(r, planet_radius);
-    let zenith_angle = ((1.0 - mu) * (1.0 + mu)).max(0.0).sqrt().atan2(mu);
+    let zenith_angle = ((one - mu) * (one + mu)).max(zero).sqrt().atan2(mu);
     let y = if zenith_angle < horizon {
         // Sky: quadratic towards the horizon (v = 0 zenith, v = ½ horizon).
-        let coord = 1.0 - (1.0 - zenith_angle / horizon).max(0.0).sqrt();
-        0.5 * coord
+        let coord = one - (one - zenith_angle / horizon).max(zero).sqrt();
+        half * coord
     } else {
         // Ground: quadratic away from the horizon (v = 1 nadir).
-        let coord = ((zenith_angle - horizon) / (PI - horizon)).max(0.0).sqrt();
-        0.5 + 0.5 * coord.min(1.0)
+        let coord = ((zenith_angle - horizon) / (pi - horizon)).max(zero).sqrt();
+        half + half * coord.min(one)
     };
     // sin(φ/2): fine near the sun (φ = 0), coarse opposite it.
-    let x = (0.5 - 0.5 * cos_azimuth).max(0.0).sqrt().min(1.0);
+    let x = (half - half * cos_azimuth).max(zero).sqrt().min(one);
     [
         unit_range_to_texel_uv(x, width),
         unit_range_to_texel_uv(y, height),
@@ -156,36 +161,39 @@ pub fn sky_view_lut_uv(
 }
 
 /// Inverse of [`sky_view_lut_uv`]: `[mu, cos_azimuth]` of a texture coordinate.
-pub fn sky_view_lut_direction(
-    uv: [f32; 2],
-    r: f32,
-    planet_radius: f32,
+pub fn sky_view_lut_direction<F: Real>(
+    uv: [F; 2],
+    r: F,
+    planet_radius: F,
     width: u32,
     height: u32,
-) -> [f32; 2] {
-    let x = texel_uv_to_unit_range(uv[0], width).clamp(0.0, 1.0);
-    let y = texel_uv_to_unit_range(uv[1], height).clamp(0.0, 1.0);
+) -> [F; 2] {
+    let (zero, one, two) = (F::zero(), F::one(), F::of(2.0));
+    let pi = F::of(std::f64::consts::PI);
+    let x = texel_uv_to_unit_range(uv[0], width).clamp(zero, one);
+    let y = texel_uv_to_unit_range(uv[1], height).clamp(zero, one);
     let horizon = horizon_zenith_angle(r, planet_radius);
-    let zenith_angle = if y < 0.5 {
-        let coord = 1.0 - 2.0 * y;
-        horizon * (1.0 - coord * coord)
+    let zenith_angle = if y < F::of(0.5) {
+        let coord = one - two * y;
+        horizon * (one - coord * coord)
     } else {
-        let coord = 2.0 * y - 1.0;
-        horizon + (PI - horizon) * coord * coord
+        let coord = two * y - one;
+        horizon + (pi - horizon) * coord * coord
     };
-    [zenith_angle.cos(), 1.0 - 2.0 * x * x]
+    [zenith_angle.cos(), one - two * x * x]
 }
 
 /// Cosine of the azimuth between the view and the sun around the local zenith, from
 /// the three cosines (1 when either direction is vertical: the azimuth is then moot).
-pub fn view_sun_cos_azimuth(mu: f32, mu_s: f32, nu: f32) -> f32 {
-    let denominator = ((1.0 - mu) * (1.0 + mu) * (1.0 - mu_s) * (1.0 + mu_s))
-        .max(0.0)
+pub fn view_sun_cos_azimuth<F: Real>(mu: F, mu_s: F, nu: F) -> F {
+    let one = F::one();
+    let denominator = ((one - mu) * (one + mu) * (one - mu_s) * (one + mu_s))
+        .max(F::zero())
         .sqrt();
-    if denominator < 1e-6 {
-        return 1.0;
+    if denominator < F::of(1e-6) {
+        return one;
     }
-    ((nu - mu * mu_s) / denominator).clamp(-1.0, 1.0)
+    ((nu - mu * mu_s) / denominator).clamp(-one, one)
 }
 
 /// Where bilinear interpolation reads: the four texels (x0/x1 columns, y0/y1 rows) and
