@@ -1,0 +1,98 @@
+//! The crate's typed errors: each names the field and the value that was rejected.
+
+/// What `celestial` rejects.
+#[derive(Debug, thiserror::Error)]
+pub enum CelestialError {
+    /// A number that must be finite is NaN or infinite.
+    #[error("{field} = {value} is not a finite number")]
+    NotFinite {
+        /// The rejected field.
+        field: &'static str,
+        /// Its value.
+        value: f64,
+    },
+    /// A finite number outside the range the field allows.
+    #[error("{field} = {value} {unit} is outside [{min}, {max}] {unit}")]
+    OutOfRange {
+        /// The rejected field.
+        field: &'static str,
+        /// Its value.
+        value: f64,
+        /// Smallest allowed value.
+        min: f64,
+        /// Largest allowed value.
+        max: f64,
+        /// Unit of `value`, `min` and `max`.
+        unit: &'static str,
+    },
+    /// A date-time string that is not an ISO 8601 (RFC 3339 profile) date-time with an
+    /// explicit UTC offset.
+    #[error(
+        "{field} = {input:?} is not an ISO 8601 date-time with a UTC offset (e.g. 2003-10-17T12:30:30-07:00)"
+    )]
+    Parse {
+        /// The rejected field.
+        field: &'static str,
+        /// The text given.
+        input: String,
+        /// The parser's diagnosis.
+        #[source]
+        source: chrono::ParseError,
+    },
+    /// Calendar fields that name no instant (e.g. 31 April, hour 24).
+    #[error("{field} = {value} names no valid UTC calendar date-time")]
+    InvalidCalendar {
+        /// The rejected field.
+        field: &'static str,
+        /// The fields as given.
+        value: String,
+    },
+    /// An instant outside the span the ephemerides are validated for.
+    #[error("{field} = {value} is outside the supported span [{min}, {max})")]
+    OutsideSpan {
+        /// The rejected field.
+        field: &'static str,
+        /// The instant, in RFC 3339.
+        value: String,
+        /// First supported instant.
+        min: &'static str,
+        /// First unsupported instant after the span.
+        max: &'static str,
+    },
+    /// The SPA ephemeris (crate `solar-positioning`) rejected its input; `celestial`
+    /// validates first, so this signals a disagreement between the two validations.
+    #[error("the SPA solar ephemeris rejected {field}")]
+    Ephemeris {
+        /// What was being computed.
+        field: &'static str,
+        /// The ephemeris' error.
+        #[source]
+        source: solar_positioning::Error,
+    },
+}
+
+/// `Result` with [`CelestialError`].
+pub type Result<T> = std::result::Result<T, CelestialError>;
+
+/// `value` if finite and within `[min, max]`, else the typed error naming `field`.
+pub(crate) fn check_range(
+    field: &'static str,
+    value: f64,
+    min: f64,
+    max: f64,
+    unit: &'static str,
+) -> Result<f64> {
+    if !value.is_finite() {
+        return Err(CelestialError::NotFinite { field, value });
+    }
+    if !(min..=max).contains(&value) {
+        return Err(CelestialError::OutOfRange {
+            field,
+            value,
+            min,
+            max,
+            unit,
+        });
+    }
+    Ok(value)
+}

@@ -1,0 +1,64 @@
+//! skyscape `celestial`: where things are in the sky for a date, time and place, and
+//! how bright they are.
+//!
+//! * [`Instant`]: a UTC instant in 1950–2100 parsed from ISO 8601, with ΔT, Julian
+//!   days and centuries in UT and TT;
+//! * [`Observer`]: latitude, longitude (east positive), elevation, validated;
+//! * [`Angle`]: every angle at the API is typed, so degrees/radians mix-ups do not
+//!   compile;
+//! * [`sidereal`]: nutation, obliquity, Greenwich and local mean/apparent sidereal
+//!   time (Meeus ch. 12, 22);
+//! * [`sun_position`]: the sun by NREL SPA (crate `solar-positioning`), topocentric,
+//!   airless; [`refraction`] the separate Sæmundsson step to the apparent elevation;
+//! * [`equatorial_to_horizontal`] and [`illuminance_from_magnitude`]: formulas written
+//!   once over the float type, with WGSL twins in [`WGSL_MODULES`].
+//!
+//! Bad input is a [`CelestialError`] naming the field and the value.
+
+pub mod angle;
+pub mod error;
+pub mod horizontal;
+pub mod observer;
+pub mod photometry;
+pub mod refraction;
+pub mod sidereal;
+pub mod sun;
+pub mod time;
+
+pub use angle::Angle;
+pub use error::{CelestialError, Result};
+pub use horizontal::{Horizontal, equatorial_to_horizontal};
+pub use observer::Observer;
+pub use photometry::{ZERO_MAGNITUDE_ILLUMINANCE_LX, illuminance_from_magnitude};
+pub use refraction::{AirConditions, apparent_elevation};
+pub use sun::{SunPosition, sun_position};
+pub use time::Instant;
+
+/// The crate's WGSL, canonical under `shaders/celestial/`.
+pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[skyscape_wgsl::Module {
+    name: "celestial::coordinates",
+    source: include_str!("../shaders/coordinates.wgsl"),
+}];
+
+/// A composer holding the common modules and the celestial ones.
+pub fn composer() -> skyscape_wgsl::Composer {
+    let mut composer = skyscape_wgsl::Composer::with_common();
+    composer
+        .add_modules(WGSL_MODULES)
+        .expect("celestial WGSL module names are unique and well formed");
+    composer
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn wgsl_modules_compose_and_validate() {
+        let composer = super::composer();
+        assert_eq!(super::WGSL_MODULES.len(), 1);
+        for module in super::WGSL_MODULES {
+            assert!(module.name.starts_with("celestial::"));
+            let source = composer.compose_module(module.name).unwrap();
+            skyscape_wgsl::validate(module.name, &source).unwrap();
+        }
+    }
+}
