@@ -15,6 +15,8 @@
 //! * [`tilted`]: variant (c), east/west measured in the tilted plane of the sun's
 //!   daily path at a latitude;
 //! * [`HorizonEncoding`]: how an angle is stored (u8, u16 unorm or f32), exactly;
+//! * [`intersect`]: the first hit of a ray on the bilinear surface (exact per cell,
+//!   block maxima skip empty space), for CPU ray-cast rendering;
 //! * [`raycast`]: the exact ray-cast horizon over the bilinear surface (`f64`), the
 //!   reference the trade-off (`cargo xtask tradeoff terrain`) measures maps against;
 //! * `gpu` (default feature): horizon bakes in WGSL compute (east/west, or any azimuth
@@ -39,6 +41,7 @@ pub mod generate;
 pub mod gpu;
 mod heightfield;
 pub mod horizon;
+pub mod intersect;
 mod normal;
 pub mod raycast;
 pub mod shadow;
