@@ -18,6 +18,7 @@
 //! angular radius (4.65e−3 rad); 2.4e−5 rad for 16 bits (plus `f32` rounding of the
 //! decode, ≤ 3e−7 rad).
 
+use crate::TerrainError;
 use crate::shadow::decode_horizon_angle;
 
 /// How a horizon angle is stored.
@@ -53,13 +54,18 @@ impl HorizonEncoding {
         }
     }
 
-    /// The angle after storing and loading it in this encoding.
-    pub fn round_trip(self, angle: f32) -> f32 {
-        match self {
-            Self::Unorm8 => decode_horizon_unorm8(encode_horizon_unorm8(angle)),
-            Self::Unorm16 => decode_horizon_unorm16(encode_horizon_unorm16(angle)),
-            Self::F32 => angle,
-        }
+    /// The angle after storing and loading it in this encoding. Every encoding
+    /// rejects what [`crate::encode_horizon_angle`] rejects (NaN, beyond ±π/2), `F32`
+    /// included, so the choice of encoding never decides whether bad data passes.
+    pub fn round_trip(self, angle: f32) -> Result<f32, TerrainError> {
+        Ok(match self {
+            Self::Unorm8 => decode_horizon_unorm8(encode_horizon_unorm8(angle)?),
+            Self::Unorm16 => decode_horizon_unorm16(encode_horizon_unorm16(angle)?),
+            Self::F32 => {
+                crate::encode_horizon_angle(angle)?;
+                angle
+            }
+        })
     }
 
     /// Largest quantisation error of [`HorizonEncoding::round_trip`], radians (half a
@@ -73,15 +79,16 @@ impl HorizonEncoding {
     }
 }
 
-/// `round((angle + π/2)/π · 255)`; angles outside `[−π/2, π/2]` (which no bake
-/// produces) saturate to 0 or 255.
-pub fn encode_horizon_unorm8(angle: f32) -> u8 {
-    (crate::encode_horizon_angle(angle) * 255.0).round() as u8
+/// `round((angle + π/2)/π · 255)`; NaN and angles outside `[−π/2, π/2]` (which no
+/// bake produces) are [`TerrainError::HorizonAngle`], as in
+/// [`crate::encode_horizon_angle`].
+pub fn encode_horizon_unorm8(angle: f32) -> Result<u8, TerrainError> {
+    Ok((crate::encode_horizon_angle(angle)? * 255.0).round() as u8)
 }
 
-/// `round((angle + π/2)/π · 65535)`, saturating like [`encode_horizon_unorm8`].
-pub fn encode_horizon_unorm16(angle: f32) -> u16 {
-    (crate::encode_horizon_angle(angle) * 65535.0).round() as u16
+/// `round((angle + π/2)/π · 65535)`, rejecting what [`encode_horizon_unorm8`] rejects.
+pub fn encode_horizon_unorm16(angle: f32) -> Result<u16, TerrainError> {
+    Ok((crate::encode_horizon_angle(angle)? * 65535.0).round() as u16)
 }
 
 /// `decode_horizon_angle(q / 255)`: what a shader gets from an 8-bit unorm texel.

@@ -67,6 +67,44 @@ pub enum TerrainError {
         /// The value found.
         value: f64,
     },
+    /// An index (texel column or row, layer count) outside what the map holds.
+    #[error("`{field}` = {value} is out of range: must be < {limit}")]
+    OutOfRange {
+        /// `x`, `y` or `count`.
+        field: &'static str,
+        /// The index given.
+        value: u64,
+        /// One past the largest valid index (0 when nothing is valid).
+        limit: u64,
+    },
+    /// An elevation that the requested encoding cannot hold (instead of a clamp).
+    #[error(
+        "elevation at (x = {x}, y = {y}) is {value} m, outside the {min}..={max} m \
+         that `{field}` can encode"
+    )]
+    ElevationNotRepresentable {
+        /// The encoding's parameters, e.g. `scale, offset` of a 16-bit PNG.
+        field: &'static str,
+        /// Column.
+        x: usize,
+        /// Row.
+        y: usize,
+        /// The elevation, metres.
+        value: f64,
+        /// Lowest representable elevation, metres.
+        min: f64,
+        /// Highest representable elevation, metres.
+        max: f64,
+    },
+    /// A horizon angle that is NaN or outside `[−π/2, π/2]` cannot be encoded
+    /// (a NaN would otherwise become −π/2, "fully shadowed", without a word).
+    #[error("horizon angle `{field}` = {value} rad is not in [-pi/2, pi/2]")]
+    HorizonAngle {
+        /// `angle`, or the texel, e.g. `horizon (x = 3, y = 7)`.
+        field: String,
+        /// The angle given, radians.
+        value: f32,
+    },
     /// A scalar parameter is out of its valid range.
     #[error("`{field}` = {value} is invalid: {reason}")]
     InvalidParameter {
@@ -80,6 +118,19 @@ pub enum TerrainError {
 }
 
 impl TerrainError {
+    /// Checks `value < limit` for an index called `field`.
+    pub(crate) fn check_index(field: &'static str, value: usize, limit: usize) -> Result<(), Self> {
+        if value < limit {
+            Ok(())
+        } else {
+            Err(Self::OutOfRange {
+                field,
+                value: value as u64,
+                limit: limit as u64,
+            })
+        }
+    }
+
     pub(crate) fn param(field: &'static str, value: f64, reason: &'static str) -> Self {
         Self::InvalidParameter {
             field,

@@ -316,12 +316,18 @@ impl Heightfield {
         &self.samples
     }
 
-    /// Elevation of texel `(x, y)` in metres. Panics when out of range (like indexing).
-    pub fn elevation(&self, x: usize, y: usize) -> f64 {
-        assert!(
-            x < self.width && y < self.height,
-            "texel ({x}, {y}) out of range"
-        );
+    /// Elevation of texel `(x, y)` in metres; [`TerrainError::OutOfRange`] naming `x`
+    /// or `y` outside the map.
+    pub fn elevation(&self, x: usize, y: usize) -> Result<f64, TerrainError> {
+        TerrainError::check_index("x", x, self.width)?;
+        TerrainError::check_index("y", y, self.height)?;
+        Ok(self.elevation_at(x, y))
+    }
+
+    /// [`Heightfield::elevation`] for the crate's inner loops, whose indices are in
+    /// range by construction (checked in debug builds).
+    pub(crate) fn elevation_at(&self, x: usize, y: usize) -> f64 {
+        debug_assert!(x < self.width && y < self.height);
         f64::from(self.samples[y * self.width + x]) * self.vertical_scale
     }
 
@@ -334,16 +340,30 @@ impl Heightfield {
     }
 
     /// Encodes the elevations as a 16-bit greyscale PNG: `v = round((e - offset) / scale)`
-    /// clamped to `0..=65535` (the inverse of [`Heightfield::from_png16`]).
+    /// (the inverse of [`Heightfield::from_png16`]).
+    ///
+    /// An elevation whose `v` falls outside `0..=65535` is
+    /// [`TerrainError::ElevationNotRepresentable`] (naming the texel and the range the
+    /// given `scale` and `offset` hold), never clamped.
     pub fn to_png16(&self, scale: f64, offset: f64) -> Result<Vec<u8>, TerrainError> {
         check_scale("scale", scale)?;
         if !offset.is_finite() {
             return Err(TerrainError::param("offset", offset, "must be finite"));
         }
         let mut bytes = Vec::with_capacity(self.samples.len() * 2);
-        for e in self.elevations() {
-            let v = ((e - offset) / scale).round().clamp(0.0, 65535.0) as u16;
-            bytes.extend_from_slice(&v.to_be_bytes());
+        for (i, e) in self.elevations().into_iter().enumerate() {
+            let v = ((e - offset) / scale).round();
+            if !(0.0..=65535.0).contains(&v) {
+                return Err(TerrainError::ElevationNotRepresentable {
+                    field: "scale, offset",
+                    x: i % self.width,
+                    y: i / self.width,
+                    value: e,
+                    min: offset - 0.5 * scale,
+                    max: offset + 65535.5 * scale,
+                });
+            }
+            bytes.extend_from_slice(&(v as u16).to_be_bytes());
         }
         encode_png(
             &bytes,

@@ -187,9 +187,12 @@ impl HorizonMap {
     pub fn angles(&self) -> &[f32] {
         &self.angles
     }
-    /// The angle at `(x, y)`, radians.
-    pub fn angle(&self, x: usize, y: usize) -> f32 {
-        self.angles[y * self.width + x]
+    /// The angle at `(x, y)`, radians; [`TerrainError::OutOfRange`] naming `x` or `y`
+    /// outside the map (an unchecked `x` would read the next row's texel).
+    pub fn angle(&self, x: usize, y: usize) -> Result<f32, TerrainError> {
+        TerrainError::check_index("x", x, self.width)?;
+        TerrainError::check_index("y", y, self.height)?;
+        Ok(self.angles[y * self.width + x])
     }
 }
 
@@ -223,11 +226,13 @@ impl AzimuthHorizonMaps {
     /// Horizon angle at `(x, y)` for any azimuth (radians clockwise from north),
     /// linearly interpolated between the two neighbouring layers with
     /// [`crate::shadow::azimuth_layers`] (the WGSL twin does the same).
-    pub fn horizon_angle(&self, x: usize, y: usize, sun_azimuth: f32) -> f32 {
-        let l = crate::shadow::azimuth_layers(sun_azimuth, self.layers.len() as u32);
-        let a = self.layers[l.lower as usize].angle(x, y);
-        let b = self.layers[l.upper as usize].angle(x, y);
-        a + (b - a) * l.weight
+    ///
+    /// Errors for `(x, y)` outside the maps or a non-finite `sun_azimuth`.
+    pub fn horizon_angle(&self, x: usize, y: usize, sun_azimuth: f32) -> Result<f32, TerrainError> {
+        let l = crate::shadow::azimuth_layers(sun_azimuth, self.layers.len() as u32)?;
+        let a = self.layers[l.lower as usize].angle(x, y)?;
+        let b = self.layers[l.upper as usize].angle(x, y)?;
+        Ok(a + (b - a) * l.weight)
     }
 }
 

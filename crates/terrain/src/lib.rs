@@ -30,7 +30,7 @@
 //! // A 10 m wall 20 m east of texel 0 of a 1 m-spaced row.
 //! let hf = Heightfield::from_fn(32, 1, 1.0, |x, _| if x == 20 { 10.0 } else { 0.0 })?;
 //! let maps = bake_east_west(&hf, &HorizonOptions::flat(), Algorithm::HullSweep)?;
-//! assert!((maps.east.angle(0, 0) - (10.0f32 / 20.0).atan()).abs() < 1e-6);
+//! assert!((maps.east.angle(0, 0)? - (10.0f32 / 20.0).atan()).abs() < 1e-6);
 //! # Ok::<(), terrain::TerrainError>(())
 //! ```
 

@@ -47,9 +47,27 @@ fn quantise(v: f64, max: f64) -> f64 {
 /// Encodes a horizon angle (radians, [-π/2, π/2]) as a normalised value in [0, 1]:
 /// `(angle + π/2) / π`. A unorm texture holding `round(value * (2^bits - 1))` decodes
 /// with [`crate::shadow::decode_horizon_angle`].
-pub fn encode_horizon_angle(angle: f32) -> f64 {
+///
+/// A NaN or an angle beyond `±f32::FRAC_PI_2` (which no bake produces) is
+/// [`TerrainError::HorizonAngle`]. `f32::FRAC_PI_2` itself lies 4.4e-8 above π/2;
+/// that rounding excess, and only it, maps to the end of the range.
+pub fn encode_horizon_angle(angle: f32) -> Result<f64, TerrainError> {
+    encode_horizon_angle_named(angle, || "angle".to_owned())
+}
+
+/// [`encode_horizon_angle`] with the rejected field's name built on failure.
+pub(crate) fn encode_horizon_angle_named(
+    angle: f32,
+    field: impl FnOnce() -> String,
+) -> Result<f64, TerrainError> {
+    if angle.is_nan() || angle.abs() > std::f32::consts::FRAC_PI_2 {
+        return Err(TerrainError::HorizonAngle {
+            field: field(),
+            value: angle,
+        });
+    }
     let half_pi = std::f64::consts::FRAC_PI_2;
-    ((f64::from(angle) + half_pi) / std::f64::consts::PI).clamp(0.0, 1.0)
+    Ok(((f64::from(angle) + half_pi) / std::f64::consts::PI).clamp(0.0, 1.0))
 }
 
 impl NormalMap {
@@ -90,9 +108,12 @@ impl NormalMap {
         &self.normals
     }
 
-    /// The normal at `(x, y)`.
-    pub fn normal(&self, x: usize, y: usize) -> [f32; 3] {
-        self.normals[y * self.width + x]
+    /// The normal at `(x, y)`; [`TerrainError::OutOfRange`] naming `x` or `y` outside
+    /// the map.
+    pub fn normal(&self, x: usize, y: usize) -> Result<[f32; 3], TerrainError> {
+        TerrainError::check_index("x", x, self.width)?;
+        TerrainError::check_index("y", y, self.height)?;
+        Ok(self.normals[y * self.width + x])
     }
 
     /// RGB PNG, each component mapped from [-1, 1] to the full unorm range.
@@ -154,7 +175,10 @@ impl NormalMap {
                 values.push(quantise(f64::from(c), max));
             }
             if let Some(a) = alpha {
-                values.push((encode_horizon_angle(a[i]) * max).round());
+                let encoded = encode_horizon_angle_named(a[i], || {
+                    format!("horizon (x = {}, y = {})", i % self.width, i / self.width)
+                })?;
+                values.push((encoded * max).round());
             }
         }
         let (bytes, color) = match (depth, channels) {
@@ -179,5 +203,25 @@ impl NormalMap {
             ),
         };
         encode_png(&bytes, self.width, self.height, color)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rgba_png_names_the_texel_whose_horizon_angle_is_nan() {
+        let hf = Heightfield::from_fn(3, 2, 1.0, |_, _| 0.0).unwrap();
+        let mut angles = vec![0.0; 6];
+        angles[4] = f32::NAN; // texel (1, 1)
+        let horizon = HorizonMap::from_angles(3, 2, 0.0, angles);
+        let error = NormalMap::from_heightfield(&hf)
+            .to_rgba_png(&horizon, BitDepth::Sixteen)
+            .unwrap_err();
+        assert!(
+            error.to_string().contains("`horizon (x = 1, y = 1)`"),
+            "{error}"
+        );
     }
 }

@@ -45,10 +45,10 @@ fn bilinear(hf: &Heightfield, x: f64, y: f64) -> f64 {
     let j = (y.floor().max(0.0) as usize).min(h.saturating_sub(2));
     let (i1, j1) = ((i + 1).min(w - 1), (j + 1).min(h - 1));
     let (fx, fy) = (x - i as f64, y - j as f64);
-    let h00 = hf.elevation(i, j);
-    let h10 = hf.elevation(i1, j);
-    let h01 = hf.elevation(i, j1);
-    let h11 = hf.elevation(i1, j1);
+    let h00 = hf.elevation_at(i, j);
+    let h10 = hf.elevation_at(i1, j);
+    let h01 = hf.elevation_at(i, j1);
+    let h11 = hf.elevation_at(i1, j1);
     let top = h00 + (h10 - h00) * fx;
     let bottom = h01 + (h11 - h01) * fx;
     top + (bottom - top) * fy
@@ -100,7 +100,7 @@ pub fn ray_cast_horizon_angle(
     if end.is_nan() || end <= 0.0 {
         return Ok(-std::f64::consts::FRAC_PI_2);
     }
-    let h_p = hf.elevation(x, y);
+    let h_p = hf.elevation_at(x, y);
     let at = |s: f64| (x0 + dx * s, y0 + dy * s);
     let quotient = |s: f64| {
         let (px, py) = at(s);
@@ -135,10 +135,10 @@ pub fn ray_cast_horizon_angle(
         let i = (mx.floor().max(0.0) as usize).min(hf.width().saturating_sub(2));
         let j = (my.floor().max(0.0) as usize).min(hf.height().saturating_sub(2));
         let (i1, j1) = ((i + 1).min(hf.width() - 1), (j + 1).min(hf.height() - 1));
-        let h00 = hf.elevation(i, j);
-        let e1 = hf.elevation(i1, j) - h00;
-        let e2 = hf.elevation(i, j1) - h00;
-        let e3 = hf.elevation(i1, j1) - h00 - e1 - e2;
+        let h00 = hf.elevation_at(i, j);
+        let e1 = hf.elevation_at(i1, j) - h00;
+        let e2 = hf.elevation_at(i, j1) - h00;
+        let e3 = hf.elevation_at(i1, j1) - h00 - e1 - e2;
         let (ax, ay) = at(s_a);
         let (fx, fy) = (ax - i as f64, ay - j as f64);
         let a0 = h00 + e1 * fx + e2 * fy + e3 * fx * fy;

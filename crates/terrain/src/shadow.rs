@@ -7,6 +7,8 @@
 //! clockwise from north (east `π/2`).
 
 use glam::Vec3;
+
+use crate::TerrainError;
 use skyscape_wgsl::common::{PI, TAU};
 
 /// Angular radius of the sun's disc, radians (0.2666°, `SUN_ANGULAR_RADIUS` in WGSL).
@@ -92,17 +94,35 @@ pub struct AzimuthLayers {
 
 /// Layers `k = floor(f)` and `k + 1 (mod N)`, weight `fract(f)`, with
 /// `f = azimuth / 2π · N` wrapped into `[0, N)`; layer `k` is at `k · 2π / N`.
-pub fn azimuth_layers(sun_azimuth: f32, count: u32) -> AzimuthLayers {
+///
+/// Errors ([`TerrainError`]) when `count` is 0 (there is no layer to pick) or
+/// `sun_azimuth` is not finite (the weight would be NaN). The WGSL twin assumes both
+/// were checked on the CPU.
+pub fn azimuth_layers(sun_azimuth: f32, count: u32) -> Result<AzimuthLayers, TerrainError> {
+    if count == 0 {
+        return Err(TerrainError::param(
+            "count",
+            0.0,
+            "must be >= 1 (the number of horizon layers)",
+        ));
+    }
+    if !sun_azimuth.is_finite() {
+        return Err(TerrainError::param(
+            "sun_azimuth",
+            f64::from(sun_azimuth),
+            "must be finite (radians clockwise from north)",
+        ));
+    }
     let n = count as f32;
     let f0 = sun_azimuth / TAU * n;
     let f = f0 - (f0 / n).floor() * n;
     let k = f.floor();
     let lower = (k as u32) % count;
-    AzimuthLayers {
+    Ok(AzimuthLayers {
         lower,
         upper: (lower + 1) % count,
         weight: f - k,
-    }
+    })
 }
 
 /// Self-shadow from the two seed-000 maps: the east horizon while the sun is in the

@@ -82,7 +82,7 @@ impl<'a> TiltedGrid<'a> {
         let mut suffix_max = vec![f64::NEG_INFINITY; w * h];
         for jp in (0..h).rev() {
             for x in 0..w {
-                let here = hf.elevation(x, Self::row_of(toward_south, h, jp));
+                let here = hf.elevation_at(x, Self::row_of(toward_south, h, jp));
                 let next = if jp + 1 < h {
                     suffix_max[(jp + 1) * w + x]
                 } else {
@@ -141,7 +141,7 @@ fn texel(grid: &TiltedGrid<'_>, p: &Plane, x: usize, jp: usize, side: Side) -> f
     let hf = grid.hf;
     let (w, h) = (hf.width(), hf.height());
     let row = |jp: usize| TiltedGrid::row_of(grid.toward_south, h, jp);
-    let h_p = hf.elevation(x, row(jp));
+    let h_p = hf.elevation_at(x, row(jp));
     let columns = match side {
         Side::East => w - 1 - x,
         Side::West => x,
@@ -157,7 +157,7 @@ fn texel(grid: &TiltedGrid<'_>, p: &Plane, x: usize, jp: usize, side: Side) -> f
         let a = k as f64 * p.spacing;
         // (b, c) of the column's texel r rows toward the equator.
         let point = |r: i64| {
-            let q = hf.elevation(col, row((jp as i64 + r) as usize));
+            let q = hf.elevation_at(col, row((jp as i64 + r) as usize));
             let lateral = r as f64 * p.spacing;
             let dh = q - h_p - (a * a + lateral * lateral) * p.inv_two_r;
             (lateral * p.sin + dh * p.cos, lateral * p.cos - dh * p.sin)

@@ -137,7 +137,7 @@ fn wgsl_shadow_twins_match_rust() {
     let mut worst = [0.0f32; 4];
     for (v, g) in inputs.iter().zip(out) {
         let sun = Vec3::new(v[2], v[3], v[0]).normalize();
-        let layers = azimuth_layers(v[2] * 4.0, 16);
+        let layers = azimuth_layers(v[2] * 4.0, 16).unwrap();
         let shade = terrain_shading(
             Vec3::new(v[3], v[2], 1.0).normalize(),
             sun,

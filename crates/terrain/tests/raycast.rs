@@ -96,7 +96,7 @@ fn equals_a_dense_sampling_of_the_bilinear_surface_with_curvature() {
         let i = (x.floor() as usize).min(5);
         let j = (y.floor() as usize).min(4);
         let (fx, fy) = (x - i as f64, y - j as f64);
-        let e = |a: usize, b: usize| hf.elevation(a, b);
+        let e = |a: usize, b: usize| hf.elevation(a, b).unwrap();
         let top = e(i, j) + (e(i + 1, j) - e(i, j)) * fx;
         let bottom = e(i, j + 1) + (e(i + 1, j + 1) - e(i, j + 1)) * fx;
         top + (bottom - top) * fy
@@ -121,7 +121,7 @@ fn equals_a_dense_sampling_of_the_bilinear_surface_with_curvature() {
                 assert_eq!(got, -HALF_PI);
                 continue;
             }
-            let h_p = hf.elevation(x, y);
+            let h_p = hf.elevation(x, y).unwrap();
             let mut dense = f64::NEG_INFINITY;
             // Uniform samples, and geometric ones toward the slope limit at s -> 0.
             let uniform = (1..=200_000).map(|i| end * f64::from(i) / 200_000.0);

@@ -117,12 +117,19 @@ impl Baked {
     /// `self_shadow_east_west` selects), the west map otherwise; `N` layers interpolate
     /// linearly between neighbours (`azimuth_layers`).
     fn horizon(&self, x: usize, y: usize, azimuth: f64, encoding: HorizonEncoding) -> f64 {
-        let stored = |layer: &HorizonMap| encoding.round_trip(layer.angle(x, y));
+        // The samples lie inside the maps and the bakes' angles in [-π/2, π/2].
+        let stored = |layer: &HorizonMap| {
+            let angle = layer.angle(x, y).expect("sample inside the map");
+            encoding
+                .round_trip(angle)
+                .expect("baked angles are encodable")
+        };
         if self.count == 2 {
             let side = if azimuth.sin() >= 0.0 { 0 } else { 1 };
             return f64::from(stored(&self.layers[side]));
         }
-        let l = terrain::shadow::azimuth_layers(azimuth as f32, self.count as u32);
+        let l = terrain::shadow::azimuth_layers(azimuth as f32, self.count as u32)
+            .expect("count >= 4 and a finite azimuth");
         let a = stored(&self.layers[l.lower as usize]);
         let b = stored(&self.layers[l.upper as usize]);
         f64::from(a + (b - a) * l.weight)

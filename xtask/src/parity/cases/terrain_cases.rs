@@ -344,7 +344,8 @@ pub fn cases() -> Vec<Case> {
                 grid
             },
             cpu: |x| {
-                let l = terrain::shadow::azimuth_layers(x[0], x[1] as u32);
+                let l = terrain::shadow::azimuth_layers(x[0], x[1] as u32)
+                    .expect("the grid's counts are >= 1 and its azimuths finite");
                 vec![l.lower as f32, l.upper as f32, l.weight]
             },
             reference: |x| {
