@@ -56,14 +56,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let to_byte = |v: f32| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
     for z in (0..size.nz).step_by(4) {
         let image = image::GrayImage::from_fn(size.nx, size.ny, |x, y| {
-            image::Luma([to_byte(density[size.index(x, y, z)])])
+            image::Luma([to_byte(density[size.index(x, y, z).unwrap()])])
         });
         image.save(dir.join(format!("slice_z{z:02}.png")))?;
     }
     // Vertical section through y = ny / 2, z up.
     let y = size.ny / 2;
     let section = image::GrayImage::from_fn(size.nx, size.nz, |x, row| {
-        image::Luma([to_byte(density[size.index(x, y, size.nz - 1 - row)])])
+        image::Luma([to_byte(
+            density[size.index(x, y, size.nz - 1 - row).unwrap()],
+        )])
     });
     section.save(dir.join("section_y.png"))?;
     println!("wrote {}", dir.canonicalize()?.display());

@@ -128,10 +128,10 @@ mod tests {
         let m = model(2, 0, Boundary::Empty);
         let size = m.size();
         let mut n = NaiveState::empty(size).unwrap();
-        n.cld[size.index(10, 4, 4)] = true;
+        n.cld[size.index(10, 4, 4).unwrap()] = true;
         let p = PackedState::from_naive(&n).unwrap();
         let d = density(&m, &[&p.cld]).unwrap();
-        let at = |x, y, z| d[size.index(x, y, z)];
+        let at = |x, y, z| d[size.index(x, y, z).unwrap()];
         // centre weight 3*3*3 / 9^3, scale 5 (z = 4)
         approx::assert_relative_eq!(at(10, 4, 4), 27.0 / 729.0 * 5.0, max_relative = 1e-6);
         approx::assert_relative_eq!(at(11, 4, 4), 18.0 / 729.0 * 5.0, max_relative = 1e-6);
@@ -155,13 +155,21 @@ mod tests {
         let empty = PackedState::empty(size).unwrap();
         let d = density(&m, &[&full.cld]).unwrap();
         // periodic in x and y; z = 4 is more than R from the top and bottom
-        assert_eq!(d[size.index(0, 0, 4)], 5.0);
-        assert!(d[size.index(0, 0, 0)] < 1.0);
+        assert_eq!(d[size.index(0, 0, 4).unwrap()], 5.0);
+        assert!(d[size.index(0, 0, 0).unwrap()] < 1.0);
         // newest weight 3, then 2, then 1: (3) / (3+2+1) with full only newest
         let d = density(&m, &[&full.cld, &empty.cld, &empty.cld, &full.cld]).unwrap();
-        approx::assert_relative_eq!(d[size.index(5, 5, 4)], 0.5 * 5.0, max_relative = 1e-6);
+        approx::assert_relative_eq!(
+            d[size.index(5, 5, 4).unwrap()],
+            0.5 * 5.0,
+            max_relative = 1e-6
+        );
         let d = density(&m, &[&empty.cld, &full.cld]).unwrap();
-        approx::assert_relative_eq!(d[size.index(5, 5, 4)], 0.4 * 5.0, max_relative = 1e-6);
+        approx::assert_relative_eq!(
+            d[size.index(5, 5, 4).unwrap()],
+            0.4 * 5.0,
+            max_relative = 1e-6
+        );
         assert!(density(&m, &[]).is_err());
         assert!(density(&m, &[&full.cld[1..]]).is_err());
     }

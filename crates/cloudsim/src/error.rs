@@ -126,6 +126,16 @@ pub enum Error {
         /// Largest allowed.
         max: u32,
     },
+    /// A cell coordinate outside the grid (an unchecked `x` would read the next row).
+    #[error("cell coordinate `{field}` = {value} is outside the grid: must be < {limit}")]
+    CellOutOfRange {
+        /// `x`, `y` or `z`.
+        field: &'static str,
+        /// The coordinate given.
+        value: u32,
+        /// The grid's extent along that axis.
+        limit: u32,
+    },
     /// A thread count of zero was requested.
     #[error("`threads` = 0; at least one thread is needed")]
     ZeroThreads,

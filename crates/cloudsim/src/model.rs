@@ -72,8 +72,35 @@ impl GridSize {
         self.nx as usize * self.ny as usize * self.nz as usize
     }
 
-    /// Linear cell index of `(x, y, z)`.
-    pub fn index(&self, x: u32, y: u32, z: u32) -> usize {
+    /// Linear cell index of `(x, y, z)`; [`Error::CellOutOfRange`] naming the first
+    /// coordinate outside the grid.
+    pub fn index(&self, x: u32, y: u32, z: u32) -> Result<usize, Error> {
+        self.check_cell(x, y, z)?;
+        Ok(self.index_unchecked(x, y, z))
+    }
+
+    /// Errors when `(x, y, z)` lies outside the grid.
+    pub fn check_cell(&self, x: u32, y: u32, z: u32) -> Result<(), Error> {
+        for (field, value, limit) in [("x", x, self.nx), ("y", y, self.ny), ("z", z, self.nz)] {
+            if value >= limit {
+                return Err(Error::CellOutOfRange {
+                    field,
+                    value,
+                    limit,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// [`GridSize::index`] without the range check, for loops whose coordinates are
+    /// inside the grid by construction: an `x >= nx` silently names a cell of the next
+    /// row (checked only in debug builds).
+    pub fn index_unchecked(&self, x: u32, y: u32, z: u32) -> usize {
+        debug_assert!(
+            self.check_cell(x, y, z).is_ok(),
+            "cell ({x}, {y}, {z}) outside {self:?}"
+        );
         x as usize + self.nx as usize * (y as usize + self.ny as usize * z as usize)
     }
 
@@ -379,9 +406,14 @@ impl Model {
         &self.mask
     }
 
-    /// The mask level of one cell.
-    pub fn mask_level(&self, x: u32, y: u32, z: u32) -> u16 {
-        self.mask[self.size().index(x, y, z)]
+    /// The mask level of one cell; [`Error::CellOutOfRange`] outside the grid.
+    pub fn mask_level(&self, x: u32, y: u32, z: u32) -> Result<u16, Error> {
+        Ok(self.mask[self.size().index(x, y, z)?])
+    }
+
+    /// [`Model::mask_level`] for the crate's cell loops (coordinates inside the grid).
+    pub(crate) fn mask_level_unchecked(&self, x: u32, y: u32, z: u32) -> u16 {
+        self.mask[self.size().index_unchecked(x, y, z)]
     }
 
     /// True when ellipsoids scale the probabilities (and extinction uses `1 - m`).
@@ -470,7 +502,7 @@ fn mask_levels(size: GridSize, ellipsoids: &[Ellipsoid]) -> Vec<u16> {
                 for x in lo[0]..=hi[0] {
                     let dx = (f64::from(x) + 0.5 - f64::from(e.center[0])) * inv_r[0];
                     let m = 1.0 - (dx * dx + dy * dy + dz * dz);
-                    let slot = &mut mask_value[size.index(x, y, z)];
+                    let slot = &mut mask_value[size.index_unchecked(x, y, z)];
                     if m > *slot {
                         *slot = m;
                     }
@@ -685,13 +717,13 @@ mod tests {
         }];
         let m = Model::new(c).unwrap();
         assert!(m.has_regions());
-        assert_eq!(m.mask_level(10, 10, 5), 256);
-        assert_eq!(m.mask_level(30, 10, 5), 0);
-        assert_eq!(m.mask_level(0, 0, 0), 0);
+        assert_eq!(m.mask_level(10, 10, 5).unwrap(), 256);
+        assert_eq!(m.mask_level(30, 10, 5).unwrap(), 0);
+        assert_eq!(m.mask_level(0, 0, 0).unwrap(), 0);
         // (x - 10.5) / 8 = 0.5 -> 1 - 0.25 = 0.75 -> 192
-        assert_eq!(m.mask_level(14, 10, 5), 192);
+        assert_eq!(m.mask_level(14, 10, 5).unwrap(), 192);
         // (x - 10.5) / 8 = 0.625 -> 1 - 0.390625 = 0.609375 -> 156
-        assert_eq!(m.mask_level(15, 10, 5), 156);
+        assert_eq!(m.mask_level(15, 10, 5).unwrap(), 156);
         let p = Probabilities::default();
         assert_eq!(
             m.thresholds(),
@@ -705,7 +737,7 @@ mod tests {
         for row in 0..size.rows() {
             let (y, z) = ((row % 20) as u32, (row / 20) as u32);
             let entries = table.row_entries(row);
-            let any_alive = (0..40).any(|x| m.mask_level(x, y, z) > 0);
+            let any_alive = (0..40).any(|x| m.mask_level(x, y, z).unwrap() > 0);
             assert_eq!(entries.is_empty(), !any_alive, "row {row}");
             for e in entries {
                 seen += 1;
@@ -720,7 +752,7 @@ mod tests {
                         let t = if x >= 40 {
                             0
                         } else {
-                            let l = u32::from(m.mask_level(x, y, z));
+                            let l = u32::from(m.mask_level(x, y, z).unwrap());
                             assert_eq!(table.alive(e) >> lane & 1 == 1, l > 0);
                             crate::rng::lane_threshold(m.thresholds()[s], l, *stream)
                         };

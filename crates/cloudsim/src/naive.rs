@@ -38,7 +38,7 @@ fn resolve(size: GridSize, boundary: Boundary, x: i64, y: i64, z: i64) -> Option
             (x, y)
         }
     };
-    Some(size.index(x as u32, y as u32, z as u32))
+    Some(size.index_unchecked(x as u32, y as u32, z as u32))
 }
 
 /// Whether the event of stream `stream` happens in cell `(x, y, z)` during `step`,
@@ -53,7 +53,7 @@ fn event(model: &Model, stream: u32, step: u32, x: u32, y: u32, z: u32) -> bool 
     let lane = x % 32;
     let base = model.thresholds()[stream as usize];
     let threshold = if model.has_regions() {
-        lane_threshold(base, u32::from(model.mask_level(x, y, z)), stream)
+        lane_threshold(base, u32::from(model.mask_level_unchecked(x, y, z)), stream)
     } else {
         base
     };
@@ -83,7 +83,7 @@ pub fn step(model: &Model, src: &NaiveState, step: u32) -> Result<NaiveState, Er
     for z in 0..size.nz {
         for y in 0..size.ny {
             for x in 0..size.nx {
-                let i = size.index(x, y, z);
+                let i = size.index_unchecked(x, y, z);
                 let (hum, act, cld) = (src.hum[i], src.act[i], src.cld[i]);
                 let f_act = NEIGHBOURS.iter().any(|[dx, dy, dz]| {
                     resolve(
@@ -135,7 +135,7 @@ pub fn step(model: &Model, src: &NaiveState, step: u32) -> Result<NaiveState, Er
                     i64::from(z),
                 );
                 if let Some(j) = from {
-                    let i = size.index(x, y, z);
+                    let i = size.index_unchecked(x, y, z);
                     moved.hum[i] = next.hum[j];
                     moved.act[i] = next.act[j];
                     moved.cld[i] = next.cld[j];

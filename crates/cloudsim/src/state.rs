@@ -186,9 +186,11 @@ impl PackedState {
         }
     }
 
-    /// `cld` of cell `(x, y, z)`.
-    pub fn cloud(&self, x: u32, y: u32, z: u32) -> bool {
-        self.bit(&self.cld, x, y, z)
+    /// `cld` of cell `(x, y, z)`; [`Error::CellOutOfRange`] outside the grid (an
+    /// unchecked `x` would read a padding bit or the next row).
+    pub fn cloud(&self, x: u32, y: u32, z: u32) -> Result<bool, Error> {
+        self.size.check_cell(x, y, z)?;
+        Ok(self.bit(&self.cld, x, y, z))
     }
 
     fn bit(&self, words: &[u32], x: u32, y: u32, z: u32) -> bool {
@@ -224,7 +226,10 @@ mod tests {
         assert_eq!(PackedState::from_naive(&n).unwrap(), s);
         let ones = n.hum.iter().filter(|&&b| b).count();
         assert!(ones > 60 && ones < 160, "{ones}");
-        assert_eq!(s.cloud(3, 1, 1), n.cld[size.index(3, 1, 1)]);
+        assert_eq!(
+            s.cloud(3, 1, 1).unwrap(),
+            n.cld[size.index(3, 1, 1).unwrap()]
+        );
     }
 
     #[test]
