@@ -660,6 +660,43 @@ fn gpu_frame_matches_the_cpu_shading() {
     }
 }
 
+/// The static bakes stay scheduled until an `encode` records them: preparing twice
+/// before the first `encode` renders the same frame as preparing once (the flag used
+/// to be consumed by the first `prepare`, leaving the second frame without LUTs).
+#[test]
+fn preparing_twice_before_encoding_still_bakes_the_static_luts() {
+    let Some(gpu) = skyscape_harness::gpu_or_skip(
+        "atmos::luts preparing_twice_before_encoding_still_bakes_the_static_luts",
+    ) else {
+        return;
+    };
+    let camera = test_camera(8, 6, None);
+    let other_camera = test_camera(8, 6, Some(8_000.0));
+    let frame = |prepares: &[&FrameCamera]| {
+        let mut renderer = atmos::gpu::precomputed::PrecomputedRenderer::new(
+            &gpu.device,
+            &Atmosphere::earth(),
+            LutSettings::small(),
+        )
+        .unwrap();
+        for camera in prepares {
+            renderer.prepare(&gpu.queue, camera);
+        }
+        let output = atmos::gpu::FrameOutput::new(&gpu.device, 8, 6).unwrap();
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        renderer.encode(&mut encoder, &output, None).unwrap();
+        gpu.queue.submit([encoder.finish()]);
+        read_floats(gpu, output.radiance(), 8 * 6 * 4)
+    };
+    let once = frame(&[&camera]);
+    let twice = frame(&[&other_camera, &camera]);
+    assert!(
+        once.iter().any(|&v| v > 0.0),
+        "the reference frame is black"
+    );
+    assert_eq!(once, twice, "a second prepare dropped the static bakes");
+}
+
 fn gpu_frame_matches_the_cpu_shading_with(
     gpu: &skyscape_harness::GpuContext,
     settings: LutSettings,

@@ -10,6 +10,8 @@
 //! aerial perspective) and [`PrecomputedRenderer::encode_pixels`] (per pixel), one
 //! pass and one optional `ComputePassTimestampWrites` each.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use crate::frame::FrameCamera;
 use crate::gpu::FrameOutput;
 use crate::gpu::luts::{LutBaker, compute_pipeline};
@@ -22,8 +24,10 @@ pub struct PrecomputedRenderer {
     baker: LutBaker,
     pipeline: wgpu::ComputePipeline,
     camera: Option<FrameCamera>,
-    static_luts_baked: bool,
-    bake_static_luts_in_encode: bool,
+    /// True until an encoder holds the static bakes ([`Self::encode`] or
+    /// [`Self::encode_static_luts`] recorded them). Only recording clears it, so any
+    /// number of `prepare` calls before the first `encode` keep the bakes scheduled.
+    static_luts_pending: AtomicBool,
 }
 
 impl PrecomputedRenderer {
@@ -44,20 +48,18 @@ impl PrecomputedRenderer {
             baker,
             pipeline,
             camera: None,
-            static_luts_baked: false,
-            bake_static_luts_in_encode: false,
+            static_luts_pending: AtomicBool::new(true),
         })
     }
 
-    /// Writes the camera uniform. The first call after `new` also schedules the static
-    /// bakes (transmittance, multiple scattering) into the next [`Self::encode`]: submit
-    /// that encoder before relying on later frames (or bake them yourself with
-    /// [`Self::encode_static_luts`] and use the split API).
+    /// Writes the camera uniform. Until an encoder has recorded the static bakes
+    /// (transmittance, multiple scattering), the next [`Self::encode`] records them
+    /// first: submit that encoder before relying on later frames (or bake them yourself
+    /// with [`Self::encode_static_luts`] and use the split API). Calling `prepare`
+    /// again before encoding only replaces the camera.
     pub fn prepare(&mut self, queue: &wgpu::Queue, camera: &FrameCamera) {
         self.baker.prepare(queue, camera);
         self.camera = Some(*camera);
-        self.bake_static_luts_in_encode = !self.static_luts_baked;
-        self.static_luts_baked = true;
     }
 
     /// The LUT passes and buffers (for reading the LUTs back or timing single bakes).
@@ -102,8 +104,10 @@ impl PrecomputedRenderer {
             label: Some("atmos precomputed frame"),
             timestamp_writes,
         });
-        self.baker
-            .record_into(&mut pass, self.bake_static_luts_in_encode);
+        // Checked and cleared only once the pass exists, so a failed `encode` (missing
+        // `prepare`, mismatched output) leaves the bakes scheduled.
+        let static_luts = self.static_luts_pending.swap(false, Ordering::Relaxed);
+        self.baker.record_into(&mut pass, static_luts);
         self.record_pixels(&mut pass, &group);
         Ok(())
     }
@@ -115,6 +119,7 @@ impl PrecomputedRenderer {
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
         self.baker.encode_static_luts(encoder, timestamp_writes);
+        self.static_luts_pending.store(false, Ordering::Relaxed);
     }
 
     /// Per frame: sky-view and aerial-perspective bakes (one pass).
