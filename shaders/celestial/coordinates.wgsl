@@ -7,7 +7,7 @@
 
 // Illuminance (lux) of a magnitude-0 point source outside the atmosphere:
 // L0 * (1 arcsec)^2 with L0 = 10.96e4 cd/m^2 (Bara, CIE V(lambda) AB zero point).
-const ZERO_MAGNITUDE_ILLUMINANCE_LX: f32 = 2.5760e-6;
+const ZERO_MAGNITUDE_ILLUMINANCE_LX: f32 = 2.576085587085128e-6;
 
 // (azimuth, elevation) of a body at local hour angle `hour_angle` (west positive) and
 // `declination`, seen from `latitude`. East/north/up components and two atan2 (no

@@ -10,14 +10,19 @@
 //!   time (Meeus ch. 12, 22);
 //! * [`sun_position`]: the sun by NREL SPA (crate `solar-positioning`), topocentric,
 //!   airless; [`refraction`] the separate Sæmundsson step to the apparent elevation;
-//! * [`equatorial_to_horizontal`] and [`illuminance_from_magnitude`]: formulas written
-//!   once over the float type, with WGSL twins in [`WGSL_MODULES`].
+//! * [`moon_phase`]: phase angle, illuminated fraction and bright limb from the sun's
+//!   and moon's places (Meeus ch. 48); [`moon_disc_incidence_cosine`] the lit part of
+//!   the disc per point;
+//! * [`equatorial_to_horizontal`], [`illuminance_from_magnitude`] and
+//!   [`moon_disc_incidence_cosine`]: formulas written once over the float type, with
+//!   WGSL twins in [`WGSL_MODULES`].
 //!
 //! Bad input is a [`CelestialError`] naming the field and the value.
 
 pub mod angle;
 pub mod error;
 pub mod horizontal;
+pub mod moon_phase;
 pub mod observer;
 pub mod photometry;
 pub mod refraction;
@@ -28,6 +33,7 @@ pub mod time;
 pub use angle::Angle;
 pub use error::{CelestialError, Result};
 pub use horizontal::{Horizontal, equatorial_to_horizontal};
+pub use moon_phase::{EquatorialPlace, MoonPhase, moon_disc_incidence_cosine, moon_phase};
 pub use observer::Observer;
 pub use photometry::{ZERO_MAGNITUDE_ILLUMINANCE_LX, illuminance_from_magnitude};
 pub use refraction::{AirConditions, apparent_elevation};
@@ -35,10 +41,16 @@ pub use sun::{SunPosition, sun_position};
 pub use time::Instant;
 
 /// The crate's WGSL, canonical under `shaders/celestial/`.
-pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[skyscape_wgsl::Module {
-    name: "celestial::coordinates",
-    source: include_str!("../shaders/coordinates.wgsl"),
-}];
+pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
+    skyscape_wgsl::Module {
+        name: "celestial::coordinates",
+        source: include_str!("../shaders/coordinates.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "celestial::moon",
+        source: include_str!("../shaders/moon.wgsl"),
+    },
+];
 
 /// A composer holding the common modules and the celestial ones.
 pub fn composer() -> skyscape_wgsl::Composer {
@@ -54,7 +66,7 @@ mod tests {
     #[test]
     fn wgsl_modules_compose_and_validate() {
         let composer = super::composer();
-        assert_eq!(super::WGSL_MODULES.len(), 1);
+        assert_eq!(super::WGSL_MODULES.len(), 2);
         for module in super::WGSL_MODULES {
             assert!(module.name.starts_with("celestial::"));
             let source = composer.compose_module(module.name).unwrap();
