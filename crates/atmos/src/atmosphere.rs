@@ -1,10 +1,12 @@
 //! Physical parameters of an atmosphere, their validation, the f32 uniform block
 //! shared with WGSL (`shaders/atmos/atmosphere.wgsl`) and the density profiles.
 
-/// Errors from invalid atmosphere parameters: the field and its value.
+/// Everything atmos rejects, naming the field and its value; each variant says which
+/// input it belongs to (the atmosphere, the camera, the LUT settings, another setting,
+/// or a GPU resource), and wrapped errors keep their source.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum AtmosError {
-    /// A parameter is NaN, infinite or outside its physical range.
+    /// An [`Atmosphere`] parameter is NaN, infinite or outside its physical range.
     #[error("invalid atmosphere: `{field}` = {value}: {reason}")]
     InvalidParameter {
         /// The field, as spelled in [`Atmosphere`] (with a channel index for colours).
@@ -14,13 +16,83 @@ pub enum AtmosError {
         /// The rule it breaks.
         reason: &'static str,
     },
+    /// A camera or sky query ([`crate::frame::FrameCamera`], [`crate::SkyQuery`]) is
+    /// invalid: a non-finite or non-unit vector, a position inside the planet, a bad
+    /// field of view or frame size.
+    #[error("invalid camera: `{field}` = {value}: {reason}")]
+    InvalidCamera {
+        /// The field, e.g. `position.x`, `vertical_fov`.
+        field: String,
+        /// The offending value.
+        value: f64,
+        /// The rule it breaks.
+        reason: &'static str,
+    },
+    /// A [`crate::lut::LutSettings`] size or count is out of range.
+    #[error("invalid LUT settings: `{field}` = {value}: {reason}")]
+    InvalidLutSettings {
+        /// The field, as spelled in `LutSettings`.
+        field: String,
+        /// The offending value.
+        value: f64,
+        /// The rule it breaks.
+        reason: &'static str,
+    },
+    /// Another model setting (dome resolution, quadrature, sample counts, wavelengths,
+    /// frame size) is out of range.
+    #[error("invalid {setting}: `{field}` = {value}: {reason}")]
+    InvalidSetting {
+        /// Which settings, e.g. `dome resolution`, `reference settings`.
+        setting: &'static str,
+        /// The field.
+        field: String,
+        /// The offending value.
+        value: f64,
+        /// The rule it breaks.
+        reason: &'static str,
+    },
     /// WGSL composition failed (a bug in skyscape's shaders, reported rather than panicking).
     #[error("WGSL composition: {0}")]
     Shader(#[from] skyscape_wgsl::ComposeError),
-    /// A GPU resource this pass needs is unavailable (e.g. a frame larger than the
-    /// device's storage-buffer limit); names the resource and the numbers.
+    /// A GPU pass cannot run: a resource the device cannot hold, or a call out of order.
     #[error("GPU: {0}")]
-    Gpu(String),
+    Gpu(#[from] GpuError),
+}
+
+/// Why a GPU pass cannot run.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum GpuError {
+    /// A buffer larger than the device's storage-binding limit.
+    #[error("{resource} needs a {bytes}-byte storage buffer; the device binds at most {limit}")]
+    StorageBufferTooLarge {
+        /// What the buffer holds, e.g. `a 4096×4096 frame`, `a LUT`.
+        resource: String,
+        /// Bytes it needs.
+        bytes: u64,
+        /// `max_storage_buffer_binding_size`.
+        limit: u64,
+    },
+    /// `encode` before `prepare`.
+    #[error("{pass}: encode called before prepare")]
+    NotPrepared {
+        /// The renderer, e.g. `PrecomputedRenderer`.
+        pass: &'static str,
+    },
+    /// The prepared camera's frame size differs from the output's.
+    #[error(
+        "camera frame {camera_width}×{camera_height} does not match the output's \
+         {output_width}×{output_height}"
+    )]
+    OutputSizeMismatch {
+        /// `FrameCamera::width`.
+        camera_width: u32,
+        /// `FrameCamera::height`.
+        camera_height: u32,
+        /// `FrameOutput::width`.
+        output_width: u32,
+        /// `FrameOutput::height`.
+        output_height: u32,
+    },
 }
 
 /// A planet's atmosphere. SI units: radii and heights in metres, coefficients in 1/m.

@@ -63,14 +63,16 @@ impl DomeResolution {
     /// Checks the resolution, naming the field at fault.
     pub fn validate(&self) -> Result<(), AtmosError> {
         if self.rings < 4 {
-            return Err(AtmosError::InvalidParameter {
+            return Err(AtmosError::InvalidSetting {
+                setting: "dome resolution",
                 field: "rings".into(),
                 value: f64::from(self.rings),
                 reason: "a dome needs ≥ 4 elevation bands (≥ 2 on each side of the horizon)",
             });
         }
         if self.segments < 3 {
-            return Err(AtmosError::InvalidParameter {
+            return Err(AtmosError::InvalidSetting {
+                setting: "dome resolution",
                 field: "segments".into(),
                 value: f64::from(self.segments),
                 reason: "a dome needs ≥ 3 azimuth sectors",

@@ -35,7 +35,7 @@ pub struct FrameCamera {
 }
 
 fn invalid(field: &str, value: f64, reason: &'static str) -> AtmosError {
-    AtmosError::InvalidParameter {
+    AtmosError::InvalidCamera {
         field: field.to_owned(),
         value,
         reason,

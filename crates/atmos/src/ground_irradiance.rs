@@ -81,7 +81,8 @@ pub fn ground_irradiance(
         ("azimuth_cells", quadrature.azimuth_cells),
     ] {
         if cells == 0 || cells > 4096 {
-            return Err(AtmosError::InvalidParameter {
+            return Err(AtmosError::InvalidSetting {
+                setting: "irradiance quadrature",
                 field: field.to_owned(),
                 value: f64::from(cells),
                 reason: "must be in 1..=4096",

@@ -51,7 +51,7 @@ pub struct SkyQuery {
 }
 
 fn invalid(field: &str, value: f64, reason: &'static str) -> AtmosError {
-    AtmosError::InvalidParameter {
+    AtmosError::InvalidCamera {
         field: field.to_owned(),
         value,
         reason,

@@ -29,7 +29,7 @@ pub mod reference;
 pub mod single_scattering;
 pub mod transmittance;
 
-pub use atmosphere::{AtmosError, Atmosphere, AtmosphereParameters};
+pub use atmosphere::{AtmosError, Atmosphere, AtmosphereParameters, GpuError};
 pub use ladder::{SkyModel, SkyQuery, SkySample};
 pub use skyscape_wgsl::common::PI;
 

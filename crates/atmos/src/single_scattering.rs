@@ -318,7 +318,8 @@ impl SingleScatteringSettings {
             ("light_samples", self.light_samples),
         ] {
             if value == 0 || value > MAX_SAMPLES {
-                return Err(AtmosError::InvalidParameter {
+                return Err(AtmosError::InvalidSetting {
+                    setting: "single-scattering settings",
                     field: field.to_owned(),
                     value: f64::from(value),
                     reason: "must be in 1..=4096",

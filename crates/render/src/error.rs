@@ -16,9 +16,10 @@ pub enum RenderError {
     /// `encode` was called before `prepare`.
     #[error("the pass was encoded before `prepare` gave it a scene")]
     NotPrepared,
-    /// The atmosphere, a query or an atmos GPU pass was rejected by `atmos`.
+    /// The atmosphere, a camera or query, a setting or an atmos GPU pass was rejected
+    /// by `atmos`; the typed error is kept as the source (its message says which input).
     #[error("atmos: {0}")]
-    Atmosphere(String),
+    Atmosphere(#[from] atmos::AtmosError),
     /// WGSL composition failed (a bug in skyscape's shaders).
     #[error("WGSL composition: {0}")]
     Shader(#[from] skyscape_wgsl::ComposeError),

@@ -36,9 +36,7 @@ impl PresentParameters {
         exposure: f32,
         dither_seed: u32,
     ) -> Result<Self, RenderError> {
-        atmosphere
-            .validate()
-            .map_err(|e| RenderError::Atmosphere(e.to_string()))?;
+        atmosphere.validate().map_err(RenderError::Atmosphere)?;
         crate::error::check("exposure", exposure, exposure > 0.0, "must be > 0")?;
         let radius = atmosphere.sun_angular_radius;
         let solid_angle = 2.0 * std::f64::consts::PI * (1.0 - radius.cos());
@@ -134,8 +132,7 @@ pub fn render_model_cpu(
                     ) {
                         Ok(q) => q,
                         Err(e) => {
-                            *failure.lock().unwrap_or_else(|p| p.into_inner()) =
-                                Some(e.to_string());
+                            *failure.lock().unwrap_or_else(|p| p.into_inner()) = Some(e);
                             return;
                         }
                     };
@@ -152,7 +149,7 @@ pub fn render_model_cpu(
         }
     });
     match failure.into_inner().unwrap_or_else(|p| p.into_inner()) {
-        Some(message) => Err(RenderError::Atmosphere(message)),
+        Some(error) => Err(RenderError::Atmosphere(error)),
         None => Ok(pixels),
     }
 }

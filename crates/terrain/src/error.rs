@@ -16,12 +16,12 @@ pub enum TerrainError {
         source: std::io::Error,
     },
     /// The PNG decoder or encoder failed (corrupt or truncated data).
-    #[error("PNG {operation} failed: {message}")]
+    #[error("PNG {operation} failed: {source}")]
     Png {
         /// `decode` or `encode`.
         operation: &'static str,
-        /// The decoder's message.
-        message: String,
+        /// The codec's error.
+        source: image::ImageError,
     },
     /// The PNG has the wrong pixel layout or bit depth for the loader that was called.
     #[error("PNG pixel format is {found}, expected {expected}")]

@@ -75,11 +75,8 @@ fn check_scale(field: &'static str, scale: f64) -> Result<(), TerrainError> {
     }
 }
 
-fn png_error(operation: &'static str, e: impl std::fmt::Display) -> TerrainError {
-    TerrainError::Png {
-        operation,
-        message: e.to_string(),
-    }
+fn png_error(operation: &'static str, source: image::ImageError) -> TerrainError {
+    TerrainError::Png { operation, source }
 }
 
 fn read_file(path: &Path) -> Result<Vec<u8>, TerrainError> {

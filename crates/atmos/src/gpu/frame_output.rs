@@ -2,8 +2,8 @@
 //! `vec4<f32>` per pixel (index `x + width · y`): in-scattered radiance (rgb, w = 1)
 //! and transmittance (rgb, w = 1), in the units of [`crate::ladder`].
 
-use crate::AtmosError;
 use crate::frame::FrameCamera;
+use crate::{AtmosError, GpuError};
 
 /// The two per-pixel output buffers of a frame.
 #[derive(Debug)]
@@ -22,7 +22,8 @@ impl FrameOutput {
     /// they would exceed the device's storage-buffer binding limit.
     pub fn new(device: &wgpu::Device, width: u32, height: u32) -> Result<Self, AtmosError> {
         if width == 0 || height == 0 {
-            return Err(AtmosError::InvalidParameter {
+            return Err(AtmosError::InvalidSetting {
+                setting: "frame output",
                 field: if width == 0 { "width" } else { "height" }.to_owned(),
                 value: 0.0,
                 reason: "must be ≥ 1 pixel",
@@ -31,9 +32,12 @@ impl FrameOutput {
         let size = u64::from(width) * u64::from(height) * Self::BYTES_PER_PIXEL;
         let limit = device.limits().max_storage_buffer_binding_size;
         if size > limit {
-            return Err(AtmosError::Gpu(format!(
-                "a {width}×{height} frame needs {size}-byte storage buffers; the device binds at most {limit}"
-            )));
+            return Err(GpuError::StorageBufferTooLarge {
+                resource: format!("a {width}×{height} frame"),
+                bytes: size,
+                limit,
+            }
+            .into());
         }
         let buffer = |label| {
             device.create_buffer(&wgpu::BufferDescriptor {
@@ -54,10 +58,13 @@ impl FrameOutput {
     /// Errors unless `camera` describes a frame of this output's size.
     pub fn check_camera(&self, camera: &FrameCamera) -> Result<(), AtmosError> {
         if camera.width != self.width || camera.height != self.height {
-            return Err(AtmosError::Gpu(format!(
-                "camera frame {}×{} does not match the output's {}×{}",
-                camera.width, camera.height, self.width, self.height
-            )));
+            return Err(GpuError::OutputSizeMismatch {
+                camera_width: camera.width,
+                camera_height: camera.height,
+                output_width: self.width,
+                output_height: self.height,
+            }
+            .into());
         }
         Ok(())
     }

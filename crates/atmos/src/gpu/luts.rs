@@ -16,7 +16,7 @@ use crate::frame::FrameCamera;
 use crate::gpu::resources::{storage_entry, uniform_entry};
 use crate::lut::multiple_scattering_moments::MULTIPLE_SCATTERING_LAYERS;
 use crate::lut::{LutSettings, LutSettingsUniform};
-use crate::{AtmosError, Atmosphere};
+use crate::{AtmosError, Atmosphere, GpuError};
 
 const WORKGROUP: u32 = 8;
 
@@ -61,9 +61,7 @@ pub(crate) fn compute_pipeline(
     module: &str,
     entry: &str,
 ) -> Result<wgpu::ComputePipeline, AtmosError> {
-    let source = crate::composer()
-        .compose_module(module)
-        .map_err(|e| AtmosError::Gpu(format!("composing {module}: {e}")))?;
+    let source = crate::composer().compose_module(module)?;
     let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(module),
         source: wgpu::ShaderSource::Wgsl(source.into()),
@@ -104,9 +102,12 @@ impl LutBaker {
         ];
         let limit = device.limits().max_storage_buffer_binding_size;
         if let Some(bytes) = sizes.iter().map(|n| n * texel_bytes).find(|&b| b > limit) {
-            return Err(AtmosError::Gpu(format!(
-                "a LUT needs a {bytes}-byte storage buffer; the device binds at most {limit}"
-            )));
+            return Err(GpuError::StorageBufferTooLarge {
+                resource: "a LUT".to_owned(),
+                bytes,
+                limit,
+            }
+            .into());
         }
         let lut_buffer = |label: &str, texels: u64| {
             device.create_buffer(&wgpu::BufferDescriptor {

@@ -16,7 +16,7 @@ use crate::frame::FrameCamera;
 use crate::gpu::FrameOutput;
 use crate::gpu::luts::{LutBaker, compute_pipeline};
 use crate::lut::LutSettings;
-use crate::{AtmosError, Atmosphere};
+use crate::{AtmosError, Atmosphere, GpuError};
 
 /// Renders frames with the precomputed rung.
 #[derive(Debug)]
@@ -69,7 +69,9 @@ impl PrecomputedRenderer {
 
     fn output_group(&self, output: &FrameOutput) -> Result<wgpu::BindGroup, AtmosError> {
         let camera = self.camera.as_ref().ok_or_else(|| {
-            AtmosError::Gpu("PrecomputedRenderer::prepare must run before encoding".into())
+            AtmosError::from(GpuError::NotPrepared {
+                pass: "PrecomputedRenderer",
+            })
         })?;
         output.check_camera(camera)?;
         Ok(self

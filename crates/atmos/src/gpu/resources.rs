@@ -2,9 +2,9 @@
 //! bind-group layout entries for buffers, per-frame uniform buffers, and the one
 //! binding layout of the per-pixel frame renderers (rungs 1 and 2).
 
-use crate::AtmosError;
 use crate::frame::FrameCamera;
 use crate::gpu::FrameOutput;
+use crate::{AtmosError, GpuError};
 
 /// A compute-stage buffer binding of type `ty` (uniform or storage), unsized.
 pub fn compute_buffer_entry(
@@ -90,8 +90,7 @@ impl FramePassLayout {
         output: &FrameOutput,
         own_storage: &[&wgpu::Buffer],
     ) -> Result<(FrameCamera, wgpu::BindGroup), AtmosError> {
-        let prepared =
-            prepared.ok_or_else(|| AtmosError::Gpu("encode called before prepare".into()))?;
+        let prepared = prepared.ok_or(GpuError::NotPrepared { pass: self.label })?;
         output.check_camera(&prepared)?;
         let [radiance, transmittance] = output.bind_group_entries(2);
         let entries: Vec<_> = [

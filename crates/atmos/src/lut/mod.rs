@@ -174,7 +174,7 @@ impl LutSettings {
     /// Checks every size and count; the error names the field.
     pub fn validate(&self) -> Result<(), AtmosError> {
         let invalid = |field: &str, value: f64, reason: &'static str| {
-            Err(AtmosError::InvalidParameter {
+            Err(AtmosError::InvalidLutSettings {
                 field: field.to_owned(),
                 value,
                 reason,

@@ -127,7 +127,8 @@ impl ReferenceSettings {
         ];
         for (field, value, min, max) in checks {
             if value < min || value > max {
-                return Err(AtmosError::InvalidParameter {
+                return Err(AtmosError::InvalidSetting {
+                    setting: "reference settings",
                     field: field.to_owned(),
                     value: value as f64,
                     reason: "outside the accepted range (see ReferenceSettings::validate)",

@@ -188,7 +188,8 @@ impl SpectralReferenceSky {
         wavelengths: &[f64],
     ) -> Result<Self, AtmosError> {
         atmosphere.validate()?;
-        let invalid = |value: f64, reason: &'static str| AtmosError::InvalidParameter {
+        let invalid = |value: f64, reason: &'static str| AtmosError::InvalidSetting {
+            setting: "spectral reference",
             field: "wavelengths".to_owned(),
             value,
             reason,
@@ -440,7 +441,7 @@ mod tests {
             vec![500.0, 520.0, 540.0],
         ] {
             match SpectralReferenceSky::with_wavelengths(&earth, settings, &bad) {
-                Err(AtmosError::InvalidParameter { field, .. }) => assert_eq!(field, "wavelengths"),
+                Err(AtmosError::InvalidSetting { field, .. }) => assert_eq!(field, "wavelengths"),
                 other => panic!("{bad:?}: {other:?}"),
             }
         }

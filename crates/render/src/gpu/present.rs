@@ -108,7 +108,7 @@ impl Presenter {
             .ok_or(RenderError::NotPrepared)?;
         frame
             .check_camera(&camera)
-            .map_err(|e| RenderError::Atmosphere(e.to_string()))?;
+            .map_err(RenderError::Atmosphere)?;
         let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("render present"),
             layout: &self.layout,
