@@ -101,7 +101,9 @@ pub fn composer() -> skyscape_wgsl::Composer {
         .add_modules(cloudlight::WGSL_MODULES)
         .expect("cloudlight WGSL modules register")
         .add_modules(cloudsim::WGSL_MODULES)
-        .expect("cloudsim WGSL modules register");
+        .expect("cloudsim WGSL modules register")
+        .add_modules(celestial::WGSL_MODULES)
+        .expect("celestial WGSL modules register");
     composer
 }
 

@@ -10,6 +10,7 @@ mod atmos_dome_cases;
 mod atmos_lut_cases;
 mod atmos_moments_cases;
 mod atmos_single_scattering_cases;
+mod celestial_cases;
 mod cloudlight_cases;
 mod cloudsim_cases;
 mod common_cases;
@@ -360,6 +361,7 @@ pub fn all() -> Vec<Case> {
         terrain_cases::cases(),
         cloudlight_cases::cases(),
         cloudsim_cases::cases(),
+        celestial_cases::cases(),
         common_cases::cases(),
     ]
     .into_iter()
