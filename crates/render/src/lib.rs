@@ -8,11 +8,14 @@
 //! assert_eq!(pixels.len(), 32 * 18);
 //! ```
 
+pub mod cpu_renderer;
 pub mod error;
 #[cfg(feature = "gpu")]
 pub mod gpu;
 pub mod present;
+pub mod scene;
 pub mod sky;
+pub mod terrain_shading;
 pub mod tonemap;
 
 pub use error::RenderError;

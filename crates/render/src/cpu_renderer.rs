@@ -1,0 +1,349 @@
+//! The CPU reference renderer of a scene: sky and terrain, composed from the public
+//! APIs of `atmos` and `terrain` (rayon across rows).
+//!
+//! Per pixel (`atmos::frame::frame_view_direction` gives the ray):
+//! 1. `terrain::intersect::HeightfieldTracer` finds the first hit on the bilinear
+//!    heightfield within `[near, far]` (exact per cell; see its docs).
+//! 2. A hit is shaded with seed 000's `terrain_shading` ([`crate::terrain_shading`]):
+//!    bilinearly filtered normal and horizon angle at the hit (what a GPU's linear
+//!    sampler gives), self-shadow by `terrain::shadow`'s soft shadow against the sun's
+//!    disc (atmos' sun radius), lit by the sun through the rung's transmittance from
+//!    the point and by `atmos::ground_irradiance`'s sky term (computed once per frame at
+//!    the terrain's mean elevation under the camera). It is then seen through the
+//!    atmosphere: `surface × transmittance + in-scatter` of the rung's segment
+//!    `camera → hit` (`SkyQuery::with_max_distance`).
+//! 3. A miss is the rung's sky to the ground or space, plus the sun disc through its
+//!    transmittance ([`crate::present::present_radiance`], the one disc formula).
+//!
+//! Then [`crate::tonemap`]: exposure, `1 − exp(−x)`, sRGB, triangular dither, RGBA8.
+//!
+//! Frames: the world is `x` east, `y` up, `z` south; the planet-centred frame of
+//! `atmos` is the same axes shifted by the planet radius along `y` (the camera's
+//! ground is the planet's surface at the origin). The terrain is flat in the world:
+//! at 30 km the sphere falls 70 m below it, which the atmosphere (and the flat-baked
+//! horizon maps) ignore.
+
+use glam::{DVec3, Vec3};
+use rayon::prelude::*;
+
+use crate::RenderError;
+use crate::scene::prepare::{HorizonMaps, PreparedScene, PreparedTerrain};
+use crate::terrain_shading::surface_radiance;
+use crate::tonemap::{pack_rgba8, quantize_srgb8, tonemap_exposure};
+
+/// A rendered frame: packed RGBA8 (R in the low byte), row-major, top row first.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Frame {
+    /// Pixels.
+    pub width: u32,
+    /// Pixels.
+    pub height: u32,
+    /// `width × height` packed pixels.
+    pub pixels: Vec<u32>,
+}
+
+/// What a pixel shows (linear radiance in the unit of the sun irradiance per sr).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PixelRadiance {
+    /// Radiance reaching the camera.
+    pub radiance: [f32; 3],
+    /// Distance to the terrain hit (m), `None` for the sky.
+    pub terrain_distance: Option<f32>,
+}
+
+fn atmos_error(e: atmos::AtmosError) -> RenderError {
+    RenderError::Atmosphere(e)
+}
+
+/// Per-frame lighting of the terrain.
+struct TerrainLight<'a> {
+    terrain: &'a PreparedTerrain,
+    tracer: terrain::intersect::HeightfieldTracer<'a>,
+    offset: [f64; 2],
+    sky_irradiance: Vec3,
+    /// The sun in terrain's east–north–up frame.
+    sun_enu: Vec3,
+    sun_elevation: f32,
+    sun_azimuth: f32,
+}
+
+/// Linear radiance of every pixel, row-major (the HDR image before display).
+pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, RenderError> {
+    let camera = &scene.camera;
+    let (width, height) = (camera.width as usize, camera.height as usize);
+    let light = match &scene.terrain {
+        Some(terrain) => Some(terrain_light(scene, terrain)?),
+        None => None,
+    };
+    let mut out = vec![
+        PixelRadiance {
+            radiance: [0.0; 3],
+            terrain_distance: None,
+        };
+        width * height
+    ];
+    out.par_chunks_mut(width)
+        .enumerate()
+        .try_for_each(|(row, pixels)| {
+            for (column, pixel) in pixels.iter_mut().enumerate() {
+                *pixel = shade_pixel(scene, light.as_ref(), [column as u32, row as u32])?;
+            }
+            Ok::<(), RenderError>(())
+        })?;
+    Ok(out)
+}
+
+/// The scene on the CPU, tone-mapped and dithered to RGBA8.
+pub fn render_cpu(scene: &PreparedScene) -> Result<Frame, RenderError> {
+    let radiance = render_radiance(scene)?;
+    let camera = &scene.camera;
+    let present = &scene.present;
+    let width = camera.width as usize;
+    let pixels = radiance
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let pixel = [(i % width) as u32, (i / width) as u32];
+            let display = tonemap_exposure(p.radiance, present.exposure);
+            pack_rgba8(quantize_srgb8(display, pixel, present.dither_seed))
+        })
+        .collect();
+    Ok(Frame {
+        width: camera.width,
+        height: camera.height,
+        pixels,
+    })
+}
+
+fn terrain_light<'a>(
+    scene: &PreparedScene,
+    terrain: &'a PreparedTerrain,
+) -> Result<TerrainLight<'a>, RenderError> {
+    let tracer = terrain::intersect::HeightfieldTracer::new(&terrain.heightfield);
+    let offset = terrain.map_offset();
+    // The sky's irradiance once per frame, at the terrain's mean elevation under the
+    // camera (its change over the terrain's relief is a few per cent).
+    let [low, high] = tracer.elevation_range();
+    let mean = 0.5 * (low + high);
+    let c = scene.camera_position;
+    let here = DVec3::new(c.x, scene.atmosphere.planet_radius + mean, c.z);
+    let irradiance = atmos::ground_irradiance::ground_irradiance(
+        &ModelRef(scene.sky_model.as_ref()),
+        &scene.atmosphere,
+        here,
+        scene.sun,
+        atmos::ground_irradiance::HemisphereQuadrature::default(),
+    )
+    .map_err(atmos_error)?;
+    let sky = irradiance.sky.map(|v| v as f32);
+    let s = scene.sun.as_vec3();
+    let sun_enu = Vec3::new(s.x, -s.z, s.y);
+    Ok(TerrainLight {
+        terrain,
+        tracer,
+        offset,
+        sky_irradiance: Vec3::from_array(sky),
+        sun_enu,
+        sun_elevation: terrain::shadow::sun_elevation(sun_enu),
+        sun_azimuth: terrain::shadow::sun_azimuth(sun_enu),
+    })
+}
+
+/// `ground_irradiance` takes a sized model; this lends it the scene's boxed one.
+struct ModelRef<'a>(&'a (dyn atmos::SkyModel + Send + Sync));
+
+impl atmos::SkyModel for ModelRef<'_> {
+    fn label(&self) -> String {
+        self.0.label()
+    }
+    fn evaluate(&self, query: &atmos::SkyQuery) -> atmos::SkySample {
+        self.0.evaluate(query)
+    }
+}
+
+fn shade_pixel(
+    scene: &PreparedScene,
+    light: Option<&TerrainLight<'_>>,
+    pixel: [u32; 2],
+) -> Result<PixelRadiance, RenderError> {
+    let camera = &scene.camera;
+    let view32 = atmos::frame::frame_view_direction(pixel, camera);
+    let view = DVec3::from_array(view32.map(f64::from)).normalize();
+    let planet = scene.atmosphere.planet_radius;
+    if let Some(light) = light {
+        let c = scene.camera_position;
+        let origin = [c.x + light.offset[0], c.z + light.offset[1], c.y - planet];
+        let direction = [view.x, view.z, view.y];
+        if let Some(hit) = light
+            .tracer
+            .intersect(origin, direction, scene.near, scene.far)
+        {
+            let radiance = shade_terrain(scene, light, view, &hit)?;
+            return Ok(PixelRadiance {
+                radiance,
+                terrain_distance: Some(hit.distance as f32),
+            });
+        }
+    }
+    let query = atmos::SkyQuery::new(planet, scene.camera_position, view, scene.sun)
+        .map_err(atmos_error)?;
+    let sample = scene.sky_model.evaluate(&query);
+    let radiance = crate::present::present_radiance(
+        view32,
+        sample.radiance.map(|v| v as f32),
+        sample.transmittance.map(|v| v as f32),
+        camera,
+        &scene.present,
+    );
+    Ok(PixelRadiance {
+        radiance,
+        terrain_distance: None,
+    })
+}
+
+/// Bilinear weights and the four texels around a fractional texel position.
+fn bilinear_texels(texel: [f64; 2], width: usize, height: usize) -> ([usize; 4], [f32; 4]) {
+    let i = (texel[0].floor() as usize).min(width - 2);
+    let j = (texel[1].floor() as usize).min(height - 2);
+    let (fx, fy) = ((texel[0] - i as f64) as f32, (texel[1] - j as f64) as f32);
+    (
+        [
+            j * width + i,
+            j * width + i + 1,
+            (j + 1) * width + i,
+            (j + 1) * width + i + 1,
+        ],
+        [
+            (1.0 - fx) * (1.0 - fy),
+            fx * (1.0 - fy),
+            (1.0 - fx) * fy,
+            fx * fy,
+        ],
+    )
+}
+
+fn filtered(values: &[f32], texels: &[usize; 4], weights: &[f32; 4]) -> f32 {
+    texels
+        .iter()
+        .zip(weights)
+        .map(|(&t, &w)| values[t] * w)
+        .sum()
+}
+
+fn shade_terrain(
+    scene: &PreparedScene,
+    light: &TerrainLight<'_>,
+    view: DVec3,
+    hit: &terrain::intersect::SurfaceHit,
+) -> Result<[f32; 3], RenderError> {
+    let terrain = light.terrain;
+    let hf = &terrain.heightfield;
+    let (texels, weights) = bilinear_texels(hit.texel, hf.width(), hf.height());
+    let normals = terrain.normals.normals();
+    let mut normal_enu = Vec3::ZERO;
+    for (&t, &w) in texels.iter().zip(&weights) {
+        normal_enu += Vec3::from_array(normals[t]) * w;
+    }
+    let normal_enu = normal_enu.normalize_or(Vec3::Z);
+    let radius = scene.atmosphere.sun_angular_radius as f32;
+    let self_shadow = match &terrain.horizon {
+        HorizonMaps::EastWest(maps) => terrain::shadow::self_shadow_east_west(
+            filtered(maps.east.angles(), &texels, &weights),
+            filtered(maps.west.angles(), &texels, &weights),
+            light.sun_enu,
+            radius,
+        ),
+        HorizonMaps::Azimuths(maps) => {
+            let width = hf.width();
+            let mut horizon = 0.0;
+            for (&t, &w) in texels.iter().zip(&weights) {
+                // Cannot fail: the texels come from `bilinear_texels` (inside the map)
+                // and the sun's azimuth from a validated, finite direction.
+                let angle = maps
+                    .horizon_angle(t % width, t / width, light.sun_azimuth)
+                    .expect("texel inside the map, finite azimuth");
+                horizon += angle * w;
+            }
+            terrain::shadow::soft_shadow(light.sun_elevation, horizon, radius)
+        }
+    };
+    let elevation = hit.position[2];
+    let albedo = terrain.albedo.albedo(elevation as f32, normal_enu.z);
+    // The point in the planet frame, and the sun's transmittance from it to the top of
+    // the atmosphere (zero when the planet itself hides the sun).
+    let planet = scene.atmosphere.planet_radius;
+    let point = scene.camera_position + view * hit.distance;
+    let r = point.length();
+    let mu_s = point.dot(scene.sun) / r;
+    let ground = atmos::geometry::ray_sphere_intersect(r as f32, mu_s as f32, planet as f32);
+    let sun_at_point = if ground[0] >= 0.0 {
+        Vec3::ZERO
+    } else {
+        let top = atmos::geometry::ray_sphere_intersect(
+            r as f32,
+            mu_s as f32,
+            scene.atmosphere.top_radius as f32,
+        );
+        // A finite segment (to the top of the atmosphere): the precomputed rung
+        // answers it without a per-viewpoint table.
+        let query = atmos::SkyQuery::with_max_distance(
+            planet,
+            point,
+            scene.sun,
+            scene.sun,
+            f64::from(top[1].max(0.0)),
+        )
+        .map_err(atmos_error)?;
+        let t = scene.segment_model.evaluate(&query).transmittance;
+        let e = scene.atmosphere.sun_irradiance;
+        Vec3::new(
+            (t[0] * e[0]) as f32,
+            (t[1] * e[1]) as f32,
+            (t[2] * e[2]) as f32,
+        )
+    };
+    let n = normal_enu;
+    let surface = surface_radiance(
+        n,
+        n.z,
+        light.sun_enu,
+        albedo,
+        self_shadow,
+        sun_at_point,
+        light.sky_irradiance,
+    );
+    let query = atmos::SkyQuery::with_max_distance(
+        planet,
+        scene.camera_position,
+        view,
+        scene.sun,
+        hit.distance,
+    )
+    .map_err(atmos_error)?;
+    let segment = scene.segment_model.evaluate(&query);
+    Ok(std::array::from_fn(|k| {
+        surface[k] * segment.transmittance[k] as f32 + segment.radiance[k] as f32
+    }))
+}
+
+/// Writes `frame` as an 8-bit RGBA PNG, atomically: to a temporary file beside
+/// `path`, renamed over it only when complete (an existing file is replaced only on
+/// success). A missing folder is an error (it is not created).
+pub fn write_png(path: &std::path::Path, frame: &Frame) -> Result<(), image::ImageError> {
+    let bytes: Vec<u8> = frame.pixels.iter().flat_map(|p| p.to_le_bytes()).collect();
+    let mut temporary = path.as_os_str().to_owned();
+    temporary.push(".partial");
+    let temporary = std::path::PathBuf::from(temporary);
+    image::save_buffer_with_format(
+        &temporary,
+        &bytes,
+        frame.width,
+        frame.height,
+        image::ExtendedColorType::Rgba8,
+        image::ImageFormat::Png,
+    )?;
+    std::fs::rename(&temporary, path).map_err(|e| {
+        let _ = std::fs::remove_file(&temporary);
+        image::ImageError::IoError(e)
+    })
+}

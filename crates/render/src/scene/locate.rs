@@ -1,0 +1,48 @@
+//! Finding a key in the scene text: the line and column of a field that another
+//! crate rejected after parsing, and the dotted key under a toml error's span.
+
+use toml::de::{DeTable, DeValue};
+
+use super::Location;
+
+/// Where the value of the key at `path` (`["camera", "near"]`) is written.
+pub(crate) fn locate(source: &str, path: &[&str]) -> Option<Location> {
+    let document = DeTable::parse(source).ok()?;
+    let mut table = document.get_ref();
+    let (last, parents) = path.split_last()?;
+    for key in parents {
+        let (_, value) = table.iter().find(|(k, _)| k.get_ref() == key)?;
+        match value.get_ref() {
+            DeValue::Table(inner) => table = inner,
+            _ => return None,
+        }
+    }
+    let (_, value) = table.iter().find(|(k, _)| k.get_ref() == last)?;
+    Some(Location::of_offset(source, value.span().start))
+}
+
+/// The dotted key whose key or value covers `span` (`atmosphere.rung`), searching
+/// the document's tables; `None` for a span outside every key (a syntax error).
+pub(crate) fn dotted_key_at(source: &str, span: std::ops::Range<usize>) -> Option<String> {
+    let (document, _) = DeTable::parse_recoverable(source);
+    let mut path = Vec::new();
+    find(document.get_ref(), &span, &mut path).then(|| path.join("."))
+}
+
+fn find(table: &DeTable<'_>, span: &std::ops::Range<usize>, path: &mut Vec<String>) -> bool {
+    for (key, value) in table.iter() {
+        let (k, v) = (key.span(), value.span());
+        let covers =
+            |s: std::ops::Range<usize>| s.start <= span.start && span.end <= s.end.max(s.start + 1);
+        if covers(k.clone()) || covers(v.clone()) {
+            path.push(key.get_ref().to_string());
+            if let DeValue::Table(inner) = value.get_ref() {
+                if find(inner, span, path) {
+                    return true;
+                }
+            }
+            return true;
+        }
+    }
+    false
+}

@@ -1,0 +1,425 @@
+//! The TOML scene file: what a scene contains, parsed with serde + `toml`, every
+//! value checked by the crate that owns it (`atmos`, `terrain`), every error naming
+//! the line, column, field and value as the user typed them (degrees stay degrees).
+//!
+//! World frame (`docs/architecture.md`): right-handed, metres, `x` east, `y` up,
+//! `z` south; `y = 0` is the planet's surface under the camera (the atmosphere's
+//! planet centre is at `(0, −planet_radius, 0)`). A heightfield is centred on the
+//! origin: its columns run east along `x`, its rows south along `z`, its elevation
+//! is `y`.
+//!
+//! ```toml
+//! [camera]
+//! position = [0.0, 1500.0, 9000.0]   # metres: x east, y up, z south
+//! look_at = [0.0, 600.0, 0.0]        # or look_direction = [x, y, z]
+//! vertical_fov_deg = 50.0
+//!
+//! [sun]
+//! elevation_deg = 35.0
+//! azimuth_deg = 220.0                # clockwise from north (east 90)
+//!
+//! [atmosphere]
+//! rung = "precomputed"               # as `skyscape --rung` spells it
+//!
+//! [terrain.procedural]
+//! seed = 7
+//! size = 256
+//! cell_size = 60.0
+//!
+//! [output]
+//! width = 960
+//! height = 540
+//! ```
+//!
+//! ```
+//! let scene = render::scene::Scene::parse(
+//!     "[camera]\nposition = [0.0, 2.0, 0.0]\nlook_direction = [0.0, 0.3, -1.0]\n\
+//!      [sun]\nelevation_deg = 30.0\nazimuth_deg = 180.0\n",
+//!     ".",
+//! )
+//! .unwrap();
+//! assert!(scene.file.terrain.is_none());
+//! ```
+
+mod error;
+mod locate;
+pub mod prepare;
+
+pub use error::{Location, SceneError};
+pub use prepare::{PreparedScene, PreparedTerrain};
+
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+
+/// A parsed scene: the file's contents, its source text (to locate fields in errors
+/// found after parsing) and the folder relative paths are read from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// The values, as typed (defaults filled in).
+    pub file: SceneFile,
+    source: String,
+    base_dir: PathBuf,
+}
+
+impl Scene {
+    /// Reads and parses a scene file; relative paths inside it are relative to its folder.
+    pub fn open(path: impl AsRef<Path>) -> Result<Self, SceneError> {
+        let path = path.as_ref();
+        let source = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+            path: path.to_owned(),
+            source,
+        })?;
+        let base = path.parent().unwrap_or(Path::new("."));
+        Self::parse(&source, base)
+    }
+
+    /// Parses scene text; relative paths inside it are relative to `base_dir`.
+    pub fn parse(source: &str, base_dir: impl AsRef<Path>) -> Result<Self, SceneError> {
+        let file: SceneFile =
+            toml::from_str(source).map_err(|e| SceneError::from_toml(source, e))?;
+        Ok(Self {
+            file,
+            source: source.to_owned(),
+            base_dir: base_dir.as_ref().to_owned(),
+        })
+    }
+
+    /// Where a field (`["camera", "vertical_fov_deg"]`) is written, if it is.
+    pub fn location(&self, path: &[&str]) -> Option<Location> {
+        locate::locate(&self.source, path)
+    }
+
+    /// A path from the scene, resolved against the scene file's folder.
+    pub fn resolve(&self, path: &Path) -> PathBuf {
+        if path.is_absolute() {
+            path.to_owned()
+        } else {
+            self.base_dir.join(path)
+        }
+    }
+
+    /// An error about the field at `path` (dotted in the message) with its value as typed.
+    pub(crate) fn invalid(&self, path: &[&str], value: String, reason: String) -> SceneError {
+        SceneError::Invalid {
+            location: self.location(path),
+            field: path.join("."),
+            value,
+            reason,
+        }
+    }
+
+    /// An error `atmos` raised about the field at `path`.
+    pub(crate) fn atmos_error(
+        &self,
+        path: &[&str],
+        value: String,
+        source: atmos::AtmosError,
+    ) -> SceneError {
+        SceneError::Atmosphere {
+            location: self.location(path),
+            field: path.join("."),
+            value,
+            source: Box::new(source),
+        }
+    }
+
+    /// An error `terrain` raised about the field at `path`.
+    pub(crate) fn terrain_error(
+        &self,
+        path: &[&str],
+        value: String,
+        source: terrain::TerrainError,
+    ) -> SceneError {
+        SceneError::Terrain {
+            location: self.location(path),
+            field: path.join("."),
+            value,
+            source: Box::new(source),
+        }
+    }
+}
+
+/// The whole file.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// The viewer.
+    pub camera: CameraSection,
+    /// The sun's direction.
+    pub sun: SunSection,
+    /// Which model of the atmosphere, and its parameters.
+    #[serde(default)]
+    pub atmosphere: AtmosphereSection,
+    /// The terrain; without it the view shows the sky over the atmosphere's ground.
+    pub terrain: Option<TerrainSection>,
+    /// Image size, exposure, where to write it.
+    #[serde(default)]
+    pub output: OutputSection,
+}
+
+/// `[camera]`: a pinhole camera in the world frame.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraSection {
+    /// Position, metres: x east, y up (above the surface), z south.
+    pub position: [f64; 3],
+    /// A point to look at (metres, world frame); exactly one of this and `look_direction`.
+    pub look_at: Option<[f64; 3]>,
+    /// A direction to look along (world frame, any length > 0).
+    pub look_direction: Option<[f64; 3]>,
+    /// Vertical field of view, degrees.
+    #[serde(default = "default_fov_deg")]
+    pub vertical_fov_deg: f64,
+    /// Terrain nearer than this (metres along the ray) is not drawn.
+    #[serde(default = "default_near")]
+    pub near: f64,
+    /// Terrain farther than this (metres along the ray) is not drawn: the sky shows.
+    #[serde(default = "default_far")]
+    pub far: f64,
+}
+
+fn default_fov_deg() -> f64 {
+    60.0
+}
+fn default_near() -> f64 {
+    0.5
+}
+fn default_far() -> f64 {
+    200_000.0
+}
+
+/// `[sun]`: an explicit direction.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SunSection {
+    /// Elevation above the horizon, degrees (−90 to 90).
+    pub elevation_deg: f64,
+    /// Azimuth clockwise from north (east 90, south 180, west 270), degrees.
+    pub azimuth_deg: f64,
+}
+
+/// Which rung of the `atmos` ladder renders the atmosphere (names as `skyscape --rung`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Rung {
+    /// Rung 1, seed 000's closed form, per pixel.
+    ClosedForm,
+    /// Rung 1 evaluated per vertex of a 16×32 dome for the sky (terrain segments per pixel).
+    ClosedFormVertex,
+    /// Rung 2, single scattering.
+    Single,
+    /// Rung 3, Hillaire-style precomputed LUTs (the default: accurate and real-time).
+    #[default]
+    Precomputed,
+    /// Rung 4, the f64 multiple-scattering reference (slow: small images only).
+    Reference,
+    /// Rung 4 at 18 wavelengths through the CIE 1931 observer (slower still).
+    ReferenceSpectral,
+}
+
+impl Rung {
+    /// The name as written in a scene file and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::ClosedForm => "closed-form",
+            Self::ClosedFormVertex => "closed-form-vertex",
+            Self::Single => "single",
+            Self::Precomputed => "precomputed",
+            Self::Reference => "reference",
+            Self::ReferenceSpectral => "reference-spectral",
+        }
+    }
+}
+
+/// `[atmosphere]`: the rung and overrides of `atmos::Atmosphere::earth()`'s parameters
+/// (each checked by `Atmosphere::validate`).
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct AtmosphereSection {
+    /// The model.
+    #[serde(default)]
+    pub rung: Rung,
+    /// Multiplies Mie scattering and extinction (haze); 1 is Earth's default.
+    pub mie_scale: Option<f64>,
+    /// Mie anisotropy, |g| < 1.
+    pub mie_g: Option<f64>,
+    /// Rayleigh scale height, metres.
+    pub rayleigh_scale_height: Option<f64>,
+    /// Mie scale height, metres.
+    pub mie_scale_height: Option<f64>,
+    /// Grey albedo of the atmosphere's ground (its bounce light in multiple scattering).
+    pub ground_albedo: Option<f64>,
+}
+
+/// `[terrain]`: one heightfield source, its albedo and its horizon maps.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TerrainSection {
+    /// `[terrain.procedural]`: `terrain::generate`'s seeded fBm/ridged noise.
+    pub procedural: Option<ProceduralTerrain>,
+    /// `[terrain.png16]`: a 16-bit greyscale PNG.
+    pub png16: Option<Png16Terrain>,
+    /// `[terrain.raw_f32]`: raw little-endian `f32` metres.
+    pub raw_f32: Option<RawF32Terrain>,
+    /// `[terrain.albedo]`: colour by height and slope.
+    #[serde(default)]
+    pub albedo: AlbedoSection,
+    /// Self-shadow maps: seed 000's east/west pair, or `azimuths` equally spaced ones.
+    #[serde(default)]
+    pub horizon: HorizonVariant,
+    /// Number of azimuths when `horizon = "azimuths"` (terrain accepts 4..=64).
+    pub horizon_azimuths: Option<usize>,
+}
+
+/// `[terrain.procedural]`.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProceduralTerrain {
+    /// Seed: different seeds give unrelated terrains.
+    pub seed: u64,
+    /// Texels per side.
+    pub size: usize,
+    /// Metres per texel.
+    pub cell_size: f64,
+    /// Peak-to-peak relief, metres.
+    #[serde(default = "default_relief")]
+    pub relief: f64,
+    /// Wavelength of the largest features, metres (default: a quarter of the map).
+    pub wavelength: Option<f64>,
+    /// Octaves of noise.
+    #[serde(default = "default_octaves")]
+    pub octaves: u32,
+    /// Ridged multifractal (sharp crests) instead of fBm.
+    #[serde(default)]
+    pub ridged: bool,
+}
+
+fn default_relief() -> f64 {
+    1000.0
+}
+fn default_octaves() -> u32 {
+    8
+}
+
+/// `[terrain.png16]`.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Png16Terrain {
+    /// The PNG (relative to the scene file's folder).
+    pub path: PathBuf,
+    /// Metres per texel.
+    pub cell_size: f64,
+    /// Metres per 16-bit count.
+    pub height_scale: f64,
+    /// Elevation of count 0, metres.
+    #[serde(default)]
+    pub height_offset: f64,
+}
+
+/// `[terrain.raw_f32]`.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawF32Terrain {
+    /// The file (relative to the scene file's folder): `width × height` LE `f32`.
+    pub path: PathBuf,
+    /// Columns.
+    pub width: usize,
+    /// Rows.
+    pub height: usize,
+    /// Metres per texel.
+    pub cell_size: f64,
+    /// Multiplies every sample (vertical exaggeration).
+    #[serde(default = "one")]
+    pub height_scale: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// Which horizon maps shade the terrain.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum HorizonVariant {
+    /// Seed 000's pair: the east map while the sun is in the east, else the west.
+    #[default]
+    EastWest,
+    /// `horizon_azimuths` maps, interpolated at the sun's azimuth.
+    Azimuths,
+}
+
+/// `[terrain.albedo]`: a colour ramp by elevation, and a steep-slope colour.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AlbedoSection {
+    /// Elevations of the ramp's stops, metres, increasing.
+    pub heights: Vec<f64>,
+    /// Linear RGB albedo at each stop, in [0, 1].
+    pub colors: Vec<[f64; 3]>,
+    /// Albedo where the slope is steeper than `steep_slope_deg` (rock).
+    pub steep_color: [f64; 3],
+    /// Slope (degrees from horizontal) above which `steep_color` takes over; the
+    /// blend spans the 10° below it.
+    pub steep_slope_deg: f64,
+}
+
+impl Default for AlbedoSection {
+    /// Meadow in the valleys, dry grass and scree higher, snow on the tops; grey rock
+    /// on slopes over 40°.
+    fn default() -> Self {
+        Self {
+            heights: vec![0.0, 500.0, 1100.0, 1400.0],
+            colors: vec![
+                [0.06, 0.11, 0.035],
+                [0.12, 0.13, 0.06],
+                [0.20, 0.18, 0.15],
+                [0.80, 0.80, 0.82],
+            ],
+            steep_color: [0.18, 0.16, 0.14],
+            steep_slope_deg: 40.0,
+        }
+    }
+}
+
+/// `[output]`.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSection {
+    /// Pixels.
+    #[serde(default = "default_width")]
+    pub width: u32,
+    /// Pixels.
+    #[serde(default = "default_height")]
+    pub height: u32,
+    /// Exposure before the `1 − exp(−x)` tone map (radiance per unit sun irradiance).
+    #[serde(default = "default_exposure")]
+    pub exposure: f32,
+    /// Dither seed.
+    #[serde(default)]
+    pub dither_seed: u32,
+    /// Where the PNG goes (relative to the current folder); `-o` overrides it.
+    pub path: Option<PathBuf>,
+}
+
+fn default_width() -> u32 {
+    960
+}
+fn default_height() -> u32 {
+    540
+}
+fn default_exposure() -> f32 {
+    20.0
+}
+
+impl Default for OutputSection {
+    fn default() -> Self {
+        Self {
+            width: default_width(),
+            height: default_height(),
+            exposure: default_exposure(),
+            dither_seed: 0,
+            path: None,
+        }
+    }
+}

@@ -1,0 +1,480 @@
+//! From a parsed [`Scene`] to what the renderers need: the `atmos` atmosphere, rung,
+//! camera and display constants, and the `terrain` heightfield with its normal and
+//! horizon maps. Every value is checked by the crate that owns it; this module only
+//! says which scene key a rejected value came from.
+
+use glam::DVec3;
+use terrain::generate::{Fractal, GeneratorParams};
+use terrain::{Algorithm, Heightfield, HorizonOptions, NormalMap};
+
+use super::{HorizonVariant, Rung, Scene, SceneError};
+use crate::present::PresentParameters;
+use crate::terrain_shading::AlbedoRamp;
+
+/// The most pixels per side an output may have, checked before anything is allocated.
+pub const MAX_OUTPUT_SIDE: u32 = 16_384;
+
+/// The dome of the per-vertex closed-form rung (the binary's `--rung closed-form-vertex`).
+pub const DOME: atmos::dome::DomeResolution = atmos::dome::DomeResolution {
+    rings: 16,
+    segments: 32,
+};
+
+/// A sky model the renderer can share across threads.
+pub type SharedSkyModel = Box<dyn atmos::SkyModel + Send + Sync>;
+
+/// The terrain of a prepared scene: heights, normals, horizon maps and albedo.
+#[derive(Debug)]
+pub struct PreparedTerrain {
+    /// The heightfield, centred on the world origin (columns east, rows south).
+    pub heightfield: Heightfield,
+    /// Its normals (east, north, up).
+    pub normals: NormalMap,
+    /// Its self-shadow maps.
+    pub horizon: HorizonMaps,
+    /// Its colour.
+    pub albedo: AlbedoRamp,
+}
+
+/// The horizon maps of the scene's variant.
+#[derive(Debug)]
+pub enum HorizonMaps {
+    /// Seed 000's pair.
+    EastWest(terrain::EastWestHorizon),
+    /// `N` azimuths.
+    Azimuths(terrain::AzimuthHorizonMaps),
+}
+
+impl PreparedTerrain {
+    /// Metres from the map's corner texel (0, 0) to its centre, along x (east) and z
+    /// (south): world position + this offset = map position.
+    pub fn map_offset(&self) -> [f64; 2] {
+        let hf = &self.heightfield;
+        [
+            0.5 * (hf.width() - 1) as f64 * hf.spacing(),
+            0.5 * (hf.height() - 1) as f64 * hf.spacing(),
+        ]
+    }
+}
+
+/// Everything a renderer needs, validated.
+pub struct PreparedScene {
+    /// The atmosphere (Earth with the scene's overrides).
+    pub atmosphere: atmos::Atmosphere,
+    /// The rung.
+    pub rung: Rung,
+    /// The model that renders the sky (view rays to the ground or space).
+    pub sky_model: SharedSkyModel,
+    /// The model for finite segments (aerial perspective, the sun's path from a
+    /// terrain point): the sky model, except for the per-vertex dome, whose grid is
+    /// built per viewpoint — seed 000 evaluates terrain per vertex, i.e. at the point,
+    /// which a ray caster does per pixel with the closed form itself.
+    pub segment_model: SharedSkyModel,
+    /// The camera (planet-centred position, frame size, sun).
+    pub camera: atmos::frame::FrameCamera,
+    /// The camera's planet-centred position, f64.
+    pub camera_position: DVec3,
+    /// Unit direction toward the sun (world frame = planet frame axes).
+    pub sun: DVec3,
+    /// Display constants (sun disc, exposure, dither).
+    pub present: PresentParameters,
+    /// Terrain range along a view ray, metres.
+    pub near: f64,
+    /// See `near`.
+    pub far: f64,
+    /// The terrain, if any.
+    pub terrain: Option<PreparedTerrain>,
+}
+
+impl std::fmt::Debug for PreparedScene {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PreparedScene")
+            .field("rung", &self.rung)
+            .field("sky_model", &self.sky_model.label())
+            .field("camera", &self.camera)
+            .field("terrain", &self.terrain.is_some())
+            .finish_non_exhaustive()
+    }
+}
+
+fn deg(value: f64) -> String {
+    format!("{value}°")
+}
+fn metres(value: f64) -> String {
+    format!("{value} m")
+}
+fn triple(v: [f64; 3]) -> String {
+    format!("[{}, {}, {}]", v[0], v[1], v[2])
+}
+
+/// The world direction of an elevation and an azimuth clockwise from north (radians):
+/// x east, y up, z south.
+pub fn world_direction(elevation: f64, azimuth: f64) -> DVec3 {
+    let (sin_e, cos_e) = elevation.sin_cos();
+    let (sin_a, cos_a) = azimuth.sin_cos();
+    DVec3::new(cos_e * sin_a, sin_e, -cos_e * cos_a)
+}
+
+impl Scene {
+    /// Validates the scene and builds its atmosphere, rung, camera and terrain.
+    pub fn prepare(&self) -> Result<PreparedScene, SceneError> {
+        let atmosphere = self.atmosphere()?;
+        let file = &self.file;
+        let (sky_model, segment_model) = self.models(&atmosphere)?;
+
+        let sun_section = file.sun;
+        if sun_section.elevation_deg.is_nan() || sun_section.elevation_deg.abs() > 90.0 {
+            return Err(self.invalid(
+                &["sun", "elevation_deg"],
+                deg(sun_section.elevation_deg),
+                "must be in [−90°, 90°]".into(),
+            ));
+        }
+        if !sun_section.azimuth_deg.is_finite() {
+            return Err(self.invalid(
+                &["sun", "azimuth_deg"],
+                deg(sun_section.azimuth_deg),
+                "must be finite (degrees clockwise from north)".into(),
+            ));
+        }
+        let sun = world_direction(
+            sun_section.elevation_deg.to_radians(),
+            sun_section.azimuth_deg.to_radians(),
+        );
+
+        let out = &file.output;
+        for (key, value) in [("width", out.width), ("height", out.height)] {
+            if value == 0 || value > MAX_OUTPUT_SIDE {
+                return Err(self.invalid(
+                    &["output", key],
+                    format!("{value} pixels"),
+                    format!("must be in 1..={MAX_OUTPUT_SIDE}"),
+                ));
+            }
+        }
+        let present =
+            PresentParameters::new(&atmosphere, out.exposure, out.dither_seed).map_err(|e| {
+                self.invalid(
+                    &["output", "exposure"],
+                    out.exposure.to_string(),
+                    e.to_string(),
+                )
+            })?;
+
+        let cam = &file.camera;
+        let (forward, look_key) = match (cam.look_at, cam.look_direction) {
+            (Some(target), None) => (
+                DVec3::from_array(target) - DVec3::from_array(cam.position),
+                "look_at",
+            ),
+            (None, Some(direction)) => (DVec3::from_array(direction), "look_direction"),
+            (Some(target), Some(_)) => {
+                return Err(self.invalid(
+                    &["camera", "look_at"],
+                    triple(target),
+                    "give either look_at or look_direction, not both".into(),
+                ));
+            }
+            (None, None) => {
+                return Err(self.invalid(
+                    &["camera", "position"],
+                    triple(cam.position),
+                    "the camera needs look_at or look_direction".into(),
+                ));
+            }
+        };
+        let look_value = triple(cam.look_at.or(cam.look_direction).unwrap_or_default());
+        let planet = atmosphere.planet_radius;
+        let camera_position = DVec3::from_array(cam.position) + DVec3::new(0.0, planet, 0.0);
+        let camera = atmos::frame::FrameCamera::look_at(
+            camera_position,
+            forward,
+            DVec3::Y,
+            cam.vertical_fov_deg.to_radians(),
+            out.width,
+            out.height,
+            sun,
+            None,
+        )
+        .map_err(|e| {
+            let field = match &e {
+                atmos::AtmosError::InvalidParameter { field, .. } => field.as_str(),
+                _ => "",
+            };
+            if field.starts_with("fov_y") {
+                self.atmos_error(
+                    &["camera", "vertical_fov_deg"],
+                    deg(cam.vertical_fov_deg),
+                    e,
+                )
+            } else if field.starts_with("position") {
+                self.atmos_error(&["camera", "position"], triple(cam.position), e)
+            } else {
+                self.atmos_error(&["camera", look_key], look_value.clone(), e)
+            }
+        })?;
+        // The viewer must be where atmos accepts one (not deep under the ground).
+        atmos::SkyQuery::new(planet, camera_position, DVec3::Y, sun)
+            .map_err(|e| self.atmos_error(&["camera", "position"], triple(cam.position), e))?;
+        if !(cam.near.is_finite() && cam.near >= 0.0) {
+            return Err(self.invalid(
+                &["camera", "near"],
+                metres(cam.near),
+                "must be finite and ≥ 0 m".into(),
+            ));
+        }
+        if cam.far.is_nan() || cam.far <= cam.near {
+            return Err(self.invalid(
+                &["camera", "far"],
+                metres(cam.far),
+                format!("must be > near ({} m)", cam.near),
+            ));
+        }
+
+        let terrain = self.terrain()?;
+        Ok(PreparedScene {
+            atmosphere,
+            rung: file.atmosphere.rung,
+            sky_model,
+            segment_model,
+            camera,
+            camera_position,
+            sun,
+            present,
+            near: cam.near,
+            far: cam.far,
+            terrain,
+        })
+    }
+
+    /// Earth's atmosphere with the scene's overrides, validated by atmos.
+    fn atmosphere(&self) -> Result<atmos::Atmosphere, SceneError> {
+        let section = &self.file.atmosphere;
+        let mut atmosphere = atmos::Atmosphere::earth();
+        if let Some(scale) = section.mie_scale {
+            atmosphere.mie_scattering = atmosphere.mie_scattering.map(|b| b * scale);
+            atmosphere.mie_extinction = atmosphere.mie_extinction.map(|b| b * scale);
+        }
+        if let Some(g) = section.mie_g {
+            atmosphere.mie_g = g;
+        }
+        if let Some(h) = section.rayleigh_scale_height {
+            atmosphere.rayleigh_scale_height = h;
+        }
+        if let Some(h) = section.mie_scale_height {
+            atmosphere.mie_scale_height = h;
+        }
+        if let Some(albedo) = section.ground_albedo {
+            atmosphere.ground_albedo = [albedo; 3];
+        }
+        atmosphere.validate().map_err(|e| {
+            let field = match &e {
+                atmos::AtmosError::InvalidParameter { field, .. } => field.as_str(),
+                _ => "",
+            };
+            let (key, value) =
+                if field.starts_with("mie_scattering") || field.starts_with("mie_extinction") {
+                    ("mie_scale", section.mie_scale)
+                } else if field.starts_with("mie_g") {
+                    ("mie_g", section.mie_g)
+                } else if field.starts_with("rayleigh_scale_height") {
+                    ("rayleigh_scale_height", section.rayleigh_scale_height)
+                } else if field.starts_with("mie_scale_height") {
+                    ("mie_scale_height", section.mie_scale_height)
+                } else {
+                    ("ground_albedo", section.ground_albedo)
+                };
+            let value = value.map_or_else(|| "(default)".to_owned(), |v| v.to_string());
+            self.atmos_error(&["atmosphere", key], value, e)
+        })?;
+        Ok(atmosphere)
+    }
+
+    /// The rung's models (sky, finite segments).
+    fn models(
+        &self,
+        atmosphere: &atmos::Atmosphere,
+    ) -> Result<(SharedSkyModel, SharedSkyModel), SceneError> {
+        use atmos::closed_form_sky::ClosedFormSky;
+        let rung = self.file.atmosphere.rung;
+        let e = |e| self.atmos_error(&["atmosphere", "rung"], format!("\"{}\"", rung.name()), e);
+        let model: SharedSkyModel = match rung {
+            Rung::ClosedForm => Box::new(ClosedFormSky::new(atmosphere).map_err(e)?),
+            Rung::ClosedFormVertex => {
+                let dome = atmos::dome::DomeInterpolated::new(
+                    ClosedFormSky::new(atmosphere).map_err(e)?,
+                    DOME,
+                    atmosphere,
+                )
+                .map_err(e)?;
+                let per_pixel = Box::new(ClosedFormSky::new(atmosphere).map_err(e)?);
+                return Ok((Box::new(dome), per_pixel));
+            }
+            Rung::Single => Box::new(
+                atmos::single_scattering::SingleScatteringSky::new(atmosphere, Default::default())
+                    .map_err(e)?,
+            ),
+            Rung::Precomputed => Box::new(
+                atmos::lut::PrecomputedSky::new(atmosphere, &Default::default()).map_err(e)?,
+            ),
+            Rung::Reference => Box::new(
+                atmos::reference::ReferenceSky::new(atmosphere, Default::default()).map_err(e)?,
+            ),
+            Rung::ReferenceSpectral => Box::new(
+                atmos::reference::SpectralReferenceSky::new(atmosphere, Default::default())
+                    .map_err(e)?,
+            ),
+        };
+        // One model for both roles: share it through a reference-counted wrapper.
+        let shared = std::sync::Arc::new(model);
+        Ok((
+            Box::new(SharedModel(shared.clone())),
+            Box::new(SharedModel(shared)),
+        ))
+    }
+
+    /// The heightfield, normals, horizon maps and albedo, or `None` without `[terrain]`.
+    fn terrain(&self) -> Result<Option<PreparedTerrain>, SceneError> {
+        let Some(section) = &self.file.terrain else {
+            return Ok(None);
+        };
+        let given = [
+            section.procedural.is_some(),
+            section.png16.is_some(),
+            section.raw_f32.is_some(),
+        ];
+        if given.iter().filter(|&&g| g).count() != 1 {
+            return Err(self.invalid(
+                &["terrain"],
+                format!("{} sources", given.iter().filter(|&&g| g).count()),
+                "give exactly one of [terrain.procedural], [terrain.png16], [terrain.raw_f32]"
+                    .into(),
+            ));
+        }
+        let heightfield = if let Some(p) = &section.procedural {
+            let mut params = GeneratorParams::new(p.size, p.size, p.cell_size, p.seed);
+            params.amplitude = p.relief;
+            params.octaves = p.octaves;
+            if let Some(w) = p.wavelength {
+                params.wavelength = w;
+            }
+            if p.ridged {
+                params.fractal = Fractal::Ridged;
+            }
+            terrain::generate::generate(&params).map_err(|e| {
+                let (key, value) = match terrain_field(&e) {
+                    "width" | "height" | "width * height" => ("size", p.size.to_string()),
+                    "spacing" => ("cell_size", metres(p.cell_size)),
+                    "amplitude" => ("relief", metres(p.relief)),
+                    "wavelength" => ("wavelength", metres(params.wavelength)),
+                    "octaves" => ("octaves", p.octaves.to_string()),
+                    _ => ("seed", p.seed.to_string()),
+                };
+                self.terrain_error(&["terrain", "procedural", key], value, e)
+            })?
+        } else if let Some(p) = &section.png16 {
+            let path = self.resolve(&p.path);
+            Heightfield::open_png16(&path, p.cell_size, p.height_scale, p.height_offset).map_err(
+                |e| {
+                    let (key, value) = match terrain_field(&e) {
+                        "spacing" => ("cell_size", metres(p.cell_size)),
+                        "scale" | "scale_m_per_count" => {
+                            ("height_scale", p.height_scale.to_string())
+                        }
+                        "offset" => ("height_offset", metres(p.height_offset)),
+                        _ => ("path", format!("\"{}\"", path.display())),
+                    };
+                    self.terrain_error(&["terrain", "png16", key], value, e)
+                },
+            )?
+        } else if let Some(p) = &section.raw_f32 {
+            let path = self.resolve(&p.path);
+            Heightfield::open_raw_f32_le(&path, p.width, p.height, p.cell_size)
+                .and_then(|hf| hf.with_vertical_scale(p.height_scale))
+                .map_err(|e| {
+                    let (key, value) = match terrain_field(&e) {
+                        "width" => ("width", p.width.to_string()),
+                        "height" => ("height", p.height.to_string()),
+                        "spacing" => ("cell_size", metres(p.cell_size)),
+                        "vertical_scale" => ("height_scale", p.height_scale.to_string()),
+                        _ => ("path", format!("\"{}\"", path.display())),
+                    };
+                    self.terrain_error(&["terrain", "raw_f32", key], value, e)
+                })?
+        } else {
+            unreachable!("exactly one source was checked above")
+        };
+        if heightfield.width() < 2 || heightfield.height() < 2 {
+            return Err(self.invalid(
+                &["terrain"],
+                format!("{}×{} texels", heightfield.width(), heightfield.height()),
+                "a surface needs at least 2×2 texels".into(),
+            ));
+        }
+        // The renderer places the heightfield flat (no Earth curvature), so its
+        // shadows are baked flat too.
+        let options = HorizonOptions::flat();
+        let horizon = match (section.horizon, section.horizon_azimuths) {
+            (HorizonVariant::EastWest, None) => HorizonMaps::EastWest(
+                terrain::bake_east_west(&heightfield, &options, Algorithm::HullSweep).map_err(
+                    |e| self.terrain_error(&["terrain", "horizon"], "\"east-west\"".into(), e),
+                )?,
+            ),
+            (HorizonVariant::EastWest, Some(n)) => {
+                return Err(self.invalid(
+                    &["terrain", "horizon_azimuths"],
+                    n.to_string(),
+                    "only used with horizon = \"azimuths\"".into(),
+                ));
+            }
+            (HorizonVariant::Azimuths, None) => {
+                return Err(self.invalid(
+                    &["terrain", "horizon"],
+                    "\"azimuths\"".into(),
+                    "needs horizon_azimuths = N".into(),
+                ));
+            }
+            (HorizonVariant::Azimuths, Some(n)) => HorizonMaps::Azimuths(
+                terrain::bake_azimuths(&heightfield, n, &options, Algorithm::HullSweep).map_err(
+                    |e| self.terrain_error(&["terrain", "horizon_azimuths"], n.to_string(), e),
+                )?,
+            ),
+        };
+        let albedo = AlbedoRamp::new(&section.albedo).map_err(|(key, value, reason)| {
+            self.invalid(&["terrain", "albedo", key], value, reason)
+        })?;
+        let normals = NormalMap::from_heightfield(&heightfield);
+        Ok(Some(PreparedTerrain {
+            heightfield,
+            normals,
+            horizon,
+            albedo,
+        }))
+    }
+}
+
+/// The field a terrain error names, or "" when it names none.
+fn terrain_field(error: &terrain::TerrainError) -> &'static str {
+    use terrain::TerrainError as E;
+    match error {
+        E::InvalidParameter { field, .. }
+        | E::ZeroSize { field, .. }
+        | E::TooLarge { field, .. } => field,
+        _ => "",
+    }
+}
+
+/// One model serving as both the sky and the segment model.
+struct SharedModel(std::sync::Arc<SharedSkyModel>);
+
+impl atmos::SkyModel for SharedModel {
+    fn label(&self) -> String {
+        self.0.label()
+    }
+    fn evaluate(&self, query: &atmos::SkyQuery) -> atmos::SkySample {
+        self.0.evaluate(query)
+    }
+    fn evaluate_batch(&self, queries: &[atmos::SkyQuery]) -> Vec<atmos::SkySample> {
+        self.0.evaluate_batch(queries)
+    }
+}
