@@ -22,6 +22,7 @@
 pub mod angle;
 pub mod error;
 pub mod horizontal;
+pub mod moon;
 pub mod moon_phase;
 pub mod observer;
 pub mod photometry;
@@ -33,6 +34,7 @@ pub mod time;
 pub use angle::Angle;
 pub use error::{CelestialError, Result};
 pub use horizontal::{Horizontal, equatorial_to_horizontal};
+pub use moon::{MoonPosition, moon_position};
 pub use moon_phase::{EquatorialPlace, MoonPhase, moon_disc_incidence_cosine, moon_phase};
 pub use observer::Observer;
 pub use photometry::{ZERO_MAGNITUDE_ILLUMINANCE_LX, illuminance_from_magnitude};
