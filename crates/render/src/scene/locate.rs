@@ -30,19 +30,20 @@ pub(crate) fn dotted_key_at(source: &str, span: std::ops::Range<usize>) -> Optio
 }
 
 fn find(table: &DeTable<'_>, span: &std::ops::Range<usize>, path: &mut Vec<String>) -> bool {
+    let covers =
+        |s: std::ops::Range<usize>| s.start <= span.start && span.end <= s.end.max(s.start + 1);
     for (key, value) in table.iter() {
-        let (k, v) = (key.span(), value.span());
-        let covers =
-            |s: std::ops::Range<usize>| s.start <= span.start && span.end <= s.end.max(s.start + 1);
-        if covers(k.clone()) || covers(v.clone()) {
-            path.push(key.get_ref().to_string());
-            if let DeValue::Table(inner) = value.get_ref() {
-                if find(inner, span, path) {
-                    return true;
-                }
+        path.push(key.get_ref().to_string());
+        // A `[section]`'s value span need not cover its keys: search inside first.
+        if let DeValue::Table(inner) = value.get_ref() {
+            if find(inner, span, path) {
+                return true;
             }
+        }
+        if covers(key.span()) || covers(value.span()) {
             return true;
         }
+        path.pop();
     }
     false
 }

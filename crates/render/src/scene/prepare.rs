@@ -197,10 +197,7 @@ impl Scene {
             None,
         )
         .map_err(|e| {
-            let field = match &e {
-                atmos::AtmosError::InvalidParameter { field, .. } => field.as_str(),
-                _ => "",
-            };
+            let field = atmos_field(&e);
             if field.starts_with("fov_y") {
                 self.atmos_error(
                     &["camera", "vertical_fov_deg"],
@@ -268,10 +265,7 @@ impl Scene {
             atmosphere.ground_albedo = [albedo; 3];
         }
         atmosphere.validate().map_err(|e| {
-            let field = match &e {
-                atmos::AtmosError::InvalidParameter { field, .. } => field.as_str(),
-                _ => "",
-            };
+            let field = atmos_field(&e);
             let (key, value) =
                 if field.starts_with("mie_scattering") || field.starts_with("mie_extinction") {
                     ("mie_scale", section.mie_scale)
@@ -451,6 +445,17 @@ impl Scene {
             albedo,
         }))
     }
+}
+
+/// The field an atmos error names: its message's first `quoted` name (every
+/// parameter variant of `AtmosError` starts with it), or "".
+fn atmos_field(error: &atmos::AtmosError) -> String {
+    error
+        .to_string()
+        .split('`')
+        .nth(1)
+        .unwrap_or_default()
+        .to_owned()
 }
 
 /// The field a terrain error names, or "" when it names none.

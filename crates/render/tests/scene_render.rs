@@ -1,0 +1,271 @@
+//! Golden properties (not golden images) of scenes rendered by the CPU reference
+//! renderer, and the scene file's errors. Small sizes: these run in debug builds.
+
+use glam::DVec3;
+use render::cpu_renderer::{PixelRadiance, render_cpu, render_radiance};
+use render::scene::{Scene, SceneError};
+
+const DEFAULT_SCENE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/default.toml");
+
+fn default_scene(width: u32, height: u32) -> Scene {
+    let mut scene = Scene::open(DEFAULT_SCENE).unwrap();
+    scene.file.output.width = width;
+    scene.file.output.height = height;
+    scene
+}
+
+fn luminance(rgb: [f32; 3]) -> f64 {
+    atmos::ladder::luminance(rgb.map(f64::from))
+}
+
+/// The world position (camera-relative, metres) of a terrain pixel.
+fn hit_offset(scene: &render::scene::PreparedScene, pixel: [u32; 2], distance: f32) -> DVec3 {
+    let view = atmos::frame::frame_view_direction(pixel, &scene.camera);
+    DVec3::from_array(view.map(f64::from)) * f64::from(distance)
+}
+
+#[test]
+fn the_default_scene_renders_terrain_under_a_sky() {
+    let scene = default_scene(48, 27).prepare().unwrap();
+    let frame = render_cpu(&scene).unwrap();
+    assert_eq!(frame.pixels.len(), 48 * 27);
+    let radiance = render_radiance(&scene).unwrap();
+    let terrain = radiance
+        .iter()
+        .filter(|p| p.terrain_distance.is_some())
+        .count();
+    // The mountains fill the lower part of the frame, the sky the upper.
+    assert!(
+        terrain > 48 * 27 / 4 && terrain < 48 * 27 * 3 / 4,
+        "{terrain} terrain pixels"
+    );
+    for p in &radiance {
+        assert!(
+            p.radiance.iter().all(|c| c.is_finite() && *c >= 0.0),
+            "{p:?}"
+        );
+    }
+    // A sunlit slope is brighter than black: the ground is lit, not dark.
+    let brightest = radiance
+        .iter()
+        .filter(|p| p.terrain_distance.is_some())
+        .map(|p| luminance(p.radiance))
+        .fold(0.0, f64::max);
+    assert!(brightest > 0.01, "brightest terrain luminance {brightest}");
+}
+
+#[test]
+fn the_default_scenes_zenith_is_blue() {
+    let mut scene = default_scene(8, 8);
+    scene.file.camera.look_at = None;
+    scene.file.camera.look_direction = Some([0.0, 1.0, -0.01]);
+    let prepared = scene.prepare().unwrap();
+    let radiance = render_radiance(&prepared).unwrap();
+    let [r, g, b] = radiance[4 * 8 + 4].radiance;
+    assert!(b > g && g > r, "zenith rgb {r} {g} {b}");
+}
+
+#[test]
+fn distant_mountains_take_the_skys_colour() {
+    let prepared = default_scene(96, 54).prepare().unwrap();
+    let radiance = render_radiance(&prepared).unwrap();
+    let width = 96usize;
+    // The horizon sky: the lowest sky pixel of each column, averaged.
+    let mut horizon = [0.0f64; 3];
+    let mut horizon_count = 0.0;
+    for x in 0..width {
+        if let Some(p) = (0..54)
+            .map(|y| radiance[y * width + x])
+            .take_while(|p| p.terrain_distance.is_none())
+            .last()
+        {
+            for (sum, c) in horizon.iter_mut().zip(p.radiance) {
+                *sum += f64::from(c);
+            }
+            horizon_count += 1.0;
+        }
+    }
+    let horizon = horizon.map(|c| c / horizon_count);
+    let mean_distance_to_sky = |keep: &dyn Fn(f32) -> bool| {
+        let pixels: Vec<&PixelRadiance> = radiance
+            .iter()
+            .filter(|p| p.terrain_distance.is_some_and(keep))
+            .collect();
+        assert!(pixels.len() > 20, "{} pixels", pixels.len());
+        pixels
+            .iter()
+            .map(|p| {
+                (0..3)
+                    .map(|k| (f64::from(p.radiance[k]) - horizon[k]).powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+            })
+            .sum::<f64>()
+            / pixels.len() as f64
+    };
+    let near = mean_distance_to_sky(&|d| d < 5_000.0);
+    let far = mean_distance_to_sky(&|d| d > 20_000.0);
+    eprintln!("distance to the horizon sky: near {near:.4}, far {far:.4}");
+    assert!(
+        far < 0.75 * near,
+        "distant terrain is {far:.4} from the horizon sky, near terrain {near:.4}"
+    );
+}
+
+/// A north–south ridge with 25° flanks on a 64×64 map at 50 m, as raw f32.
+fn write_ridge(folder: &std::path::Path) {
+    let drop_per_texel = 50.0 * 25f32.to_radians().tan();
+    let bytes: Vec<u8> = (0..64 * 64)
+        .flat_map(|i| {
+            let x = (i % 64) as f32;
+            (800.0 - drop_per_texel * (x - 31.5).abs())
+                .max(0.0)
+                .to_le_bytes()
+        })
+        .collect();
+    std::fs::write(folder.join("ridge.f32"), bytes).unwrap();
+}
+
+#[test]
+fn at_sunset_east_faces_are_darker_than_west_faces() {
+    let folder = std::env::temp_dir().join(format!("render-ridge-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    write_ridge(&folder);
+    for horizon in [
+        "horizon = \"east-west\"",
+        "horizon = \"azimuths\"\nhorizon_azimuths = 8",
+    ] {
+        let text = format!(
+            "[camera]\nposition = [0.0, 700.0, 4500.0]\nlook_at = [0.0, 300.0, 0.0]\n\
+             vertical_fov_deg = 40.0\n\
+             [sun]\nelevation_deg = 3.0\nazimuth_deg = 270.0\n\
+             [atmosphere]\nrung = \"closed-form\"\n\
+             [terrain]\n{horizon}\n\
+             [terrain.raw_f32]\npath = \"ridge.f32\"\nwidth = 64\nheight = 64\ncell_size = 50.0\n\
+             [output]\nwidth = 40\nheight = 24\n"
+        );
+        let prepared = Scene::parse(&text, &folder).unwrap().prepare().unwrap();
+        let radiance = render_radiance(&prepared).unwrap();
+        let (mut west, mut east) = (Vec::new(), Vec::new());
+        for (i, p) in radiance.iter().enumerate() {
+            let Some(distance) = p.terrain_distance else {
+                continue;
+            };
+            let pixel = [(i % 40) as u32, (i / 40) as u32];
+            let point = prepared.camera_position + hit_offset(&prepared, pixel, distance);
+            // The crest runs along x = 0; keep clear of it and of the flat ground.
+            let elevation = point.y - prepared.atmosphere.planet_radius;
+            if elevation < 100.0 || point.x.abs() < 80.0 {
+                continue;
+            }
+            let l = luminance(p.radiance);
+            if point.x < 0.0 {
+                west.push(l)
+            } else {
+                east.push(l)
+            }
+        }
+        let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+        assert!(
+            west.len() > 10 && east.len() > 10,
+            "{} west, {} east",
+            west.len(),
+            east.len()
+        );
+        let (w, e) = (mean(&west), mean(&east));
+        eprintln!("{horizon}: west faces {w:.5}, east faces {e:.5}");
+        assert!(
+            w > 2.0 * e,
+            "{horizon}: west faces {w:.5}, east faces {e:.5}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&folder);
+}
+
+fn parse_error(text: &str) -> SceneError {
+    match Scene::parse(text, ".") {
+        Err(e) => e,
+        Ok(scene) => scene.prepare().unwrap_err(),
+    }
+}
+
+const VALID: &str = "[camera]\nposition = [0.0, 2.0, 0.0]\nlook_direction = [0.0, 0.2, -1.0]\n\
+                     [sun]\nelevation_deg = 30.0\nazimuth_deg = 180.0\n";
+
+#[test]
+fn a_misspelt_key_names_its_line_column_and_the_right_key() {
+    let text = VALID.replace("[sun]\n", "[sun]\nelevaton_deg = 3.0\n");
+    let e = parse_error(&text);
+    let message = e.to_string();
+    assert_eq!(
+        e.location().map(|l| (l.line, l.column)),
+        Some((5, 1)),
+        "{message}"
+    );
+    assert!(message.contains("line 5, column 1"), "{message}");
+    assert!(
+        message.contains("did you mean `elevation_deg`"),
+        "{message}"
+    );
+    assert!(message.contains("`sun.elevaton_deg`"), "{message}");
+}
+
+#[test]
+fn an_unknown_rung_is_rejected_with_the_nearest_name() {
+    let text = format!("{VALID}[atmosphere]\nrung = \"precomputd\"\n");
+    let e = parse_error(&text);
+    let message = e.to_string();
+    assert_eq!(e.location().map(|l| l.line), Some(8), "{message}");
+    assert!(message.contains("did you mean `precomputed`"), "{message}");
+}
+
+#[test]
+fn nan_and_out_of_range_values_name_the_field_in_the_unit_typed() {
+    let e = parse_error(&VALID.replace("[sun]", "vertical_fov_deg = nan\n[sun]"));
+    let message = e.to_string();
+    assert_eq!(e.field(), Some("camera.vertical_fov_deg"), "{message}");
+    assert_eq!(
+        e.location().map(|l| (l.line, l.column)),
+        Some((4, 20)),
+        "{message}"
+    );
+    assert!(message.contains("NaN°"), "{message}");
+    assert!(matches!(e, SceneError::Atmosphere { .. }), "{e:?}");
+
+    let e = parse_error(&VALID.replace("elevation_deg = 30.0", "elevation_deg = 120.0"));
+    assert_eq!(e.field(), Some("sun.elevation_deg"));
+    assert!(e.to_string().contains("120°"), "{e}");
+
+    let e = parse_error(&format!("{VALID}[atmosphere]\nmie_g = 1.5\n"));
+    assert_eq!(e.field(), Some("atmosphere.mie_g"));
+    assert_eq!(e.location().map(|l| l.line), Some(8), "{e}");
+}
+
+#[test]
+fn negative_and_zero_sizes_are_rejected_before_anything_is_built() {
+    let terrain = "[terrain.procedural]\nseed = 1\nsize = -5\ncell_size = 10.0\n";
+    let e = parse_error(&format!("{VALID}{terrain}"));
+    assert_eq!(e.location().map(|l| l.line), Some(9), "{e}");
+    assert!(e.to_string().contains("-5"), "{e}");
+
+    let terrain = "[terrain.procedural]\nseed = 1\nsize = 32\ncell_size = -10.0\n";
+    let e = parse_error(&format!("{VALID}{terrain}"));
+    assert_eq!(e.field(), Some("terrain.procedural.cell_size"), "{e}");
+    assert_eq!(e.location().map(|l| l.line), Some(10), "{e}");
+    assert!(e.to_string().contains("-10 m"), "{e}");
+    assert!(matches!(e, SceneError::Terrain { .. }), "{e:?}");
+
+    let e = parse_error(&format!("{VALID}[output]\nwidth = 0\n"));
+    assert_eq!(e.field(), Some("output.width"), "{e}");
+    assert_eq!(e.location().map(|l| l.line), Some(8), "{e}");
+}
+
+#[test]
+fn a_missing_heightfield_file_names_the_path() {
+    let terrain =
+        "[terrain.png16]\npath = \"no-such-map.png\"\ncell_size = 30.0\nheight_scale = 0.1\n";
+    let e = parse_error(&format!("{VALID}{terrain}"));
+    assert_eq!(e.field(), Some("terrain.png16.path"), "{e}");
+    assert!(e.to_string().contains("no-such-map.png"), "{e}");
+    assert!(std::error::Error::source(&e).is_some());
+}
