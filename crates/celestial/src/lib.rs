@@ -20,6 +20,7 @@
 //! Bad input is a [`CelestialError`] naming the field and the value.
 
 pub mod angle;
+pub mod colour;
 pub mod error;
 pub mod horizontal;
 pub mod moon;
