@@ -69,6 +69,15 @@ pub enum CelestialError {
         #[source]
         source: solar_positioning::Error,
     },
+    /// The shipped star catalogue could not be loaded.
+    #[error("the star catalogue {field} could not be loaded")]
+    Catalogue {
+        /// Which catalogue.
+        field: &'static str,
+        /// The catalogue crate's error.
+        #[source]
+        source: star_catalog::Error,
+    },
 }
 
 /// `Result` with [`CelestialError`].

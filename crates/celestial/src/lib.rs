@@ -30,6 +30,7 @@ pub mod photometry;
 pub mod planets;
 pub mod refraction;
 pub mod sidereal;
+pub mod stars;
 pub mod sun;
 pub mod time;
 
@@ -42,6 +43,7 @@ pub use observer::Observer;
 pub use photometry::{ZERO_MAGNITUDE_ILLUMINANCE_LX, illuminance_from_magnitude};
 pub use planets::{Planet, PlanetPosition, planet_position};
 pub use refraction::{AirConditions, apparent_elevation};
+pub use stars::{SkyStar, StarCatalogue};
 pub use sun::{SunPosition, sun_position};
 pub use time::Instant;
 
