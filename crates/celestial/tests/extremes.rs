@@ -152,3 +152,45 @@ fn span_ends() {
         );
     }
 }
+
+/// The sun exactly at the zenith and at the nadir: δ = φ on the meridian gives 90°,
+/// the antimeridian with δ = −φ gives −90°, with a finite azimuth either way.
+#[test]
+fn zenith_and_nadir_are_finite() {
+    for lat in [-89.0, -23.44, 0.0, 23.44, 60.0] {
+        let phi = Angle::from_degrees(lat);
+        let up = celestial::Horizontal::from_equatorial(Angle::ZERO, phi, phi);
+        assert!((up.elevation.degrees() - 90.0).abs() < 1e-12 && up.azimuth.is_finite());
+        let down = celestial::Horizontal::from_equatorial(Angle::from_degrees(180.0), -phi, phi);
+        assert!((down.elevation.degrees() + 90.0).abs() < 1e-9 && down.azimuth.is_finite());
+    }
+    // A real instant with the sun near the zenith: 2024-03-20 ~12:07 UTC at the
+    // equator on the Greenwich meridian (equinox; equation of time −7 min).
+    let observer = Observer::new(Angle::ZERO, Angle::ZERO, 0.0).unwrap();
+    let sun = sun_position(&Instant::parse("2024-03-20T12:07:00Z").unwrap(), &observer).unwrap();
+    assert!(sun.airless.elevation.degrees() > 89.5 && sun.airless.azimuth.is_finite());
+}
+
+/// Perigee and apogee: over a 15-month sweep (several anomalistic months) the moon's
+/// topocentric angular radius spans the published extremes (geocentric 0.2448° at
+/// apogee 406 700 km to 0.2793° at perigee 356 400 km; the observer's 6 378 km offset
+/// changes it by up to +1.8 % with the moon overhead and −1.6 % with it at the nadir:
+/// 0.2410°…0.2844°) and never leaves them.
+#[test]
+fn moon_at_perigee_and_apogee() {
+    let observer =
+        Observer::new(Angle::from_degrees(10.0), Angle::from_degrees(20.0), 0.0).unwrap();
+    let (mut smallest, mut largest) = (f64::INFINITY, 0.0_f64);
+    for hour in (0..24 * 460).step_by(3) {
+        let unix = 1_704_067_200 + i64::from(hour) * 3600;
+        let instant =
+            Instant::from_utc(chrono::DateTime::from_timestamp(unix, 0).unwrap()).unwrap();
+        let moon = celestial::moon_position(&instant, &observer).unwrap();
+        let radius = moon.angular_radius.degrees();
+        smallest = smallest.min(radius);
+        largest = largest.max(radius);
+    }
+    println!("moon angular radius {smallest:.4}..{largest:.4} deg");
+    assert!(smallest > 0.2405 && smallest < 0.2470, "{smallest}");
+    assert!(largest > 0.2780 && largest < 0.2850, "{largest}");
+}
