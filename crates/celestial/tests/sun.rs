@@ -114,3 +114,37 @@ fn sidereal_time_and_transform_against_spa_1950_2100() {
     assert!(worst_elevation < 0.0027, "{worst_elevation}");
     assert!(worst_azimuth_on_sky < 0.0027, "{worst_azimuth_on_sky}");
 }
+
+/// The sun against an independent ephemeris over 1950–2100: 200 instants and
+/// observers (poles, the date line, 0–4 km) from astropy 8.0.1's builtin ephemeris
+/// (ERFA epv00, IAU 2006/2000A; aberration and light time included). How the table was
+/// made: `tests/data/sun_reference.py`. The goal is 0.01°.
+#[test]
+fn sun_against_astropy_1950_2100() {
+    let table = include_str!("data/sun_reference.csv");
+    let (mut worst, mut n) = (0.0_f64, 0);
+    for line in table.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let num = |i: usize| f[i].parse::<f64>().unwrap();
+        let instant = Instant::parse(f[0]).unwrap();
+        let observer = Observer::new(
+            Angle::from_degrees(num(1)),
+            Angle::from_degrees(num(2)),
+            num(3),
+        )
+        .unwrap();
+        let sun = sun_position(&instant, &observer).unwrap();
+        let (az1, el1) = (
+            sun.airless.azimuth.radians(),
+            sun.airless.elevation.radians(),
+        );
+        let (az2, el2) = (num(4).to_radians(), num(5).to_radians());
+        let h = ((el2 - el1) / 2.0).sin().powi(2)
+            + el1.cos() * el2.cos() * ((az2 - az1) / 2.0).sin().powi(2);
+        worst = worst.max((2.0 * h.sqrt().asin()).to_degrees());
+        n += 1;
+    }
+    println!("sun vs astropy ({n} cases): max {worst:.5} deg");
+    assert_eq!(n, 200);
+    assert!(worst < 0.01, "{worst}");
+}
