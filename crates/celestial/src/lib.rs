@@ -10,7 +10,11 @@
 //!   time (Meeus ch. 12, 22);
 //! * [`sun_position`]: the sun by NREL SPA (crate `solar-positioning`), topocentric,
 //!   airless; [`refraction`] the separate Sæmundsson step to the apparent elevation;
-//! * [`moon_phase`]: phase angle, illuminated fraction and bright limb from the sun's
+//! * [`moon_position`]: the moon (Schlyter + parallax), topocentric, with distance,
+//!   angular size and phase; [`planet_position`]: Mercury–Saturn with magnitudes;
+//! * [`StarCatalogue`]: the Hipparcos stars to V = 8 precessed to the date, with
+//!   illuminance and colour ([`colour`]: B−V → linear sRGB);
+//! * [`moon_phase()`]: phase angle, illuminated fraction and bright limb from the sun's
 //!   and moon's places (Meeus ch. 48); [`moon_disc_incidence_cosine`] the lit part of
 //!   the disc per point;
 //! * [`equatorial_to_horizontal`], [`illuminance_from_magnitude`] and
