@@ -269,3 +269,57 @@ fn a_missing_heightfield_file_names_the_path() {
     assert!(e.to_string().contains("no-such-map.png"), "{e}");
     assert!(std::error::Error::source(&e).is_some());
 }
+
+/// Renders the ridge in a 30° afternoon sun with each rung and checks that the
+/// sunlit flank is lit (not the black ground the sky-only rungs used to draw).
+fn rungs_draw_lit_terrain(rungs: &[&str]) {
+    let folder =
+        std::env::temp_dir().join(format!("render-rungs-{}-{}", std::process::id(), rungs[0]));
+    std::fs::create_dir_all(&folder).unwrap();
+    write_ridge(&folder);
+    for rung in rungs {
+        let text = format!(
+            "[camera]\nposition = [0.0, 700.0, 4500.0]\nlook_at = [0.0, 300.0, 0.0]\n\
+             vertical_fov_deg = 40.0\n\
+             [sun]\nelevation_deg = 30.0\nazimuth_deg = 240.0\n\
+             [atmosphere]\nrung = \"{rung}\"\n\
+             [terrain.raw_f32]\npath = \"ridge.f32\"\nwidth = 64\nheight = 64\ncell_size = 50.0\n\
+             [output]\nwidth = 16\nheight = 10\n"
+        );
+        let start = std::time::Instant::now();
+        let prepared = Scene::parse(&text, &folder).unwrap().prepare().unwrap();
+        let radiance = render_radiance(&prepared).unwrap();
+        let terrain: Vec<f64> = radiance
+            .iter()
+            .filter(|p| p.terrain_distance.is_some())
+            .map(|p| luminance(p.radiance))
+            .collect();
+        let brightest = terrain.iter().copied().fold(0.0, f64::max);
+        eprintln!(
+            "{rung}: {} terrain pixels, brightest {brightest:.4} ({:.1} s)",
+            terrain.len(),
+            start.elapsed().as_secs_f64()
+        );
+        // A sunlit 25° slope of albedo ~0.1 under a 30° sun: ~0.02 per unit irradiance.
+        assert!(
+            terrain.len() > 10,
+            "{rung}: {} terrain pixels",
+            terrain.len()
+        );
+        assert!(brightest > 0.01, "{rung}: brightest terrain {brightest}");
+    }
+    let _ = std::fs::remove_dir_all(&folder);
+}
+
+#[test]
+fn every_real_time_rung_draws_lit_terrain() {
+    rungs_draw_lit_terrain(&["closed-form", "closed-form-vertex", "single", "precomputed"]);
+}
+
+/// The f64 reference rungs take 10 s and 53 s in a debug build:
+/// `cargo test -p render --test scene_render -- --ignored`.
+#[test]
+#[ignore = "slow in debug builds (about a minute)"]
+fn the_reference_rungs_draw_lit_terrain() {
+    rungs_draw_lit_terrain(&["reference", "reference-spectral"]);
+}
