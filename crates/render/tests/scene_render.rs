@@ -323,3 +323,13 @@ fn every_real_time_rung_draws_lit_terrain() {
 fn the_reference_rungs_draw_lit_terrain() {
     rungs_draw_lit_terrain(&["reference", "reference-spectral"]);
 }
+
+#[test]
+fn a_missing_key_or_section_is_named() {
+    let e =
+        parse_error("[camera]\nposition = [0.0, 2.0, 0.0]\nlook_direction = [0.0, 0.2, -1.0]\n");
+    assert_eq!(e.field(), Some("sun"), "{e}");
+    let e = parse_error(&VALID.replace("position = [0.0, 2.0, 0.0]\n", ""));
+    assert_eq!(e.field(), Some("camera.position"), "{e}");
+    assert_eq!(e.location().map(|l| l.line), Some(1), "{e}");
+}

@@ -135,10 +135,24 @@ impl SceneError {
         let location = error
             .span()
             .map(|span| Location::of_offset(source, span.start));
-        let field = error
+        let message = error.message().trim_end().to_owned();
+        let mut field = error
             .span()
             .and_then(|span| super::locate::dotted_key_at(source, span));
-        let message = error.message().trim_end().to_owned();
+        // A missing key's span is its table's header, or empty at 0 for a missing
+        // section: name the key itself.
+        if let Some(name) = message
+            .strip_prefix("missing field `")
+            .and_then(|rest| rest.split('`').next())
+        {
+            let whole_document = error.span().is_none_or(|span| {
+                span.start == 0 && (span.is_empty() || span.end + 1 >= source.len())
+            });
+            field = match field {
+                Some(parent) if !whole_document => Some(format!("{parent}.{name}")),
+                _ => Some(name.to_owned()),
+            };
+        }
         let suggestion = suggest(&message);
         Self::Parse {
             location,
