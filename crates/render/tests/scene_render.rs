@@ -333,3 +333,25 @@ fn a_missing_key_or_section_is_named() {
     assert_eq!(e.field(), Some("camera.position"), "{e}");
     assert_eq!(e.location().map(|l| l.line), Some(1), "{e}");
 }
+
+#[test]
+fn a_png16_heightfield_loads_with_its_cell_size_and_height_scale() {
+    let folder = std::env::temp_dir().join(format!("render-png16-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    let source =
+        terrain::Heightfield::from_fn(20, 10, 1.0, |x, y| (100 + 7 * x + 3 * y) as f32).unwrap();
+    std::fs::write(folder.join("map.png"), source.to_png16(0.5, 50.0).unwrap()).unwrap();
+    let text = format!(
+        "{VALID}[terrain.png16]\npath = \"map.png\"\ncell_size = 30.0\nheight_scale = 0.5\n\
+         height_offset = 50.0\n[output]\nwidth = 8\nheight = 6\n"
+    );
+    let prepared = Scene::parse(&text, &folder).unwrap().prepare().unwrap();
+    let terrain = prepared.terrain.as_ref().unwrap();
+    let hf = &terrain.heightfield;
+    assert_eq!((hf.width(), hf.height(), hf.spacing()), (20, 10, 30.0));
+    for (loaded, expected) in hf.elevations().iter().zip(source.elevations()) {
+        assert!((loaded - expected).abs() <= 0.25, "{loaded} vs {expected}");
+    }
+    render_cpu(&prepared).unwrap();
+    let _ = std::fs::remove_dir_all(&folder);
+}
