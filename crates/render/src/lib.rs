@@ -1,6 +1,19 @@
 //! `render`: composes skyscape's subsystems into images. It owns only what is
-//! specific to composition (the sky pass, display encoding); every piece of physics
-//! comes from the subsystem crates, in Rust and by `#import` in WGSL.
+//! specific to composition (the sky pass, display encoding, [`scene`] files and the
+//! [`cpu_renderer`] that draws them); every piece of physics comes from the subsystem
+//! crates, in Rust and by `#import` in WGSL.
+//!
+//! ```
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/default.toml");
+//! let mut scene = render::scene::Scene::open(path)?;
+//! scene.file.output.width = 16;
+//! scene.file.output.height = 9;
+//! let frame = render::cpu_renderer::render_cpu(&scene.prepare()?)?;
+//! assert_eq!(frame.pixels.len(), 16 * 9);
+//! # Ok(())
+//! # }
+//! ```
 //!
 //! ```
 //! let scene = render::SkyScene { width: 32, height: 18, ..Default::default() };
