@@ -255,6 +255,10 @@ fn negative_and_zero_sizes_are_rejected_before_anything_is_built() {
     assert!(e.to_string().contains("-10 m"), "{e}");
     assert!(matches!(e, SceneError::Terrain { .. }), "{e:?}");
 
+    let e = parse_error(&format!("{VALID}[output]\nwidth = 16384\nheight = 16384\n"));
+    assert_eq!(e.field(), Some("output.height"), "{e}");
+    assert!(e.to_string().contains("268435456 pixels"), "{e}");
+
     let e = parse_error(&format!("{VALID}[output]\nwidth = 0\n"));
     assert_eq!(e.field(), Some("output.width"), "{e}");
     assert_eq!(e.location().map(|l| l.line), Some(8), "{e}");

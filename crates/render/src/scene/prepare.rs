@@ -14,6 +14,10 @@ use crate::terrain_shading::AlbedoRamp;
 /// The most pixels per side an output may have, checked before anything is allocated.
 pub const MAX_OUTPUT_SIDE: u32 = 16_384;
 
+/// The most pixels an output may have (the CPU renderer holds 20 bytes per pixel:
+/// 1.3 GiB at this size), checked before anything is allocated.
+pub const MAX_OUTPUT_PIXELS: u64 = 1 << 26;
+
 /// The dome of the per-vertex closed-form rung (the binary's `--rung closed-form-vertex`).
 pub const DOME: atmos::dome::DomeResolution = atmos::dome::DomeResolution {
     rings: 16,
@@ -120,7 +124,6 @@ impl Scene {
     pub fn prepare(&self) -> Result<PreparedScene, SceneError> {
         let atmosphere = self.atmosphere()?;
         let file = &self.file;
-        let (sky_model, segment_model) = self.models(&atmosphere)?;
 
         let sun_section = file.sun;
         if sun_section.elevation_deg.is_nan() || sun_section.elevation_deg.abs() > 90.0 {
@@ -151,6 +154,14 @@ impl Scene {
                     format!("must be in 1..={MAX_OUTPUT_SIDE}"),
                 ));
             }
+        }
+        let pixels = u64::from(out.width) * u64::from(out.height);
+        if pixels > MAX_OUTPUT_PIXELS {
+            return Err(self.invalid(
+                &["output", "height"],
+                format!("{} pixels ({}×{})", pixels, out.width, out.height),
+                format!("width × height must be ≤ {MAX_OUTPUT_PIXELS}"),
+            ));
         }
         let present =
             PresentParameters::new(&atmosphere, out.exposure, out.dither_seed).map_err(|e| {
@@ -228,6 +239,8 @@ impl Scene {
             ));
         }
 
+        // The expensive parts last, once every cheap check has passed.
+        let (sky_model, segment_model) = self.models(&atmosphere)?;
         let terrain = self.terrain()?;
         Ok(PreparedScene {
             atmosphere,
