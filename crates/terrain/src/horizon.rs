@@ -320,8 +320,11 @@ pub(crate) fn max_steps_for(step: f64, max_distance: Option<f64>) -> usize {
     match max_distance {
         None => usize::MAX,
         Some(d) if d.is_infinite() => usize::MAX,
+        // Beyond 2^53 steps no map reaches the limit (and the search below would
+        // count up to `d / step`, for ever when `d` is huge): no limit.
+        Some(d) if d / step >= 9.0e15 => usize::MAX,
         Some(d) => {
-            let mut k = (d / step).floor().min(1e15) as usize;
+            let mut k = (d / step).floor() as usize;
             while k > 0 && k as f64 * step > d {
                 k -= 1;
             }

@@ -94,3 +94,21 @@ fn horizon_encodings_reject_nan_and_angles_beyond_the_poles() {
         65535
     );
 }
+
+/// A finite but huge `max_distance` used to count steps up to `max_distance / spacing`
+/// (about 10^299 iterations for 1e300 m): now it means "no limit", like +inf.
+#[test]
+fn a_huge_finite_max_distance_is_no_limit_not_a_hang() {
+    let hf = hill();
+    let options = |max_distance| HorizonOptions {
+        max_distance: Some(max_distance),
+        ..HorizonOptions::flat()
+    };
+    for algorithm in [Algorithm::HullSweep, Algorithm::BruteForce] {
+        let huge = bake_east_west(&hf, &options(1e300), algorithm).unwrap();
+        let unlimited = bake_east_west(&hf, &options(f64::INFINITY), algorithm).unwrap();
+        assert_eq!(huge, unlimited);
+        let max = bake_east_west(&hf, &options(f64::MAX), algorithm).unwrap();
+        assert_eq!(max, unlimited);
+    }
+}
