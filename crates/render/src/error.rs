@@ -41,3 +41,24 @@ pub(crate) fn check(
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::RenderError;
+
+    #[test]
+    fn atmosphere_errors_keep_their_source() {
+        let atmos_error = atmos::Atmosphere {
+            mie_g: 2.0,
+            ..atmos::Atmosphere::earth()
+        }
+        .validate()
+        .unwrap_err();
+        let error = RenderError::from(atmos_error.clone());
+        let source = std::error::Error::source(&error).expect("the atmos error is the source");
+        assert_eq!(
+            source.downcast_ref::<atmos::AtmosError>(),
+            Some(&atmos_error)
+        );
+    }
+}
