@@ -258,7 +258,7 @@ pub struct Model {
 }
 
 /// `floor(p * 2^16)` for a valid probability, or the typed error.
-fn checked_threshold(field: &'static str, value: f32) -> Result<u32, Error> {
+pub(crate) fn checked_threshold(field: &'static str, value: f32) -> Result<u32, Error> {
     let threshold =
         probability_threshold(f64::from(value)).ok_or(Error::Probability { field, value })?;
     if threshold == 0 && value > 0.0 {

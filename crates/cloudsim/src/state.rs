@@ -1,7 +1,8 @@
 //! The two state layouts: one `bool` per cell ([`NaiveState`]) and 32 cells per `u32`
 //! word along x ([`PackedState`], shared by the fast CPU path and the GPU).
 
-use crate::rng::{probability_threshold, stream_key};
+use crate::model::checked_threshold;
+use crate::rng::stream_key;
 use crate::{Error, GridSize};
 use skyscape_wgsl::common::hash_combine;
 
@@ -85,21 +86,24 @@ impl PackedState {
     /// A reproducible random state: each cell's `hum`, `act`, `cld` is set with the
     /// given probabilities (quantised to 2^-16), drawn with the crate's hash from `seed`
     /// (streams 100..103, so they never coincide with the automaton's draws).
+    /// A probability outside `[0, 1]` is [`Error::Probability`]; a positive one below
+    /// 2^-16 is [`Error::ProbabilityResolution`] (it would act as 0).
     pub fn random(size: GridSize, seed: u32, hum: f32, act: f32, cld: f32) -> Result<Self, Error> {
-        for (field, value) in [("hum", hum), ("act", act), ("cld", cld)] {
-            if !(0.0..=1.0).contains(&value) {
-                return Err(Error::Probability { field, value });
-            }
-        }
+        // The same checks as the model's probabilities: outside [0, 1] and positive
+        // values below the draws' resolution (which would silently act as 0) are errors.
+        let thresholds = [
+            checked_threshold("hum", hum)?,
+            checked_threshold("act", act)?,
+            checked_threshold("cld", cld)?,
+        ];
         let mut naive = NaiveState::empty(size)?;
         let fields = [
-            (&mut naive.hum, hum, 100),
-            (&mut naive.act, act, 101),
-            (&mut naive.cld, cld, 102),
+            (&mut naive.hum, thresholds[0], 100),
+            (&mut naive.act, thresholds[1], 101),
+            (&mut naive.cld, thresholds[2], 102),
         ];
-        for (cells, p, stream) in fields {
+        for (cells, t, stream) in fields {
             let key = stream_key(seed, 0, stream);
-            let t = probability_threshold(f64::from(p)).unwrap_or(0);
             for (i, cell) in cells.iter_mut().enumerate() {
                 *cell = (hash_combine(key, i as u32) >> 16) < t;
             }

@@ -26,3 +26,17 @@ fn out_of_range_cells_name_the_coordinate() {
     assert_eq!(size.index(0, 1, 0).unwrap(), 40);
     assert!(!state.cloud(39, 2, 1).unwrap());
 }
+
+#[test]
+fn random_states_reject_probabilities_the_draws_cannot_resolve() {
+    let size = GridSize::new(32, 2, 2);
+    for (hum, act, cld, field) in [
+        (1e-6, 0.0, 0.0, "`hum`"),
+        (0.0, f32::NAN, 0.0, "`act`"),
+        (0.0, 0.0, 1.5, "`cld`"),
+    ] {
+        let error = PackedState::random(size, 1, hum, act, cld).unwrap_err();
+        assert!(error.to_string().contains(field), "{error}");
+    }
+    assert!(PackedState::random(size, 1, 0.5, 0.0, 1.0).is_ok());
+}
