@@ -26,7 +26,8 @@ struct ClosedFormSkyParameters {
 // hides the sun's centre.
 fn closed_form_sunlight(r: f32, mu_s: f32, params: ClosedFormSkyParameters) -> vec3<f32> {
     let sun_ground = ray_sphere_intersect(r, mu_s, params.planet_radius);
-    if sun_ground.x >= 0.0 {
+    // Tangent rays see the sky (docs/architecture.md, "Rays at the ground").
+    if mu_s < 0.0 && sun_ground.x >= 0.0 {
         return vec3<f32>(0.0);
     }
     let sun_shell = ray_sphere_intersect(r, mu_s, params.shell_radius);
@@ -50,7 +51,7 @@ fn closed_form_path_length(r: f32, mu: f32, max_distance: f32, params: ClosedFor
     }
     let ground = ray_sphere_intersect(r, mu, params.planet_radius);
     var end = min(shell.y, max_distance);
-    if ground.x >= 0.0 {
+    if mu < 0.0 && ground.x >= 0.0 {
         end = min(end, ground.x);
     }
     return max(end - max(shell.x, 0.0), 0.0);

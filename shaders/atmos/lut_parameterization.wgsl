@@ -189,7 +189,8 @@ fn ray_segment_in_atmosphere(r_in: f32, mu: f32, planet_radius: f32, top_radius:
     }
     let t_start = max(top.x, 0.0);
     let ground = ray_sphere_intersect(r, mu, planet_radius);
-    if ground.x >= 0.0 {
+    // Tangent rays see the sky (docs/architecture.md, "Rays at the ground").
+    if mu < 0.0 && ground.x >= 0.0 {
         return vec3<f32>(t_start, ground.x, 1.0);
     }
     return vec3<f32>(t_start, top.y, 0.0);

@@ -164,7 +164,10 @@ fn lookup_sky_view(r: f32, mu: f32, cos_azimuth: f32) -> ScatteringSegment {
     let uv = sky_view_lut_uv(r, mu, cos_azimuth, lut_atmosphere.planet_radius, w, h);
     let half_height = h / 2u;
     var f: BilinearFootprint;
-    if uv.y < 0.5 {
+    // At the horizon both halves meet at v = 1/2; a viewer on the ground looking along
+    // (or above) the tangent plane sees the sky (docs/architecture.md, "Rays at the
+    // ground"), so it reads the sky rows.
+    if uv.y < 0.5 || (mu >= 0.0 && r <= lut_atmosphere.planet_radius) {
         f = bilinear_footprint(uv, w, h, 0u, half_height - 1u);
     } else {
         f = bilinear_footprint(uv, w, h, half_height, h - 1u);

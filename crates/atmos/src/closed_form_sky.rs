@@ -56,7 +56,8 @@ impl ClosedFormSkyParameters {
 /// the planet hides the sun's centre.
 pub fn closed_form_sunlight(r: f32, mu_s: f32, params: &ClosedFormSkyParameters) -> [f32; 3] {
     let sun_ground = ray_sphere_intersect(r, mu_s, params.planet_radius);
-    if sun_ground[0] >= 0.0 {
+    // Tangent rays see the sky (docs/architecture.md, "Rays at the ground").
+    if mu_s < 0.0 && sun_ground[0] >= 0.0 {
         return [0.0; 3];
     }
     let sun_shell = ray_sphere_intersect(r, mu_s, params.shell_radius);
@@ -86,7 +87,7 @@ pub fn closed_form_path_length(
     }
     let ground = ray_sphere_intersect(r, mu, params.planet_radius);
     let mut end = shell[1].min(max_distance);
-    if ground[0] >= 0.0 {
+    if mu < 0.0 && ground[0] >= 0.0 {
         end = end.min(ground[0]);
     }
     (end - shell[0].max(0.0)).max(0.0)

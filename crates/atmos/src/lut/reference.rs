@@ -31,7 +31,8 @@ pub fn ray_segment_in_atmosphere(r: f64, mu: f64, planet_radius: f64, top_radius
     }
     let t_start = top[0].max(0.0);
     let ground = ray_sphere_intersect(r, mu, planet_radius);
-    if ground[0] >= 0.0 {
+    // Tangent rays see the sky (docs/architecture.md, "Rays at the ground").
+    if mu < 0.0 && ground[0] >= 0.0 {
         return [t_start, ground[0], 1.0];
     }
     [t_start, top[1], 0.0]

@@ -121,7 +121,11 @@ pub fn lookup_sky_view(
         height,
     );
     let half = height / 2;
-    let f = if uv[1] < 0.5 {
+    // At the horizon both halves meet at v = ½; a viewer on the ground looking along
+    // (or above) the tangent plane sees the sky (docs/architecture.md, "Rays at the
+    // ground"), so it reads the sky rows.
+    let sky_rows = uv[1] < 0.5 || (mu >= 0.0 && r <= bindings.atmosphere.planet_radius);
+    let f = if sky_rows {
         bilinear_footprint(uv, width, height, 0, half - 1)
     } else {
         bilinear_footprint(uv, width, height, half, height - 1)

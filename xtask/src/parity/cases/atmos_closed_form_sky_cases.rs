@@ -51,7 +51,8 @@ fn path_length64(r: f64, mu: f64, max_distance: f64) -> f64 {
     }
     let ground = f64ref::ray_sphere_intersect(r, mu, R_GROUND);
     let mut end = shell[1].min(max_distance);
-    if ground[0] >= 0.0 {
+    // Tangent rays see the sky (docs/architecture.md, "Rays at the ground").
+    if mu < 0.0 && ground[0] >= 0.0 {
         end = end.min(ground[0]);
     }
     (end - shell[0].max(0.0)).max(0.0)
@@ -66,7 +67,7 @@ fn path_length_bound(r: f64, mu: f64) -> f64 {
 
 fn sunlight64(r: f64, mu_s: f64) -> [f64; 3] {
     let ground = f64ref::ray_sphere_intersect(r, mu_s, R_GROUND);
-    if ground[0] >= 0.0 {
+    if mu_s < 0.0 && ground[0] >= 0.0 {
         return [0.0; 3];
     }
     let shell = f64ref::ray_sphere_intersect(r, mu_s, SHELL);
@@ -125,6 +126,14 @@ fn geometry_grid(with_distance: bool, cosine_count: usize) -> Vec<Vec<f64>> {
             for &max_distance in distances {
                 grid.push(vec![r, mu, max_distance]);
             }
+        }
+    }
+    // Rays from the ground along, just above and just below the tangent plane (±0.01°):
+    // the ground test is decided by the sign of mu alone, exactly in both precisions.
+    for mu in [0.0, 0.01f64.to_radians().sin(), -0.01f64.to_radians().sin()] {
+        let mu = f64::from(mu as f32);
+        for &max_distance in distances {
+            grid.push(vec![R_GROUND, mu, max_distance]);
         }
     }
     grid

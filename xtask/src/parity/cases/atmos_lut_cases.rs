@@ -226,6 +226,11 @@ fn segment_grid() -> Vec<Vec<f64>> {
             grid.push(vec![r, mu]);
         }
     }
+    // Rays from the ground along, just above and just below the tangent plane (±0.01°):
+    // the ground test is decided by the sign of mu alone, exactly in both precisions.
+    for mu in [0.0, 0.01f64.to_radians().sin(), -0.01f64.to_radians().sin()] {
+        grid.push(vec![R_GROUND, f64::from(mu as f32)]);
+    }
     grid
 }
 
