@@ -90,7 +90,11 @@ pub enum Algorithm {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HorizonOptions {
     /// Radius of the sphere whose curvature drops distant terrain by `d²/(2R)`,
-    /// metres; `None` for a flat Earth. Default [`EFFECTIVE_EARTH_RADIUS`].
+    /// metres; `None` for a flat Earth. Default [`EFFECTIVE_EARTH_RADIUS`]
+    /// = 4/3 × 6,371 km = 8,494,667 m: the Earth's curvature *with* standard
+    /// atmospheric refraction (sight lines bend down with about a quarter of the
+    /// Earth's curvature, so distant terrain drops less than on the bare sphere). Use
+    /// [`EARTH_RADIUS`] for the geometric horizon without refraction.
     pub effective_radius: Option<f64>,
     /// Only samples at most this far (metres) count; `None`: up to the map edge.
     pub max_distance: Option<f64>,

@@ -487,8 +487,9 @@ fn markdown(rows: &[Row], large: &LargeBake, c: &Context<'_>) -> String {
         md,
         "**Terrain.** `terrain::generate` (gradient fBm, {OCTAVES} octaves from a {WAVELENGTH} m \
          wavelength, gain ½, seed {SEED}), {0}×{0} texels at {SPACING} m ({1:.1} km square), \
-         {RELIEF} m relief. Curvature on (effective radius {2:.0} m) in the bakes and in the \
-         truth.\n",
+         {RELIEF} m relief. Curvature on (effective radius {2:.0} m = 4/3 × 6,371 km: the \
+         default `terrain::EFFECTIVE_EARTH_RADIUS`, standard atmospheric refraction) in the \
+         bakes and in the truth.\n",
         s.side,
         s.side as f64 * SPACING / 1000.0,
         EFFECTIVE_EARTH_RADIUS
