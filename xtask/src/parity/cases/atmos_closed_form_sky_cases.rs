@@ -44,25 +44,76 @@ fn sign_decidable(r: f64, mu: f64, radius: f64) -> bool {
     t.iter().zip(&bound).all(|(t, b)| t.abs() > 2.0 * b + 1e-3)
 }
 
-fn path_length64(r: f64, mu: f64, max_distance: f64) -> f64 {
-    let shell = f64ref::ray_sphere_intersect(r, mu, SHELL);
-    if shell[1] < 0.0 {
-        return 0.0;
+const SCALE_HEIGHT: f64 = SHELL - R_GROUND;
+/// The top of the equivalent path's layer (`CLOSED_FORM_TOP_SCALE_HEIGHTS` up).
+const PATH_TOP: f64 = R_GROUND + 50.0 * SCALE_HEIGHT;
+/// An unbounded `max_distance` (Rust `f32::MAX`, WGSL `F32_MAX_FINITE`).
+const UNBOUNDED: f64 = f32::MAX as f64;
+
+/// Where the f32 path ends: `(r, end distance)`, `r` clamped to the ground.
+fn path_end64(r: f64, mu: f64, max_distance: f64) -> Option<(f64, f64)> {
+    let r = r.max(R_GROUND);
+    let exit = f64ref::ray_sphere_intersect(r, mu, PATH_TOP);
+    if exit[1] < 0.0 {
+        return None;
     }
     let ground = f64ref::ray_sphere_intersect(r, mu, R_GROUND);
-    let mut end = shell[1].min(max_distance);
+    let mut end = exit[1].min(max_distance);
     // Tangent rays see the sky (docs/architecture.md, "Rays at the ground").
     if mu < 0.0 && ground[0] >= 0.0 {
         end = end.min(ground[0]);
     }
-    (end - shell[0].max(0.0)).max(0.0)
+    Some((r, end.max(0.0)))
 }
 
-/// Absolute error bound of the f32 path length: the intersections it uses.
-fn path_length_bound(r: f64, mu: f64) -> f64 {
-    let shell = ray_sphere_bound(&[r, mu, SHELL]);
+fn path_length64(r: f64, mu: f64, max_distance: f64) -> f64 {
+    path_end64(r, mu, max_distance).map_or(0.0, |(r, end)| {
+        atmos::closed_form_sky::closed_form_segment_path::<f64>(r, mu, end, R_GROUND, SCALE_HEIGHT)
+    })
+}
+
+/// Absolute error bound of the f32 equivalent path. Each path-to-space term
+/// `H e^{−h/H} Ch` carries: the altitude's rounding `δh` (the end point's from
+/// `(r − R)(r + R) + t(2rμ + t)`, ≈ 4u of its terms over 2R) as a relative `δh/H`;
+/// the cosine's rounding (2u, through `∂ln erfcx/∂y ≤ 2y + 2/√π` with `y = μ√(x/2)`);
+/// 64u of arithmetic (exp 3 + 2|h/H| ULP, sqrt, the rational erfcx). They add over the
+/// terms without cancelling. Plus the end distance's error (the intersections'
+/// forward bounds) times the density there (≤ 1), + 1 mm.
+fn path_length_bound(r: f64, mu: f64, max_distance: f64) -> f64 {
+    let Some((r, end)) = path_end64(r, mu, max_distance) else {
+        return 0.0;
+    };
+    let u = U;
+    let x = r / SCALE_HEIGHT;
+    let term_bound = |t: f64, cosine: f64| {
+        let radius_excess = (r - R_GROUND) * (r + R_GROUND);
+        let along = t * (2.0 * r * mu + t);
+        let r_t = (r * r + along).max(0.0).sqrt();
+        let altitude = (radius_excess + along) / (r_t + R_GROUND);
+        let altitude_error = 4.0 * u * (radius_excess.abs() + (t * (2.0 * r * mu.abs() + t)).abs())
+            / (2.0 * R_GROUND)
+            + 2.0 * u * altitude.abs();
+        let y = cosine.abs() * (0.5 * x).sqrt();
+        let cosine_error = 2.0 * u * (0.5 * x).sqrt() * (2.0 * y + 2.0);
+        let value = atmos::closed_form_sky::closed_form_path_to_space::<f64>(
+            altitude,
+            r_t,
+            cosine.abs(),
+            SCALE_HEIGHT,
+        );
+        value * (altitude_error / SCALE_HEIGHT + cosine_error + 64.0 * u)
+            + value * (2.0 * (3.0 + 2.0 * altitude.abs() / SCALE_HEIGHT) * u)
+    };
+    let r_end = (r * r + end * (2.0 * r * mu + end)).max(0.0).sqrt();
+    let mu_end = ((r * mu + end) / r_end).clamp(-1.0, 1.0);
+    let mut bound = term_bound(0.0, mu) + term_bound(end, mu_end);
+    if mu < 0.0 && end > -r * mu {
+        bound += 2.0 * term_bound(-r * mu, 0.0);
+    }
+    let exit = ray_sphere_bound(&[r, mu, PATH_TOP]);
     let ground = ray_sphere_bound(&[r, mu, R_GROUND]);
-    shell[0] + shell[1] + ground[0] + 1.0
+    let end_altitude = f64ref::altitude_along_ray(r, mu, end, R_GROUND);
+    bound + (exit[1] + ground[0]) * (-end_altitude / SCALE_HEIGHT).exp().min(1.0) + 1e-3
 }
 
 fn sunlight64(r: f64, mu_s: f64) -> [f64; 3] {
@@ -70,8 +121,7 @@ fn sunlight64(r: f64, mu_s: f64) -> [f64; 3] {
     if mu_s < 0.0 && ground[0] >= 0.0 {
         return [0.0; 3];
     }
-    let shell = f64ref::ray_sphere_intersect(r, mu_s, SHELL);
-    let path = (shell[1] - shell[0].max(0.0)).max(0.0);
+    let path = path_length64(r, mu_s, UNBOUNDED);
     extinction64().map(|beta| {
         let tau = beta * path;
         if tau > 0.0 {
@@ -105,7 +155,7 @@ fn geometry_grid(with_distance: bool, cosine_count: usize) -> Vec<Vec<f64>> {
     for altitude in altitudes() {
         let r = f64::from((R_GROUND + altitude) as f32);
         let mut mus = cosines(cosine_count);
-        for radius in [R_GROUND, SHELL] {
+        for radius in [R_GROUND, PATH_TOP] {
             if r > radius {
                 let tangent = -(1.0 - (radius / r).powi(2)).sqrt();
                 for k in 0..12 {
@@ -117,9 +167,9 @@ fn geometry_grid(with_distance: bool, cosine_count: usize) -> Vec<Vec<f64>> {
         for mu in mus {
             let mu = f64::from(mu as f32);
             let decided = decidable(r, mu, R_GROUND)
-                && decidable(r, mu, SHELL)
+                && decidable(r, mu, PATH_TOP)
                 && sign_decidable(r, mu, R_GROUND)
-                && sign_decidable(r, mu, SHELL);
+                && sign_decidable(r, mu, PATH_TOP);
             if !decided {
                 continue;
             }
@@ -190,10 +240,11 @@ pub fn cases() -> Vec<Case> {
                 abs: 0.0,
                 rel: 0.0,
                 ulp: 4.0,
-                bound: Some(|x| vec![path_length_bound(x[0], x[1])]),
-                why: "differences of ray–sphere intersections: their forward bounds (the \
-                      discriminant's rounding, ill-conditioned near tangents, see \
-                      atmos::ray_sphere_intersect) for the shell and the ground, + 1 m, + 4 ULP",
+                bound: Some(|x| vec![path_length_bound(x[0], x[1], x[2])]),
+                why: "a sum of Chapman path-to-space terms: each term's altitude rounding \
+                      (δh/H), cosine rounding (through erfcx's slope) and 64u of arithmetic, \
+                      plus the end distance's intersection bound times the density there, \
+                      + 1 mm, + 4 ULP (see path_length_bound)",
             },
         },
         Case {
@@ -219,7 +270,7 @@ pub fn cases() -> Vec<Case> {
                 ulp: 16.0,
                 bound: Some(|x| {
                     // d/dτ (1 − e^{−τ})/τ ∈ [−1/2, 0]: the path error times β / 2.
-                    let path_error = path_length_bound(x[0], x[1]);
+                    let path_error = path_length_bound(x[0], x[1], UNBOUNDED);
                     extinction64().map(|beta| 0.5 * beta * path_error).to_vec()
                 }),
                 why: "(1 − e^{−τ})/τ (one_minus_exp_neg 4 ULP or exp's bound, the division \
@@ -256,7 +307,7 @@ pub fn cases() -> Vec<Case> {
                 bound: Some(|x| {
                     // dL/ds = (βR·P_R + βM·P_HG)·e^{−βs} ≤ the angular coefficient.
                     let p = params();
-                    let path_error = path_length_bound(x[0], x[1]);
+                    let path_error = path_length_bound(x[0], x[1], x[3]);
                     let p_r = f64ref::rayleigh_phase(x[2]);
                     let p_m = f64ref::henyey_greenstein_phase(x[2], 0.8);
                     let path = path_length64(x[0], x[1], x[3]);
@@ -298,7 +349,7 @@ pub fn cases() -> Vec<Case> {
                 ulp: 2.0,
                 bound: Some(|x| {
                     let path = path_length64(x[0], x[1], x[2]);
-                    let path_error = path_length_bound(x[0], x[1]);
+                    let path_error = path_length_bound(x[0], x[1], x[2]);
                     extinction64()
                         .map(|beta| {
                             let t = (-beta * path).exp();
