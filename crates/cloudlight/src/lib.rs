@@ -7,6 +7,9 @@
 //! * [`slice::slice_attenuation`]: seed 002's slice-by-slice light attenuation step;
 //! * [`jitter::bayer_jitter_4x4`]: seed 003's ordered (Bayer) ray-march jitter.
 //!
+//! [`CloudVolume`] holds a density grid placed in metres (cloudsim's axis order) with its
+//! extinction per unit density; the lighting methods take it as input (CPU only so far).
+//!
 //! The slice-attenuation pass (ping-pong textures) and cone-marched lighting
 //! (6 + 1 far samples, Beer, forward scattering) build on these and on `atmos`'
 //! phase functions, imported in WGSL with `#import atmos::phase`.
@@ -19,6 +22,9 @@
 
 pub mod jitter;
 pub mod slice;
+pub mod volume;
+
+pub use volume::{CloudVolume, VolumeError};
 
 /// The WGSL modules of this crate, importable as `#import cloudlight::<name>`.
 pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
