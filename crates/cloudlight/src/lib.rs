@@ -8,7 +8,8 @@
 //! * [`jitter::bayer_jitter_4x4`]: seed 003's ordered (Bayer) ray-march jitter.
 //!
 //! [`CloudVolume`] holds a density grid placed in metres (cloudsim's axis order) with its
-//! extinction per unit density; the lighting methods take it as input (CPU only so far).
+//! extinction per unit density; [`reference`] integrates its trilinear density exactly along
+//! a ray (f64 optical depth and transmittance).
 //!
 //! The slice-attenuation pass (ping-pong textures) and cone-marched lighting
 //! (6 + 1 far samples, Beer, forward scattering) build on these and on `atmos`'
@@ -21,6 +22,7 @@
 //! ```
 
 pub mod jitter;
+pub mod reference;
 pub mod slice;
 pub mod volume;
 
