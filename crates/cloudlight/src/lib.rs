@@ -9,7 +9,8 @@
 //!
 //! [`CloudVolume`] holds a density grid placed in metres (cloudsim's axis order) with its
 //! extinction per unit density; [`reference`] integrates its trilinear density exactly along
-//! a ray (f64 optical depth and transmittance).
+//! a ray (f64 optical depth and transmittance); [`propagate::propagate_physical`] is the
+//! CPU physical-mode slice propagation (no WGSL twin or GPU pass yet).
 //!
 //! The slice-attenuation pass (ping-pong textures) and cone-marched lighting
 //! (6 + 1 far samples, Beer, forward scattering) build on these and on `atmos`'
@@ -22,6 +23,7 @@
 //! ```
 
 pub mod jitter;
+pub mod propagate;
 pub mod reference;
 pub mod slice;
 pub mod volume;
