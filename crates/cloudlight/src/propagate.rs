@@ -2,6 +2,7 @@
 //! the light transmittance toward the sun at every cell centre, in one sweep of slices
 //! perpendicular to the volume axis most aligned with the light.
 
+use crate::reference::ReferenceError;
 use crate::CloudVolume;
 
 /// Transmittance toward the sun at each cell centre (x fastest, like the density).
@@ -12,9 +13,28 @@ use crate::CloudVolume;
 /// ray through this centre crossed it, times `exp(−σ_t·½(ρ_prev + ρ_here)·Δs)` (trapezoid
 /// optical depth over the true spacing `Δs = voxel / |l_axis|`). The first slice
 /// integrates half a spacing of its own density; outside the previous slice light is 1.
-pub fn propagate_physical(volume: &CloudVolume, to_sun: [f64; 3]) -> Vec<f32> {
+pub fn propagate_physical(
+    volume: &CloudVolume,
+    to_sun: [f64; 3],
+) -> Result<Vec<f32>, ReferenceError> {
+    for (field, value) in ["to_sun.x", "to_sun.y", "to_sun.z"].into_iter().zip(to_sun) {
+        if !value.is_finite() {
+            return Err(ReferenceError::BadRay {
+                field,
+                value,
+                requirement: "must be finite",
+            });
+        }
+    }
     let norm = to_sun.iter().map(|c| c * c).sum::<f64>().sqrt();
-    let l = to_sun.map(|c| if norm > 0.0 { c / norm } else { 0.0 });
+    if norm == 0.0 {
+        return Err(ReferenceError::BadRay {
+            field: "to_sun",
+            value: norm,
+            requirement: "must be non-zero",
+        });
+    }
+    let l = to_sun.map(|c| c / norm);
     let axis = (0..3)
         .max_by(|&a, &b| l[a].abs().total_cmp(&l[b].abs()))
         .unwrap_or(2);
@@ -76,7 +96,7 @@ pub fn propagate_physical(volume: &CloudVolume, to_sun: [f64; 3]) -> Vec<f32> {
         previous = current;
         previous_density = current_density;
     }
-    out
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -102,7 +122,7 @@ mod tests {
     }
 
     fn rmse_max(volume: &CloudVolume, to_sun: [f64; 3]) -> (f64, f64) {
-        let light = propagate_physical(volume, to_sun);
+        let light = propagate_physical(volume, to_sun).unwrap();
         let [nx, ny, nz] = volume.dims();
         let mut sum = 0.0;
         let mut max = 0.0f64;
@@ -118,6 +138,15 @@ mod tests {
             }
         }
         ((sum / light.len() as f64).sqrt(), max)
+    }
+
+    #[test]
+    fn bad_light_direction_is_named() {
+        let v = blob(2, 0.01);
+        let err = propagate_physical(&v, [0.0; 3]).unwrap_err();
+        assert!(err.to_string().starts_with("to_sun = 0"), "{err}");
+        let err = propagate_physical(&v, [0.0, f64::NAN, 1.0]).unwrap_err();
+        assert!(err.to_string().starts_with("to_sun.y = NaN"), "{err}");
     }
 
     #[test]
