@@ -100,6 +100,22 @@ pub struct ReadmeDoctests;
 
 #[cfg(test)]
 mod wgsl_tests {
+    /// The embedded list is the folder `build.rs` validates: no file left out, none extra.
+    #[test]
+    fn wgsl_modules_are_the_files_build_rs_validates() {
+        let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
+        let mut listed: Vec<_> = super::WGSL_MODULES
+            .iter()
+            .chain(super::lut::WGSL_MODULES)
+            .map(|m| m.name)
+            .collect();
+        listed.sort_unstable();
+        assert_eq!(
+            listed,
+            skyscape_wgsl::build::module_names("atmos", &folder).unwrap()
+        );
+    }
+
     #[test]
     fn every_module_composes_and_validates() {
         let composer = super::composer();

@@ -64,6 +64,18 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
 
 #[cfg(test)]
 mod tests {
+    /// The embedded list is the folder `build.rs` validates: no file left out, none extra.
+    #[test]
+    fn wgsl_modules_are_the_files_build_rs_validates() {
+        let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
+        let mut listed: Vec<_> = super::WGSL_MODULES.iter().map(|m| m.name).collect();
+        listed.sort_unstable();
+        assert_eq!(
+            listed,
+            skyscape_wgsl::build::module_names("cloudsim", &folder).unwrap()
+        );
+    }
+
     #[test]
     fn every_wgsl_module_composes_and_validates() {
         let mut composer = skyscape_wgsl::Composer::with_common();

@@ -24,6 +24,8 @@
 //! clashes between modules are reported by naga itself when the composed source is
 //! validated (see [`validate`], behind the `validate` feature).
 
+#[cfg(feature = "build")]
+pub mod build;
 pub mod common;
 
 use std::collections::{BTreeMap, HashSet};
@@ -323,14 +325,105 @@ pub fn validate(name: &str, source: &str) -> Result<naga::Module, ValidateError>
     Ok(module)
 }
 
-/// Byte size (naga's `span`) of the struct `name` in a parsed module: tests compare it
-/// with `size_of` of the `#[repr(C)]` Rust twin of a uniform block.
+/// Byte size (naga's `span`) of the struct `name` in a parsed module.
 #[cfg(feature = "validate")]
 pub fn struct_size(module: &naga::Module, name: &str) -> Option<u32> {
-    module.types.iter().find_map(|(_, ty)| match ty.inner {
-        naga::TypeInner::Struct { span, .. } if ty.name.as_deref() == Some(name) => Some(span),
+    struct_layout(module, name).map(|layout| layout.size)
+}
+
+/// The memory layout naga gives a WGSL struct: what a `#[repr(C)]` Rust twin of a
+/// uniform or storage block must reproduce byte for byte.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct StructLayout {
+    /// The struct's name.
+    pub name: String,
+    /// Its byte size (naga's `span`, trailing padding included).
+    pub size: u32,
+    /// Its members in declaration order: name and byte offset.
+    pub members: Vec<(String, u32)>,
+}
+
+/// The layout of the struct `name` in a parsed module (`None` when there is none).
+#[cfg(feature = "validate")]
+pub fn struct_layout(module: &naga::Module, name: &str) -> Option<StructLayout> {
+    module.types.iter().find_map(|(_, ty)| match &ty.inner {
+        naga::TypeInner::Struct { members, span } if ty.name.as_deref() == Some(name) => {
+            Some(StructLayout {
+                name: name.to_owned(),
+                size: *span,
+                members: members
+                    .iter()
+                    .map(|m| (m.name.clone().unwrap_or_default(), m.offset))
+                    .collect(),
+            })
+        }
         _ => None,
     })
+}
+
+/// A `#[repr(C)]` Rust type's layout in the same form, written with [`rust_layout!`].
+impl StructLayout {
+    /// Compares a Rust twin's layout (`self`, from [`rust_layout!`]) with the WGSL
+    /// struct's (`wgsl`): same size, and every WGSL member at the same offset as the
+    /// Rust field of the same name. Rust fields absent from the WGSL struct are
+    /// allowed only when their name starts with `pad`, `_pad` or `padding` (explicit
+    /// tail padding); every WGSL member must have a Rust field.
+    pub fn check_twin_of(&self, wgsl: &StructLayout) -> Result<(), String> {
+        let mut problems = Vec::new();
+        if self.size != wgsl.size {
+            problems.push(format!(
+                "size: Rust {} bytes, WGSL {} bytes",
+                self.size, wgsl.size
+            ));
+        }
+        for (member, offset) in &wgsl.members {
+            match self.members.iter().find(|(n, _)| n == member) {
+                None => problems.push(format!(
+                    "`{member}` (WGSL offset {offset}) has no Rust field"
+                )),
+                Some((_, rust)) if rust != offset => problems.push(format!(
+                    "`{member}`: Rust offset {rust}, WGSL offset {offset}"
+                )),
+                Some(_) => {}
+            }
+        }
+        for (field, offset) in &self.members {
+            let padding = ["pad", "_pad", "padding"]
+                .iter()
+                .any(|p| field.starts_with(p));
+            if !padding && !wgsl.members.iter().any(|(n, _)| n == field) {
+                problems.push(format!(
+                    "Rust field `{field}` (offset {offset}) is not in the WGSL struct"
+                ));
+            }
+        }
+        if problems.is_empty() {
+            Ok(())
+        } else {
+            Err(format!(
+                "`{}` and its Rust twin `{}` differ: {}",
+                wgsl.name,
+                self.name,
+                problems.join("; ")
+            ))
+        }
+    }
+}
+
+/// The [`StructLayout`] of a Rust struct from its size and `offset_of!` each field:
+/// `rust_layout!(FrameCamera { position, width, right })`. Name every field.
+#[macro_export]
+macro_rules! rust_layout {
+    ($ty:ty { $($field:ident),* $(,)? }) => {
+        $crate::StructLayout {
+            name: ::std::string::String::from(stringify!($ty)),
+            size: ::core::mem::size_of::<$ty>() as u32,
+            members: ::std::vec![$(
+                (::std::string::String::from(stringify!($field)),
+                 ::core::mem::offset_of!($ty, $field) as u32)
+            ),*],
+        }
+    };
 }
 
 #[cfg(test)]
@@ -479,5 +572,85 @@ mod tests {
         }
         // Forgetting to compose must not go unnoticed.
         assert!(validate("raw", "#import common::constants\n").is_err());
+    }
+
+    #[cfg(feature = "validate")]
+    #[test]
+    fn struct_layouts_are_checked_member_by_member() {
+        #[repr(C)]
+        #[allow(dead_code)]
+        struct Twin {
+            direction: [f32; 3],
+            scale: f32,
+            count: u32,
+            _pad: [u32; 3],
+        }
+        #[repr(C)]
+        #[allow(dead_code)]
+        struct Shifted {
+            direction: [f32; 3],
+            count: u32,
+            scale: f32,
+            _pad: [u32; 3],
+        }
+        #[repr(C)]
+        #[allow(dead_code)]
+        struct Short {
+            direction: [f32; 3],
+            scale: f32,
+            count: u32,
+        }
+        let module = validate(
+            "layout",
+            "struct Block { direction: vec3<f32>, scale: f32, count: u32 }\n\
+             @group(0) @binding(0) var<uniform> block: Block;\n",
+        )
+        .unwrap();
+        let wgsl = struct_layout(&module, "Block").unwrap();
+        assert_eq!(wgsl.size, 32, "{wgsl:?}");
+        assert_eq!(
+            wgsl.members,
+            [
+                ("direction".to_owned(), 0),
+                ("scale".to_owned(), 12),
+                ("count".to_owned(), 16)
+            ]
+        );
+        assert_eq!(struct_size(&module, "Block"), Some(32));
+        assert!(struct_layout(&module, "Missing").is_none());
+        rust_layout!(Twin {
+            direction,
+            scale,
+            count,
+            _pad
+        })
+        .check_twin_of(&wgsl)
+        .unwrap();
+        // Swapped fields of equal size: the size agrees, the offsets do not.
+        let swapped = rust_layout!(Shifted {
+            direction,
+            count,
+            scale,
+            _pad
+        })
+        .check_twin_of(&wgsl);
+        assert!(
+            swapped
+                .as_ref()
+                .is_err_and(|e| e.contains("`scale`: Rust offset 16, WGSL offset 12")),
+            "{swapped:?}"
+        );
+        let short = rust_layout!(Short {
+            direction,
+            scale,
+            count
+        })
+        .check_twin_of(&wgsl);
+        assert!(
+            short
+                .as_ref()
+                .is_err_and(|e| e.contains("size: Rust 20 bytes, WGSL 32 bytes")),
+            "{short:?}"
+        );
     }
 }
