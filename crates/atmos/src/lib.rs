@@ -125,28 +125,94 @@ mod wgsl_tests {
         }
     }
 
-    /// The `#[repr(C)]` uniform twins have the byte size of their WGSL structs (a field
-    /// added on one side only would shift every later field on the GPU).
+    /// Every `#[repr(C)]` uniform twin has the size and the field offsets of its WGSL
+    /// struct (a field added, removed or reordered on one side only would shift the
+    /// data the GPU reads).
     #[test]
-    fn uniform_twins_match_their_wgsl_sizes() {
+    fn uniform_twins_match_their_wgsl_layouts() {
+        use crate::AtmosphereParameters;
+        use crate::closed_form_sky::ClosedFormSkyParameters;
+        use crate::frame::FrameCamera;
+        use crate::lut::LutSettingsUniform;
         let composer = super::composer();
-        let source = composer.compose_module("atmos::lut_sampling").unwrap();
-        let module = skyscape_wgsl::validate("atmos::lut_sampling", &source).unwrap();
-        for (name, size) in [
+        let wgsl = |module: &str, name: &str| {
+            let source = composer.compose_module(module).unwrap();
+            let parsed = skyscape_wgsl::validate(module, &source).unwrap();
+            skyscape_wgsl::struct_layout(&parsed, name)
+                .unwrap_or_else(|| panic!("no struct {name} in {module}"))
+        };
+        let twins = [
             (
-                "LutSettings",
-                std::mem::size_of::<crate::lut::LutSettingsUniform>(),
+                skyscape_wgsl::rust_layout!(AtmosphereParameters {
+                    rayleigh_scattering,
+                    rayleigh_scale_height,
+                    mie_scattering,
+                    mie_scale_height,
+                    mie_extinction,
+                    mie_g,
+                    ozone_absorption,
+                    ozone_center_altitude,
+                    ground_albedo,
+                    ozone_half_width,
+                    sun_irradiance,
+                    sun_angular_radius,
+                    planet_radius,
+                    top_radius,
+                    padding,
+                }),
+                wgsl("atmos::atmosphere", "AtmosphereParameters"),
             ),
             (
-                "AtmosphereParameters",
-                std::mem::size_of::<crate::AtmosphereParameters>(),
+                skyscape_wgsl::rust_layout!(LutSettingsUniform {
+                    transmittance_width,
+                    transmittance_height,
+                    transmittance_samples,
+                    multiple_scattering_width,
+                    multiple_scattering_height,
+                    multiple_scattering_samples,
+                    multiple_scattering_direction_sqrt,
+                    sky_view_width,
+                    sky_view_height,
+                    sky_view_samples,
+                    sky_view_transmittance,
+                    aerial_perspective_width,
+                    aerial_perspective_height,
+                    aerial_perspective_depth,
+                    aerial_perspective_steps_per_slice,
+                    aerial_perspective_range,
+                    pixel_samples,
+                }),
+                wgsl("atmos::lut_sampling", "LutSettings"),
             ),
-        ] {
-            assert_eq!(
-                skyscape_wgsl::struct_size(&module, name),
-                Some(size as u32),
-                "{name}"
-            );
+            (
+                skyscape_wgsl::rust_layout!(FrameCamera {
+                    position,
+                    width,
+                    right,
+                    height,
+                    up,
+                    tan_half_fov_y,
+                    forward,
+                    max_distance,
+                    sun,
+                    padding,
+                }),
+                wgsl("atmos::frame", "FrameCamera"),
+            ),
+            (
+                skyscape_wgsl::rust_layout!(ClosedFormSkyParameters {
+                    beta_rayleigh,
+                    mie_g,
+                    beta_mie,
+                    planet_radius,
+                    sun_irradiance,
+                    shell_radius,
+                }),
+                wgsl("atmos::closed_form_sky", "ClosedFormSkyParameters"),
+            ),
+        ];
+        for (rust, wgsl) in twins {
+            rust.check_twin_of(&wgsl).unwrap_or_else(|e| panic!("{e}"));
         }
     }
 }

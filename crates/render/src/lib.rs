@@ -81,4 +81,51 @@ mod wgsl_tests {
             skyscape_wgsl::validate(module.name, &source).unwrap();
         }
     }
+
+    /// The `#[repr(C)]` uniform twins have the size and field offsets of their WGSL
+    /// structs.
+    #[test]
+    fn uniform_twins_match_their_wgsl_layouts() {
+        use crate::SkyUniforms;
+        use crate::present::PresentParameters;
+        let composer = super::composer();
+        let wgsl = |module: &str, name: &str| {
+            let source = composer.compose_module(module).unwrap();
+            let parsed = skyscape_wgsl::validate(module, &source).unwrap();
+            skyscape_wgsl::struct_layout(&parsed, name)
+                .unwrap_or_else(|| panic!("no struct {name} in {module}"))
+        };
+        let twins = [
+            (
+                skyscape_wgsl::rust_layout!(SkyUniforms {
+                    camera_right,
+                    camera_up,
+                    camera_forward,
+                    sun_direction,
+                    beta_rayleigh,
+                    beta_mie,
+                    sun_irradiance_at_camera,
+                    sun_disc_radiance,
+                    sunlight_in_scatter,
+                    display,
+                    image,
+                }),
+                wgsl("render::sky_closed_form", "SkyUniforms"),
+            ),
+            (
+                skyscape_wgsl::rust_layout!(PresentParameters {
+                    sun_disc_radiance,
+                    cos_sun_radius,
+                    planet_radius,
+                    exposure,
+                    dither_seed,
+                    padding,
+                }),
+                wgsl("render::present", "PresentParameters"),
+            ),
+        ];
+        for (rust, wgsl) in twins {
+            rust.check_twin_of(&wgsl).unwrap_or_else(|e| panic!("{e}"));
+        }
+    }
 }

@@ -390,3 +390,39 @@ impl Dispatch1d for wgpu::ComputePass<'_> {
         self.dispatch_workgroups(x, y, 1);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    /// The `#[repr(C)]` uniform twins have the size and field offsets of their WGSL
+    /// structs in `horizon_bake.wgsl`.
+    #[test]
+    fn uniform_twins_match_their_wgsl_layouts() {
+        let source = crate::composer()
+            .compose_module("terrain::horizon_bake")
+            .unwrap();
+        let module = skyscape_wgsl::validate("terrain::horizon_bake", &source).unwrap();
+        let wgsl = |name| skyscape_wgsl::struct_layout(&module, name).unwrap();
+        skyscape_wgsl::rust_layout!(super::Params {
+            width,
+            height,
+            max_steps,
+            march_east,
+            step,
+            inv_two_r,
+            _pad,
+        })
+        .check_twin_of(&wgsl("HorizonBakeParams"))
+        .unwrap();
+        skyscape_wgsl::rust_layout!(super::LineParams {
+            dominant_is_x,
+            march_forward,
+            n_dominant,
+            n_minor,
+            first_line,
+            line_count,
+            _pad,
+        })
+        .check_twin_of(&wgsl("HorizonLineParams"))
+        .unwrap();
+    }
+}

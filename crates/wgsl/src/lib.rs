@@ -365,9 +365,9 @@ pub fn struct_layout(module: &naga::Module, name: &str) -> Option<StructLayout> 
 impl StructLayout {
     /// Compares a Rust twin's layout (`self`, from [`rust_layout!`]) with the WGSL
     /// struct's (`wgsl`): same size, and every WGSL member at the same offset as the
-    /// Rust field of the same name. Rust fields absent from the WGSL struct are
-    /// allowed only when their name starts with `pad`, `_pad` or `padding` (explicit
-    /// tail padding); every WGSL member must have a Rust field.
+    /// Rust field of the same name. Padding (a name starting with `pad` or `_pad`) is
+    /// exempt on both sides, since one side may spell it `_pad: [u32; 2]` and the other
+    /// `_pad0, _pad1`; every other member must be on both sides.
     pub fn check_twin_of(&self, wgsl: &StructLayout) -> Result<(), String> {
         let mut problems = Vec::new();
         if self.size != wgsl.size {
@@ -376,7 +376,8 @@ impl StructLayout {
                 self.size, wgsl.size
             ));
         }
-        for (member, offset) in &wgsl.members {
+        let padding = |name: &str| name.starts_with("pad") || name.starts_with("_pad");
+        for (member, offset) in wgsl.members.iter().filter(|(n, _)| !padding(n)) {
             match self.members.iter().find(|(n, _)| n == member) {
                 None => problems.push(format!(
                     "`{member}` (WGSL offset {offset}) has no Rust field"
@@ -387,11 +388,8 @@ impl StructLayout {
                 Some(_) => {}
             }
         }
-        for (field, offset) in &self.members {
-            let padding = ["pad", "_pad", "padding"]
-                .iter()
-                .any(|p| field.starts_with(p));
-            if !padding && !wgsl.members.iter().any(|(n, _)| n == field) {
+        for (field, offset) in self.members.iter().filter(|(n, _)| !padding(n)) {
+            if !wgsl.members.iter().any(|(n, _)| n == field) {
                 problems.push(format!(
                     "Rust field `{field}` (offset {offset}) is not in the WGSL struct"
                 ));
@@ -411,10 +409,15 @@ impl StructLayout {
 }
 
 /// The [`StructLayout`] of a Rust struct from its size and `offset_of!` each field:
-/// `rust_layout!(FrameCamera { position, width, right })`. Name every field.
+/// `rust_layout!(FrameCamera { position, width, right, ... })`. Every field must be
+/// named: the macro destructures the struct without `..`, so a field added to the Rust
+/// twin and not to its layout check is a compile error.
 #[macro_export]
 macro_rules! rust_layout {
-    ($ty:ty { $($field:ident),* $(,)? }) => {
+    ($ty:path { $($field:ident),* $(,)? }) => {{
+        let _every_field_is_named = |value: &$ty| {
+            let $ty { $($field: _),* } = value;
+        };
         $crate::StructLayout {
             name: ::std::string::String::from(stringify!($ty)),
             size: ::core::mem::size_of::<$ty>() as u32,
@@ -423,7 +426,7 @@ macro_rules! rust_layout {
                  ::core::mem::offset_of!($ty, $field) as u32)
             ),*],
         }
-    };
+    }};
 }
 
 #[cfg(test)]
