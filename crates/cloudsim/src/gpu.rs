@@ -43,6 +43,9 @@ pub enum GpuError {
         /// The device limit.
         limit: u64,
     },
+    /// The grid needs more workgroups than the device can dispatch.
+    #[error(transparent)]
+    Dispatch(#[from] skyscape_wgsl::dispatch::DispatchError),
     /// Bytes handed to [`GpuSimulation::decode_state`] have the wrong length.
     #[error("readback has {got} bytes, the state needs {expected}")]
     ReadbackSize {
@@ -60,16 +63,16 @@ pub fn compose_shader() -> Result<String, skyscape_wgsl::ComposeError> {
     composer.compose_module("cloudsim::step")
 }
 
-/// Workgroup counts for `n` invocations, folded into y past 65,535 groups (the
-/// kernels recover `gid.x + gid.y * groups.x * 64`).
-fn workgroups(n: u32) -> [u32; 3] {
-    let groups = n.div_ceil(WORKGROUP_SIZE).max(1);
-    if groups <= 65_535 {
-        [groups, 1, 1]
-    } else {
-        let y = groups.div_ceil(65_535);
-        [groups.div_ceil(y), y, 1]
-    }
+/// Workgroup counts for `n` invocations of a `WORKGROUP_SIZE` kernel on `device`,
+/// folded into y past its `max_compute_workgroups_per_dimension` (the kernels recover
+/// `gid.x + gid.y * num_workgroups.x * 64`).
+fn workgroups(device: &wgpu::Device, n: u32) -> Result<[u32; 3], GpuError> {
+    let limit = device.limits().max_compute_workgroups_per_dimension;
+    Ok(skyscape_wgsl::dispatch::workgroups_1d(
+        n,
+        WORKGROUP_SIZE,
+        limit,
+    )?)
 }
 
 /// The automaton on a GPU, in two ping-pong buffers.
@@ -85,6 +88,8 @@ pub struct GpuSimulation {
     current: usize,
     step: u32,
     wind: bool,
+    /// Workgroup counts of one step or wind dispatch (one invocation per packed word).
+    workgroups: [u32; 3],
     _params: wgpu::Buffer,
     _region_index: wgpu::Buffer,
     _region_entries: wgpu::Buffer,
@@ -262,6 +267,7 @@ impl GpuSimulation {
             current: 0,
             step,
             wind: model.has_wind(),
+            workgroups: workgroups(device, size.words() as u32)?,
             _params: params,
             _region_index: index,
             _region_entries: entries,
@@ -307,7 +313,7 @@ impl GpuSimulation {
         if steps == 0 {
             return;
         }
-        let [x, y, z] = workgroups(self.model.size().words() as u32);
+        let [x, y, z] = self.workgroups;
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("cloudsim steps"),
             timestamp_writes,

@@ -90,6 +90,9 @@ pub enum HarnessError {
         /// The required value.
         need: u64,
     },
+    /// A dispatch does not fit the device's workgroup-count limit.
+    #[error(transparent)]
+    Dispatch(#[from] skyscape_wgsl::dispatch::DispatchError),
     /// The composed WGSL did not validate (reported by naga before wgpu sees it).
     #[error(transparent)]
     Shader(#[from] skyscape_wgsl::ValidateError),
@@ -238,6 +241,18 @@ pub fn gpu_or_skip(test_name: &str) -> Option<&'static GpuContext> {
 }
 
 impl GpuContext {
+    /// Workgroup counts for `n` invocations of a 1-D kernel, folded into `y` past this
+    /// device's `max_compute_workgroups_per_dimension`
+    /// ([`skyscape_wgsl::dispatch::workgroups_1d`]).
+    pub fn workgroups_1d(&self, n: u32, workgroup_size: u32) -> Result<[u32; 3], HarnessError> {
+        let limit = self.device.limits().max_compute_workgroups_per_dimension;
+        Ok(skyscape_wgsl::dispatch::workgroups_1d(
+            n,
+            workgroup_size,
+            limit,
+        )?)
+    }
+
     /// Errors unless every feature in `features` is enabled on this device.
     pub fn require_features(&self, features: wgpu::Features) -> Result<(), HarnessError> {
         let missing = features - self.device.features();
@@ -295,16 +310,21 @@ impl GpuContext {
     }
 }
 
-/// Workgroup counts for `n` invocations of a 1D kernel with `workgroup_size`,
-/// folded into y when x would exceed the 65,535 limit. Kernels recover the linear
-/// index as `gid.x + gid.y * num_workgroups.x * workgroup_size`.
+/// Workgroup counts for `n` invocations of a 1-D kernel with `workgroup_size`, folded
+/// into `y` past WebGPU's guaranteed `max_compute_workgroups_per_dimension`
+/// (`wgpu::Limits::downlevel_defaults()`, 65,535), so they are valid on every device
+/// without asking it; [`GpuContext::workgroups_1d`] uses the device's own limit.
+/// Kernels recover the linear index as `gid.x + gid.y * num_workgroups.x * workgroup_size`.
+///
+/// # Panics
+///
+/// When `workgroup_size` is 0 (a caller's constant, never user input). Any `u32`
+/// count fits for `workgroup_size >= 2`.
 pub fn workgroups_1d(n: u32, workgroup_size: u32) -> [u32; 3] {
-    let groups = n.div_ceil(workgroup_size).max(1);
-    if groups <= 65_535 {
-        [groups, 1, 1]
-    } else {
-        let y = groups.div_ceil(65_535);
-        [groups.div_ceil(y), y, 1]
+    let limit = wgpu::Limits::downlevel_defaults().max_compute_workgroups_per_dimension;
+    match skyscape_wgsl::dispatch::workgroups_1d(n, workgroup_size, limit) {
+        Ok(groups) => groups,
+        Err(error) => panic!("workgroups_1d({n}, {workgroup_size}): {error}"),
     }
 }
 
@@ -462,13 +482,24 @@ pub fn read_buffer(
 mod tests {
     use super::*;
 
+    /// The folding itself is tested in `skyscape_wgsl::dispatch`; here, that the
+    /// harness uses WebGPU's guaranteed limit and the device's own.
     #[test]
-    fn workgroup_folding_covers_every_index() {
-        for n in [1u32, 63, 64, 65, 65_535 * 64, 65_535 * 64 + 1, 10_000_000] {
-            let [x, y, z] = workgroups_1d(n, 64);
-            assert!(x <= 65_535 && y <= 65_535 && z == 1);
-            assert!(u64::from(x) * u64::from(y) * 64 >= u64::from(n), "{n}");
-        }
+    fn workgroup_folding_uses_the_guaranteed_and_the_device_limit() {
+        assert_eq!(workgroups_1d(65_535 * 64, 64), [65_535, 1, 1]);
+        assert_eq!(workgroups_1d(65_535 * 64 + 1, 64), [32_768, 2, 1]);
+        let Some(gpu) = gpu_or_skip("harness::workgroup_folding") else {
+            return;
+        };
+        let limit = gpu.device.limits().max_compute_workgroups_per_dimension;
+        assert!(
+            limit >= 65_535,
+            "WebGPU guarantees 65,535, the device says {limit}"
+        );
+        let [x, y, _] = gpu.workgroups_1d(u32::MAX, 64).unwrap();
+        assert!(x <= limit && y <= limit);
+        let row = limit.min(u32::MAX / 64);
+        assert_eq!(gpu.workgroups_1d(row * 64, 64).unwrap(), [row, 1, 1]);
     }
 
     #[test]

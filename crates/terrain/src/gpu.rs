@@ -295,6 +295,8 @@ impl GpuHorizonBaker {
         }
         let max_steps = max_steps_for(hf.spacing(), options.max_distance);
         let windowed = max_steps < width.saturating_sub(1);
+        // One invocation per texel when windowed, folded into y past the device's limit.
+        let texel_groups = workgroups_1d(device, width * height)?;
         let storage = |label: &str, usage: wgpu::BufferUsages| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -363,7 +365,7 @@ impl GpuHorizonBaker {
             pass.set_pipeline(pipeline);
             pass.set_bind_group(0, &bind_group, &[]);
             if windowed {
-                pass.dispatch_workgroups_1d((width * height) as u32);
+                pass.dispatch_workgroups(texel_groups[0], texel_groups[1], texel_groups[2]);
             } else {
                 pass.dispatch_workgroups((height as u32).div_ceil(WORKGROUP), 1, 1);
             }
@@ -372,23 +374,19 @@ impl GpuHorizonBaker {
     }
 }
 
-/// Workgroup counts for a 1-D dispatch folded into `y` beyond 65,535 groups (the
-/// kernel recovers `gid.x + gid.y * num_workgroups.x * 64`).
-trait Dispatch1d {
-    fn dispatch_workgroups_1d(&mut self, invocations: u32);
-}
-
-impl Dispatch1d for wgpu::ComputePass<'_> {
-    fn dispatch_workgroups_1d(&mut self, invocations: u32) {
-        let groups = invocations.div_ceil(WORKGROUP).max(1);
-        let (x, y) = if groups <= 65_535 {
-            (groups, 1)
-        } else {
-            let y = groups.div_ceil(65_535);
-            (groups.div_ceil(y), y)
-        };
-        self.dispatch_workgroups(x, y, 1);
-    }
+/// Workgroup counts for `invocations` of a [`WORKGROUP`]-sized 1-D kernel, folded into
+/// `y` past the device's `max_compute_workgroups_per_dimension` (the kernel recovers
+/// `gid.x + gid.y * num_workgroups.x * 64`).
+fn workgroups_1d(device: &wgpu::Device, invocations: usize) -> Result<[u32; 3], TerrainError> {
+    let limit = device.limits().max_compute_workgroups_per_dimension;
+    let too_large = || TerrainError::TooLarge {
+        field: "horizon bake invocations (max_compute_workgroups_per_dimension² × 64)",
+        value: invocations as u64,
+        limit: u64::from(limit) * u64::from(limit) * u64::from(WORKGROUP),
+    };
+    let invocations_u32 = u32::try_from(invocations).map_err(|_| too_large())?;
+    skyscape_wgsl::dispatch::workgroups_1d(invocations_u32, WORKGROUP, limit)
+        .map_err(|_| too_large())
 }
 
 #[cfg(test)]

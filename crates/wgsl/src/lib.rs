@@ -27,6 +27,7 @@
 #[cfg(feature = "build")]
 pub mod build;
 pub mod common;
+pub mod dispatch;
 
 use std::collections::{BTreeMap, HashSet};
 

@@ -39,6 +39,8 @@ pub struct GpuDensity {
     newest: u32,
     /// Filled slots.
     len: u32,
+    /// Workgroup counts of the density dispatch (one invocation per cell).
+    workgroups: [u32; 3],
     _params: wgpu::Buffer,
     _scale: wgpu::Buffer,
 }
@@ -186,6 +188,7 @@ impl GpuDensity {
             keep,
             newest: keep - 1,
             len: 0,
+            workgroups: workgroups(device, size.cells() as u32)?,
             _params: params,
             _scale: scale,
         })
@@ -257,8 +260,7 @@ impl GpuDensity {
             0,
             RING_ENTRY_BYTES,
         );
-        let cells = self.model.size().cells() as u32;
-        let [x, y, z] = workgroups(cells);
+        let [x, y, z] = self.workgroups;
         debug_assert_eq!(WORKGROUP_SIZE, 64);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("cloudsim density"),
