@@ -122,23 +122,23 @@ impl HorizonOptions {
     }
 
     pub(crate) fn validate(&self) -> Result<(), TerrainError> {
-        if let Some(r) = self.effective_radius {
-            if !(r.is_finite() && r > 0.0) {
-                return Err(TerrainError::param(
-                    "effective_radius",
-                    r,
-                    "must be finite and > 0 metres",
-                ));
-            }
+        if let Some(r) = self.effective_radius
+            && !(r.is_finite() && r > 0.0)
+        {
+            return Err(TerrainError::param(
+                "effective_radius",
+                r,
+                "must be finite and > 0 metres",
+            ));
         }
-        if let Some(d) = self.max_distance {
-            if d.is_nan() || d < 0.0 {
-                return Err(TerrainError::param(
-                    "max_distance",
-                    d,
-                    "must be >= 0 metres (or +inf)",
-                ));
-            }
+        if let Some(d) = self.max_distance
+            && (d.is_nan() || d < 0.0)
+        {
+            return Err(TerrainError::param(
+                "max_distance",
+                d,
+                "must be >= 0 metres (or +inf)",
+            ));
         }
         Ok(())
     }

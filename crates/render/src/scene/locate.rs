@@ -35,10 +35,10 @@ fn find(table: &DeTable<'_>, span: &std::ops::Range<usize>, path: &mut Vec<Strin
     for (key, value) in table.iter() {
         path.push(key.get_ref().to_string());
         // A `[section]`'s value span need not cover its keys: search inside first.
-        if let DeValue::Table(inner) = value.get_ref() {
-            if find(inner, span, path) {
-                return true;
-            }
+        if let DeValue::Table(inner) = value.get_ref()
+            && find(inner, span, path)
+        {
+            return true;
         }
         if covers(key.span()) || covers(value.span()) {
             return true;
