@@ -8,7 +8,7 @@
 //! * [`jitter::bayer_jitter_4x4`]: seed 003's ordered (Bayer) ray-march jitter.
 //!
 //! [`CloudVolume`] holds a density grid placed in metres (cloudsim's axis order) with its
-//! extinction per unit density; [`reference`] integrates its trilinear density exactly along
+//! extinction per unit density; [`reference`](mod@reference) integrates its trilinear density exactly along
 //! a ray (f64 optical depth and transmittance); [`propagate::propagate_physical`] is the
 //! CPU physical-mode slice propagation (no WGSL twin or GPU pass yet).
 //!
