@@ -161,6 +161,8 @@ pub use single_scattering::{
 pub mod multiple_scattering;
 mod transmittance_table;
 pub use multiple_scattering::{ReferenceSettings, ReferenceSky};
+pub mod path_tracer;
+pub use path_tracer::{FreePaths, PathTracedSample, PathTracedSky, PathTracerSettings};
 pub mod spectral;
 pub use spectral::SpectralReferenceSky;
 pub use transmittance_table::TransmittanceTable;
