@@ -119,6 +119,9 @@ fn lattice_noise(kind: Noise, seed: u64, octave: u32, x: f64, y: f64) -> f64 {
     top + sy * (bottom - top)
 }
 
+/// The largest lattice coordinate [`generate`] accepts at its finest octave (2^40).
+const MAX_LATTICE_COORDINATE: f64 = (1u64 << 40) as f64;
+
 /// Generates a heightfield. Deterministic in `params`; errors on invalid parameters.
 pub fn generate(params: &GeneratorParams) -> Result<Heightfield, TerrainError> {
     let p = params;
@@ -146,6 +149,19 @@ pub fn generate(params: &GeneratorParams) -> Result<Heightfield, TerrainError> {
             "octaves",
             f64::from(p.octaves),
             "must be in 1..=24",
+        ));
+    }
+    // The finest octave's lattice coordinate must keep a fractional part in f64 and
+    // fit the lattice hash's i64 corners: beyond 2^40 lattice cells the noise would be
+    // evaluated at rounded coordinates (and the corner index could overflow).
+    let extent = (p.width.max(p.height) as f64) * p.spacing;
+    let finest = extent / p.wavelength * p.lacunarity.max(1.0).powi(p.octaves as i32 - 1);
+    if finest.is_nan() || finest > MAX_LATTICE_COORDINATE {
+        return Err(TerrainError::param(
+            "wavelength",
+            p.wavelength,
+            "with lacunarity^(octaves - 1), gives more than 2^40 lattice cells across the \
+             map at the finest octave (extent / wavelength x lacunarity^(octaves - 1))",
         ));
     }
     let mut raw = vec![0.0f64; p.width * p.height];

@@ -112,3 +112,29 @@ fn a_huge_finite_max_distance_is_no_limit_not_a_hang() {
         assert_eq!(max, unlimited);
     }
 }
+
+#[test]
+fn a_generator_finer_than_the_lattice_hash_can_index_is_rejected() {
+    use terrain::generate::{GeneratorParams, generate};
+    // 16 octaves of lacunarity 1e6 from a 1 m wavelength: the finest octave would sample
+    // lattice cell 10^91 (it used to overflow the corner index and panic).
+    let params = GeneratorParams {
+        octaves: 16,
+        wavelength: 1.0,
+        lacunarity: 1e6,
+        ..GeneratorParams::new(4, 4, 10.0, 7)
+    };
+    let error = generate(&params).unwrap_err();
+    assert!(
+        matches!(
+            error,
+            TerrainError::InvalidParameter {
+                field: "wavelength",
+                ..
+            }
+        ),
+        "{error}"
+    );
+    // The defaults stay well inside the limit.
+    assert!(generate(&GeneratorParams::new(64, 64, 30.0, 7)).is_ok());
+}
