@@ -2,8 +2,8 @@
 //! the light transmittance toward the sun at every cell centre, in one sweep of slices
 //! perpendicular to the volume axis most aligned with the light.
 
-use crate::reference::ReferenceError;
 use crate::CloudVolume;
+use crate::reference::ReferenceError;
 
 /// Transmittance toward the sun at each cell centre (x fastest, like the density).
 /// `to_sun` is a non-zero direction toward the sun (need not be normalised; a light from
