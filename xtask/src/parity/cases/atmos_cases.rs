@@ -13,6 +13,7 @@ pub fn cases() -> Vec<Case> {
             grid: || cosines(20_001).into_iter().map(|mu| vec![mu]).collect(),
             cpu: |x| vec![atmos::phase::rayleigh_phase(x[0])],
             reference: |x| vec![f64ref::rayleigh_phase(x[0])],
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -30,6 +31,7 @@ pub fn cases() -> Vec<Case> {
             grid: phase_grid,
             cpu: |x| vec![atmos::phase::henyey_greenstein_phase(x[0], x[1])],
             reference: |x| vec![f64ref::henyey_greenstein_phase(x[0], x[1])],
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -48,6 +50,7 @@ pub fn cases() -> Vec<Case> {
             grid: phase_grid,
             cpu: |x| vec![atmos::phase::cornette_shanks_phase(x[0], x[1])],
             reference: |x| vec![f64ref::cornette_shanks_phase(x[0], x[1])],
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -73,6 +76,7 @@ pub fn cases() -> Vec<Case> {
             },
             cpu: |x| vec![atmos::atmosphere::exponential_density(x[0], x[1])],
             reference: |x| vec![f64ref::exponential_density(x[0], x[1])],
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: f32::MIN_POSITIVE as f64,
                 rel: 0.0,
@@ -95,6 +99,7 @@ pub fn cases() -> Vec<Case> {
             },
             cpu: |x| vec![atmos::atmosphere::tent_density(x[0], x[1], x[2])],
             reference: |x| vec![f64ref::tent_density(x[0], x[1], x[2])],
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: TENT_ERROR,
                 rel: 0.0,
@@ -120,6 +125,7 @@ pub fn cases() -> Vec<Case> {
                 atmos::atmosphere::extinction_at_altitude(&earth, x[0]).to_vec()
             },
             reference: |x| f64ref::extinction_at_altitude(&earth_f32_as_f64(), x[0]).to_vec(),
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -148,6 +154,7 @@ pub fn cases() -> Vec<Case> {
             grid: ray_sphere_grid,
             cpu: |x| atmos::geometry::ray_sphere_intersect(x[0], x[1], x[2]).to_vec(),
             reference: |x| f64ref::ray_sphere_intersect(x[0], x[1], x[2]).to_vec(),
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -166,6 +173,7 @@ pub fn cases() -> Vec<Case> {
             grid: altitude_grid,
             cpu: |x| vec![atmos::geometry::altitude_along_ray(x[0], x[1], x[2], x[3])],
             reference: |x| vec![f64ref::altitude_along_ray(x[0], x[1], x[2], x[3])],
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -201,6 +209,7 @@ pub fn cases() -> Vec<Case> {
                     x[5] as u32,
                 )]
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 1e-30,
                 rel: 0.0,
@@ -227,6 +236,7 @@ pub fn cases() -> Vec<Case> {
                 atmos::transmittance::transmittance_from_optical_depth([x[0], x[1], x[2]]).to_vec()
             },
             reference: |x| f64ref::transmittance_from_optical_depth([x[0], x[1], x[2]]).to_vec(),
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: f32::MIN_POSITIVE as f64,
                 rel: 0.0,
@@ -253,6 +263,7 @@ pub fn cases() -> Vec<Case> {
             },
             cpu: |x| vec![atmos::transmittance::one_minus_exp_neg(x[0])],
             reference: |x| vec![f64ref::one_minus_exp_neg(x[0])],
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -289,6 +300,7 @@ pub fn cases() -> Vec<Case> {
                 )
                 .to_vec()
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -341,6 +353,7 @@ pub fn cases() -> Vec<Case> {
                 )
                 .to_vec()
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: f32::MIN_POSITIVE as f64,
                 rel: 0.0,

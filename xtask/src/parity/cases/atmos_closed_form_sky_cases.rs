@@ -236,6 +236,7 @@ pub fn cases() -> Vec<Case> {
                 )]
             },
             reference: |x| vec![path_length64(x[0], x[1], x[2])],
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -264,6 +265,7 @@ pub fn cases() -> Vec<Case> {
             },
             cpu: |x| atmos::closed_form_sky::closed_form_sunlight(x[0], x[1], &params()).to_vec(),
             reference: |x| sunlight64(x[0], x[1]).to_vec(),
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -300,6 +302,7 @@ pub fn cases() -> Vec<Case> {
                 .to_vec()
             },
             reference: |x| radiance64(x[0], x[1], x[2], x[3]),
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -343,6 +346,7 @@ pub fn cases() -> Vec<Case> {
                 let path = path_length64(x[0], x[1], x[2]);
                 extinction64().map(|beta| (-beta * path).exp()).to_vec()
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 1e-38,
                 rel: 0.0,
@@ -393,6 +397,7 @@ pub fn cases() -> Vec<Case> {
                 let length = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
                 d.map(|c| c / length).to_vec()
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 4e-7,
                 rel: 0.0,

@@ -321,6 +321,7 @@ pub fn cases() -> Vec<Case> {
             reference: |x| {
                 lut64::transmittance_lut_uv(x[0], x[1], R_GROUND, R_TOP, W_T, H_T).to_vec()
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -345,6 +346,7 @@ pub fn cases() -> Vec<Case> {
             reference: |x| {
                 lut64::transmittance_lut_r_mu([x[0], x[1]], R_GROUND, R_TOP, W_T, H_T).to_vec()
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -369,6 +371,7 @@ pub fn cases() -> Vec<Case> {
             reference: |x| {
                 lut64::multiple_scattering_lut_uv(x[0], x[1], R_GROUND, R_TOP, 32, 32).to_vec()
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 8.0 * U,
                 rel: 0.0,
@@ -399,6 +402,7 @@ pub fn cases() -> Vec<Case> {
                 lut64::multiple_scattering_lut_r_mu_s([x[0], x[1]], R_GROUND, R_TOP, 32, 32)
                     .to_vec()
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 16.0 * U,
                 rel: 0.0,
@@ -417,6 +421,7 @@ pub fn cases() -> Vec<Case> {
             grid: sky_view_uv_grid,
             cpu: |x| lut32::sky_view_lut_uv(x[0], x[1], x[2], R_GROUND as f32, W_S, H_S).to_vec(),
             reference: |x| lut64::sky_view_lut_uv(x[0], x[1], x[2], R_GROUND, W_S, H_S).to_vec(),
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -442,6 +447,7 @@ pub fn cases() -> Vec<Case> {
             reference: |x| {
                 lut64::sky_view_lut_direction([x[0], x[1]], x[2], R_GROUND, W_S, H_S).to_vec()
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -460,6 +466,7 @@ pub fn cases() -> Vec<Case> {
             grid: azimuth_grid,
             cpu: |x| vec![lut32::view_sun_cos_azimuth(x[0], x[1], x[2])],
             reference: |x| vec![lut64::view_sun_cos_azimuth(x[0], x[1], x[2])],
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -486,6 +493,7 @@ pub fn cases() -> Vec<Case> {
                 .to_vec()
             },
             reference: |x| lut64::ray_segment_in_atmosphere(x[0], x[1], R_GROUND, R_TOP).to_vec(),
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -504,6 +512,7 @@ pub fn cases() -> Vec<Case> {
             grid: radius_grid,
             cpu: |x| vec![atmos::lut::raymarch::radius_along_ray(x[0], x[1], x[2])],
             reference: |x| vec![lut64::radius_along_ray(x[0], x[1], x[2])],
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -525,6 +534,7 @@ pub fn cases() -> Vec<Case> {
                 )]
             },
             reference: |x| vec![lut64::exponential_step_integral(x[0], x[1], x[2])],
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: f32::MIN_POSITIVE as f64,
                 rel: 0.0,

@@ -356,6 +356,7 @@ pub fn cases() -> Vec<Case> {
                 )]
             },
             reference: |x| vec![f64ref::ray_sample_distance(x[0], x[1], x[2])],
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -386,6 +387,7 @@ pub fn cases() -> Vec<Case> {
                 )]
             },
             reference: |x| vec![f64ref::lowest_point_distance(x[0], x[1], x[2])],
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -406,6 +408,7 @@ pub fn cases() -> Vec<Case> {
             grid: || profile_altitudes().into_iter().map(|h| vec![h]).collect(),
             cpu: |x| atmos::single_scattering::density_profile(&earth32(), x[0]).to_vec(),
             reference: |x| f64ref::density_profile(&earth_f32_as_f64(), x[0]).to_vec(),
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: f32::MIN_POSITIVE as f64,
                 rel: 0.0,
@@ -452,6 +455,7 @@ pub fn cases() -> Vec<Case> {
             reference: |x| {
                 f64ref::extinction_from_densities(&earth_f32_as_f64(), [x[0], x[1], x[2]]).to_vec()
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -489,6 +493,7 @@ pub fn cases() -> Vec<Case> {
             reference: |x| {
                 f64ref::optical_lengths(&earth_f32_as_f64(), x[0], x[1], x[2], x[3] as u32).to_vec()
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -521,6 +526,7 @@ pub fn cases() -> Vec<Case> {
                 f64ref::light_path_transmittance(&earth_f32_as_f64(), x[0], x[1], x[2] as u32)
                     .to_vec()
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: f32::MIN_POSITIVE as f64,
                 rel: 0.0,
@@ -550,6 +556,7 @@ pub fn cases() -> Vec<Case> {
                     .to_vec()
             },
             reference: |x| f64ref::mean_transmittance_over_segment([x[0], x[1], x[2]]).to_vec(),
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -594,6 +601,7 @@ pub fn cases() -> Vec<Case> {
                 s.radiance.iter().chain(&s.transmittance).copied().collect()
             },
             reference: |x| evaluate_f64(f64ref::single_scattering_inside, x),
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 1e-8,
                 rel: 0.0,
@@ -632,6 +640,7 @@ pub fn cases() -> Vec<Case> {
                 s.radiance.iter().chain(&s.transmittance).copied().collect()
             },
             reference: |x| evaluate_f64(f64ref::single_scattering, x),
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 1e-8,
                 rel: 0.0,
@@ -660,6 +669,7 @@ pub fn cases() -> Vec<Case> {
                     x,
                 )
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 1e-8,
                 rel: 0.0,
@@ -696,6 +706,7 @@ pub fn cases() -> Vec<Case> {
                     x,
                 )
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,

@@ -1,7 +1,10 @@
 //! Parity cases of `cloudsim::rng`: the counter-based draws and the wind shift. All
 //! integer arithmetic: every case is bit-exact. Inputs and outputs travel as f32, so
-//! 32-bit values are split into 16-bit halves (exact in f32).
+//! 32-bit values are split into 16-bit halves (exact in f32). The references are the
+//! draws written a second time (`integer_references`): 64-bit arithmetic reduced by
+//! hand, the plain per-lane comparison instead of the bit-sliced one, exact floors.
 
+use super::integer_references as second;
 use super::*;
 
 const EXACT: Tolerance = Tolerance {
@@ -9,7 +12,8 @@ const EXACT: Tolerance = Tolerance {
     rel: 0.0,
     ulp: 0.0,
     bound: None,
-    why: "integer arithmetic wraps identically in WGSL and Rust: bit-exact",
+    why: "integer arithmetic wraps identically in WGSL and Rust: bit-exact against a second \
+          formulation (u64 reduced modulo 2^32 by hand; per-lane comparison; exact floors)",
 };
 
 /// `[low 16 bits, high 16 bits]` of `v` as f32 outputs.
@@ -57,13 +61,14 @@ fn stream_key_case() -> Case {
             halves(cloudsim::rng::stream_key(seed, x[2] as u32, x[3] as u32)).to_vec()
         },
         reference: |x| {
-            halves64(cloudsim::rng::stream_key(
+            halves64(second::stream_key(
                 join(x[0], x[1]),
                 x[2] as u32,
                 x[3] as u32,
             ))
             .to_vec()
         },
+        audit: Audit::INDEPENDENT,
         tolerance: EXACT,
     }
 }
@@ -93,9 +98,10 @@ fn plane_bits_case() -> Case {
             halves(cloudsim::rng::plane_bits(wk, x[3] as u32)).to_vec()
         },
         reference: |x| {
-            let wk = cloudsim::rng::word_key(join(x[0], x[1]), x[2] as u32);
-            halves64(cloudsim::rng::plane_bits(wk, x[3] as u32)).to_vec()
+            let wk = second::combine(join(x[0], x[1]), x[2] as u32);
+            halves64(second::plane_bits(wk, x[3] as u32)).to_vec()
         },
+        audit: Audit::INDEPENDENT,
         tolerance: EXACT,
     }
 }
@@ -122,12 +128,13 @@ fn lane_threshold_case() -> Case {
         },
         cpu: |x| vec![cloudsim::rng::lane_threshold(x[0] as u32, x[1] as u32, x[2] as u32) as f32],
         reference: |x| {
-            vec![f64::from(cloudsim::rng::lane_threshold(
+            vec![f64::from(second::lane_threshold(
                 x[0] as u32,
                 x[1] as u32,
                 x[2] as u32,
             ))]
         },
+        audit: Audit::INDEPENDENT,
         tolerance: EXACT,
     }
 }
@@ -173,7 +180,16 @@ fn below_lane_thresholds_case() -> Case {
             let x: Vec<f64> = x.iter().map(|&v| f64::from(v)).collect();
             halves(below(&x)).to_vec()
         },
-        reference: |x| halves64(below(x)).to_vec(),
+        reference: |x| {
+            halves64(second::below_threshold(
+                join(x[0], x[1]),
+                x[2] as u32,
+                join(x[3], x[4]),
+                x[5] as u32,
+            ))
+            .to_vec()
+        },
+        audit: Audit::INDEPENDENT,
         tolerance: EXACT,
     }
 }
@@ -216,8 +232,9 @@ fn wind_shift_case() -> Case {
             } else {
                 x[1] as i32
             };
-            vec![f64::from(cloudsim::rng::wind_shift(q, x[2] as u32))]
+            vec![f64::from(second::wind_shift(q, x[2] as u32))]
         },
+        audit: Audit::INDEPENDENT,
         tolerance: EXACT,
     }
 }

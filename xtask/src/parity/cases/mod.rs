@@ -1,6 +1,7 @@
 //! The registry of parity cases: each pairs one WGSL function with its Rust f32 twin
 //! and (where one exists) an f64 reference, over a dense input grid plus extremes.
 
+pub use super::audit::Audit;
 use super::compare::{Tolerance, UNIT_ROUNDOFF as U};
 use atmos::reference as f64ref;
 
@@ -14,6 +15,7 @@ mod celestial_cases;
 mod cloudlight_cases;
 mod cloudsim_cases;
 mod common_cases;
+mod integer_references;
 mod render_cases;
 mod terrain_cases;
 
@@ -33,6 +35,9 @@ pub struct Case {
     pub cpu: fn(&[f32]) -> Vec<f32>,
     /// The f64 reference, evaluated on the f32-rounded inputs.
     pub reference: fn(&[f64]) -> Vec<f64>,
+    /// Whether the reference is independent of the CPU side, and why the tolerance
+    /// may be loose (`Audit::INDEPENDENT` for most cases).
+    pub audit: Audit,
     /// Tolerance with its justification.
     pub tolerance: Tolerance,
 }

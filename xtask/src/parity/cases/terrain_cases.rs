@@ -92,6 +92,7 @@ pub fn cases() -> Vec<Case> {
                     x[0],
                 )]
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -123,6 +124,7 @@ pub fn cases() -> Vec<Case> {
                     x[0], x[1], x[2],
                 )]
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -187,6 +189,7 @@ pub fn cases() -> Vec<Case> {
                     .map(|a| a * n_dot_l * x[4] * f64::from(0.8f32))
                     .collect()
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -213,6 +216,7 @@ pub fn cases() -> Vec<Case> {
             },
             cpu: |x| vec![terrain::shadow::decode_horizon_angle(x[0])],
             reference: |x| vec![x[0] * std::f64::consts::PI - std::f64::consts::FRAC_PI_2],
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -252,6 +256,7 @@ pub fn cases() -> Vec<Case> {
             },
             cpu: |x| vec![terrain::shadow::hard_shadow(x[0], x[1])],
             reference: |x| vec![if x[0] > x[1] { 1.0 } else { 0.0 }],
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -273,6 +278,7 @@ pub fn cases() -> Vec<Case> {
                 ))]
             },
             reference: |x| vec![elevation_f64(x[0], x[1], x[2])],
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -304,6 +310,7 @@ pub fn cases() -> Vec<Case> {
                 let a = x[0].atan2(x[1]);
                 vec![if a < 0.0 { a + TAU64 } else { a }]
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -352,6 +359,7 @@ pub fn cases() -> Vec<Case> {
                 let (lower, upper, weight) = azimuth_layers_f64(x[0], x[1]);
                 vec![lower, upper, weight]
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -434,6 +442,7 @@ pub fn cases() -> Vec<Case> {
                     x[5],
                 )]
             },
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,

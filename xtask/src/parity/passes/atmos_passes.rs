@@ -3,7 +3,9 @@
 //!
 //! There is no separate f64 bake: the "reference" column is the CPU f32 bake itself
 //! (its discretisation error against the f64 reference rung is measured by the
-//! trade-off study, not here), so these cases measure GPU-vs-CPU drift only. The
+//! trade-off study and `crates/atmos/tests/luts.rs`, not here), so these cases measure
+//! GPU-vs-CPU drift only: they are `Audit::CPU_IS_REFERENCE`, their CPU rows are
+//! reported as "reference = this side", never as a pass. The
 //! tolerances come from what each texel accumulates: tens to hundreds of exp/sqrt
 //! evaluations (16 ULP measured on lavapipe) and bilinear lookups whose weights move
 //! with the coordinates' rounding (the parameterisation cases bound those).
@@ -208,6 +210,7 @@ pub fn cases() -> Vec<PassCase> {
             name: "atmos::lut transmittance bake (64x16)",
             cpu: || Ok(as_pass(&cpu_luts()?.0.transmittance.texels)),
             gpu: |gpu| gpu_bake(gpu, Which::Transmittance),
+            audit: Audit::CPU_IS_REFERENCE,
             tolerance: Tolerance {
                 abs: 1e-6,
                 rel: 2e-5,
@@ -222,6 +225,7 @@ pub fn cases() -> Vec<PassCase> {
             name: "atmos::lut multiple-scattering bake (16x16)",
             cpu: || Ok(moments_pass(&cpu_luts()?.0.multiple_scattering.texels)),
             gpu: |gpu| gpu_bake(gpu, Which::MultipleScattering),
+            audit: Audit::CPU_IS_REFERENCE,
             tolerance: Tolerance {
                 abs: 1e-9,
                 rel: 2e-4,
@@ -240,6 +244,7 @@ pub fn cases() -> Vec<PassCase> {
             name: "atmos::lut sky-view bake (48x28)",
             cpu: || Ok(as_pass(&cpu_luts()?.1.sky_view.texels)),
             gpu: |gpu| gpu_bake(gpu, Which::SkyView),
+            audit: Audit::CPU_IS_REFERENCE,
             tolerance: Tolerance {
                 abs: 1e-7,
                 rel: 5e-4,
@@ -260,6 +265,7 @@ pub fn cases() -> Vec<PassCase> {
                 ))
             },
             gpu: |gpu| gpu_bake_with(gpu, Which::SkyView, &radiance_only_settings()),
+            audit: Audit::CPU_IS_REFERENCE,
             tolerance: Tolerance {
                 abs: 1e-7,
                 rel: 5e-4,
@@ -273,6 +279,7 @@ pub fn cases() -> Vec<PassCase> {
             name: "atmos::lut precomputed frame (20x12)",
             cpu: || frame_cpu(&settings()),
             gpu: |gpu| frame_gpu(gpu, settings()),
+            audit: Audit::CPU_IS_REFERENCE,
             tolerance: Tolerance {
                 abs: 1e-7,
                 rel: 5e-4,
@@ -287,6 +294,7 @@ pub fn cases() -> Vec<PassCase> {
             name: "atmos::lut frame, T per pixel (20x12)",
             cpu: || frame_cpu(&radiance_only_settings()),
             gpu: |gpu| frame_gpu(gpu, radiance_only_settings()),
+            audit: Audit::CPU_IS_REFERENCE,
             tolerance: Tolerance {
                 abs: 1e-7,
                 rel: 5e-4,
@@ -301,6 +309,7 @@ pub fn cases() -> Vec<PassCase> {
             name: "atmos::lut aerial-perspective bake (8x8x16)",
             cpu: || Ok(as_pass(&cpu_luts()?.1.aerial_perspective.texels)),
             gpu: |gpu| gpu_bake(gpu, Which::AerialPerspective),
+            audit: Audit::CPU_IS_REFERENCE,
             tolerance: Tolerance {
                 abs: 1e-7,
                 rel: 5e-4,

@@ -9,6 +9,7 @@ pub fn cases() -> Vec<PassCase> {
             name: "cloudsim::step (1000 steps, 128x128x32)",
             cpu: cloudsim_cpu,
             gpu: cloudsim_gpu,
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
@@ -22,6 +23,7 @@ pub fn cases() -> Vec<PassCase> {
             name: "cloudsim::density (after 1000 steps, 128x128x32, R=1, T=2)",
             cpu: density_cpu,
             gpu: density_gpu,
+            audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 1e-6,
                 rel: 0.0,

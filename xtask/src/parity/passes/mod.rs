@@ -2,6 +2,7 @@
 //! own CPU evaluation (reference and f32 twin) and GPU evaluation; comparison and
 //! reporting are shared with the function cases.
 
+pub use super::audit::Audit;
 use super::compare::Tolerance;
 
 mod atmos_passes;
@@ -29,6 +30,9 @@ pub struct PassCase {
     pub cpu: fn() -> Result<PassCpu, String>,
     /// Runs the pass on the GPU; outputs in the same order as `PassCpu::reference`.
     pub gpu: fn(&skyscape_harness::GpuContext) -> Result<Vec<f32>, String>,
+    /// Whether the reference is independent of the CPU side (LUT bakes without an
+    /// f64 bake are `Audit::CPU_IS_REFERENCE`), and why the tolerance may be loose.
+    pub audit: Audit,
     /// Tolerance with its justification.
     pub tolerance: Tolerance,
 }
