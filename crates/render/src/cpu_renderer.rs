@@ -366,7 +366,9 @@ fn shade_terrain(
 
 /// Writes `frame` as an 8-bit RGBA PNG, atomically: to a temporary file beside
 /// `path`, renamed over it only when complete (an existing file is replaced only on
-/// success). A missing folder is an error (it is not created).
+/// success). A missing folder is an error (it is not created). Behind the `png`
+/// feature (on with the default `cli`), so the library needs no PNG encoder otherwise.
+#[cfg(feature = "png")]
 pub fn write_png(path: &std::path::Path, frame: &Frame) -> Result<(), image::ImageError> {
     let bytes: Vec<u8> = frame.pixels.iter().flat_map(|p| p.to_le_bytes()).collect();
     let mut temporary = path.as_os_str().to_owned();
