@@ -691,3 +691,137 @@ fn the_two_walks_agree_and_their_efficiency() {
         }
     }
 }
+
+/// Which part of the iterated-orders Reference is wrong: each of its resolutions
+/// doubled in turn (or the grid made finer where it matters), against one path-traced
+/// set (24 directions, cameras 0 m … 1,000 km, suns as the main measurement).
+/// `cargo test --release -p atmos --test path_tracer -- --ignored --nocapture
+/// reference_error_causes` (`SKYSCAPE_PT_SAMPLES`, default 4096).
+#[test]
+#[ignore]
+fn reference_error_causes() {
+    let samples: u32 = env_or("SKYSCAPE_PT_SAMPLES", 4096);
+    let atmosphere = Atmosphere::earth();
+    let traced = tracer(&atmosphere, samples, None);
+    let altitudes = [0.0, 1e3, 1e4, 1e5, 1e6];
+    let suns = [-6.0, -4.0, -2.0, 0.0, 2.0, 4.0, 5.0, 10.0, 30.0, 60.0, 90.0];
+    let views = sphere_directions(24);
+    let queries: Vec<(f64, f64, SkyQuery)> = altitudes
+        .iter()
+        .flat_map(|&h| suns.iter().map(move |&e| (h, e)))
+        .flat_map(|(h, e)| views.iter().map(move |&v| (h, e, v)))
+        .map(|(h, e, v)| (h, e, query(&atmosphere, h, v, sun_at(e), f64::INFINITY)))
+        .collect();
+    let started = std::time::Instant::now();
+    let estimates = traced.estimate_batch(&queries.iter().map(|q| q.2).collect::<Vec<_>>());
+    eprintln!("path tracing {:.1} s", started.elapsed().as_secs_f64());
+    let base = ReferenceSettings::default();
+    let variants = [
+        ("default", base),
+        (
+            "7 → 10 orders",
+            ReferenceSettings {
+                scattering_orders: 10,
+                ..base
+            },
+        ),
+        (
+            "sun zenith ×2",
+            ReferenceSettings {
+                sun_zenith_size: 2 * base.sun_zenith_size,
+                ..base
+            },
+        ),
+        (
+            "view zenith ×2",
+            ReferenceSettings {
+                view_zenith_size: 2 * base.view_zenith_size,
+                ..base
+            },
+        ),
+        (
+            "radius ×2",
+            ReferenceSettings {
+                radius_size: 2 * base.radius_size,
+                ..base
+            },
+        ),
+        (
+            "azimuth ×2",
+            ReferenceSettings {
+                azimuth_size: 2 * base.azimuth_size,
+                ..base
+            },
+        ),
+        (
+            "sphere zenith ×2",
+            ReferenceSettings {
+                sphere_zenith_size: 2 * base.sphere_zenith_size,
+                ..base
+            },
+        ),
+        (
+            "sphere azimuth ×2",
+            ReferenceSettings {
+                sphere_azimuth_size: 2 * base.sphere_azimuth_size,
+                ..base
+            },
+        ),
+        (
+            "march samples ×2",
+            ReferenceSettings {
+                march_samples: 2 * base.march_samples,
+                ..base
+            },
+        ),
+    ];
+    eprintln!(
+        "| reference variant | precompute | day mean abs / signed | day ≥ 2 signed 0–10 km / ≥ 100 km | twilight mean abs / signed | twilight ≥ 2 signed |"
+    );
+    eprintln!("|---|---|---|---|---|---|");
+    for (name, settings) in variants {
+        let reference = ReferenceSky::new(&atmosphere, settings).unwrap();
+        let mut day = Errors::default();
+        let mut twilight = Errors::default();
+        let mut day_low = Errors::default();
+        let mut day_high = Errors::default();
+        let mut twilight_multiple = Errors::default();
+        for ((altitude, elevation, q), pt) in queries.iter().zip(&estimates) {
+            if pt.total.luminance < 1e-6 {
+                continue;
+            }
+            let (single, multiple, _) = reference.evaluate_orders(q);
+            let total = luminance(single) + luminance(multiple);
+            let m = (
+                luminance(multiple),
+                pt.multiple.luminance,
+                pt.multiple.luminance_standard_error,
+            );
+            if *elevation >= 5.0 {
+                day.add(total, pt.total.luminance, pt.total.luminance_standard_error);
+                if *altitude <= 1e4 {
+                    day_low.add(m.0, m.1, m.2)
+                } else {
+                    day_high.add(m.0, m.1, m.2)
+                }
+            } else {
+                twilight.add(total, pt.total.luminance, pt.total.luminance_standard_error);
+                twilight_multiple.add(m.0, m.1, m.2);
+            }
+        }
+        let (d, t) = (day.summary(), twilight.summary());
+        eprintln!(
+            "| {name} | {:.1} s | {:.2} / {:+.2} ± {:.2} % | {:+.2} / {:+.2} % | {:.1} / {:+.1} ± {:.1} % | {:+.1} % |",
+            reference.precompute_seconds(),
+            100.0 * d[0],
+            100.0 * d[2],
+            100.0 * d[3],
+            100.0 * day_low.summary()[2],
+            100.0 * day_high.summary()[2],
+            100.0 * t[0],
+            100.0 * t[2],
+            100.0 * t[3],
+            100.0 * twilight_multiple.summary()[2],
+        );
+    }
+}
