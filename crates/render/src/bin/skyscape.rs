@@ -508,6 +508,23 @@ fn main() -> ExitCode {
     };
     let scene = &options.scene;
     let rung = options.rung;
+    // --compare checks the GPU image against the CPU twin: without a GPU image it would
+    // compare the CPU image with itself and report 100 %.
+    if options.compare {
+        let conflict = if options.cpu_only {
+            Some("--cpu renders no GPU image".to_string())
+        } else if matches!(rung, Rung::Reference | Rung::ReferenceSpectral) {
+            Some("the reference rungs have no GPU version".to_string())
+        } else {
+            None
+        };
+        if let Some(conflict) = conflict {
+            eprintln!(
+                "skyscape: --compare compares the GPU image with the CPU twin, but {conflict}"
+            );
+            return ExitCode::from(2);
+        }
+    }
     let cpu = || match rung {
         Rung::Sky => render::sky::render_sky_cpu(scene).map_err(|e| e.to_string()),
         _ => render_ladder_cpu(rung, scene),
@@ -553,9 +570,12 @@ fn main() -> ExitCode {
     );
     if options.compare {
         match (cpu(), options.cpu_only) {
-            (Ok(reference), false) if device.starts_with("the CPU twin") => {
-                let _ = reference;
-                println!("--compare: no GPU image to compare with");
+            (Ok(_), _) if device.starts_with("the CPU twin") => {
+                eprintln!(
+                    "skyscape: --compare: no GPU adapter, so there is no GPU image to compare \
+                     with the CPU twin"
+                );
+                return ExitCode::FAILURE;
             }
             (Ok(reference), _) => {
                 let agreement = |lsb| {
