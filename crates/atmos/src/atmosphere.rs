@@ -1,6 +1,8 @@
 //! Physical parameters of an atmosphere, their validation, the f32 uniform block
 //! shared with WGSL (`shaders/atmos/atmosphere.wgsl`) and the density profiles.
 
+use crate::real::Real;
+
 /// Everything atmos rejects, naming the field and its value; each variant says which
 /// input it belongs to (the atmosphere, the camera, the LUT settings, another setting,
 /// or a GPU resource), and wrapped errors keep their source.
@@ -334,29 +336,113 @@ pub struct AtmosphereParameters {
     pub padding: [f32; 2],
 }
 
+/// The atmosphere's parameters in one float type, for the formulas written once over
+/// [`Real`]: the f32 uniform block [`AtmosphereParameters`] (what the WGSL reads; the
+/// twin) and the f64 [`Atmosphere`] (the reference).
+pub trait AtmosphereFields {
+    /// The float type of the fields.
+    type Real: Real;
+    /// Rayleigh scattering at sea level per channel (1/m).
+    fn rayleigh_scattering(&self) -> [Self::Real; 3];
+    /// Rayleigh scale height (m).
+    fn rayleigh_scale_height(&self) -> Self::Real;
+    /// Mie scattering at sea level per channel (1/m).
+    fn mie_scattering(&self) -> [Self::Real; 3];
+    /// Mie extinction at sea level per channel (1/m).
+    fn mie_extinction(&self) -> [Self::Real; 3];
+    /// Mie scale height (m).
+    fn mie_scale_height(&self) -> Self::Real;
+    /// Mie asymmetry parameter g.
+    fn mie_g(&self) -> Self::Real;
+    /// Ozone absorption at the layer's peak per channel (1/m).
+    fn ozone_absorption(&self) -> [Self::Real; 3];
+    /// Altitude of the ozone layer's peak (m).
+    fn ozone_center_altitude(&self) -> Self::Real;
+    /// Half width of the ozone tent (m).
+    fn ozone_half_width(&self) -> Self::Real;
+    /// Sun irradiance at the top of the atmosphere per channel.
+    fn sun_irradiance(&self) -> [Self::Real; 3];
+    /// Planet radius (m).
+    fn planet_radius(&self) -> Self::Real;
+    /// Radius of the top of the atmosphere (m).
+    fn top_radius(&self) -> Self::Real;
+}
+
+macro_rules! atmosphere_fields {
+    ($type:ty, $real:ty) => {
+        impl AtmosphereFields for $type {
+            type Real = $real;
+            fn rayleigh_scattering(&self) -> [$real; 3] {
+                self.rayleigh_scattering
+            }
+            fn rayleigh_scale_height(&self) -> $real {
+                self.rayleigh_scale_height
+            }
+            fn mie_scattering(&self) -> [$real; 3] {
+                self.mie_scattering
+            }
+            fn mie_extinction(&self) -> [$real; 3] {
+                self.mie_extinction
+            }
+            fn mie_scale_height(&self) -> $real {
+                self.mie_scale_height
+            }
+            fn mie_g(&self) -> $real {
+                self.mie_g
+            }
+            fn ozone_absorption(&self) -> [$real; 3] {
+                self.ozone_absorption
+            }
+            fn ozone_center_altitude(&self) -> $real {
+                self.ozone_center_altitude
+            }
+            fn ozone_half_width(&self) -> $real {
+                self.ozone_half_width
+            }
+            fn sun_irradiance(&self) -> [$real; 3] {
+                self.sun_irradiance
+            }
+            fn planet_radius(&self) -> $real {
+                self.planet_radius
+            }
+            fn top_radius(&self) -> $real {
+                self.top_radius
+            }
+        }
+    };
+}
+atmosphere_fields!(AtmosphereParameters, f32);
+atmosphere_fields!(Atmosphere, f64);
+
 /// exp(−altitude/scale_height).
-pub fn exponential_density(altitude: f32, scale_height: f32) -> f32 {
+pub fn exponential_density<F: Real>(altitude: F, scale_height: F) -> F {
     (-altitude / scale_height).exp()
 }
 
 /// 1 at `center`, linearly 0 at `center ± half_width`.
-pub fn tent_density(altitude: f32, center: f32, half_width: f32) -> f32 {
-    (1.0 - (altitude - center).abs() / half_width).max(0.0)
+pub fn tent_density<F: Real>(altitude: F, center: F, half_width: F) -> F {
+    (F::one() - (altitude - center).abs() / half_width).max(F::zero())
 }
 
 /// Extinction (1/m) per channel at an altitude.
-pub fn extinction_at_altitude(atmosphere: &AtmosphereParameters, altitude: f32) -> [f32; 3] {
-    let rayleigh = exponential_density(altitude, atmosphere.rayleigh_scale_height);
-    let mie = exponential_density(altitude, atmosphere.mie_scale_height);
+pub fn extinction_at_altitude<A: AtmosphereFields>(
+    atmosphere: &A,
+    altitude: A::Real,
+) -> [A::Real; 3] {
+    let rayleigh = exponential_density(altitude, atmosphere.rayleigh_scale_height());
+    let mie = exponential_density(altitude, atmosphere.mie_scale_height());
     let ozone = tent_density(
         altitude,
-        atmosphere.ozone_center_altitude,
-        atmosphere.ozone_half_width,
+        atmosphere.ozone_center_altitude(),
+        atmosphere.ozone_half_width(),
+    );
+    let (rayleigh_scattering, mie_extinction, ozone_absorption) = (
+        atmosphere.rayleigh_scattering(),
+        atmosphere.mie_extinction(),
+        atmosphere.ozone_absorption(),
     );
     std::array::from_fn(|i| {
-        atmosphere.rayleigh_scattering[i] * rayleigh
-            + atmosphere.mie_extinction[i] * mie
-            + atmosphere.ozone_absorption[i] * ozone
+        rayleigh_scattering[i] * rayleigh + mie_extinction[i] * mie + ozone_absorption[i] * ozone
     })
 }
 

@@ -1,15 +1,19 @@
 //! Seed 000's closed-form (Hoffman–Preetham) scattering in a homogeneous medium.
 //! Twin of `shaders/atmos/closed_form.wgsl`. Radiance per unit sun irradiance (1/sr).
+//!
+//! Written once, generic over [`Real`]: the f64 instantiation is the parity reference
+//! (its 1 − e^{−x} is the independent `expm1` form, see [`Real::one_minus_exp_neg`]).
 
 use crate::phase::{henyey_greenstein_phase, rayleigh_phase};
-use crate::transmittance::{one_minus_exp_neg, transmittance_from_optical_depth};
+use crate::real::Real;
+use crate::transmittance::transmittance_from_optical_depth;
 
 /// Extinction exp(−(βR + βM)·s) along a path of `path_length` metres.
-pub fn closed_form_extinction(
-    beta_rayleigh: [f32; 3],
-    beta_mie: [f32; 3],
-    path_length: f32,
-) -> [f32; 3] {
+pub fn closed_form_extinction<F: Real>(
+    beta_rayleigh: [F; 3],
+    beta_mie: [F; 3],
+    path_length: F,
+) -> [F; 3] {
     transmittance_from_optical_depth(std::array::from_fn(|i| {
         (beta_rayleigh[i] + beta_mie[i]) * path_length
     }))
@@ -17,22 +21,22 @@ pub fn closed_form_extinction(
 
 /// In-scattered radiance per unit sun irradiance,
 /// (βR·P_R(θ) + βM·P_HG(θ,g))/(βR + βM) · (1 − exp(−(βR + βM)·s)); 0 where βR + βM = 0.
-pub fn closed_form_inscatter(
-    beta_rayleigh: [f32; 3],
-    beta_mie: [f32; 3],
-    cos_theta: f32,
-    g: f32,
-    path_length: f32,
-) -> [f32; 3] {
+pub fn closed_form_inscatter<F: Real>(
+    beta_rayleigh: [F; 3],
+    beta_mie: [F; 3],
+    cos_theta: F,
+    g: F,
+    path_length: F,
+) -> [F; 3] {
     let p_r = rayleigh_phase(cos_theta);
     let p_m = henyey_greenstein_phase(cos_theta, g);
     std::array::from_fn(|i| {
         let extinction = beta_rayleigh[i] + beta_mie[i];
-        if extinction <= 0.0 {
-            return 0.0;
+        if extinction <= F::zero() {
+            return F::zero();
         }
         let angular = beta_rayleigh[i] * p_r + beta_mie[i] * p_m;
-        angular * one_minus_exp_neg(extinction * path_length) / extinction
+        angular * F::one_minus_exp_neg(extinction * path_length) / extinction
     })
 }
 

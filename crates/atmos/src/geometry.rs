@@ -1,4 +1,9 @@
 //! Ray geometry in the planet-centred frame. Twin of `shaders/atmos/geometry.wgsl`.
+//!
+//! Written once, generic over [`Real`]: the `f32` instantiation mirrors the WGSL, the
+//! `f64` one is the parity reference (`crate::reference` re-exports these functions).
+
+use crate::real::Real;
 
 /// Sentinel for "the ray's line misses the sphere".
 pub const RAY_MISS: f32 = -1.0;
@@ -6,17 +11,21 @@ pub const RAY_MISS: f32 = -1.0;
 /// Signed distances (m) to the two intersections of the ray (origin at distance `r`
 /// from the planet centre, zenith cosine `mu`) with a sphere of radius
 /// `sphere_radius`: `[near, far]`, both [`RAY_MISS`] when the line misses.
-pub fn ray_sphere_intersect(r: f32, mu: f32, sphere_radius: f32) -> [f32; 2] {
+///
+/// The stable form: `q = −(b + sign(b)·√D)`, roots `q` and `c/q`, so neither root is a
+/// difference of nearly equal numbers.
+pub fn ray_sphere_intersect<F: Real>(r: F, mu: F, sphere_radius: F) -> [F; 2] {
     let b = r * mu;
     let c = (r - sphere_radius) * (r + sphere_radius);
     let discriminant = b * b - c;
-    if discriminant < 0.0 {
-        return [RAY_MISS, RAY_MISS];
+    if discriminant < F::zero() {
+        let miss = F::of(f64::from(RAY_MISS));
+        return [miss, miss];
     }
-    let sign_b = if b >= 0.0 { 1.0 } else { -1.0 };
+    let sign_b = if b >= F::zero() { F::one() } else { -F::one() };
     let q = -(b + sign_b * discriminant.sqrt());
-    if q == 0.0 {
-        return [0.0, 0.0];
+    if q == F::zero() {
+        return [F::zero(), F::zero()];
     }
     let t0 = q;
     let t1 = c / q;
@@ -25,9 +34,10 @@ pub fn ray_sphere_intersect(r: f32, mu: f32, sphere_radius: f32) -> [f32; 2] {
 
 /// Altitude (m) above a sphere of radius `planet_radius` of the point at distance `t`
 /// along the ray, without subtracting nearly equal radii.
-pub fn altitude_along_ray(r: f32, mu: f32, t: f32, planet_radius: f32) -> f32 {
-    let radius_squared_excess = (r - planet_radius) * (r + planet_radius) + t * (2.0 * r * mu + t);
-    let r_t = (r * r + t * (2.0 * r * mu + t)).max(0.0).sqrt();
+pub fn altitude_along_ray<F: Real>(r: F, mu: F, t: F, planet_radius: F) -> F {
+    let two = F::of(2.0);
+    let radius_squared_excess = (r - planet_radius) * (r + planet_radius) + t * (two * r * mu + t);
+    let r_t = (r * r + t * (two * r * mu + t)).max(F::zero()).sqrt();
     radius_squared_excess / (r_t + planet_radius)
 }
 

@@ -2,24 +2,26 @@
 //! Twin of `shaders/atmos/optical_depth.wgsl`.
 
 use crate::geometry::altitude_along_ray;
+use crate::real::{Real, count};
 
 /// ∫₀^`ray_length` exp(−altitude(t)/`scale_height`) dt (m), midpoint rule with
 /// `sample_count` samples (at least one). Multiply by the sea-level extinction
-/// coefficient (1/m) for the optical depth.
-pub fn optical_length_exponential(
-    r: f32,
-    mu: f32,
-    ray_length: f32,
-    planet_radius: f32,
-    scale_height: f32,
+/// coefficient (1/m) for the optical depth. Generic: the f64 instantiation is the
+/// reference.
+pub fn optical_length_exponential<F: Real>(
+    r: F,
+    mu: F,
+    ray_length: F,
+    planet_radius: F,
+    scale_height: F,
     sample_count: u32,
-) -> f32 {
+) -> F {
     let n = sample_count.max(1);
-    let dt = ray_length / n as f32;
-    let mut sum = 0.0f32;
+    let dt = ray_length / count::<F>(n);
+    let mut sum = F::zero();
     for i in 0..n {
-        let t = (i as f32 + 0.5) * dt;
-        sum += (-altitude_along_ray(r, mu, t, planet_radius) / scale_height).exp();
+        let t = (count::<F>(i) + F::of(0.5)) * dt;
+        sum = sum + (-altitude_along_ray(r, mu, t, planet_radius) / scale_height).exp();
     }
     sum * dt
 }
@@ -53,10 +55,10 @@ mod tests {
     #[test]
     fn zero_length_and_zero_samples() {
         assert_eq!(
-            optical_length_exponential(6.4e6, 0.3, 0.0, 6.36e6, 8000.0, 16),
+            optical_length_exponential(6.4e6f32, 0.3, 0.0, 6.36e6, 8000.0, 16),
             0.0
         );
         // sample_count 0 is treated as 1, never a division by zero.
-        assert!(optical_length_exponential(6.4e6, 0.3, 100.0, 6.36e6, 8000.0, 0).is_finite());
+        assert!(optical_length_exponential(6.4e6f32, 0.3, 100.0, 6.36e6, 8000.0, 0).is_finite());
     }
 }

@@ -1,35 +1,48 @@
 //! Phase functions, normalised over the sphere (1/sr). Twin of `shaders/atmos/phase.wgsl`.
+//!
+//! Each formula is written once, generic over [`Real`]: the `f32` instantiation mirrors
+//! the WGSL operation for operation, the `f64` one is the parity reference
+//! (`crate::reference` re-exports these functions).
 
-use skyscape_wgsl::common::PI;
+use crate::real::Real;
+
+/// π in the float type (rounded once, as WGSL's `PI` constant is).
+fn pi<F: Real>() -> F {
+    F::of(std::f64::consts::PI)
+}
 
 /// Rayleigh phase function 3/(16π)(1 + cos²θ).
-pub fn rayleigh_phase(cos_theta: f32) -> f32 {
-    3.0 / (16.0 * PI) * (1.0 + cos_theta * cos_theta)
+pub fn rayleigh_phase<F: Real>(cos_theta: F) -> F {
+    F::of(3.0) / (F::of(16.0) * pi::<F>()) * (F::one() + cos_theta * cos_theta)
 }
 
 /// 1 + g² − 2g·cosθ as a sum of non-negative terms (accurate as |g| → 1).
-pub fn phase_denominator_base(cos_theta: f32, g: f32) -> f32 {
-    if g >= 0.0 {
-        let one_minus_g = 1.0 - g;
-        one_minus_g * one_minus_g + 2.0 * g * (1.0 - cos_theta)
+pub fn phase_denominator_base<F: Real>(cos_theta: F, g: F) -> F {
+    let two = F::of(2.0);
+    if g >= F::zero() {
+        let one_minus_g = F::one() - g;
+        one_minus_g * one_minus_g + two * g * (F::one() - cos_theta)
     } else {
-        let one_plus_g = 1.0 + g;
-        one_plus_g * one_plus_g - 2.0 * g * (1.0 + cos_theta)
+        let one_plus_g = F::one() + g;
+        one_plus_g * one_plus_g - two * g * (F::one() + cos_theta)
     }
 }
 
 /// Henyey–Greenstein phase function (1 − g²)/(4π(1 + g² − 2g·cosθ)^{3/2}).
-pub fn henyey_greenstein_phase(cos_theta: f32, g: f32) -> f32 {
+pub fn henyey_greenstein_phase<F: Real>(cos_theta: F, g: F) -> F {
     let base = phase_denominator_base(cos_theta, g);
-    (1.0 - g) * (1.0 + g) / (4.0 * PI * base * base.sqrt())
+    (F::one() - g) * (F::one() + g) / (F::of(4.0) * pi::<F>() * base * base.sqrt())
 }
 
 /// Cornette–Shanks phase function
 /// 3/(8π)(1 − g²)(1 + cos²θ)/((2 + g²)(1 + g² − 2g·cosθ)^{3/2}).
-pub fn cornette_shanks_phase(cos_theta: f32, g: f32) -> f32 {
+pub fn cornette_shanks_phase<F: Real>(cos_theta: F, g: F) -> F {
     let base = phase_denominator_base(cos_theta, g);
-    3.0 / (8.0 * PI) * (1.0 - g) * (1.0 + g) * (1.0 + cos_theta * cos_theta)
-        / ((2.0 + g * g) * base * base.sqrt())
+    F::of(3.0) / (F::of(8.0) * pi::<F>())
+        * (F::one() - g)
+        * (F::one() + g)
+        * (F::one() + cos_theta * cos_theta)
+        / ((F::of(2.0) + g * g) * base * base.sqrt())
 }
 
 /// The first two Legendre moments (g₁, g₂) of the Cornette–Shanks phase function,
@@ -41,11 +54,13 @@ pub fn cornette_shanks_phase(cos_theta: f32, g: f32) -> f32 {
 /// They are what a phase function does to the smooth (degree ≤ 2) part of a
 /// radiance field: the multiple-scattering LUT stores that part
 /// ([`crate::lut::multiple_scattering_lut`]).
-pub fn cornette_shanks_legendre_moments(g: f32) -> [f32; 2] {
+pub fn cornette_shanks_legendre_moments<F: Real>(g: F) -> [F; 2] {
+    let c = F::of;
     let g2 = g * g;
-    let normalisation = 3.0 / (2.0 * (2.0 + g2));
-    let first = normalisation * g * (8.0 + 2.0 * g2) / 5.0;
-    let second = normalisation * (2.0 / 15.0 + 32.0 / 21.0 * g2 + 12.0 / 35.0 * g2 * g2);
+    let normalisation = c(3.0) / (c(2.0) * (c(2.0) + g2));
+    let first = normalisation * g * (c(8.0) + c(2.0) * g2) / c(5.0);
+    let second =
+        normalisation * (c(2.0) / c(15.0) + c(32.0) / c(21.0) * g2 + c(12.0) / c(35.0) * g2 * g2);
     [first, second]
 }
 
@@ -53,6 +68,7 @@ pub fn cornette_shanks_legendre_moments(g: f32) -> [f32; 2] {
 mod tests {
     use super::*;
     use crate::reference;
+    use skyscape_wgsl::common::PI;
 
     /// ∫ p dΩ = 2π ∫₋₁¹ p(μ) dμ, by composite Simpson in f64.
     fn sphere_integral(p: impl Fn(f64) -> f64) -> f64 {

@@ -19,10 +19,10 @@ pub trait Real: num_traits::Float + Debug + Default + Send + Sync + 'static {
     /// The constant `x` in this precision (rounded once, as a literal would be).
     fn of(x: f64) -> Self;
 
-    /// Distances along a ray from radius `r` with zenith cosine `mu` to the two
-    /// intersections with a sphere of `sphere_radius` (see
-    /// [`crate::geometry::ray_sphere_intersect`] and its f64 reference).
-    fn ray_sphere_intersect(r: Self, mu: Self, sphere_radius: Self) -> [Self; 2];
+    /// 1 − e^{−x}. Not one formula: the `f32` twin is the WGSL's Horner series below
+    /// |x| = 0.5 ([`crate::transmittance::one_minus_exp_neg`]); the `f64` reference is
+    /// `−expm1(−x)`, correctly rounded and independent of it.
+    fn one_minus_exp_neg(x: Self) -> Self;
 }
 
 impl Real for f32 {
@@ -30,8 +30,8 @@ impl Real for f32 {
         x as f32
     }
 
-    fn ray_sphere_intersect(r: Self, mu: Self, sphere_radius: Self) -> [Self; 2] {
-        crate::geometry::ray_sphere_intersect(r, mu, sphere_radius)
+    fn one_minus_exp_neg(x: Self) -> Self {
+        crate::transmittance::one_minus_exp_neg(x)
     }
 }
 
@@ -40,8 +40,8 @@ impl Real for f64 {
         x
     }
 
-    fn ray_sphere_intersect(r: Self, mu: Self, sphere_radius: Self) -> [Self; 2] {
-        crate::reference::ray_sphere_intersect(r, mu, sphere_radius)
+    fn one_minus_exp_neg(x: Self) -> Self {
+        -(-x).exp_m1()
     }
 }
 

@@ -1,7 +1,9 @@
 //! Rung 2 of the ladder: single scattering in a spherical atmosphere (Nishita et al.
 //! 1993, O'Neil 2005; seed 001's setting without its bugs). f32 twin of
-//! `shaders/atmos/single_scattering.wgsl`, function for function; the f64 twins are in
-//! [`crate::reference`].
+//! `shaders/atmos/single_scattering.wgsl`, function for function. Each function is
+//! written once, generic over the atmosphere's float type ([`AtmosphereFields`]): the
+//! f32 instantiation (on [`AtmosphereParameters`]) mirrors the WGSL, the f64 one (on
+//! [`Atmosphere`]) is the parity reference, re-exported by [`crate::reference`].
 //!
 //! The model: along the view segment (from the camera, or from where the ray enters
 //! the shell for a camera in space, to the ground, the top or `max_distance`),
@@ -27,57 +29,75 @@
 //! assert!(sample.radiance[2] > sample.radiance[1] && sample.radiance[1] > sample.radiance[0]);
 //! ```
 
-use crate::atmosphere::{AtmosphereParameters, exponential_density, tent_density};
+use crate::atmosphere::{
+    AtmosphereFields, AtmosphereParameters, exponential_density, tent_density,
+};
 use crate::geometry::{altitude_along_ray, ray_sphere_intersect};
 use crate::phase::{cornette_shanks_phase, rayleigh_phase};
-use crate::transmittance::{one_minus_exp_neg, transmittance_from_optical_depth};
+use crate::real::{Real, count};
+use crate::transmittance::transmittance_from_optical_depth;
 use crate::{AtmosError, Atmosphere, SkyModel, SkyQuery, SkySample};
+use num_traits::{Float as _, One as _, Zero as _};
 
 /// Radiance scattered toward the viewer and transmittance of the segment (WGSL
-/// `SingleScatteringSample`).
+/// `SingleScatteringSample`), in the float type of the atmosphere it came from.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct SingleScatteringSample {
+pub struct SingleScatteringSample<F = f32> {
     /// Radiance per channel (unit of `sun_irradiance` per sr).
-    pub radiance: [f32; 3],
+    pub radiance: [F; 3],
     /// Transmittance of the view segment per channel.
-    pub transmittance: [f32; 3],
+    pub transmittance: [F; 3],
 }
 
-fn add(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+impl From<SingleScatteringSample<f64>> for SkySample {
+    fn from(sample: SingleScatteringSample<f64>) -> Self {
+        SkySample {
+            radiance: sample.radiance,
+            transmittance: sample.transmittance,
+        }
+    }
+}
+
+fn add<F: Real>(a: [F; 3], b: [F; 3]) -> [F; 3] {
     std::array::from_fn(|i| a[i] + b[i])
 }
 
-fn mul(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+fn mul<F: Real>(a: [F; 3], b: [F; 3]) -> [F; 3] {
     std::array::from_fn(|i| a[i] * b[i])
 }
 
-fn scale(a: [f32; 3], s: f32) -> [f32; 3] {
+fn scale<F: Real>(a: [F; 3], s: F) -> [F; 3] {
     a.map(|x| x * s)
 }
 
 /// Relative densities at an altitude: (Rayleigh, Mie, ozone), each 1 at its reference.
-pub fn density_profile(atmosphere: &AtmosphereParameters, altitude: f32) -> [f32; 3] {
+pub fn density_profile<A: AtmosphereFields>(atmosphere: &A, altitude: A::Real) -> [A::Real; 3] {
     [
-        exponential_density(altitude, atmosphere.rayleigh_scale_height),
-        exponential_density(altitude, atmosphere.mie_scale_height),
+        exponential_density(altitude, atmosphere.rayleigh_scale_height()),
+        exponential_density(altitude, atmosphere.mie_scale_height()),
         tent_density(
             altitude,
-            atmosphere.ozone_center_altitude,
-            atmosphere.ozone_half_width,
+            atmosphere.ozone_center_altitude(),
+            atmosphere.ozone_half_width(),
         ),
     ]
 }
 
 /// Extinction (1/m) per channel from relative densities (Rayleigh, Mie, ozone); also
 /// maps optical lengths (m) to optical depths.
-pub fn extinction_from_densities(
-    atmosphere: &AtmosphereParameters,
-    densities: [f32; 3],
-) -> [f32; 3] {
+pub fn extinction_from_densities<A: AtmosphereFields>(
+    atmosphere: &A,
+    densities: [A::Real; 3],
+) -> [A::Real; 3] {
+    let (rayleigh_scattering, mie_extinction, ozone_absorption) = (
+        atmosphere.rayleigh_scattering(),
+        atmosphere.mie_extinction(),
+        atmosphere.ozone_absorption(),
+    );
     std::array::from_fn(|i| {
-        atmosphere.rayleigh_scattering[i] * densities[0]
-            + atmosphere.mie_extinction[i] * densities[1]
-            + atmosphere.ozone_absorption[i] * densities[2]
+        rayleigh_scattering[i] * densities[0]
+            + mie_extinction[i] * densities[1]
+            + ozone_absorption[i] * densities[2]
     })
 }
 
@@ -85,44 +105,49 @@ pub fn extinction_from_densities(
 /// on each side of `t_split`, so samples crowd where the ray passes lowest (the densest
 /// air). The segments depend only on the whole ray, never on where a caller cuts it, so
 /// cutting it later only adds light (aerial perspective is monotone).
-pub fn ray_sample_distance(s: f32, t_split: f32, ray_length: f32) -> f32 {
+pub fn ray_sample_distance<F: Real>(s: F, t_split: F, ray_length: F) -> F {
     let s_split = t_split / ray_length;
-    if s <= s_split && s_split > 0.0 {
+    if s <= s_split && s_split > F::zero() {
         let x = (s_split - s) / s_split;
         return t_split - t_split * x * x;
     }
-    let x = (s - s_split) / (1.0 - s_split);
+    let x = (s - s_split) / (F::one() - s_split);
     t_split + (ray_length - t_split) * x * x
 }
 
 /// Where a ray from (`r`, `mu`) of length `ray_length` passes closest to the planet centre.
-pub fn lowest_point_distance(r: f32, mu: f32, ray_length: f32) -> f32 {
-    (-r * mu).clamp(0.0, ray_length)
+pub fn lowest_point_distance<F: Real>(r: F, mu: F, ray_length: F) -> F {
+    (-r * mu).clamp(F::zero(), ray_length)
 }
 
 /// ∫₀^`ray_length` density(altitude(t)) dt (m) for (Rayleigh, Mie, ozone):
 /// `sample_count` segments (at least one) laid out by [`ray_sample_distance`], each
 /// sampled at its parameter midpoint.
-pub fn optical_lengths(
-    atmosphere: &AtmosphereParameters,
-    r: f32,
-    mu: f32,
-    ray_length: f32,
+pub fn optical_lengths<A: AtmosphereFields>(
+    atmosphere: &A,
+    r: A::Real,
+    mu: A::Real,
+    ray_length: A::Real,
     sample_count: u32,
-) -> [f32; 3] {
-    if ray_length <= 0.0 {
-        return [0.0; 3];
+) -> [A::Real; 3] {
+    let zero = A::Real::zero();
+    if ray_length <= zero {
+        return [zero; 3];
     }
     let n = sample_count.max(1);
     let t_split = lowest_point_distance(r, mu, ray_length);
-    let mut sum = [0.0f32; 3];
-    let mut t_start = 0.0f32;
+    let mut sum = [zero; 3];
+    let mut t_start = zero;
     for i in 0..n {
-        let t_end = ray_sample_distance((i + 1) as f32 / n as f32, t_split, ray_length);
-        let t = ray_sample_distance((i as f32 + 0.5) / n as f32, t_split, ray_length);
+        let t_end = ray_sample_distance(count::<A::Real>(i + 1) / count(n), t_split, ray_length);
+        let t = ray_sample_distance(
+            (count::<A::Real>(i) + A::Real::of(0.5)) / count(n),
+            t_split,
+            ray_length,
+        );
         let d = density_profile(
             atmosphere,
-            altitude_along_ray(r, mu, t, atmosphere.planet_radius),
+            altitude_along_ray(r, mu, t, atmosphere.planet_radius()),
         );
         sum = add(sum, scale(d, t_end - t_start));
         t_start = t_end;
@@ -133,31 +158,32 @@ pub fn optical_lengths(
 /// Transmittance from a point at `altitude` (m) with sun zenith cosine `mu_s` to the
 /// sun through the shell; 0 where the planet hides the sun (the shadow of the earth),
 /// tested on the altitude since r = R + altitude rounds sub-metre altitudes away in f32.
-pub fn light_path_transmittance(
-    atmosphere: &AtmosphereParameters,
-    altitude: f32,
-    mu_s: f32,
+pub fn light_path_transmittance<A: AtmosphereFields>(
+    atmosphere: &A,
+    altitude: A::Real,
+    mu_s: A::Real,
     light_samples: u32,
-) -> [f32; 3] {
-    let planet_radius = atmosphere.planet_radius;
+) -> [A::Real; 3] {
+    let zero = A::Real::zero();
+    let planet_radius = atmosphere.planet_radius();
     let r = planet_radius + altitude;
-    if mu_s < 0.0 && mu_s * mu_s * (r * r) > altitude * (r + planet_radius) {
-        return [0.0; 3];
+    if mu_s < zero && mu_s * mu_s * (r * r) > altitude * (r + planet_radius) {
+        return [zero; 3];
     }
-    let top = ray_sphere_intersect(r, mu_s, atmosphere.top_radius);
-    let length = top[1].max(0.0);
+    let top = ray_sphere_intersect(r, mu_s, atmosphere.top_radius());
+    let length = top[1].max(zero);
     let lengths = optical_lengths(atmosphere, r, mu_s, length, light_samples);
     transmittance_from_optical_depth(extinction_from_densities(atmosphere, lengths))
 }
 
 /// (1 − e^{−x})/x per channel (1 at x = 0): the mean transmittance across a segment of
 /// optical depth x with constant extinction.
-pub fn mean_transmittance_over_segment(optical_depth: [f32; 3]) -> [f32; 3] {
+pub fn mean_transmittance_over_segment<F: Real>(optical_depth: [F; 3]) -> [F; 3] {
     optical_depth.map(|x| {
-        if x == 0.0 {
-            1.0
+        if x == F::zero() {
+            F::one()
         } else {
-            one_minus_exp_neg(x) / x
+            F::one_minus_exp_neg(x) / x
         }
     })
 }
@@ -165,49 +191,59 @@ pub fn mean_transmittance_over_segment(optical_depth: [f32; 3]) -> [f32; 3] {
 /// Single scattering for a viewer inside the shell (`r` ≤ top radius; below the ground
 /// counts as on it), up to the ground, the top or `max_distance`.
 #[allow(clippy::too_many_arguments)] // mirrors the WGSL signature
-pub fn single_scattering_inside(
-    atmosphere: &AtmosphereParameters,
-    r: f32,
-    mu: f32,
-    mu_s: f32,
-    nu: f32,
-    max_distance: f32,
+pub fn single_scattering_inside<A: AtmosphereFields>(
+    atmosphere: &A,
+    r: A::Real,
+    mu: A::Real,
+    mu_s: A::Real,
+    nu: A::Real,
+    max_distance: A::Real,
     view_samples: u32,
     light_samples: u32,
-) -> SingleScatteringSample {
-    let planet_radius = atmosphere.planet_radius;
+) -> SingleScatteringSample<A::Real> {
+    let zero = A::Real::zero();
+    let one = A::Real::one();
+    let planet_radius = atmosphere.planet_radius();
     let r0 = r.max(planet_radius);
     let ground = ray_sphere_intersect(r0, mu, planet_radius);
-    let top = ray_sphere_intersect(r0, mu, atmosphere.top_radius);
-    let mut end = top[1].max(0.0);
-    if mu < 0.0 && ground[0] >= 0.0 {
+    let top = ray_sphere_intersect(r0, mu, atmosphere.top_radius());
+    let mut end = top[1].max(zero);
+    if mu < zero && ground[0] >= zero {
         end = ground[0];
     }
-    let limit = end.min(max_distance.max(0.0));
+    let limit = end.min(max_distance.max(zero));
     let n = view_samples.max(1);
     let t_split = lowest_point_distance(r0, mu, end);
     let rayleigh = rayleigh_phase(nu);
-    let mie = cornette_shanks_phase(nu, atmosphere.mie_g);
-    let mut optical_depth = [0.0f32; 3];
-    let mut radiance = [0.0f32; 3];
-    let mut t_start = 0.0f32;
+    let mie = cornette_shanks_phase(nu, atmosphere.mie_g());
+    let (rayleigh_scattering, mie_scattering) = (
+        atmosphere.rayleigh_scattering(),
+        atmosphere.mie_scattering(),
+    );
+    let mut optical_depth = [zero; 3];
+    let mut radiance = [zero; 3];
+    let mut t_start = zero;
     for i in 0..n {
         if t_start >= limit {
             break;
         }
         // The segment's sample stays where the whole ray puts it; only its length is cut.
-        let t_end = ray_sample_distance((i + 1) as f32 / n as f32, t_split, end);
+        let t_end = ray_sample_distance(count::<A::Real>(i + 1) / count(n), t_split, end);
         let dt = t_end.min(limit) - t_start;
-        let t = ray_sample_distance((i as f32 + 0.5) / n as f32, t_split, end);
+        let t = ray_sample_distance(
+            (count::<A::Real>(i) + A::Real::of(0.5)) / count(n),
+            t_split,
+            end,
+        );
         t_start = t_end;
         let altitude = altitude_along_ray(r0, mu, t, planet_radius);
         let r_t = planet_radius + altitude;
-        let mu_s_t = ((r0 * mu_s + t * nu) / r_t).clamp(-1.0, 1.0);
+        let mu_s_t = ((r0 * mu_s + t * nu) / r_t).clamp(-one, one);
         let densities = density_profile(atmosphere, altitude);
         let segment_depth = scale(extinction_from_densities(atmosphere, densities), dt);
-        let scattering: [f32; 3] = std::array::from_fn(|k| {
-            atmosphere.rayleigh_scattering[k] * (densities[0] * rayleigh)
-                + atmosphere.mie_scattering[k] * (densities[1] * mie)
+        let scattering: [A::Real; 3] = std::array::from_fn(|k| {
+            rayleigh_scattering[k] * (densities[0] * rayleigh)
+                + mie_scattering[k] * (densities[1] * mie)
         });
         let sun = light_path_transmittance(atmosphere, altitude, mu_s_t, light_samples);
         let weight = scale(mean_transmittance_over_segment(segment_depth), dt);
@@ -224,7 +260,7 @@ pub fn single_scattering_inside(
         optical_depth = add(optical_depth, segment_depth);
     }
     SingleScatteringSample {
-        radiance: mul(radiance, atmosphere.sun_irradiance),
+        radiance: mul(radiance, atmosphere.sun_irradiance()),
         transmittance: transmittance_from_optical_depth(optical_depth),
     }
 }
@@ -232,17 +268,19 @@ pub fn single_scattering_inside(
 /// Single scattering for a viewer anywhere; outside the shell the ray is re-based at
 /// its near intersection with the top sphere, so both branches agree at the boundary.
 #[allow(clippy::too_many_arguments)] // mirrors the WGSL signature
-pub fn single_scattering(
-    atmosphere: &AtmosphereParameters,
-    r: f32,
-    mu: f32,
-    mu_s: f32,
-    nu: f32,
-    max_distance: f32,
+pub fn single_scattering<A: AtmosphereFields>(
+    atmosphere: &A,
+    r: A::Real,
+    mu: A::Real,
+    mu_s: A::Real,
+    nu: A::Real,
+    max_distance: A::Real,
     view_samples: u32,
     light_samples: u32,
-) -> SingleScatteringSample {
-    let top_radius = atmosphere.top_radius;
+) -> SingleScatteringSample<A::Real> {
+    let zero = A::Real::zero();
+    let one = A::Real::one();
+    let top_radius = atmosphere.top_radius();
     if r <= top_radius {
         return single_scattering_inside(
             atmosphere,
@@ -256,17 +294,17 @@ pub fn single_scattering(
         );
     }
     let hit = ray_sphere_intersect(r, mu, top_radius);
-    if mu >= 0.0 || hit[0] < 0.0 {
+    if mu >= zero || hit[0] < zero {
         return SingleScatteringSample {
-            radiance: [0.0; 3],
-            transmittance: [1.0; 3],
+            radiance: [zero; 3],
+            transmittance: [one; 3],
         };
     }
     let entry = hit[0];
     let b = r * mu;
     let c = (r - top_radius) * (r + top_radius);
-    let mu_entry = -(b * b - c).max(0.0).sqrt() / top_radius;
-    let mu_s_entry = ((r * mu_s + entry * nu) / top_radius).clamp(-1.0, 1.0);
+    let mu_entry = -(b * b - c).max(zero).sqrt() / top_radius;
+    let mu_s_entry = ((r * mu_s + entry * nu) / top_radius).clamp(-one, one);
     single_scattering_inside(
         atmosphere,
         top_radius,

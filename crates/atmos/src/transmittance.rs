@@ -1,7 +1,9 @@
 //! Beer–Lambert transmittance. Twin of `shaders/atmos/transmittance.wgsl`.
 
-/// exp(−optical_depth) per channel.
-pub fn transmittance_from_optical_depth(optical_depth: [f32; 3]) -> [f32; 3] {
+use crate::real::Real;
+
+/// exp(−optical_depth) per channel (generic: the f64 instantiation is the reference).
+pub fn transmittance_from_optical_depth<F: Real>(optical_depth: [F; 3]) -> [F; 3] {
     optical_depth.map(|tau| (-tau).exp())
 }
 

@@ -262,6 +262,7 @@ impl SkyModel for F64SingleScattering {
             256,
             16,
         )
+        .into()
     }
 }
 

@@ -18,6 +18,7 @@
 //!   azimuth relative to the sun as sin(φ/2), concentrating texels at the horizon and
 //!   near the sun.
 
+use crate::geometry::ray_sphere_intersect;
 use crate::real::{Real, count};
 
 /// x ∈ [0, 1] → texture coordinate whose 0 and 1 are the first and last texel centres.
@@ -52,7 +53,7 @@ pub fn transmittance_lut_uv<F: Real>(
     let top_horizon = horizon_distance(top_radius, planet_radius);
     let rho = horizon_distance(r, planet_radius);
     // Distance to the top boundary (the far root: the origin is inside the shell).
-    let d = F::ray_sphere_intersect(r, mu, top_radius)[1].max(F::zero());
+    let d = ray_sphere_intersect(r, mu, top_radius)[1].max(F::zero());
     let d_min = top_radius - r;
     let d_max = rho + top_horizon;
     let x_mu = ((d - d_min) / (d_max - d_min)).clamp(F::zero(), F::one());

@@ -9,6 +9,7 @@ use crate::AtmosphereParameters;
 use crate::atmosphere::{exponential_density, tent_density};
 use crate::geometry::ray_sphere_intersect;
 use crate::phase::{cornette_shanks_phase, rayleigh_phase};
+use crate::real::Real;
 use crate::transmittance::one_minus_exp_neg;
 
 use super::multiple_scattering_lut::multiple_scattering_source;
@@ -60,9 +61,12 @@ pub fn medium_at_altitude(atmosphere: &AtmosphereParameters, altitude: f32) -> M
     }
 }
 
-/// Distance from the planet centre of the point `t` metres along the ray.
-pub fn radius_along_ray(r: f32, mu: f32, t: f32) -> f32 {
-    (r * r + t * (2.0 * r * mu + t)).max(0.0).sqrt()
+/// Distance from the planet centre of the point `t` metres along the ray (generic:
+/// the f64 instantiation is the reference).
+pub fn radius_along_ray<F: Real>(r: F, mu: F, t: F) -> F {
+    (r * r + t * (F::of(2.0) * r * mu + t))
+        .max(F::zero())
+        .sqrt()
 }
 
 /// 1 when the sun (zenith cosine `mu_s` at radius `r`) is above the planet's
@@ -92,20 +96,22 @@ pub fn scattering_step_fraction(extinction: f32, dt: f32) -> f32 {
 /// (`hits_ground` is 1 when the segment ends on the ground). Both ends are 0 when the
 /// ray misses the atmosphere. `r` is clamped to ≥ planet_radius (a viewer below the
 /// ground is treated as on it).
-pub fn ray_segment_in_atmosphere(r: f32, mu: f32, planet_radius: f32, top_radius: f32) -> [f32; 3] {
+/// Generic: the f64 instantiation is the reference.
+pub fn ray_segment_in_atmosphere<F: Real>(r: F, mu: F, planet_radius: F, top_radius: F) -> [F; 3] {
+    let zero = F::zero();
     let r = r.max(planet_radius);
     let top = ray_sphere_intersect(r, mu, top_radius);
-    if top[1] < 0.0 {
+    if top[1] < zero {
         // Outside and looking away (or missing the shell entirely).
-        return [0.0, 0.0, 0.0];
+        return [zero; 3];
     }
-    let t_start = top[0].max(0.0);
+    let t_start = top[0].max(zero);
     let ground = ray_sphere_intersect(r, mu, planet_radius);
     // Tangent rays see the sky (docs/architecture.md, "Rays at the ground").
-    if mu < 0.0 && ground[0] >= 0.0 {
-        return [t_start, ground[0], 1.0];
+    if mu < zero && ground[0] >= zero {
+        return [t_start, ground[0], F::one()];
     }
-    [t_start, top[1], 0.0]
+    [t_start, top[1], zero]
 }
 
 /// Radiance and transmittance of a segment.

@@ -6,7 +6,7 @@
 use crate::AtmosphereParameters;
 use crate::atmosphere::tent_density;
 use crate::geometry::{altitude_along_ray, ray_sphere_intersect};
-use crate::transmittance::one_minus_exp_neg;
+use crate::real::Real;
 
 use super::parameterization::{bilinear_footprint, transmittance_lut_r_mu, transmittance_lut_uv};
 use super::raymarch::{LutBindings, radius_along_ray, ray_segment_in_atmosphere};
@@ -16,13 +16,15 @@ use super::{Lut2d, LutSettingsUniform, fill_parallel};
 /// (x = altitude / scale height): dt·e^{−x0}·(1 − e^{−Δ})/Δ. Exact for vertical rays
 /// (altitude linear in t), where the midpoint rule with Hillaire's 40 samples misses
 /// the 1.2 km Mie layer by 19 % (sinh(dt/2H)/(dt/2H) with dt = 2.5 km).
-pub fn exponential_step_integral(x0: f32, x1: f32, dt: f32) -> f32 {
+/// Generic: the f64 instantiation is the reference (its 1 − e^{−Δ} the independent
+/// `expm1` form).
+pub fn exponential_step_integral<F: Real>(x0: F, x1: F, dt: F) -> F {
     let delta = x1 - x0;
     let start = (-x0).exp();
-    if delta == 0.0 {
+    if delta == F::zero() {
         return dt * start;
     }
-    dt * start * (one_minus_exp_neg(delta) / delta)
+    dt * start * (F::one_minus_exp_neg(delta) / delta)
 }
 
 /// One texel: exp(−optical depth to the top), the column integrated over

@@ -145,8 +145,16 @@ fn single_scattering_grid(max_altitude: f64, view_cosines: usize) -> Vec<Vec<f64
     grid
 }
 
-type SingleScatteringFn =
-    fn(&atmos::Atmosphere, f64, f64, f64, f64, f64, u32, u32) -> atmos::SkySample;
+type SingleScatteringFn = fn(
+    &atmos::Atmosphere,
+    f64,
+    f64,
+    f64,
+    f64,
+    f64,
+    u32,
+    u32,
+) -> atmos::single_scattering::SingleScatteringSample<f64>;
 
 fn evaluate_f64(f: SingleScatteringFn, x: &[f64]) -> Vec<f64> {
     evaluate_f64_in(&earth_f32_as_f64(), f, x)
