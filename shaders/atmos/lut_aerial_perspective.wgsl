@@ -26,8 +26,7 @@ fn bake_aerial_perspective(@builtin(global_invocation_id) id: vec3<u32>) {
     let depth = lut_settings.aerial_perspective_depth;
     let steps = lut_settings.aerial_perspective_steps_per_slice;
     let step_length = lut_settings.aerial_perspective_range / f32(depth * steps);
-    var radiance = vec3<f32>(0.0);
-    var throughput = vec3<f32>(1.0);
+    var march = ScatteringSegment(vec3<f32>(0.0), vec3<f32>(1.0));
     for (var slice = 0u; slice < depth; slice++) {
         for (var step = 0u; step < steps; step++) {
             let a = f32(slice * steps + step) * step_length;
@@ -35,23 +34,14 @@ fn bake_aerial_perspective(@builtin(global_invocation_id) id: vec3<u32>) {
             let hi = min(a + step_length, segment.y);
             if hi > lo {
                 let dt = hi - lo;
-                let t = lo + 0.5 * dt;
-                let r_t = radius_along_ray(r, mu, t);
-                let mu_t = clamp((r * mu + t) / r_t, -1.0, 1.0);
-                let mu_s_t = clamp((r * mu_s + t * nu) / r_t, -1.0, 1.0);
-                let medium = medium_at_altitude(lut_atmosphere, r_t - lut_atmosphere.planet_radius);
-                let source = scattering_source(medium, r_t, mu_t, mu_s_t, nu, rayleigh_phase_value, mie_phase_value);
-                let weight = vec3<f32>(
-                    scattering_step_fraction(medium.extinction.x, dt),
-                    scattering_step_fraction(medium.extinction.y, dt),
-                    scattering_step_fraction(medium.extinction.z, dt),
-                );
-                radiance += throughput * source * weight;
-                throughput *= exp(-medium.extinction * dt);
+                let point = point_along_ray(r, mu, mu_s, nu, lo + 0.5 * dt);
+                let medium = medium_at_altitude(lut_atmosphere, point.x - lut_atmosphere.planet_radius);
+                let source = scattering_source(medium, point.x, point.y, point.z, nu, rayleigh_phase_value, mie_phase_value);
+                march = integrate_scattering_step(march, source, medium.extinction, dt);
             }
         }
         let k = id.x + w * (id.y + h * slice);
-        aerial_perspective_out[2u * k] = vec4<f32>(radiance * lut_atmosphere.sun_irradiance, 1.0);
-        aerial_perspective_out[2u * k + 1u] = vec4<f32>(throughput, 1.0);
+        aerial_perspective_out[2u * k] = vec4<f32>(march.radiance * lut_atmosphere.sun_irradiance, 1.0);
+        aerial_perspective_out[2u * k + 1u] = vec4<f32>(march.transmittance, 1.0);
     }
 }

@@ -91,29 +91,22 @@ fn multiple_scattering_order_texel(x: u32, y: u32, next_order: bool) -> Multiple
             // Sunlight scattered at p into −ω turns by the angle whose cosine is ω·s = ν.
             let rayleigh_phase_value = rayleigh_phase(nu);
             let mie_phase_value = cornette_shanks_phase(nu, lut_atmosphere.mie_g);
-            var radiance = vec3<f32>(0.0);
-            var throughput = vec3<f32>(1.0);
+            var march = ScatteringSegment(vec3<f32>(0.0), vec3<f32>(1.0));
             for (var step = 0u; step < n; step++) {
                 let t = segment.x + (f32(step) + 0.5) * dt;
-                let r_t = radius_along_ray(r, mu, t);
-                let mu_t = clamp((r * mu + t) / r_t, -1.0, 1.0);
-                let mu_s_t = clamp((r * mu_s + t * nu) / r_t, -1.0, 1.0);
-                let medium = medium_at_altitude(lut_atmosphere, r_t - lut_atmosphere.planet_radius);
+                let point = point_along_ray(r, mu, mu_s, nu, t);
+                let medium = medium_at_altitude(lut_atmosphere, point.x - lut_atmosphere.planet_radius);
                 var source: vec3<f32>;
                 if next_order {
-                    source = multiple_scattering_source(medium, r_t, mu_t, mu_s_t, nu);
+                    source = multiple_scattering_source(medium, point.x, point.y, point.z, nu);
                 } else {
                     source = (medium.rayleigh_scattering * rayleigh_phase_value
-                        + medium.mie_scattering * mie_phase_value) * sun_transmittance(r_t, mu_s_t);
+                        + medium.mie_scattering * mie_phase_value) * sun_transmittance(point.x, point.z);
                 }
-                let weight = vec3<f32>(
-                    scattering_step_fraction(medium.extinction.x, dt),
-                    scattering_step_fraction(medium.extinction.y, dt),
-                    scattering_step_fraction(medium.extinction.z, dt),
-                );
-                radiance += throughput * source * weight;
-                throughput *= exp(-medium.extinction * dt);
+                march = integrate_scattering_step(march, source, medium.extinction, dt);
             }
+            var radiance = march.radiance;
+            let throughput = march.transmittance;
             if segment.z > 0.5 {
                 // A Lambertian ground reflects ρ/π of its irradiance: the sun's at the hit
                 // point (F₁), or the previous order's field's (F_{k+1}).

@@ -179,6 +179,32 @@ fn scattering_step_fraction(extinction: f32, dt: f32) -> f32 {
     return dt;
 }
 
+// In-scattered radiance and transmittance of a segment (or of a march so far).
+struct ScatteringSegment {
+    radiance: vec3<f32>,
+    transmittance: vec3<f32>,
+}
+
+// The point t metres along the ray (r, mu) whose sun zenith cosine is mu_s and
+// view–sun cosine nu: (its radius, view zenith cosine, sun zenith cosine).
+fn point_along_ray(r: f32, mu: f32, mu_s: f32, nu: f32, t: f32) -> vec3<f32> {
+    let r_t = radius_along_ray(r, mu, t);
+    return vec3<f32>(r_t, clamp((r * mu + t) / r_t, -1.0, 1.0), clamp((r * mu_s + t * nu) / r_t, -1.0, 1.0));
+}
+
+// One step of every march of this rung (Hillaire 2020 §5.6.3's energy-conserving
+// step): the source (per metre) integrated over dt against the step's extinction,
+// seen through the march's transmittance so far, is added to its radiance; the
+// transmittance is multiplied by the step's.
+fn integrate_scattering_step(march: ScatteringSegment, source: vec3<f32>, extinction: vec3<f32>, dt: f32) -> ScatteringSegment {
+    let weight = vec3<f32>(
+        scattering_step_fraction(extinction.x, dt),
+        scattering_step_fraction(extinction.y, dt),
+        scattering_step_fraction(extinction.z, dt),
+    );
+    return ScatteringSegment(march.radiance + march.transmittance * source * weight, march.transmittance * exp(-extinction * dt));
+}
+
 // The part of a ray inside the atmosphere: (t_start, t_end, hits_ground ∈ {0, 1});
 // (0, 0, 0) when it misses. r is clamped to ≥ planet_radius.
 fn ray_segment_in_atmosphere(r_in: f32, mu: f32, planet_radius: f32, top_radius: f32) -> vec3<f32> {

@@ -209,11 +209,6 @@ fn aerial_perspective_slice(f: BilinearFootprint, z: f32, which: u32) -> vec3<f3
     );
 }
 
-struct ScatteringSegment {
-    radiance: vec3<f32>,
-    transmittance: vec3<f32>,
-}
-
 // Trilinear lookup of the aerial-perspective volume at screen uv and distance (m);
 // slice k ends at (k + 1)·range/depth, a virtual slice at 0 holds (0, 1).
 fn lookup_aerial_perspective(uv: vec2<f32>, distance: f32) -> ScatteringSegment {
@@ -248,8 +243,7 @@ fn raymarch_scattering(r: f32, mu: f32, mu_s: f32, nu: f32, t_start: f32, t_end:
     let mie_phase_value = cornette_shanks_phase(nu, lut_atmosphere.mie_g);
     let ray_length = max(t_end - t_start, 0.0);
     let n = f32(sample_count);
-    var radiance = vec3<f32>(0.0);
-    var throughput = vec3<f32>(1.0);
+    var march = ScatteringSegment(vec3<f32>(0.0), vec3<f32>(1.0));
     var t_previous = t_start;
     for (var i = 0u; i < sample_count; i++) {
         let s = (f32(i) + 1.0) / n;
@@ -257,20 +251,12 @@ fn raymarch_scattering(r: f32, mu: f32, mu_s: f32, nu: f32, t_start: f32, t_end:
         let dt = t_next - t_previous;
         let t = t_previous + 0.5 * dt;
         t_previous = t_next;
-        let r_t = radius_along_ray(r, mu, t);
-        let mu_t = clamp((r * mu + t) / r_t, -1.0, 1.0);
-        let mu_s_t = clamp((r * mu_s + t * nu) / r_t, -1.0, 1.0);
-        let medium = medium_at_altitude(lut_atmosphere, r_t - lut_atmosphere.planet_radius);
-        let source = scattering_source(medium, r_t, mu_t, mu_s_t, nu, rayleigh_phase_value, mie_phase_value);
-        let weight = vec3<f32>(
-            scattering_step_fraction(medium.extinction.x, dt),
-            scattering_step_fraction(medium.extinction.y, dt),
-            scattering_step_fraction(medium.extinction.z, dt),
-        );
-        radiance += throughput * source * weight;
-        throughput *= exp(-medium.extinction * dt);
+        let point = point_along_ray(r, mu, mu_s, nu, t);
+        let medium = medium_at_altitude(lut_atmosphere, point.x - lut_atmosphere.planet_radius);
+        let source = scattering_source(medium, point.x, point.y, point.z, nu, rayleigh_phase_value, mie_phase_value);
+        march = integrate_scattering_step(march, source, medium.extinction, dt);
     }
-    return ScatteringSegment(radiance * lut_atmosphere.sun_irradiance, throughput);
+    return ScatteringSegment(march.radiance * lut_atmosphere.sun_irradiance, march.transmittance);
 }
 
 // The per-pixel path without the sky-view and aerial-perspective tables: the segment

@@ -15,8 +15,8 @@ use crate::phase::{cornette_shanks_phase, rayleigh_phase};
 
 use super::parameterization::bilinear_footprint;
 use super::raymarch::{
-    LutBindings, medium_at_altitude, radius_along_ray, ray_segment_in_atmosphere,
-    scattering_source, scattering_step_fraction,
+    LutBindings, empty_march, integrate_scattering_step, medium_at_altitude, point_along_ray,
+    ray_segment_in_atmosphere, scattering_source,
 };
 use super::{LutSettingsUniform, blend_footprint};
 
@@ -76,8 +76,7 @@ pub fn aerial_perspective_column(
     let depth = s.aerial_perspective_depth;
     let steps = s.aerial_perspective_steps_per_slice;
     let step_length = s.aerial_perspective_range / (depth * steps) as f32;
-    let mut radiance = [0.0f32; 3];
-    let mut throughput = [1.0f32; 3];
+    let mut march = empty_march();
     let mut out = Vec::with_capacity(2 * depth as usize);
     for slice in 0..depth {
         for step in 0..steps {
@@ -86,10 +85,7 @@ pub fn aerial_perspective_column(
             let hi = (a + step_length).min(segment[1]);
             if hi > lo {
                 let dt = hi - lo;
-                let t = lo + 0.5 * dt;
-                let r_t = radius_along_ray(r, mu, t);
-                let mu_t = ((r * mu + t) / r_t).clamp(-1.0, 1.0);
-                let mu_s_t = ((r * mu_s + t * nu) / r_t).clamp(-1.0, 1.0);
+                let [r_t, mu_t, mu_s_t] = point_along_ray(r, mu, mu_s, nu, lo + 0.5 * dt);
                 let medium = medium_at_altitude(atmosphere, r_t - atmosphere.planet_radius);
                 let source = scattering_source(
                     bindings,
@@ -101,13 +97,10 @@ pub fn aerial_perspective_column(
                     rayleigh_phase_value,
                     mie_phase_value,
                 );
-                for c in 0..3 {
-                    let weight = scattering_step_fraction(medium.extinction[c], dt);
-                    radiance[c] += throughput[c] * source[c] * weight;
-                    throughput[c] *= (-medium.extinction[c] * dt).exp();
-                }
+                march = integrate_scattering_step(march, source, medium.extinction, dt);
             }
         }
+        let [radiance, throughput] = [march.radiance, march.transmittance];
         out.push([
             radiance[0] * atmosphere.sun_irradiance[0],
             radiance[1] * atmosphere.sun_irradiance[1],

@@ -50,8 +50,8 @@ use super::parameterization::{
     bilinear_footprint, multiple_scattering_lut_r_mu_s, multiple_scattering_lut_uv,
 };
 use super::raymarch::{
-    LutBindings, MediumSample, medium_at_altitude, radius_along_ray, ray_segment_in_atmosphere,
-    scattering_step_fraction, sun_transmittance,
+    LutBindings, MediumSample, empty_march, integrate_scattering_step, medium_at_altitude,
+    point_along_ray, radius_along_ray, ray_segment_in_atmosphere, sun_transmittance,
 };
 use super::{Lut2d, blend_footprint, fill_parallel};
 use crate::phase::{cornette_shanks_legendre_moments, cornette_shanks_phase, rayleigh_phase};
@@ -180,13 +180,10 @@ pub fn multiple_scattering_order_texel(
             // Sunlight scattered at p into −ω turns by the angle whose cosine is ω·s = ν.
             let rayleigh_phase_value = rayleigh_phase(nu);
             let mie_phase_value = cornette_shanks_phase(nu, atmosphere.mie_g);
-            let mut radiance = [0.0f32; 3];
-            let mut throughput = [1.0f32; 3];
+            let mut march = empty_march();
             for step in 0..n {
                 let t = segment[0] + (step as f32 + 0.5) * dt;
-                let r_t = radius_along_ray(r, mu, t);
-                let mu_t = ((r * mu + t) / r_t).clamp(-1.0, 1.0);
-                let mu_s_t = ((r * mu_s + t * nu) / r_t).clamp(-1.0, 1.0);
+                let [r_t, mu_t, mu_s_t] = point_along_ray(r, mu, mu_s, nu, t);
                 let medium = medium_at_altitude(atmosphere, r_t - atmosphere.planet_radius);
                 let source = if next_order {
                     multiple_scattering_source(bindings, &medium, r_t, mu_t, mu_s_t, nu)
@@ -198,12 +195,9 @@ pub fn multiple_scattering_order_texel(
                             * sun[c]
                     })
                 };
-                for c in 0..3 {
-                    let weight = scattering_step_fraction(medium.extinction[c], dt);
-                    radiance[c] += throughput[c] * source[c] * weight;
-                    throughput[c] *= (-medium.extinction[c] * dt).exp();
-                }
+                march = integrate_scattering_step(march, source, medium.extinction, dt);
             }
+            let (mut radiance, throughput) = (march.radiance, march.transmittance);
             if segment[2] > 0.5 {
                 // A Lambertian ground reflects ρ/π of its irradiance: the sun's at the
                 // hit point (F₁), or the previous order's field's (F_{k+1}).

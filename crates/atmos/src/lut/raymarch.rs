@@ -10,7 +10,6 @@ use crate::atmosphere::{exponential_density, tent_density};
 use crate::geometry::ray_sphere_intersect;
 use crate::phase::{cornette_shanks_phase, rayleigh_phase};
 use crate::real::Real;
-use crate::transmittance::one_minus_exp_neg;
 
 use super::multiple_scattering_lut::multiple_scattering_source;
 use super::transmittance_lut::{lookup_transmittance, transmittance_to_boundary};
@@ -84,9 +83,9 @@ pub fn sun_transmittance(bindings: &LutBindings<'_>, r: f32, mu_s: f32) -> [f32;
 
 /// ∫₀^dt e^{−σ s} ds = (1 − e^{−σ dt})/σ, and dt where σ = 0: the weight of a
 /// constant source over one step (Hillaire 2020 §5.6.3's energy-conserving step).
-pub fn scattering_step_fraction(extinction: f32, dt: f32) -> f32 {
-    if extinction > 0.0 {
-        one_minus_exp_neg(extinction * dt) / extinction
+pub fn scattering_step_fraction<F: Real>(extinction: F, dt: F) -> F {
+    if extinction > F::zero() {
+        F::one_minus_exp_neg(extinction * dt) / extinction
     } else {
         dt
     }
@@ -114,13 +113,57 @@ pub fn ray_segment_in_atmosphere<F: Real>(r: F, mu: F, planet_radius: F, top_rad
     [t_start, top[1], zero]
 }
 
-/// Radiance and transmittance of a segment.
+/// Radiance and transmittance of a segment (or of a march so far), in `f32` (the twin)
+/// or `f64` (the reference of the generic helpers).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct ScatteringSegment {
+pub struct ScatteringSegment<F = f32> {
     /// In-scattered radiance (unit of `sun_irradiance` per sr).
-    pub radiance: [f32; 3],
+    pub radiance: [F; 3],
     /// Transmittance of the segment.
-    pub transmittance: [f32; 3],
+    pub transmittance: [F; 3],
+}
+
+/// The point `t` metres along the ray (`r`, `mu`) whose sun zenith cosine is `mu_s` and
+/// view–sun cosine `nu`: `[r_t, mu_t, mu_s_t]` there (generic: the f64 instantiation is
+/// the reference).
+pub fn point_along_ray<F: Real>(r: F, mu: F, mu_s: F, nu: F, t: F) -> [F; 3] {
+    let one = F::one();
+    let r_t = radius_along_ray(r, mu, t);
+    [
+        r_t,
+        ((r * mu + t) / r_t).clamp(-one, one),
+        ((r * mu_s + t * nu) / r_t).clamp(-one, one),
+    ]
+}
+
+/// One step of every march of this rung (Hillaire 2020 §5.6.3's energy-conserving
+/// step): `source` (per metre) integrated over `dt` against the step's `extinction`,
+/// seen through the march's transmittance so far, is added to its radiance; the
+/// transmittance is multiplied by the step's (generic: the f64 instantiation is the
+/// reference).
+pub fn integrate_scattering_step<F: Real>(
+    march: ScatteringSegment<F>,
+    source: [F; 3],
+    extinction: [F; 3],
+    dt: F,
+) -> ScatteringSegment<F> {
+    let weight = extinction.map(|e| scattering_step_fraction(e, dt));
+    ScatteringSegment {
+        radiance: std::array::from_fn(|c| {
+            march.radiance[c] + march.transmittance[c] * source[c] * weight[c]
+        }),
+        transmittance: std::array::from_fn(|c| {
+            march.transmittance[c] * (-extinction[c] * dt).exp()
+        }),
+    }
+}
+
+/// The start of every march: no radiance, full transmittance.
+pub fn empty_march<F: Real>() -> ScatteringSegment<F> {
+    ScatteringSegment {
+        radiance: [F::zero(); 3],
+        transmittance: [F::one(); 3],
+    }
 }
 
 /// In-scatter source (per metre, per unit sun irradiance) at a point of radius `r`
@@ -169,8 +212,7 @@ pub fn raymarch_scattering(
     let mie_phase_value = cornette_shanks_phase(nu, atmosphere.mie_g);
     let length = (t_end - t_start).max(0.0);
     let n = sample_count as f32;
-    let mut radiance = [0.0f32; 3];
-    let mut throughput = [1.0f32; 3];
+    let mut march = empty_march();
     let mut t_previous = t_start;
     for i in 0..sample_count {
         let s = (i as f32 + 1.0) / n;
@@ -178,9 +220,7 @@ pub fn raymarch_scattering(
         let dt = t_next - t_previous;
         let t = t_previous + 0.5 * dt;
         t_previous = t_next;
-        let r_t = radius_along_ray(r, mu, t);
-        let mu_t = ((r * mu + t) / r_t).clamp(-1.0, 1.0);
-        let mu_s_t = ((r * mu_s + t * nu) / r_t).clamp(-1.0, 1.0);
+        let [r_t, mu_t, mu_s_t] = point_along_ray(r, mu, mu_s, nu, t);
         let medium = medium_at_altitude(atmosphere, r_t - atmosphere.planet_radius);
         let source = scattering_source(
             bindings,
@@ -192,15 +232,11 @@ pub fn raymarch_scattering(
             rayleigh_phase_value,
             mie_phase_value,
         );
-        for c in 0..3 {
-            let weight = scattering_step_fraction(medium.extinction[c], dt);
-            radiance[c] += throughput[c] * source[c] * weight;
-            throughput[c] *= (-medium.extinction[c] * dt).exp();
-        }
+        march = integrate_scattering_step(march, source, medium.extinction, dt);
     }
     ScatteringSegment {
-        radiance: std::array::from_fn(|c| radiance[c] * atmosphere.sun_irradiance[c]),
-        transmittance: throughput,
+        radiance: std::array::from_fn(|c| march.radiance[c] * atmosphere.sun_irradiance[c]),
+        transmittance: march.transmittance,
     }
 }
 

@@ -15,5 +15,8 @@ pub use super::parameterization::{
     multiple_scattering_lut_uv, sky_view_lut_direction, sky_view_lut_uv, texel_uv_to_unit_range,
     transmittance_lut_r_mu, transmittance_lut_uv, unit_range_to_texel_uv, view_sun_cos_azimuth,
 };
-pub use super::raymarch::{radius_along_ray, ray_segment_in_atmosphere};
+pub use super::raymarch::{
+    integrate_scattering_step, point_along_ray, radius_along_ray, ray_segment_in_atmosphere,
+    scattering_step_fraction,
+};
 pub use super::transmittance_lut::exponential_step_integral;

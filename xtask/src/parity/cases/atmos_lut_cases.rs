@@ -268,6 +268,137 @@ fn radius_bound(x: &[f64]) -> Vec<f64> {
     vec![through_sqrt + 10.0 * U * r_t]
 }
 
+/// (r, μ, t) of [`radius_grid`] with a sun cosine and a view–sun cosine from a
+/// low-discrepancy walk over [−1, 1], plus the exact ends.
+fn point_along_ray_grid() -> Vec<Vec<f64>> {
+    radius_grid()
+        .into_iter()
+        .enumerate()
+        .map(|(i, rmt)| {
+            let walk = |a: f64| match i % 97 {
+                0 => 1.0,
+                1 => -1.0,
+                2 => 0.0,
+                _ => 2.0 * ((i as f64 * a).fract()) - 1.0,
+            };
+            vec![
+                rmt[0],
+                rmt[1],
+                walk(0.618_033_988_7),
+                walk(0.414_213_562_4),
+                rmt[2],
+            ]
+        })
+        .collect()
+}
+
+/// r_t: [`radius_bound`]. Each cosine `(r·c + t·d)/r_t`: the numerator's two products
+/// and sum carry 2u of its terms' magnitudes absolutely (it cancels where the ray
+/// passes its lowest point), r_t's relative error and the division's 2.5 ULP scale
+/// the quotient; the clamp to [−1, 1] never widens an error.
+fn point_along_ray_bound(x: &[f64]) -> Vec<f64> {
+    let (r, mu, mu_s, nu, t) = (x[0], x[1], x[2], x[3], x[4]);
+    let r_bound = radius_bound(&[r, mu, t])[0];
+    let [r_t, mu_t, mu_s_t] = lut64::point_along_ray(r, mu, mu_s, nu, t);
+    let cosine_bound = |numerator_terms: f64, quotient: f64| {
+        if r_t <= 0.0 {
+            return 2.0;
+        }
+        (2.0 * U * numerator_terms / r_t + quotient.abs() * (r_bound / r_t + 3.0 * U)).min(2.0)
+    };
+    vec![
+        r_bound,
+        cosine_bound((r * mu).abs() + t.abs(), mu_t),
+        cosine_bound((r * mu_s).abs() + (t * nu).abs(), mu_s_t),
+    ]
+}
+
+/// Marches so far, sources, extinctions and steps spanning the rung's bakes: thin air
+/// (1e-7 /m) to thick haze (1e-2 /m), steps of 0.1 m to 100 km, extinction 0 (the
+/// σ = 0 branch) and optical depths across the series/exp switch at 0.5.
+fn integrate_step_grid() -> Vec<Vec<f64>> {
+    let mut grid = Vec::new();
+    let extinctions: Vec<f64> = std::iter::once(0.0)
+        .chain(logspace(1e-7, 1e-2, 21))
+        .collect();
+    let steps: Vec<f64> = logspace(0.1, 1e5, 25)
+        .chain([5.0e4 / 1e-1, 0.5 / 1e-3])
+        .collect();
+    let mut i = 0usize;
+    for &sigma in &extinctions {
+        for &dt in &steps {
+            for k in 0..18 {
+                i += 1;
+                let f = |a: f64| (i as f64 * a + k as f64 * 0.137).fract();
+                let radiance = [1e-3 * f(0.31), 2e-3 * f(0.47), 4e-3 * f(0.59)];
+                let transmittance = [
+                    f(0.71),
+                    1.0 - 0.5 * f(0.23),
+                    if k == 0 { 1.0 } else { f(0.83) },
+                ];
+                let source = [1e-6 + 1e-4 * f(0.13), 1e-5 * f(0.29), 3e-4 * f(0.37)];
+                let extinction = [sigma, 2.3 * sigma, 0.5 * sigma];
+                let mut row = Vec::with_capacity(13);
+                row.extend(radiance);
+                row.extend(transmittance);
+                row.extend(source);
+                row.extend(extinction);
+                row.push(dt);
+                grid.push(row);
+            }
+        }
+    }
+    grid
+}
+
+fn segment64(
+    x: &[f64],
+) -> (
+    atmos::lut::raymarch::ScatteringSegment<f64>,
+    [f64; 3],
+    [f64; 3],
+    f64,
+) {
+    (
+        atmos::lut::raymarch::ScatteringSegment {
+            radiance: [x[0], x[1], x[2]],
+            transmittance: [x[3], x[4], x[5]],
+        },
+        [x[6], x[7], x[8]],
+        [x[9], x[10], x[11]],
+        x[12],
+    )
+}
+
+/// Per channel: the weight (1 − e^{−σdt})/σ carries σ·dt's rounding (u, through the
+/// slope ≤ 1 of the series), one_minus_exp_neg's 4 ULP or exp bound and the division's
+/// 2.5 ULP; T·s·w two roundings and the sum one (all terms ≥ 0, no cancellation). The
+/// new transmittance: σ·dt rounds by u·σdt in the exponent, WGSL's exp 3 + 2|x| ULP,
+/// one product.
+fn integrate_step_bound(x: &[f64]) -> Vec<f64> {
+    let (march, source, extinction, dt) = segment64(x);
+    let mut bound = vec![0.0; 6];
+    for c in 0..3 {
+        let optical_depth = extinction[c] * dt;
+        let weight = lut64::scattering_step_fraction(extinction[c], dt);
+        let weight_relative = if extinction[c] > 0.0 {
+            U + 8.0 * U
+                + one_minus_exp_bound(optical_depth)
+                    / (1.0 - (-optical_depth).exp()).max(f64::MIN_POSITIVE)
+                + 2.5 * 2.0 * U
+        } else {
+            0.0
+        };
+        let added = march.transmittance[c] * source[c] * weight;
+        bound[c] = U * march.radiance[c]
+            + added * (weight_relative + 3.0 * U)
+            + U * (march.radiance[c] + added);
+        let transmittance = march.transmittance[c] * (-optical_depth).exp();
+        bound[3 + c] = transmittance * (U * optical_depth + exp_relative_error(optical_depth) + U);
+    }
+    bound
+}
+
 fn step_integral_grid() -> Vec<Vec<f64>> {
     let mut grid = Vec::new();
     for x0 in linspace(0.0, 100.0, 51).chain([1e-3, 0.01, 0.1]) {
@@ -520,6 +651,64 @@ pub fn cases() -> Vec<Case> {
                 bound: Some(radius_bound),
                 why: "r² + t(2rμ + t) cancels towards the centre: 4u of its terms through \
                       the square root's slope 1/(2 r_t); plus sqrt (4.5 ULP)",
+            },
+        },
+        Case {
+            name: "atmos::point_along_ray",
+            imports: &["atmos::lut_parameterization"],
+            arity: (5, 3),
+            wgsl: "let p = point_along_ray(x0, x1, x2, x3, x4); y0 = p.x; y1 = p.y; y2 = p.z;",
+            grid: point_along_ray_grid,
+            cpu: |x| atmos::lut::raymarch::point_along_ray(x[0], x[1], x[2], x[3], x[4]).to_vec(),
+            reference: |x| lut64::point_along_ray(x[0], x[1], x[2], x[3], x[4]).to_vec(),
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 4.0,
+                bound: Some(point_along_ray_bound),
+                why: "r_t as atmos::radius_along_ray; each cosine (r·c + t·d)/r_t: 2u of the \
+                      numerator's terms absolutely (it cancels at the ray's lowest point), \
+                      r_t's relative error and the division's 2.5 ULP on the quotient",
+            },
+        },
+        Case {
+            name: "atmos::integrate_scattering_step",
+            imports: &["atmos::lut_parameterization"],
+            arity: (13, 6),
+            wgsl: "let m = integrate_scattering_step(ScatteringSegment(vec3<f32>(x0, x1, x2), \
+                   vec3<f32>(x3, x4, x5)), vec3<f32>(x6, x7, x8), vec3<f32>(x9, x10, x11), x12); \
+                   y0 = m.radiance.x; y1 = m.radiance.y; y2 = m.radiance.z; \
+                   y3 = m.transmittance.x; y4 = m.transmittance.y; y5 = m.transmittance.z;",
+            grid: integrate_step_grid,
+            cpu: |x| {
+                let march = atmos::lut::raymarch::ScatteringSegment {
+                    radiance: [x[0], x[1], x[2]],
+                    transmittance: [x[3], x[4], x[5]],
+                };
+                let m = atmos::lut::raymarch::integrate_scattering_step(
+                    march,
+                    [x[6], x[7], x[8]],
+                    [x[9], x[10], x[11]],
+                    x[12],
+                );
+                m.radiance.iter().chain(&m.transmittance).copied().collect()
+            },
+            reference: |x| {
+                let (march, source, extinction, dt) = segment64(x);
+                let m = lut64::integrate_scattering_step(march, source, extinction, dt);
+                m.radiance.iter().chain(&m.transmittance).copied().collect()
+            },
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: f32::MIN_POSITIVE as f64,
+                rel: 0.0,
+                ulp: 2.0,
+                bound: Some(integrate_step_bound),
+                why: "weight (1 − e^{−σdt})/σ: σdt's rounding, one_minus_exp_neg's series \
+                      (4 ULP) or exp bound, the division (2.5 ULP); T·s·w and the sum of \
+                      non-negative terms 3 roundings; the transmittance: u·σdt in the \
+                      exponent, WGSL exp's 3 + 2|x| ULP and a product; flushed subnormals",
             },
         },
         Case {
