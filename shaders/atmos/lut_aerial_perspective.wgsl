@@ -1,10 +1,12 @@
 // Bake of the aerial-perspective volume for the frame camera (per frame): one
 // invocation per froxel column, marched front to back, steps_per_slice uniform steps
-// per depth slice, clipped to the atmosphere. Layout: 2 vec4 per froxel (radiance,
-// transmittance), froxel k = x + W·(y + H·z). Twin: atmos::lut::aerial_perspective.
+// per depth slice, clipped to the atmosphere, writing each slice's radiance and
+// transmittance to two 3-D textures (froxel x, y, depth slice). Twin:
+// atmos::lut::aerial_perspective.
 #import atmos::lut_sampling
 
-@group(2) @binding(0) var<storage, read_write> aerial_perspective_out: array<vec4<f32>>;
+@group(2) @binding(0) var aerial_perspective_radiance_out: texture_storage_3d<rgba32float, write>;
+@group(2) @binding(1) var aerial_perspective_transmittance_out: texture_storage_3d<rgba32float, write>;
 
 @compute @workgroup_size(8, 8)
 fn bake_aerial_perspective(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -40,8 +42,8 @@ fn bake_aerial_perspective(@builtin(global_invocation_id) id: vec3<u32>) {
                 march = integrate_scattering_step(march, source, medium.extinction, dt);
             }
         }
-        let k = id.x + w * (id.y + h * slice);
-        aerial_perspective_out[2u * k] = vec4<f32>(march.radiance * lut_atmosphere.sun_irradiance, 1.0);
-        aerial_perspective_out[2u * k + 1u] = vec4<f32>(march.transmittance, 1.0);
+        let froxel = vec3<u32>(id.x, id.y, slice);
+        textureStore(aerial_perspective_radiance_out, froxel, vec4<f32>(march.radiance * lut_atmosphere.sun_irradiance, 1.0));
+        textureStore(aerial_perspective_transmittance_out, froxel, vec4<f32>(march.transmittance, 1.0));
     }
 }

@@ -5,14 +5,17 @@
 // has the theory). One pass per order: `bake_multiple_scattering_lut` writes F₁'s
 // moments (true phases of the sun's scattering, the sun's ground bounce) to both
 // outputs; `bake_multiple_scattering_next_order` reads F_k's (group 1 binding 1),
-// writes F_{k+1}'s and adds them to the sum. Planar layout: layer m of texel (x, y)
-// at x + w·(y + h·m). Twin: atmos::lut::multiple_scattering_lut.
+// writes F_{k+1}'s and adds them to the sum (a storage buffer, planar: layer m of
+// texel (x, y) at x + w·(y + h·m)); `finish_multiple_scattering_lut` copies the sum
+// into the LUT texture the other passes read. Twin: atmos::lut::multiple_scattering_lut.
 #import atmos::lut_sampling
 
-// This pass's order.
-@group(2) @binding(0) var<storage, read_write> multiple_scattering_out: array<vec4<f32>>;
-// Σ of the orders so far: the LUT the other passes read.
+// This pass's order (read as `multiple_scattering_lut` by the next order's pass).
+@group(2) @binding(0) var multiple_scattering_out: texture_storage_2d_array<rgba32float, write>;
+// Σ of the orders so far.
 @group(2) @binding(1) var<storage, read_write> multiple_scattering_sum: array<vec4<f32>>;
+// The LUT: the sum, once every order is in.
+@group(2) @binding(2) var multiple_scattering_lut_out: texture_storage_2d_array<rgba32float, write>;
 
 // The (r, μ_s) of texel (x, y) of the multiple-scattering LUT.
 fn texel_r_mu_s(x: u32, y: u32) -> vec2<f32> {
@@ -147,7 +150,7 @@ fn bake_multiple_scattering_lut(@builtin(global_invocation_id) id: vec3<u32>) {
     var layers = layers_of(multiple_scattering_order_texel(id.x, id.y, false));
     for (var m = 0u; m < 6u; m++) {
         let index = id.x + w * (id.y + h * m);
-        multiple_scattering_out[index] = vec4<f32>(layers[m], 1.0);
+        textureStore(multiple_scattering_out, id.xy, m, vec4<f32>(layers[m], 1.0));
         multiple_scattering_sum[index] = vec4<f32>(layers[m], 1.0);
     }
 }
@@ -162,8 +165,20 @@ fn bake_multiple_scattering_next_order(@builtin(global_invocation_id) id: vec3<u
     var layers = layers_of(multiple_scattering_order_texel(id.x, id.y, true));
     for (var m = 0u; m < 6u; m++) {
         let index = id.x + w * (id.y + h * m);
-        multiple_scattering_out[index] = vec4<f32>(layers[m], 1.0);
+        textureStore(multiple_scattering_out, id.xy, m, vec4<f32>(layers[m], 1.0));
         let total = multiple_scattering_sum[index];
         multiple_scattering_sum[index] = vec4<f32>(total.xyz + layers[m], 1.0);
+    }
+}
+
+@compute @workgroup_size(8, 8)
+fn finish_multiple_scattering_lut(@builtin(global_invocation_id) id: vec3<u32>) {
+    let w = lut_settings.multiple_scattering_width;
+    let h = lut_settings.multiple_scattering_height;
+    if id.x >= w || id.y >= h {
+        return;
+    }
+    for (var m = 0u; m < 6u; m++) {
+        textureStore(multiple_scattering_lut_out, id.xy, m, multiple_scattering_sum[id.x + w * (id.y + h * m)]);
     }
 }

@@ -1,52 +1,10 @@
-// The per-pixel pass of the precomputed rung: lookups into the sky-view LUT or the
-// aerial-perspective volume, a LUT raymarch where neither applies (viewer above the
-// atmosphere; a finite segment beyond the volume's range). Writes the FrameOutput
-// buffers (index x + width·y). Twin: atmos::lut::precomputed_sky::shade_pixel.
-#import atmos::lut_sampling
+// The per-pixel pass of the precomputed rung (atmos::lut_shading's shade_pixel for
+// every pixel of the frame camera), writing the FrameOutput textures. Twin:
+// atmos::lut::precomputed_sky::shade_pixel.
+#import atmos::lut_shading
 
-@group(2) @binding(0) var<storage, read_write> frame_radiance: array<vec4<f32>>;
-@group(2) @binding(1) var<storage, read_write> frame_transmittance: array<vec4<f32>>;
-
-// Below the top, within this band (m), the sky-view lookup is blended into the LUT march
-// that takes over above the top, so radiance is continuous as a camera crosses the top.
-// Twin: atmos::lut::precomputed_sky::TOP_BLEND_BAND.
-const TOP_BLEND_BAND: f32 = 1000.0;
-
-// The whole view ray seen from radius r: sky-view lookup inside, march above, blended.
-// Twin: atmos::lut::precomputed_sky::unlimited_view_segment.
-fn unlimited_view_segment(r: f32, mu: f32, mu_s: f32, nu: f32) -> ScatteringSegment {
-    if r > lut_atmosphere.top_radius {
-        return march_view_segment(r, mu, mu_s, nu, UNLIMITED_DISTANCE, lut_settings.pixel_samples);
-    }
-    let lookup = lookup_sky_view(r, mu, view_sun_cos_azimuth(mu, mu_s, nu));
-    let blend = (r - (lut_atmosphere.top_radius - TOP_BLEND_BAND)) / TOP_BLEND_BAND;
-    if blend <= 0.0 {
-        return lookup;
-    }
-    let marched = march_view_segment(r, mu, mu_s, nu, UNLIMITED_DISTANCE, lut_settings.pixel_samples);
-    return ScatteringSegment(
-        lookup.radiance + (marched.radiance - lookup.radiance) * blend,
-        lookup.transmittance + (marched.transmittance - lookup.transmittance) * blend,
-    );
-}
-
-fn shade_pixel(pixel: vec2<u32>) -> ScatteringSegment {
-    let camera = frame_camera;
-    let direction = frame_view_direction(pixel, camera);
-    let cosines = view_cosines(camera, direction, lut_atmosphere.planet_radius);
-    let r = cosines.x;
-    let mu = cosines.y;
-    let mu_s = cosines.z;
-    let nu = cosines.w;
-    if camera.max_distance >= UNLIMITED_DISTANCE {
-        return unlimited_view_segment(r, mu, mu_s, nu);
-    }
-    if camera.max_distance <= lut_settings.aerial_perspective_range {
-        let uv = vec2<f32>((f32(pixel.x) + 0.5) / f32(camera.width), (f32(pixel.y) + 0.5) / f32(camera.height));
-        return lookup_aerial_perspective(uv, camera.max_distance);
-    }
-    return march_view_segment(r, mu, mu_s, nu, camera.max_distance, lut_settings.pixel_samples);
-}
+@group(2) @binding(0) var frame_radiance: texture_storage_2d<rgba32float, write>;
+@group(2) @binding(1) var frame_transmittance: texture_storage_2d<rgba32float, write>;
 
 @compute @workgroup_size(8, 8)
 fn render_precomputed(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -54,7 +12,6 @@ fn render_precomputed(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let result = shade_pixel(id.xy);
-    let index = id.x + frame_camera.width * id.y;
-    frame_radiance[index] = vec4<f32>(result.radiance, 1.0);
-    frame_transmittance[index] = vec4<f32>(result.transmittance, 1.0);
+    textureStore(frame_radiance, id.xy, vec4<f32>(result.radiance, 1.0));
+    textureStore(frame_transmittance, id.xy, vec4<f32>(result.transmittance, 1.0));
 }

@@ -1,50 +1,20 @@
-// Bindings, LUT lookups and the raymarch of the precomputed rung. Twin:
+// LUT lookups and the raymarch of the precomputed rung. Twin:
 // atmos::lut::{transmittance_lut, multiple_scattering_lut, sky_view_lut,
 // aerial_perspective, raymarch} (Rust f32): the same functions by name, arguments and
 // units, except that the Rust twins take the bindings (`LutBindings`, a LUT) as
 // explicit first arguments where WGSL reads them from module scope.
 //
-// Every pass imports this module and uses one pipeline layout:
-//   group 0: atmosphere, settings, frame camera (uniforms)
-//   group 1: transmittance, multiple scattering, sky view, aerial perspective
-//            (read-only storage, `array<vec4<f32>>`, row-major)
-//   group 2: the pass's outputs (declared by each pass)
-// LUTs are filtered by hand from storage buffers: portable to adapters without
-// float32 filtering (llvmpipe GL) and bit-for-bit the layout the CPU twin reads.
+// The bindings are declared by `atmos::lut_bindings` (uniforms in group 0, tables in
+// group 1 for skyscape's own passes; `atmos::gpu::composer_with_lut_groups` moves them
+// to the groups a user's pipeline has free). The tables are textures of rgba32float
+// texels read with textureLoad and filtered by hand: exact (the CPU twin's arithmetic),
+// and portable to adapters without float32 filtering. Texel (x, y) of layer m is
+// entry x + w·(y + h·m) of the CPU twin's table.
 #import atmos::atmosphere
 #import atmos::phase
 #import atmos::lut_parameterization
 #import atmos::lut_multiple_scattering_moments
-
-// Sizes and sample counts (Rust: LutSettingsUniform).
-struct LutSettings {
-    transmittance_width: u32,
-    transmittance_height: u32,
-    transmittance_samples: u32,
-    multiple_scattering_width: u32,
-    multiple_scattering_height: u32,
-    multiple_scattering_samples: u32,
-    multiple_scattering_direction_sqrt: u32,
-    sky_view_width: u32,
-    sky_view_height: u32,
-    sky_view_samples: u32,
-    // 1: the sky-view LUT stores each texel's transmittance; 0: radiance only.
-    sky_view_transmittance: u32,
-    aerial_perspective_width: u32,
-    aerial_perspective_height: u32,
-    aerial_perspective_depth: u32,
-    aerial_perspective_steps_per_slice: u32,
-    aerial_perspective_range: f32,
-    pixel_samples: u32,
-}
-
-@group(0) @binding(0) var<uniform> lut_atmosphere: AtmosphereParameters;
-@group(0) @binding(1) var<uniform> lut_settings: LutSettings;
-@group(0) @binding(2) var<uniform> frame_camera: FrameCamera;
-@group(1) @binding(0) var<storage, read> transmittance_lut: array<vec4<f32>>;
-@group(1) @binding(1) var<storage, read> multiple_scattering_lut: array<vec4<f32>>;
-@group(1) @binding(2) var<storage, read> sky_view_lut: array<vec4<f32>>;
-@group(1) @binding(3) var<storage, read> aerial_perspective_volume: array<vec4<f32>>;
+#import atmos::lut_bindings
 
 // Segment lengths at or above this mean "to the ground or space" (Rust:
 // frame::UNLIMITED_DISTANCE).
@@ -76,10 +46,10 @@ fn lookup_transmittance(r: f32, mu: f32) -> vec3<f32> {
     let uv = transmittance_lut_uv(r, mu, lut_atmosphere.planet_radius, lut_atmosphere.top_radius, w, h);
     let f = bilinear_footprint(uv, w, h, 0u, h - 1u);
     return bilinear_blend(
-        transmittance_lut[f.x0 + w * f.y0].xyz,
-        transmittance_lut[f.x1 + w * f.y0].xyz,
-        transmittance_lut[f.x0 + w * f.y1].xyz,
-        transmittance_lut[f.x1 + w * f.y1].xyz,
+        textureLoad(transmittance_lut, vec2<u32>(f.x0, f.y0), 0).xyz,
+        textureLoad(transmittance_lut, vec2<u32>(f.x1, f.y0), 0).xyz,
+        textureLoad(transmittance_lut, vec2<u32>(f.x0, f.y1), 0).xyz,
+        textureLoad(transmittance_lut, vec2<u32>(f.x1, f.y1), 0).xyz,
         f.fx,
         f.fy,
     );
@@ -106,16 +76,13 @@ fn sun_transmittance(r: f32, mu_s: f32) -> vec3<f32> {
     return lookup_transmittance(r, mu_s) * sun_visibility(r, mu_s, lut_atmosphere.planet_radius);
 }
 
-// One layer of the multiple-scattering LUT (planar: layer m of texel (x, y) at
-// x + w·(y + h·m)), bilinear over a footprint.
+// One layer of the multiple-scattering LUT, bilinear over a footprint.
 fn multiple_scattering_layer(f: BilinearFootprint, layer: u32) -> vec3<f32> {
-    let w = lut_settings.multiple_scattering_width;
-    let base = w * lut_settings.multiple_scattering_height * layer;
     return bilinear_blend(
-        multiple_scattering_lut[base + f.x0 + w * f.y0].xyz,
-        multiple_scattering_lut[base + f.x1 + w * f.y0].xyz,
-        multiple_scattering_lut[base + f.x0 + w * f.y1].xyz,
-        multiple_scattering_lut[base + f.x1 + w * f.y1].xyz,
+        textureLoad(multiple_scattering_lut, vec2<u32>(f.x0, f.y0), layer, 0).xyz,
+        textureLoad(multiple_scattering_lut, vec2<u32>(f.x1, f.y0), layer, 0).xyz,
+        textureLoad(multiple_scattering_lut, vec2<u32>(f.x0, f.y1), layer, 0).xyz,
+        textureLoad(multiple_scattering_lut, vec2<u32>(f.x1, f.y1), layer, 0).xyz,
         f.fx,
         f.fy,
     );
@@ -148,10 +115,16 @@ fn multiple_scattering_source(medium: MediumSample, r: f32, mu: f32, mu_s: f32, 
     return medium.rayleigh_scattering * rayleigh + medium.mie_scattering * mie;
 }
 
-// Entries per sky-view texel: radiance at e·i, transmittance (when stored) at e·i + 1.
-// Twin: atmos::lut::LutSettingsUniform::sky_view_entries_per_texel.
-fn sky_view_entries_per_texel() -> u32 {
-    return 1u + lut_settings.sky_view_transmittance;
+// One layer of the sky-view LUT (0: radiance, 1: transmittance when stored), bilinear.
+fn sky_view_layer(f: BilinearFootprint, layer: u32) -> vec3<f32> {
+    return bilinear_blend(
+        textureLoad(sky_view_lut, vec2<u32>(f.x0, f.y0), layer, 0).xyz,
+        textureLoad(sky_view_lut, vec2<u32>(f.x1, f.y0), layer, 0).xyz,
+        textureLoad(sky_view_lut, vec2<u32>(f.x0, f.y1), layer, 0).xyz,
+        textureLoad(sky_view_lut, vec2<u32>(f.x1, f.y1), layer, 0).xyz,
+        f.fx,
+        f.fy,
+    );
 }
 
 // Radiance and transmittance of the whole view ray towards (mu, cos_azimuth) from
@@ -172,38 +145,35 @@ fn lookup_sky_view(r: f32, mu: f32, cos_azimuth: f32) -> ScatteringSegment {
     } else {
         f = bilinear_footprint(uv, w, h, half_height, h - 1u);
     }
-    let entries = sky_view_entries_per_texel();
-    let i00 = entries * (f.x0 + w * f.y0);
-    let i10 = entries * (f.x1 + w * f.y0);
-    let i01 = entries * (f.x0 + w * f.y1);
-    let i11 = entries * (f.x1 + w * f.y1);
-    let radiance = bilinear_blend(sky_view_lut[i00].xyz, sky_view_lut[i10].xyz, sky_view_lut[i01].xyz, sky_view_lut[i11].xyz, f.fx, f.fy);
+    let radiance = sky_view_layer(f, 0u);
     if lut_settings.sky_view_transmittance == 0u {
         return ScatteringSegment(radiance, transmittance_to_boundary(r, mu));
     }
-    let transmittance = bilinear_blend(
-        sky_view_lut[i00 + 1u].xyz,
-        sky_view_lut[i10 + 1u].xyz,
-        sky_view_lut[i01 + 1u].xyz,
-        sky_view_lut[i11 + 1u].xyz,
-        f.fx,
-        f.fy,
-    );
-    return ScatteringSegment(radiance, transmittance);
+    return ScatteringSegment(radiance, sky_view_layer(f, 1u));
 }
 
+// One slice of the aerial-perspective volume (which 0: radiance, 1: transmittance),
+// bilinear; the virtual slice z < 0 at the camera holds (0, 1).
 fn aerial_perspective_slice(f: BilinearFootprint, z: f32, which: u32) -> vec3<f32> {
     if z < 0.0 {
         return select(vec3<f32>(1.0), vec3<f32>(0.0), which == 0u);
     }
-    let w = lut_settings.aerial_perspective_width;
-    let h = lut_settings.aerial_perspective_height;
     let zi = u32(z);
+    if which == 0u {
+        return bilinear_blend(
+            textureLoad(aerial_perspective_radiance, vec3<u32>(f.x0, f.y0, zi), 0).xyz,
+            textureLoad(aerial_perspective_radiance, vec3<u32>(f.x1, f.y0, zi), 0).xyz,
+            textureLoad(aerial_perspective_radiance, vec3<u32>(f.x0, f.y1, zi), 0).xyz,
+            textureLoad(aerial_perspective_radiance, vec3<u32>(f.x1, f.y1, zi), 0).xyz,
+            f.fx,
+            f.fy,
+        );
+    }
     return bilinear_blend(
-        aerial_perspective_volume[2u * (f.x0 + w * (f.y0 + h * zi)) + which].xyz,
-        aerial_perspective_volume[2u * (f.x1 + w * (f.y0 + h * zi)) + which].xyz,
-        aerial_perspective_volume[2u * (f.x0 + w * (f.y1 + h * zi)) + which].xyz,
-        aerial_perspective_volume[2u * (f.x1 + w * (f.y1 + h * zi)) + which].xyz,
+        textureLoad(aerial_perspective_transmittance, vec3<u32>(f.x0, f.y0, zi), 0).xyz,
+        textureLoad(aerial_perspective_transmittance, vec3<u32>(f.x1, f.y0, zi), 0).xyz,
+        textureLoad(aerial_perspective_transmittance, vec3<u32>(f.x0, f.y1, zi), 0).xyz,
+        textureLoad(aerial_perspective_transmittance, vec3<u32>(f.x1, f.y1, zi), 0).xyz,
         f.fx,
         f.fy,
     );

@@ -1,10 +1,10 @@
 // Bake of the sky-view LUT for the frame camera's altitude and sun (per frame): one
-// invocation per texel, writing the radiance of its view ray (entry e·i) and, when the
-// table stores it, the ray's transmittance to the ground or space (entry e·i + 1),
-// i = x + width·y, e = sky_view_entries_per_texel(). Twin: atmos::lut::sky_view_lut.
+// invocation per texel, writing the radiance of its view ray (layer 0) and, when the
+// table stores it, the ray's transmittance to the ground or space (layer 1). Twin:
+// atmos::lut::sky_view_lut.
 #import atmos::lut_sampling
 
-@group(2) @binding(0) var<storage, read_write> sky_view_out: array<vec4<f32>>;
+@group(2) @binding(0) var sky_view_out: texture_storage_2d_array<rgba32float, write>;
 
 // Viewer radius clamped to the atmosphere and sun zenith cosine (Rust: sky_view_r_mu_s).
 fn sky_view_r_mu_s(camera: FrameCamera, planet_radius: f32, top_radius: f32) -> vec2<f32> {
@@ -43,9 +43,8 @@ fn bake_sky_view_lut(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let r_mu_s = sky_view_r_mu_s(frame_camera, lut_atmosphere.planet_radius, lut_atmosphere.top_radius);
     let texel = sky_view_texel(r_mu_s.x, r_mu_s.y, id.x, id.y);
-    let index = sky_view_entries_per_texel() * (id.x + w * id.y);
-    sky_view_out[index] = vec4<f32>(texel.radiance, 1.0);
+    textureStore(sky_view_out, id.xy, 0u, vec4<f32>(texel.radiance, 1.0));
     if lut_settings.sky_view_transmittance != 0u {
-        sky_view_out[index + 1u] = vec4<f32>(texel.transmittance, 1.0);
+        textureStore(sky_view_out, id.xy, 1u, vec4<f32>(texel.transmittance, 1.0));
     }
 }

@@ -2,7 +2,7 @@
 // atmos::lut::transmittance_lut::transmittance_texel.
 #import atmos::lut_sampling
 
-@group(2) @binding(0) var<storage, read_write> transmittance_out: array<vec4<f32>>;
+@group(2) @binding(0) var transmittance_out: texture_storage_2d<rgba32float, write>;
 
 // exp(−optical depth to the top): uniform steps, exponential profiles integrated
 // log-linearly, the ozone tent by the trapezoid rule.
@@ -40,5 +40,5 @@ fn bake_transmittance_lut(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= w || id.y >= lut_settings.transmittance_height {
         return;
     }
-    transmittance_out[id.x + w * id.y] = transmittance_texel(id.x, id.y);
+    textureStore(transmittance_out, id.xy, transmittance_texel(id.x, id.y));
 }

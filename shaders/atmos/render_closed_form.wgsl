@@ -1,6 +1,6 @@
 // Rung 1's frame renderer: the closed-form sky per pixel, or per vertex of a dome
 // (pass 1 evaluates the vertices, pass 2 interpolates them per pixel, as a rasteriser
-// interpolates a vertex shader's outputs). Writes FrameOutput (radiance, transmittance).
+// interpolates a vertex shader's outputs). Writes the FrameOutput textures (radiance, transmittance).
 // CPU twins: atmos::closed_form_sky::ClosedFormSky and atmos::dome::DomeInterpolated.
 
 #import atmos::frame
@@ -9,8 +9,8 @@
 
 @group(0) @binding(0) var<uniform> camera: FrameCamera;
 @group(0) @binding(1) var<uniform> params: ClosedFormSkyParameters;
-@group(0) @binding(2) var<storage, read_write> radiance_out: array<vec4<f32>>;
-@group(0) @binding(3) var<storage, read_write> transmittance_out: array<vec4<f32>>;
+@group(0) @binding(2) var radiance_out: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(3) var transmittance_out: texture_storage_2d<rgba32float, write>;
 // Dome vertices: radiance rgb + transmittance (green) is not enough for rgb, so two
 // vec4 per vertex: [2i] radiance, [2i + 1] transmittance.
 @group(0) @binding(4) var<storage, read_write> dome: array<vec4<f32>>;
@@ -68,9 +68,8 @@ fn render_closed_form_pixels(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     let result = shade(frame_view_direction(gid.xy, camera));
-    let index = gid.x + camera.width * gid.y;
-    radiance_out[index] = vec4<f32>(result[0], 1.0);
-    transmittance_out[index] = vec4<f32>(result[1], 1.0);
+    textureStore(radiance_out, gid.xy, vec4<f32>(result[0], 1.0));
+    textureStore(transmittance_out, gid.xy, vec4<f32>(result[1], 1.0));
 }
 
 @compute @workgroup_size(64)
@@ -116,7 +115,6 @@ fn interpolate_dome(@builtin(global_invocation_id) gid: vec3<u32>) {
     let a = i0 * stride + j0;
     let b = a + stride;
     let w = vec4<f32>((1.0 - fv) * (1.0 - fu), (1.0 - fv) * fu, fv * (1.0 - fu), fv * fu);
-    let index = gid.x + camera.width * gid.y;
-    radiance_out[index] = w.x * dome[2u * a] + w.y * dome[2u * (a + 1u)] + w.z * dome[2u * b] + w.w * dome[2u * (b + 1u)];
-    transmittance_out[index] = w.x * dome[2u * a + 1u] + w.y * dome[2u * (a + 1u) + 1u] + w.z * dome[2u * b + 1u] + w.w * dome[2u * (b + 1u) + 1u];
+    textureStore(radiance_out, gid.xy, w.x * dome[2u * a] + w.y * dome[2u * (a + 1u)] + w.z * dome[2u * b] + w.w * dome[2u * (b + 1u)]);
+    textureStore(transmittance_out, gid.xy, w.x * dome[2u * a + 1u] + w.y * dome[2u * (a + 1u) + 1u] + w.z * dome[2u * b + 1u] + w.w * dome[2u * (b + 1u) + 1u]);
 }

@@ -20,8 +20,8 @@ struct PresentParameters {
 
 @group(0) @binding(0) var<uniform> camera: FrameCamera;
 @group(0) @binding(1) var<uniform> present: PresentParameters;
-@group(0) @binding(2) var<storage, read> radiance_in: array<vec4<f32>>;
-@group(0) @binding(3) var<storage, read> transmittance_in: array<vec4<f32>>;
+@group(0) @binding(2) var radiance_in: texture_2d<f32>;
+@group(0) @binding(3) var transmittance_in: texture_2d<f32>;
 @group(0) @binding(4) var<storage, read_write> pixels: array<u32>;
 
 // Radiance reaching the pixel: the atmosphere's in-scatter, plus the sun disc through
@@ -43,7 +43,7 @@ fn present_main(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let index = gid.x + camera.width * gid.y;
     let view = frame_view_direction(gid.xy, camera);
-    let radiance = present_radiance(view, radiance_in[index].xyz, transmittance_in[index].xyz, camera, present);
+    let radiance = present_radiance(view, textureLoad(radiance_in, gid.xy, 0).xyz, textureLoad(transmittance_in, gid.xy, 0).xyz, camera, present);
     let display = tonemap_exposure(radiance, present.exposure);
     pixels[index] = pack_rgba8(quantize_srgb8(display, gid.xy, present.dither_seed));
 }

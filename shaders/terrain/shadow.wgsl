@@ -6,7 +6,7 @@
 #import common::constants
 
 // Angular radius of the sun's disc (0.2666 degrees).
-const SUN_ANGULAR_RADIUS: f32 = 0.004654;
+const SUN_ANGULAR_RADIUS: f32 = 0.004650467;
 
 // Horizon angle from a unorm alpha value (8- or 16-bit texture): alpha * PI - PI/2.
 fn decode_horizon_angle(alpha: f32) -> f32 {

@@ -33,10 +33,12 @@ fn present_on_gpu(
 ) -> Vec<u32> {
     let frame = FrameOutput::new(&gpu.device, WIDTH, HEIGHT).expect("frame fits");
     let mut presenter = render::gpu::Presenter::new(&gpu.device).expect("present pass compiles");
-    presenter.prepare(&gpu.queue, camera, present);
+    presenter
+        .prepare(&gpu.queue, camera, present, &frame)
+        .expect("frame matches the camera");
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     encode_rung(&mut encoder, &frame);
-    presenter.encode(&mut encoder, &frame).expect("prepared");
+    presenter.encode(&mut encoder).expect("prepared");
     gpu.queue.submit([encoder.finish()]);
     let bytes = skyscape_harness::read_buffer(
         gpu,
@@ -79,8 +81,8 @@ fn presented_closed_form_and_single_scattering_agree_with_the_cpu() {
             atmos::gpu::EvaluationFrequency::PerPixel,
         )
         .unwrap();
-        sky.prepare(&gpu.queue, &camera);
-        sky.encode(encoder, frame, None).unwrap();
+        sky.prepare(&gpu.queue, &camera, frame).unwrap();
+        sky.encode(encoder, None).unwrap();
     });
     agree(&closed_form.label(), &gpu_pixels, &cpu);
 
@@ -90,8 +92,8 @@ fn presented_closed_form_and_single_scattering_agree_with_the_cpu() {
     let gpu_pixels = present_on_gpu(gpu, &camera, &present, |encoder, frame| {
         let mut sky =
             atmos::gpu::SingleScatteringRenderer::new(&gpu.device, &earth, settings).unwrap();
-        sky.prepare(&gpu.queue, &camera);
-        sky.encode(encoder, frame, None).unwrap();
+        sky.prepare(&gpu.queue, &camera, frame).unwrap();
+        sky.encode(encoder, None).unwrap();
     });
     agree(&single.label(), &gpu_pixels, &cpu);
 }

@@ -46,8 +46,8 @@ fn main() -> std::process::ExitCode {
     for max_distance in [None, Some(10_000.0)] {
         let camera = camera_for(max_distance);
         let output = atmos::gpu::FrameOutput::new(&gpu.device, 1280, 720).unwrap();
-        renderer.prepare(&gpu.queue, &camera);
-        let baker = renderer.baker();
+        renderer.prepare(&gpu.queue, &camera, &output).unwrap();
+        let baker = renderer.luts();
         let time = |name: &str,
                     f: &dyn Fn(
             &mut wgpu::CommandEncoder,
@@ -71,7 +71,7 @@ fn main() -> std::process::ExitCode {
         });
         time(
             &format!("per-pixel pass 1280x720 (max_distance {max_distance:?})"),
-            &|e, t| renderer.encode_pixels(e, &output, t).unwrap(),
+            &|e, t| renderer.encode_pixels(e, t).unwrap(),
         );
     }
     // The other view-transmittance source: a radiance-only sky view, the transmittance
@@ -86,7 +86,9 @@ fn main() -> std::process::ExitCode {
     )
     .unwrap();
     let output = atmos::gpu::FrameOutput::new(&gpu.device, 1280, 720).unwrap();
-    renderer.prepare(&gpu.queue, &camera_for(None));
+    renderer
+        .prepare(&gpu.queue, &camera_for(None), &output)
+        .unwrap();
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     renderer.encode_static_luts(&mut encoder, None);
     gpu.queue.submit([encoder.finish()]);
@@ -100,9 +102,9 @@ fn main() -> std::process::ExitCode {
         let seconds = skyscape_harness::median_pass_seconds(gpu, 5, |encoder, timer, span| {
             let writes = Some(timer.compute_writes(span));
             if pixels {
-                renderer.encode_pixels(encoder, &output, writes).unwrap();
+                renderer.encode_pixels(encoder, writes).unwrap();
             } else {
-                renderer.baker().encode_sky_view(encoder, writes);
+                renderer.luts().encode_sky_view(encoder, writes);
             }
         })
         .unwrap();

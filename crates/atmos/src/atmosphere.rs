@@ -74,6 +74,25 @@ pub enum GpuError {
         /// `max_storage_buffer_binding_size`.
         limit: u64,
     },
+    /// A texture side larger than the device's limit.
+    #[error("{resource} needs a texture side of {size} texels; the device allows at most {limit}")]
+    TextureTooLarge {
+        /// What the texture holds, e.g. `a 20000×10 frame (width)`, `the sky-view LUT`.
+        resource: String,
+        /// The side it needs.
+        size: u32,
+        /// `max_texture_dimension_2d` (or `_3d`).
+        limit: u32,
+    },
+    /// The device cannot write `rgba32float` storage textures or read them unfiltered
+    /// (every WebGPU adapter can; a downlevel GL adapter may not).
+    #[error("the device cannot use {format} textures as {need}")]
+    UnsupportedFormat {
+        /// The texture format, e.g. `rgba32float`.
+        format: &'static str,
+        /// The usage it lacks, e.g. `write-only storage textures`.
+        need: &'static str,
+    },
     /// `encode` before `prepare`.
     #[error("{pass}: encode called before prepare")]
     NotPrepared {
@@ -96,6 +115,12 @@ pub enum GpuError {
         output_height: u32,
     },
 }
+
+/// The sun's mean angular radius seen from the Earth (rad): the IAU nominal solar radius
+/// over one astronomical unit, 695,700 km / 149,597,870.7 km = 959.2″ = 0.2664°. The
+/// sun's true radius varies ±1.7 % over the year (`celestial` computes it for a date);
+/// this is the default of [`Atmosphere::earth`] and of `terrain`'s soft shadows.
+pub const SUN_ANGULAR_RADIUS: f64 = 695_700.0 / 149_597_870.7;
 
 /// A planet's atmosphere. SI units: radii and heights in metres, coefficients in 1/m.
 ///
@@ -161,8 +186,20 @@ impl Atmosphere {
             ozone_half_width: 15_000.0,
             ground_albedo: [0.1; 3],
             sun_irradiance: [1.0; 3],
-            sun_angular_radius: 0.004_675,
+            sun_angular_radius: SUN_ANGULAR_RADIUS,
         }
+    }
+
+    /// Radiance of the sun's disc above the atmosphere, per channel: a uniform disc
+    /// whose irradiance is `sun_irradiance`, `E / Ω` with the disc's solid angle
+    /// `Ω = 2π(1 − cos α) = 4π sin²(α/2)` (the stable form; `E/(πα²)` is its small-angle
+    /// limit). The one sun-disc formula of skyscape: renderers add it through the
+    /// view ray's transmittance where the ray sees the disc.
+    pub fn sun_disc_radiance(&self) -> [f64; 3] {
+        let half = (0.5 * self.sun_angular_radius).sin();
+        let solid_angle = 4.0 * std::f64::consts::PI * half * half;
+        self.sun_irradiance
+            .map(|irradiance| irradiance / solid_angle)
     }
 
     /// Checks every field; the error names the first one out of range.

@@ -4,6 +4,7 @@
 use glam::DVec3;
 
 use crate::AtmosError;
+use crate::real::Real;
 
 /// Segment lengths at or above this mean "to the ground or space" in [`FrameCamera`].
 pub const UNLIMITED_DISTANCE: f32 = 1e30;
@@ -115,6 +116,107 @@ impl FrameCamera {
     /// Number of pixels.
     pub fn pixel_count(&self) -> usize {
         self.width as usize * self.height as usize
+    }
+}
+
+/// A local-frame vector (+y up, −z north, +x east, the axes of a game engine's world)
+/// in the planet frame's axes (x east, y north, z up at the local frame's origin): a
+/// rotation, `(x, −z, y)`. Generic: the f64 instantiation is the reference. Twin of
+/// `local_to_planet_direction` in `shaders/atmos/aerial_perspective.wgsl`.
+pub fn local_to_planet_direction<F: Real>(direction: [F; 3]) -> [F; 3] {
+    [direction[0], -direction[2], direction[1]]
+}
+
+/// A caller's world: a local frame with +y up, −z north and +x east, in metres from an
+/// origin on the planet's surface at `origin_altitude` above the sea-level sphere
+/// (`planet_radius`). The planet frame atmos works in is planet-centred with z up
+/// through that origin: `planet = (x, −z, y + planet_radius + origin_altitude)`. The
+/// planet's curvature is the frame's: a point 100 km from the origin at y = 0 is
+/// 786 m above the ground sphere.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LocalFrame {
+    /// The planet's radius (m).
+    pub planet_radius: f64,
+    /// Altitude of the local origin above the planet's surface (m).
+    pub origin_altitude: f64,
+}
+
+impl LocalFrame {
+    /// The local frame whose origin is `origin_altitude` metres above the surface of
+    /// `atmosphere`'s planet. Errors naming the field for a non-finite altitude or one
+    /// below the planet's centre.
+    pub fn new(atmosphere: &crate::Atmosphere, origin_altitude: f64) -> Result<Self, AtmosError> {
+        atmosphere.validate()?;
+        if !origin_altitude.is_finite() || origin_altitude <= -atmosphere.planet_radius {
+            return Err(invalid(
+                "origin_altitude",
+                origin_altitude,
+                "must be finite and above the planet's centre (m)",
+            ));
+        }
+        Ok(Self {
+            planet_radius: atmosphere.planet_radius,
+            origin_altitude,
+        })
+    }
+
+    /// The planet-frame position of a local point (m).
+    pub fn to_planet_position(&self, position: DVec3) -> DVec3 {
+        let [x, y, z] = local_to_planet_direction(position.to_array());
+        DVec3::new(x, y, z + self.planet_radius + self.origin_altitude)
+    }
+
+    /// The planet-frame direction of a local direction (a rotation: lengths are kept).
+    pub fn to_planet_direction(&self, direction: DVec3) -> DVec3 {
+        DVec3::from_array(local_to_planet_direction(direction.to_array()))
+    }
+
+    /// The local position of a planet-frame point (inverse of
+    /// [`Self::to_planet_position`]).
+    pub fn to_local_position(&self, position: DVec3) -> DVec3 {
+        self.to_local_direction(position - DVec3::Z * (self.planet_radius + self.origin_altitude))
+    }
+
+    /// The local direction of a planet-frame direction.
+    pub fn to_local_direction(&self, direction: DVec3) -> DVec3 {
+        DVec3::new(direction.x, direction.z, -direction.y)
+    }
+
+    /// Altitude (m) above the planet's surface of a local point: its distance from the
+    /// planet's centre minus the radius (not its `y`, which ignores curvature).
+    pub fn altitude(&self, position: DVec3) -> f64 {
+        let p = self.to_planet_position(position);
+        // |p|² − R² = (|p| − R)(|p| + R): no cancellation for points near the surface.
+        (p.length_squared() - self.planet_radius * self.planet_radius)
+            / (p.length() + self.planet_radius)
+    }
+
+    /// The frame camera of a local camera: `eye` and `forward`/`up` in local
+    /// coordinates, a vertical field of view `fov_y` (rad), a `width × height` frame and
+    /// the local direction toward the sun. `max_distance` as in
+    /// [`FrameCamera::look_at`].
+    #[allow(clippy::too_many_arguments)]
+    pub fn frame_camera(
+        &self,
+        eye: DVec3,
+        forward: DVec3,
+        up: DVec3,
+        fov_y: f64,
+        width: u32,
+        height: u32,
+        sun: DVec3,
+        max_distance: Option<f64>,
+    ) -> Result<FrameCamera, AtmosError> {
+        FrameCamera::look_at(
+            self.to_planet_position(eye),
+            self.to_planet_direction(forward),
+            self.to_planet_direction(up),
+            fov_y,
+            width,
+            height,
+            self.to_planet_direction(sun),
+            max_distance,
+        )
     }
 }
 

@@ -29,7 +29,7 @@ pub mod reference;
 pub mod single_scattering;
 pub mod transmittance;
 
-pub use atmosphere::{AtmosError, Atmosphere, AtmosphereParameters, GpuError};
+pub use atmosphere::{AtmosError, Atmosphere, AtmosphereParameters, GpuError, SUN_ANGULAR_RADIUS};
 pub use ladder::{SkyModel, SkyQuery, SkySample};
 pub use skyscape_wgsl::common::PI;
 
@@ -182,7 +182,7 @@ mod wgsl_tests {
                     aerial_perspective_range,
                     pixel_samples,
                 }),
-                wgsl("atmos::lut_sampling", "LutSettings"),
+                wgsl("atmos::lut_bindings", "LutSettings"),
             ),
             (
                 skyscape_wgsl::rust_layout!(FrameCamera {

@@ -37,13 +37,12 @@ fn render(
     let mut renderer =
         ClosedFormRenderer::new(&gpu.device, &Atmosphere::earth(), frequency).unwrap();
     let output = FrameOutput::new(&gpu.device, WIDTH, HEIGHT).unwrap();
-    renderer.prepare(&gpu.queue, camera);
+    renderer.prepare(&gpu.queue, camera, &output).unwrap();
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    renderer.encode(&mut encoder, &output, None).unwrap();
+    renderer.encode(&mut encoder, None).unwrap();
     gpu.queue.submit([encoder.finish()]);
-    let bytes = (WIDTH * HEIGHT * 16) as u64;
-    let read = |b| {
-        let raw = skyscape_harness::read_buffer(gpu, "frame", b, 0, bytes).unwrap();
+    let read = |texture| {
+        let raw = skyscape_harness::read_texture(gpu, "frame", texture).unwrap();
         bytemuck::cast_slice::<u8, [f32; 4]>(&raw).to_vec()
     };
     (read(output.radiance()), read(output.transmittance()))
@@ -148,9 +147,9 @@ fn per_vertex_matches_the_cpu_dome() {
 }
 
 #[test]
-fn encode_reports_a_missing_prepare_and_a_mismatched_output() {
+fn encode_reports_a_missing_prepare_and_prepare_a_mismatched_output() {
     let Some(gpu) = skyscape_harness::gpu_or_skip(
-        "atmos::closed_form_gpu encode_reports_a_missing_prepare_and_a_mismatched_output",
+        "atmos::closed_form_gpu encode_reports_a_missing_prepare_and_prepare_a_mismatched_output",
     ) else {
         return;
     };
@@ -162,11 +161,21 @@ fn encode_reports_a_missing_prepare_and_a_mismatched_output() {
     .unwrap();
     let output = FrameOutput::new(&gpu.device, WIDTH, HEIGHT).unwrap();
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    let error = renderer.encode(&mut encoder, &output, None).unwrap_err();
+    let error = renderer.encode(&mut encoder, None).unwrap_err();
     assert!(error.to_string().contains("before prepare"), "{error}");
-    renderer.prepare(&gpu.queue, &camera(2.0, 0.1));
     let small = FrameOutput::new(&gpu.device, WIDTH / 2, HEIGHT).unwrap();
-    assert!(renderer.encode(&mut encoder, &small, None).is_err());
-    renderer.encode(&mut encoder, &output, None).unwrap();
+    let mismatch = renderer
+        .prepare(&gpu.queue, &camera(2.0, 0.1), &small)
+        .unwrap_err();
+    assert!(
+        mismatch.to_string().contains("does not match"),
+        "{mismatch}"
+    );
+    // A failed prepare leaves nothing prepared.
+    assert!(renderer.encode(&mut encoder, None).is_err());
+    renderer
+        .prepare(&gpu.queue, &camera(2.0, 0.1), &output)
+        .unwrap();
+    renderer.encode(&mut encoder, None).unwrap();
     gpu.queue.submit([encoder.finish()]);
 }

@@ -566,14 +566,17 @@ fn aerial_perspective_agrees_with_a_direct_march() {
 
 // ---------------------------------------------------------------- GPU
 
-fn read_floats(
-    gpu: &skyscape_harness::GpuContext,
-    buffer: &wgpu::Buffer,
-    floats: usize,
-) -> Vec<f32> {
-    let bytes = skyscape_harness::read_buffer(gpu, "atmos LUT", buffer, 0, (floats * 4) as u64)
-        .expect("readback");
-    bytemuck::cast_slice(&bytes).to_vec()
+/// Every texel of the textures, one after the other (layer-major each: the CPU twin's
+/// planar layout).
+fn read_floats(gpu: &skyscape_harness::GpuContext, textures: &[&wgpu::Texture]) -> Vec<f32> {
+    textures
+        .iter()
+        .flat_map(|texture| {
+            let bytes =
+                skyscape_harness::read_texture(gpu, "atmos LUT", texture).expect("readback");
+            bytemuck::cast_slice::<u8, f32>(&bytes).to_vec()
+        })
+        .collect()
 }
 
 fn max_relative_difference(gpu: &[f32], cpu: &[f32], floor: f32) -> f32 {
@@ -598,42 +601,47 @@ fn gpu_bakes_match_the_cpu_bakes() {
     let camera = test_camera(16, 12, Some(10_000.0));
     let frame = FrameLuts::bake(&luts, &camera);
     let baker =
-        atmos::gpu::luts::LutBaker::new(&gpu.device, &Atmosphere::earth(), &settings).unwrap();
+        atmos::gpu::AtmosphereLuts::new(&gpu.device, &Atmosphere::earth(), &settings).unwrap();
     baker.prepare(&gpu.queue, &camera);
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     baker.encode_transmittance(&mut encoder, None);
     baker.encode_multiple_scattering(&mut encoder, None);
     baker.encode_frame_luts(&mut encoder, None);
     gpu.queue.submit([encoder.finish()]);
-    let cases: [(&str, &wgpu::Buffer, &[[f32; 4]], f32); 4] = [
+    /// Name, GPU textures, CPU texels, tolerance.
+    type Case<'a> = (&'a str, Vec<&'a wgpu::Texture>, &'a [[f32; 4]], f32);
+    let cases: [Case<'_>; 4] = [
         (
             "transmittance",
-            baker.transmittance_lut(),
+            vec![baker.transmittance_texture()],
             &luts.transmittance.texels,
             1e-3,
         ),
         (
             "multiple scattering",
-            baker.multiple_scattering_lut(),
+            vec![baker.multiple_scattering_texture()],
             &luts.multiple_scattering.texels,
             1e-3,
         ),
         (
             "sky view",
-            baker.sky_view_lut(),
+            vec![baker.sky_view_texture()],
             &frame.sky_view.texels,
             2e-3,
         ),
         (
             "aerial perspective",
-            baker.aerial_perspective_volume(),
+            vec![
+                baker.aerial_perspective_radiance_texture(),
+                baker.aerial_perspective_transmittance_texture(),
+            ],
             &frame.aerial_perspective.texels,
             2e-3,
         ),
     ];
-    for (name, buffer, cpu, tolerance) in cases {
+    for (name, textures, cpu, tolerance) in cases {
         let cpu: &[f32] = bytemuck::cast_slice(cpu);
-        let got = read_floats(gpu, buffer, cpu.len());
+        let got = read_floats(gpu, &textures);
         let difference = max_relative_difference(&got, cpu, 1e-6);
         eprintln!("GPU vs CPU {name}: max relative difference {difference:.2e}");
         assert!(difference < tolerance, "{name}: {difference}");
@@ -679,14 +687,14 @@ fn preparing_twice_before_encoding_still_bakes_the_static_luts() {
             LutSettings::small(),
         )
         .unwrap();
-        for camera in prepares {
-            renderer.prepare(&gpu.queue, camera);
-        }
         let output = atmos::gpu::FrameOutput::new(&gpu.device, 8, 6).unwrap();
+        for camera in prepares {
+            renderer.prepare(&gpu.queue, camera, &output).unwrap();
+        }
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        renderer.encode(&mut encoder, &output, None).unwrap();
+        renderer.encode(&mut encoder, None).unwrap();
         gpu.queue.submit([encoder.finish()]);
-        read_floats(gpu, output.radiance(), 8 * 6 * 4)
+        read_floats(gpu, &[output.radiance()])
     };
     let once = frame(&[&camera]);
     let twice = frame(&[&other_camera, &camera]);
@@ -712,12 +720,12 @@ fn gpu_frame_matches_the_cpu_shading_with(
         let camera = test_camera(24, 16, max_distance);
         let frame = FrameLuts::bake(&luts, &camera);
         let output = atmos::gpu::FrameOutput::new(&gpu.device, 24, 16).unwrap();
-        renderer.prepare(&gpu.queue, &camera);
+        renderer.prepare(&gpu.queue, &camera, &output).unwrap();
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        renderer.encode(&mut encoder, &output, None).unwrap();
+        renderer.encode(&mut encoder, None).unwrap();
         gpu.queue.submit([encoder.finish()]);
-        let radiance = read_floats(gpu, output.radiance(), 24 * 16 * 4);
-        let transmittance = read_floats(gpu, output.transmittance(), 24 * 16 * 4);
+        let radiance = read_floats(gpu, &[output.radiance()]);
+        let transmittance = read_floats(gpu, &[output.transmittance()]);
         let mut cpu_radiance = Vec::new();
         let mut cpu_transmittance = Vec::new();
         for y in 0..16 {

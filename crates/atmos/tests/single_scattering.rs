@@ -433,20 +433,13 @@ fn gpu_frame_matches_the_cpu_twin() {
     let mut renderer = SingleScatteringRenderer::new(&ctx.device, &earth, settings).unwrap();
     let output = FrameOutput::new(&ctx.device, width, height).unwrap();
     for camera in cameras {
-        renderer.prepare(&ctx.queue, &camera);
+        renderer.prepare(&ctx.queue, &camera, &output).unwrap();
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        renderer.encode(&mut encoder, &output, None).unwrap();
+        renderer.encode(&mut encoder, None).unwrap();
         ctx.queue.submit([encoder.finish()]);
-        let read = |buffer: &wgpu::Buffer| -> Vec<f32> {
+        let read = |texture: &wgpu::Texture| -> Vec<f32> {
             bytemuck::cast_slice(
-                &skyscape_harness::read_buffer(
-                    ctx,
-                    "single scattering frame",
-                    buffer,
-                    0,
-                    buffer.size(),
-                )
-                .unwrap(),
+                &skyscape_harness::read_texture(ctx, "single scattering frame", texture).unwrap(),
             )
             .to_vec()
         };

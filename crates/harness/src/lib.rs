@@ -478,6 +478,79 @@ pub fn read_buffer(
     Ok(bytes)
 }
 
+/// Copies every texel of a `COPY_SRC` texture (all array layers or depth slices, mip 0)
+/// back to the CPU, tightly packed: layer-major, then rows, then texels (the rows'
+/// 256-byte copy alignment removed). Formats with a block size of one texel only.
+pub fn read_texture(
+    ctx: &GpuContext,
+    label: &str,
+    texture: &wgpu::Texture,
+) -> Result<Vec<u8>, HarnessError> {
+    let readback_error = |message: String| HarnessError::Readback {
+        label: label.to_owned(),
+        message,
+    };
+    let size = texture.size();
+    let texel_bytes = texture
+        .format()
+        .block_copy_size(None)
+        .ok_or_else(|| readback_error(format!("{:?} has no single copy size", texture.format())))?;
+    let row_bytes = size.width * texel_bytes;
+    let padded_row =
+        row_bytes.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let layers = size.depth_or_array_layers;
+    let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("skyscape-harness texture readback"),
+        size: u64::from(padded_row) * u64::from(size.height) * u64::from(layers),
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut encoder = ctx
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("skyscape-harness texture readback"),
+        });
+    encoder.copy_texture_to_buffer(
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        wgpu::TexelCopyBufferInfo {
+            buffer: &staging,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded_row),
+                rows_per_image: Some(size.height),
+            },
+        },
+        size,
+    );
+    ctx.queue.submit([encoder.finish()]);
+    let (sender, receiver) = std::sync::mpsc::channel();
+    staging.map_async(wgpu::MapMode::Read, .., move |result| {
+        let _ = sender.send(result);
+    });
+    ctx.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| readback_error(e.to_string()))?;
+    receiver
+        .recv()
+        .map_err(|e| readback_error(e.to_string()))?
+        .map_err(|e| readback_error(e.to_string()))?;
+    let padded = staging
+        .get_mapped_range(..)
+        .map_err(|e| readback_error(e.to_string()))?
+        .to_vec();
+    staging.unmap();
+    Ok(padded
+        .chunks(padded_row as usize)
+        .flat_map(|row| &row[..row_bytes as usize])
+        .copied()
+        .collect())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -11,8 +11,12 @@ use glam::Vec3;
 use crate::TerrainError;
 use skyscape_wgsl::common::{PI, TAU};
 
-/// Angular radius of the sun's disc, radians (0.2666°, `SUN_ANGULAR_RADIUS` in WGSL).
-pub const SUN_ANGULAR_RADIUS: f32 = 0.004654;
+/// Angular radius of the sun's disc, radians (`SUN_ANGULAR_RADIUS` in WGSL): the mean
+/// value, IAU nominal solar radius over one astronomical unit (0.2664°), the same as
+/// `atmos::SUN_ANGULAR_RADIUS` (terrain does not depend on atmos). A default for
+/// standalone use: a compositor passes its atmosphere's (or the date's) radius to the
+/// functions that take one.
+pub const SUN_ANGULAR_RADIUS: f32 = 0.004_650_467;
 
 /// Decodes a horizon angle from a unorm alpha value in `[0, 1]` (as sampled from an
 /// 8- or 16-bit texture): `alpha · π − π/2`. Inverse of

@@ -404,24 +404,24 @@ fn gpu_frame_seconds(
         GpuVariant::ClosedForm(frequency) => {
             let mut renderer =
                 ClosedFormRenderer::new(&ctx.device, atmosphere, *frequency).map_err(e)?;
-            renderer.prepare(&ctx.queue, &camera);
+            renderer.prepare(&ctx.queue, &camera, &output).map_err(e)?;
             // Frames at high sample counts take seconds on a CPU adapter: 2 timed frames.
             skyscape_harness::median_pass_seconds(ctx, 2, |encoder, timer, span| {
                 renderer
-                    .encode(encoder, &output, Some(timer.compute_writes(span)))
-                    .expect("prepared above, sizes match");
+                    .encode(encoder, Some(timer.compute_writes(span)))
+                    .expect("prepared above");
             })
         }
         GpuVariant::SingleScattering(settings) => {
             let mut renderer =
                 atmos::gpu::SingleScatteringRenderer::new(&ctx.device, atmosphere, *settings)
                     .map_err(e)?;
-            renderer.prepare(&ctx.queue, &camera);
+            renderer.prepare(&ctx.queue, &camera, &output).map_err(e)?;
             // Frames at high sample counts take seconds on a CPU adapter: 2 timed frames.
             skyscape_harness::median_pass_seconds(ctx, 2, |encoder, timer, span| {
                 renderer
-                    .encode(encoder, &output, Some(timer.compute_writes(span)))
-                    .expect("prepared above, sizes match");
+                    .encode(encoder, Some(timer.compute_writes(span)))
+                    .expect("prepared above");
             })
         }
         GpuVariant::Precomputed(settings) => {
@@ -443,7 +443,7 @@ fn precomputed_frame_seconds(
 ) -> Result<f64, String> {
     let e = |e: atmos::AtmosError| e.to_string();
     let mut renderer = PrecomputedRenderer::new(&ctx.device, atmosphere, settings).map_err(e)?;
-    renderer.prepare(&ctx.queue, camera);
+    renderer.prepare(&ctx.queue, camera, output).map_err(e)?;
     let mut encoder = ctx.device.create_command_encoder(&Default::default());
     renderer.encode_static_luts(&mut encoder, None);
     ctx.queue.submit([encoder.finish()]);
@@ -453,11 +453,7 @@ fn precomputed_frame_seconds(
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         renderer.encode_frame_luts(&mut encoder, Some(timer.compute_writes(2 * frame)));
         renderer
-            .encode_pixels(
-                &mut encoder,
-                output,
-                Some(timer.compute_writes(2 * frame + 1)),
-            )
+            .encode_pixels(&mut encoder, Some(timer.compute_writes(2 * frame + 1)))
             .map_err(e)?;
         if frame + 1 == FRAMES {
             timer.resolve(&mut encoder);

@@ -9,9 +9,9 @@
 //!     glam::DVec3::new(0.0, 0.0, 6_360_002.0), glam::DVec3::X, glam::DVec3::Z,
 //!     1.2, 1280, 720, glam::DVec3::new(0.5, 0.0, 0.866), None)?;
 //! let output = FrameOutput::new(device, 1280, 720)?;
-//! sky.prepare(queue, &camera);
+//! sky.prepare(queue, &camera, &output)?;
 //! let mut encoder = device.create_command_encoder(&Default::default());
-//! sky.encode(&mut encoder, &output, None)?;
+//! sky.encode(&mut encoder, None)?;
 //! queue.submit([encoder.finish()]);
 //! # Ok(()) }
 //! ```
@@ -20,7 +20,7 @@ use crate::closed_form_sky::ClosedFormSkyParameters;
 use crate::dome::DomeResolution;
 use crate::frame::FrameCamera;
 use crate::gpu::FrameOutput;
-use crate::gpu::resources::{FramePassLayout, uniform_buffer};
+use crate::gpu::resources::{FramePassLayout, PreparedFrame, uniform_buffer};
 use crate::{AtmosError, Atmosphere};
 
 /// Where the closed form is evaluated.
@@ -44,7 +44,7 @@ pub struct ClosedFormRenderer {
     params: wgpu::Buffer,
     dome: wgpu::Buffer,
     parameters: ClosedFormSkyParameters,
-    prepared: Option<FrameCamera>,
+    prepared: Option<PreparedFrame>,
 }
 
 /// The composed WGSL of the renderer.
@@ -138,34 +138,42 @@ impl ClosedFormRenderer {
         self.frequency
     }
 
-    /// Uploads the camera (and sun) of the next frame, and the atmosphere.
-    pub fn prepare(&mut self, queue: &wgpu::Queue, camera: &FrameCamera) {
-        queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(camera));
-        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&self.parameters));
-        self.prepared = Some(*camera);
-    }
-
-    /// Records the frame into `encoder` (one compute pass; per vertex, two dispatches
-    /// in it: the dome's vertices, then the per-pixel interpolation).
-    pub fn encode(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
+    /// Uploads the camera (and sun) of the next frame and the atmosphere, and binds
+    /// `output` (checked against the camera's frame size) for [`Self::encode`].
+    pub fn prepare(
+        &mut self,
+        queue: &wgpu::Queue,
+        camera: &FrameCamera,
         output: &FrameOutput,
-        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), AtmosError> {
-        let (camera, bind_group) = self.layout.bind(
+        self.prepared = None;
+        let prepared = self.layout.prepare(
             &self.device,
-            self.prepared,
+            camera,
             &self.camera,
             &self.params,
             output,
             &[&self.dome],
         )?;
+        queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(camera));
+        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&self.parameters));
+        self.prepared = Some(prepared);
+        Ok(())
+    }
+
+    /// Records the prepared frame into `encoder` (one compute pass; per vertex, two
+    /// dispatches in it: the dome's vertices, then the per-pixel interpolation).
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), AtmosError> {
+        let PreparedFrame { camera, bind_group } = self.layout.prepared(&self.prepared)?;
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("atmos closed form"),
             timestamp_writes,
         });
-        pass.set_bind_group(0, &bind_group, &[]);
+        pass.set_bind_group(0, bind_group, &[]);
         let groups = [camera.width.div_ceil(8), camera.height.div_ceil(8)];
         match (&self.vertices, self.frequency) {
             (Some((evaluate, interpolate)), EvaluationFrequency::PerVertex(resolution)) => {

@@ -1,57 +1,81 @@
-//! Where every rung's GPU renderer writes a frame: two storage buffers of one
-//! `vec4<f32>` per pixel (index `x + width · y`): in-scattered radiance (rgb, w = 1)
-//! and transmittance (rgb, w = 1), in the units of [`crate::ladder`].
+//! Where every rung's frame renderer writes a frame: two `rgba32float` textures the
+//! caller can sample, copy or read back: in-scattered radiance (rgb, a = 1) and
+//! transmittance (rgb, a = 1) per pixel, in the units of [`crate::ladder`].
+//!
+//! `rgba32float` keeps the CPU twin's f32 values exactly (parity) and can be written
+//! by compute passes on every adapter; it is not filterable everywhere, so sample it
+//! with `textureLoad` (a frame is read one texel per pixel anyway).
 
 use crate::frame::FrameCamera;
 use crate::{AtmosError, GpuError};
 
-/// The two per-pixel output buffers of a frame.
+/// The two per-pixel output textures of a frame.
 #[derive(Debug)]
 pub struct FrameOutput {
     width: u32,
     height: u32,
-    radiance: wgpu::Buffer,
-    transmittance: wgpu::Buffer,
+    radiance: wgpu::Texture,
+    transmittance: wgpu::Texture,
+    radiance_view: wgpu::TextureView,
+    transmittance_view: wgpu::TextureView,
 }
 
 impl FrameOutput {
-    /// Bytes per pixel per buffer.
+    /// The texel format of both textures.
+    pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+    /// Bytes per texel.
     pub const BYTES_PER_PIXEL: u64 = 16;
 
-    /// Buffers for a `width × height` frame (usage `STORAGE | COPY_SRC`); errors when
-    /// they would exceed the device's storage-buffer binding limit.
+    /// Textures for a `width × height` frame (usage `STORAGE_BINDING |
+    /// TEXTURE_BINDING | COPY_SRC`); errors naming the field when a side is 0 or beyond
+    /// the device's `max_texture_dimension_2d`.
     pub fn new(device: &wgpu::Device, width: u32, height: u32) -> Result<Self, AtmosError> {
-        if width == 0 || height == 0 {
-            return Err(AtmosError::InvalidSetting {
-                setting: "frame output",
-                field: if width == 0 { "width" } else { "height" }.to_owned(),
-                value: 0.0,
-                reason: "must be ≥ 1 pixel",
-            });
-        }
-        let size = u64::from(width) * u64::from(height) * Self::BYTES_PER_PIXEL;
-        let limit = device.limits().max_storage_buffer_binding_size;
-        if size > limit {
-            return Err(GpuError::StorageBufferTooLarge {
-                resource: format!("a {width}×{height} frame"),
-                bytes: size,
-                limit,
+        let limit = device.limits().max_texture_dimension_2d;
+        for (field, value) in [("width", width), ("height", height)] {
+            if value == 0 {
+                return Err(AtmosError::InvalidSetting {
+                    setting: "frame output",
+                    field: field.to_owned(),
+                    value: 0.0,
+                    reason: "must be ≥ 1 pixel",
+                });
             }
-            .into());
+            if value > limit {
+                return Err(GpuError::TextureTooLarge {
+                    resource: format!("a {width}×{height} frame ({field})"),
+                    size: value,
+                    limit,
+                }
+                .into());
+            }
         }
-        let buffer = |label| {
-            device.create_buffer(&wgpu::BufferDescriptor {
+        let texture = |label| {
+            device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
-                size,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
+                size: wgpu::Extent3d {
+                    width,
+                    height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: Self::FORMAT,
+                usage: wgpu::TextureUsages::STORAGE_BINDING
+                    | wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
             })
         };
+        let radiance = texture("atmos frame radiance");
+        let transmittance = texture("atmos frame transmittance");
         Ok(Self {
             width,
             height,
-            radiance: buffer("atmos frame radiance"),
-            transmittance: buffer("atmos frame transmittance"),
+            radiance_view: radiance.create_view(&Default::default()),
+            transmittance_view: transmittance.create_view(&Default::default()),
+            radiance,
+            transmittance,
         })
     }
 
@@ -77,24 +101,34 @@ impl FrameOutput {
     pub fn height(&self) -> u32 {
         self.height
     }
-    /// Radiance per pixel (`vec4<f32>`, rgb used).
-    pub fn radiance(&self) -> &wgpu::Buffer {
+    /// Radiance per pixel (rgb used).
+    pub fn radiance(&self) -> &wgpu::Texture {
         &self.radiance
     }
-    /// Transmittance per pixel (`vec4<f32>`, rgb used).
-    pub fn transmittance(&self) -> &wgpu::Buffer {
+    /// Transmittance per pixel (rgb used).
+    pub fn transmittance(&self) -> &wgpu::Texture {
         &self.transmittance
     }
-    /// Bind-group entries for the two buffers at `first_binding` and `first_binding + 1`.
+    /// A view of the radiance texture.
+    pub fn radiance_view(&self) -> &wgpu::TextureView {
+        &self.radiance_view
+    }
+    /// A view of the transmittance texture.
+    pub fn transmittance_view(&self) -> &wgpu::TextureView {
+        &self.transmittance_view
+    }
+    /// Bind-group entries for the two textures at `first_binding` and
+    /// `first_binding + 1` (as storage textures when a renderer writes them, as sampled
+    /// textures when a later pass reads them: the layout decides).
     pub fn bind_group_entries(&self, first_binding: u32) -> [wgpu::BindGroupEntry<'_>; 2] {
         [
             wgpu::BindGroupEntry {
                 binding: first_binding,
-                resource: self.radiance.as_entire_binding(),
+                resource: wgpu::BindingResource::TextureView(&self.radiance_view),
             },
             wgpu::BindGroupEntry {
                 binding: first_binding + 1,
-                resource: self.transmittance.as_entire_binding(),
+                resource: wgpu::BindingResource::TextureView(&self.transmittance_view),
             },
         ]
     }

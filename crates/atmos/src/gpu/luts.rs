@@ -1,50 +1,193 @@
-//! GPU bakes of the precomputed rung's LUTs (compute; one WGSL file per pass in
-//! `shaders/atmos/lut_*.wgsl`). Bring your own device: [`LutBaker::new`] creates
-//! pipelines and buffers (uniforms initialised at creation, no queue work),
-//! [`LutBaker::prepare`] writes the frame camera, and each `encode_*` records one
-//! compute pass into the caller's encoder, optionally timed.
+//! The precomputed rung's lookup tables on the GPU: textures a caller can bind in their
+//! own pipelines, and the compute passes that bake them (one WGSL file per pass in
+//! `shaders/atmos/lut_*.wgsl`). Bring your own device: [`AtmosphereLuts::new`] creates
+//! the textures, bind groups and pipelines (uniforms initialised at creation, no queue
+//! work), [`AtmosphereLuts::prepare`] writes the frame camera, and each `encode_*`
+//! records one compute pass into the caller's encoder, optionally timed.
 //!
-//! Every pass shares one pipeline layout (see `lut_sampling.wgsl`): group 0 the
-//! uniforms, group 1 the LUTs read (passes that run before a LUT exists bind a
-//! 16-byte placeholder there, never the buffer they write), group 2 the outputs.
-//! LUTs are `array<vec4<f32>>` storage buffers (usage `STORAGE | COPY_SRC`), read with
-//! manual bilinear filtering — portable to adapters without float32 filtering.
-
-use wgpu::util::DeviceExt as _;
+//! **Reading the tables in your own shader.** The lookups of `atmos::lut_sampling`
+//! (`lookup_transmittance`, `lookup_sky_view`, `lookup_aerial_perspective`,
+//! `sun_transmittance`, …) read module-scope bindings declared by
+//! `atmos::lut_bindings`: the uniforms (atmosphere, settings, frame camera) in one bind
+//! group and the tables in another. Compose your shader with
+//! [`composer_with_lut_groups`] to put them at the groups your pipeline has free, put
+//! [`LutLayouts::uniforms`] and [`LutLayouts::tables`] at those indices of your
+//! pipeline layout, and set [`AtmosphereLuts::uniform_bind_group`] and
+//! [`AtmosphereLuts::table_bind_group`] there.
+//!
+//! | group (default) | binding | WGSL name | resource |
+//! |---|---|---|---|
+//! | uniforms (0) | 0 | `lut_atmosphere` | `AtmosphereParameters` |
+//! | uniforms (0) | 1 | `lut_settings` | `LutSettings` ([`crate::lut::LutSettingsUniform`]) |
+//! | uniforms (0) | 2 | `frame_camera` | [`FrameCamera`] |
+//! | tables (1) | 0 | `transmittance_lut` | `texture_2d<f32>` |
+//! | tables (1) | 1 | `multiple_scattering_lut` | `texture_2d_array<f32>`, 6 layers |
+//! | tables (1) | 2 | `sky_view_lut` | `texture_2d_array<f32>`: radiance, transmittance |
+//! | tables (1) | 3 | `aerial_perspective_radiance` | `texture_3d<f32>` |
+//! | tables (1) | 4 | `aerial_perspective_transmittance` | `texture_3d<f32>` |
+//!
+//! Every table is `rgba32float` (the CPU twin's values exactly; writable by compute
+//! passes on every WebGPU adapter), read with `textureLoad` and filtered by hand in
+//! the WGSL, so no sampler is needed and adapters without float32 filtering work.
+//! Texel (x, y) of layer m is entry `x + w·(y + h·m)` of the CPU twin's table.
 
 use crate::frame::FrameCamera;
-use crate::gpu::resources::{storage_entry, uniform_entry};
+use crate::gpu::resources::{
+    READ_STAGES, check_texture_support, float_texture_entry, shared_uniform_entry, storage_entry,
+    storage_texture_entry,
+};
 use crate::lut::multiple_scattering_moments::MULTIPLE_SCATTERING_LAYERS;
 use crate::lut::{LutSettings, LutSettingsUniform};
 use crate::{AtmosError, Atmosphere, GpuError};
+use wgpu::TextureViewDimension as Dim;
+use wgpu::util::DeviceExt as _;
 
 const WORKGROUP: u32 = 8;
+const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
-/// The four LUT passes with their buffers.
-#[derive(Debug)]
-pub struct LutBaker {
-    pub(crate) device: wgpu::Device,
-    settings: LutSettingsUniform,
-    camera: wgpu::Buffer,
-    transmittance: wgpu::Buffer,
-    multiple_scattering: wgpu::Buffer,
-    sky_view: wgpu::Buffer,
-    aerial_perspective: wgpu::Buffer,
-    pub(crate) layout: wgpu::PipelineLayout,
-    pub(crate) output_layout: wgpu::BindGroupLayout,
-    pub(crate) uniforms: wgpu::BindGroup,
-    pub(crate) render_luts: wgpu::BindGroup,
-    passes: [BakePass; 4],
-    /// Orders 3… of the multiple-scattering bake, each reading the order before (two
-    /// ping-pong buffers) and adding to the LUT; recorded right after its order-2 pass.
-    higher_orders: Vec<BakePass>,
+/// The WGSL of `atmos::lut_bindings` with its uniforms at `@group(uniform_group)` and
+/// its tables at `@group(table_group)`: the file's own text, the two group attributes
+/// rewritten (nothing else differs).
+pub fn lut_bindings_wgsl(uniform_group: u32, table_group: u32) -> String {
+    let source = include_str!("../../shaders/lut_bindings.wgsl");
+    source
+        .lines()
+        .map(|line| {
+            if let Some(rest) = line.strip_prefix("@group(0) ") {
+                format!("@group({uniform_group}) {rest}")
+            } else if let Some(rest) = line.strip_prefix("@group(1) ") {
+                format!("@group({table_group}) {rest}")
+            } else {
+                line.to_owned()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
 }
 
+/// A composer that knows every module of `atmos` (and the common ones), with the LUT
+/// bindings (`atmos::lut_bindings`) at the groups a caller's pipeline has free: compose
+/// your shader, which `#import`s `atmos::lut_sampling`, with it. Errors when the two
+/// groups are equal (they hold different layouts).
+pub fn composer_with_lut_groups(
+    uniform_group: u32,
+    table_group: u32,
+) -> Result<skyscape_wgsl::Composer, AtmosError> {
+    if uniform_group == table_group {
+        return Err(AtmosError::InvalidSetting {
+            setting: "LUT bind groups",
+            field: "table_group".to_owned(),
+            value: f64::from(table_group),
+            reason: "must differ from uniform_group (the uniforms and the tables are two layouts)",
+        });
+    }
+    let mut composer = skyscape_wgsl::Composer::with_common();
+    composer
+        .add_modules(crate::WGSL_MODULES)
+        .expect("atmos WGSL module names are unique and well formed");
+    let bindings = lut_bindings_wgsl(uniform_group, table_group);
+    // `Module` holds `&'static str`: a composer lives for a pipeline's creation, and
+    // one bindings text per (uniform, table) pair a program asks for is leaked once.
+    let bindings: &'static str = Box::leak(bindings.into_boxed_str());
+    let modules: Vec<skyscape_wgsl::Module> = crate::lut::WGSL_MODULES
+        .iter()
+        .map(|module| {
+            if module.name == "atmos::lut_bindings" {
+                skyscape_wgsl::Module {
+                    name: module.name,
+                    source: bindings,
+                }
+            } else {
+                *module
+            }
+        })
+        .collect();
+    composer
+        .add_modules(&modules)
+        .expect("atmos LUT WGSL module names are unique and well formed");
+    Ok(composer)
+}
+
+/// The two bind-group layouts of the LUTs: the uniforms and the tables (see the module
+/// documentation for the bindings). Readable from compute, vertex and fragment stages.
+#[derive(Debug)]
+pub struct LutLayouts {
+    /// Atmosphere, settings, frame camera (uniform buffers at bindings 0, 1, 2).
+    pub uniforms: wgpu::BindGroupLayout,
+    /// The five tables (unfilterable-float textures at bindings 0 … 4).
+    pub tables: wgpu::BindGroupLayout,
+}
+
+impl LutLayouts {
+    /// Creates both layouts.
+    pub fn new(device: &wgpu::Device) -> Self {
+        let uniforms = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("atmos LUT uniforms"),
+            entries: &[
+                shared_uniform_entry(0),
+                shared_uniform_entry(1),
+                shared_uniform_entry(2),
+            ],
+        });
+        let tables = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("atmos LUT tables"),
+            entries: &[
+                float_texture_entry(0, Dim::D2),
+                float_texture_entry(1, Dim::D2Array),
+                float_texture_entry(2, Dim::D2Array),
+                float_texture_entry(3, Dim::D3),
+                float_texture_entry(4, Dim::D3),
+            ],
+        });
+        Self { uniforms, tables }
+    }
+}
+
+/// One table: its texture and the view of all its layers.
+#[derive(Debug)]
+struct Table {
+    texture: wgpu::Texture,
+    view: wgpu::TextureView,
+}
+
+impl Table {
+    fn new(device: &wgpu::Device, label: &str, size: [u32; 3], dimension: Dim) -> Self {
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width: size[0],
+                height: size[1],
+                depth_or_array_layers: size[2],
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: if dimension == Dim::D3 {
+                wgpu::TextureDimension::D3
+            } else {
+                wgpu::TextureDimension::D2
+            },
+            format: FORMAT,
+            usage: wgpu::TextureUsages::STORAGE_BINDING
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&wgpu::TextureViewDescriptor {
+            label: Some(label),
+            dimension: Some(dimension),
+            ..Default::default()
+        });
+        Self { texture, view }
+    }
+}
+
+/// One bake dispatch: its pipeline, the tables it reads (group 1), its outputs
+/// (group 2) and its workgroup counts.
 #[derive(Debug)]
 struct BakePass {
     pipeline: wgpu::ComputePipeline,
-    luts: wgpu::BindGroup,
-    output: wgpu::BindGroup,
+    tables: wgpu::BindGroup,
+    outputs: wgpu::BindGroup,
     workgroups: [u32; 2],
     label: &'static str,
 }
@@ -78,55 +221,145 @@ pub(crate) fn compute_pipeline(
     )
 }
 
-impl LutBaker {
-    /// Validates the inputs, creates the pipelines and the LUT buffers.
+/// The precomputed rung's tables and the passes that bake them.
+#[derive(Debug)]
+pub struct AtmosphereLuts {
+    pub(crate) device: wgpu::Device,
+    settings: LutSettingsUniform,
+    camera: wgpu::Buffer,
+    transmittance: Table,
+    multiple_scattering: Table,
+    sky_view: Table,
+    aerial_perspective_radiance: Table,
+    aerial_perspective_transmittance: Table,
+    layouts: LutLayouts,
+    uniforms: wgpu::BindGroup,
+    tables: wgpu::BindGroup,
+    passes: [BakePass; 4],
+    /// Orders 3… of the multiple-scattering bake, each reading the order before (two
+    /// ping-pong textures) and adding to the sum; then the copy of the sum into the
+    /// LUT. Recorded right after the order-2 pass.
+    higher_orders: Vec<BakePass>,
+}
+
+impl AtmosphereLuts {
+    /// Validates the inputs, creates the tables, bind groups and pipelines. Errors
+    /// naming the table when one exceeds the device's texture limits.
     pub fn new(
         device: &wgpu::Device,
         atmosphere: &Atmosphere,
         settings: &LutSettings,
     ) -> Result<Self, AtmosError> {
+        check_texture_support(device)?;
         let atmosphere_uniform = atmosphere.to_uniforms()?;
         let s = settings.to_uniforms()?;
-        let texel_bytes = 16u64;
-        let sizes = [
-            u64::from(s.transmittance_width * s.transmittance_height),
-            u64::from(s.multiple_scattering_width * s.multiple_scattering_height)
-                * u64::from(MULTIPLE_SCATTERING_LAYERS),
-            // radiance, and the transmittance when the table stores it
-            u64::from(s.sky_view_entries_per_texel() * s.sky_view_width * s.sky_view_height),
-            2 * u64::from(
-                s.aerial_perspective_width
-                    * s.aerial_perspective_height
-                    * s.aerial_perspective_depth,
+        let limits = device.limits();
+        let layers = MULTIPLE_SCATTERING_LAYERS;
+        let sky_view_layers = s.sky_view_entries_per_texel();
+        let ap_size = [
+            s.aerial_perspective_width,
+            s.aerial_perspective_height,
+            s.aerial_perspective_depth,
+        ];
+        for (table, size, limit) in [
+            (
+                "the transmittance LUT",
+                s.transmittance_width.max(s.transmittance_height),
+                limits.max_texture_dimension_2d,
+            ),
+            (
+                "the multiple-scattering LUT",
+                s.multiple_scattering_width
+                    .max(s.multiple_scattering_height),
+                limits.max_texture_dimension_2d,
+            ),
+            (
+                "the sky-view LUT",
+                s.sky_view_width.max(s.sky_view_height),
+                limits.max_texture_dimension_2d,
+            ),
+            (
+                "the aerial-perspective volume",
+                ap_size.into_iter().max().unwrap_or(0),
+                limits.max_texture_dimension_3d,
+            ),
+        ] {
+            if size > limit {
+                return Err(GpuError::TextureTooLarge {
+                    resource: table.to_owned(),
+                    size,
+                    limit,
+                }
+                .into());
+            }
+        }
+        let ms_size = [
+            s.multiple_scattering_width,
+            s.multiple_scattering_height,
+            layers,
+        ];
+        let transmittance = Table::new(
+            device,
+            "atmos transmittance LUT",
+            [s.transmittance_width, s.transmittance_height, 1],
+            Dim::D2,
+        );
+        let multiple_scattering = Table::new(
+            device,
+            "atmos multiple-scattering LUT",
+            ms_size,
+            Dim::D2Array,
+        );
+        let orders = [
+            Table::new(
+                device,
+                "atmos scattering order (even)",
+                ms_size,
+                Dim::D2Array,
+            ),
+            Table::new(
+                device,
+                "atmos scattering order (odd)",
+                ms_size,
+                Dim::D2Array,
             ),
         ];
-        let limit = device.limits().max_storage_buffer_binding_size;
-        if let Some(bytes) = sizes.iter().map(|n| n * texel_bytes).find(|&b| b > limit) {
-            return Err(GpuError::StorageBufferTooLarge {
-                resource: "a LUT".to_owned(),
-                bytes,
-                limit,
-            }
-            .into());
-        }
-        let lut_buffer = |label: &str, texels: u64| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: texels * texel_bytes,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
-            })
-        };
-        let transmittance = lut_buffer("atmos transmittance LUT", sizes[0]);
-        let multiple_scattering = lut_buffer("atmos multiple-scattering LUT", sizes[1]);
-        let scattering_orders = [
-            lut_buffer("atmos multiple-scattering order (even)", sizes[1]),
-            lut_buffer("atmos multiple-scattering order (odd)", sizes[1]),
+        let sky_view = Table::new(
+            device,
+            "atmos sky-view LUT",
+            [s.sky_view_width, s.sky_view_height, sky_view_layers],
+            Dim::D2Array,
+        );
+        let aerial_perspective_radiance = Table::new(
+            device,
+            "atmos aerial-perspective radiance",
+            ap_size,
+            Dim::D3,
+        );
+        let aerial_perspective_transmittance = Table::new(
+            device,
+            "atmos aerial-perspective transmittance",
+            ap_size,
+            Dim::D3,
+        );
+        // What a bake that runs before a table exists binds in its place (never the
+        // texture it writes).
+        let placeholders = [
+            Table::new(device, "atmos LUT placeholder 2d", [1, 1, 1], Dim::D2),
+            Table::new(
+                device,
+                "atmos LUT placeholder array",
+                [1, 1, 1],
+                Dim::D2Array,
+            ),
+            Table::new(device, "atmos LUT placeholder 3d", [1, 1, 1], Dim::D3),
         ];
-        let sky_view = lut_buffer("atmos sky-view LUT", sizes[2]);
-        let aerial_perspective = lut_buffer("atmos aerial-perspective volume", sizes[3]);
-        let placeholder_read = lut_buffer("atmos LUT placeholder (read)", 1);
-        let placeholder_write = lut_buffer("atmos LUT placeholder (write)", 1);
+        let sum = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("atmos multiple-scattering sum"),
+            size: u64::from(ms_size[0] * ms_size[1] * ms_size[2]) * 16,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
 
         let uniform = |label: &str, bytes: &[u8]| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -145,35 +378,10 @@ impl LutBaker {
             bytemuck::bytes_of(&<FrameCamera as bytemuck::Zeroable>::zeroed()),
         );
 
-        let uniform_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("atmos LUT uniforms"),
-            entries: &[uniform_entry(0), uniform_entry(1), uniform_entry(2)],
-        });
-        let lut_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("atmos LUTs"),
-            entries: &[
-                storage_entry(0, true),
-                storage_entry(1, true),
-                storage_entry(2, true),
-                storage_entry(3, true),
-            ],
-        });
-        let output_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("atmos LUT outputs"),
-            entries: &[storage_entry(0, false), storage_entry(1, false)],
-        });
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("atmos LUT passes"),
-            bind_group_layouts: &[
-                Some(&uniform_layout),
-                Some(&lut_layout),
-                Some(&output_layout),
-            ],
-            immediate_size: 0,
-        });
+        let layouts = LutLayouts::new(device);
         let uniforms = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("atmos LUT uniforms"),
-            layout: &uniform_layout,
+            layout: &layouts.uniforms,
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: 0,
@@ -189,51 +397,119 @@ impl LutBaker {
                 },
             ],
         });
-        let luts = |label: &str, buffers: [&wgpu::Buffer; 4]| {
-            let entries: Vec<wgpu::BindGroupEntry> = buffers
+        let table_group = |label: &str, views: [&Table; 5]| {
+            let entries: Vec<wgpu::BindGroupEntry> = views
                 .iter()
-                .enumerate()
-                .map(|(i, b)| wgpu::BindGroupEntry {
-                    binding: i as u32,
-                    resource: b.as_entire_binding(),
+                .zip(0..)
+                .map(|(table, binding)| wgpu::BindGroupEntry {
+                    binding,
+                    resource: wgpu::BindingResource::TextureView(&table.view),
                 })
                 .collect();
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(label),
-                layout: &lut_layout,
+                layout: &layouts.tables,
                 entries: &entries,
             })
         };
-        let outputs = |label: &str, first: &wgpu::Buffer, second: &wgpu::Buffer| {
+        let [p2, pa, p3] = &placeholders;
+
+        // Each bake's outputs (group 2) have their own layout.
+        let output_layout = |label: &str, entries: &[wgpu::BindGroupLayoutEntry]| {
+            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some(label),
+                entries,
+            })
+        };
+        let transmittance_out = output_layout(
+            "atmos transmittance bake outputs",
+            &[storage_texture_entry(0, Dim::D2)],
+        );
+        let multiple_scattering_out = output_layout(
+            "atmos multiple-scattering bake outputs",
+            &[
+                storage_texture_entry(0, Dim::D2Array),
+                storage_entry(1, false),
+                storage_texture_entry(2, Dim::D2Array),
+            ],
+        );
+        let sky_view_out = output_layout(
+            "atmos sky-view bake outputs",
+            &[storage_texture_entry(0, Dim::D2Array)],
+        );
+        let aerial_perspective_out = output_layout(
+            "atmos aerial-perspective bake outputs",
+            &[
+                storage_texture_entry(0, Dim::D3),
+                storage_texture_entry(1, Dim::D3),
+            ],
+        );
+        let pipeline_layout = |label: &str, outputs: &wgpu::BindGroupLayout| {
+            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some(label),
+                bind_group_layouts: &[
+                    Some(&layouts.uniforms),
+                    Some(&layouts.tables),
+                    Some(outputs),
+                ],
+                immediate_size: 0,
+            })
+        };
+        let texture_outputs = |label: &str, layout: &wgpu::BindGroupLayout, views: &[&Table]| {
+            let entries: Vec<wgpu::BindGroupEntry> = views
+                .iter()
+                .zip(0..)
+                .map(|(table, binding)| wgpu::BindGroupEntry {
+                    binding,
+                    resource: wgpu::BindingResource::TextureView(&table.view),
+                })
+                .collect();
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(label),
-                layout: &output_layout,
+                layout,
+                entries: &entries,
+            })
+        };
+        let order_outputs = |label: &str, order: &Table| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(label),
+                layout: &multiple_scattering_out,
                 entries: &[
                     wgpu::BindGroupEntry {
                         binding: 0,
-                        resource: first.as_entire_binding(),
+                        resource: wgpu::BindingResource::TextureView(&order.view),
                     },
                     wgpu::BindGroupEntry {
                         binding: 1,
-                        resource: second.as_entire_binding(),
+                        resource: sum.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: wgpu::BindingResource::TextureView(&multiple_scattering.view),
                     },
                 ],
             })
         };
-        let output =
-            |label: &str, buffer: &wgpu::Buffer| outputs(label, buffer, &placeholder_write);
-        let p = &placeholder_read;
         let groups = |n: u32| n.div_ceil(WORKGROUP);
+        let ms_workgroups = [
+            groups(s.multiple_scattering_width),
+            groups(s.multiple_scattering_height),
+        ];
+        let ms_layout = pipeline_layout("atmos multiple-scattering bake", &multiple_scattering_out);
         let passes = [
             BakePass {
                 pipeline: compute_pipeline(
                     device,
-                    &layout,
+                    &pipeline_layout("atmos transmittance bake", &transmittance_out),
                     "atmos::lut_transmittance",
                     "bake_transmittance_lut",
                 )?,
-                luts: luts("atmos LUTs for transmittance", [p, p, p, p]),
-                output: output("atmos transmittance output", &transmittance),
+                tables: table_group("atmos tables for transmittance", [p2, pa, pa, p3, p3]),
+                outputs: texture_outputs(
+                    "atmos transmittance output",
+                    &transmittance_out,
+                    &[&transmittance],
+                ),
                 workgroups: [
                     groups(s.transmittance_width),
                     groups(s.transmittance_height),
@@ -243,52 +519,52 @@ impl LutBaker {
             BakePass {
                 pipeline: compute_pipeline(
                     device,
-                    &layout,
+                    &ms_layout,
                     "atmos::lut_multiple_scattering",
                     "bake_multiple_scattering_lut",
                 )?,
-                luts: luts(
-                    "atmos LUTs for multiple scattering",
-                    [&transmittance, p, p, p],
+                tables: table_group(
+                    "atmos tables for multiple scattering",
+                    [&transmittance, pa, pa, p3, p3],
                 ),
-                output: outputs(
-                    "atmos multiple-scattering outputs (order 2)",
-                    &scattering_orders[0],
-                    &multiple_scattering,
-                ),
-                workgroups: [
-                    groups(s.multiple_scattering_width),
-                    groups(s.multiple_scattering_height),
-                ],
+                outputs: order_outputs("atmos scattering order 2 outputs", &orders[0]),
+                workgroups: ms_workgroups,
                 label: "atmos multiple-scattering LUT",
             },
             BakePass {
                 pipeline: compute_pipeline(
                     device,
-                    &layout,
+                    &pipeline_layout("atmos sky-view bake", &sky_view_out),
                     "atmos::lut_sky_view",
                     "bake_sky_view_lut",
                 )?,
-                luts: luts(
-                    "atmos LUTs for the sky view",
-                    [&transmittance, &multiple_scattering, p, p],
+                tables: table_group(
+                    "atmos tables for the sky view",
+                    [&transmittance, &multiple_scattering, pa, p3, p3],
                 ),
-                output: output("atmos sky-view output", &sky_view),
+                outputs: texture_outputs("atmos sky-view output", &sky_view_out, &[&sky_view]),
                 workgroups: [groups(s.sky_view_width), groups(s.sky_view_height)],
                 label: "atmos sky-view LUT",
             },
             BakePass {
                 pipeline: compute_pipeline(
                     device,
-                    &layout,
+                    &pipeline_layout("atmos aerial-perspective bake", &aerial_perspective_out),
                     "atmos::lut_aerial_perspective",
                     "bake_aerial_perspective",
                 )?,
-                luts: luts(
-                    "atmos LUTs for aerial perspective",
-                    [&transmittance, &multiple_scattering, p, p],
+                tables: table_group(
+                    "atmos tables for aerial perspective",
+                    [&transmittance, &multiple_scattering, pa, p3, p3],
                 ),
-                output: output("atmos aerial-perspective output", &aerial_perspective),
+                outputs: texture_outputs(
+                    "atmos aerial-perspective outputs",
+                    &aerial_perspective_out,
+                    &[
+                        &aerial_perspective_radiance,
+                        &aerial_perspective_transmittance,
+                    ],
+                ),
                 workgroups: [
                     groups(s.aerial_perspective_width),
                     groups(s.aerial_perspective_height),
@@ -298,41 +574,54 @@ impl LutBaker {
         ];
         let next_order_pipeline = compute_pipeline(
             device,
-            &layout,
+            &ms_layout,
             "atmos::lut_multiple_scattering",
             "bake_multiple_scattering_next_order",
         )?;
-        let higher_orders = (3..=settings.multiple_scattering_orders)
+        let mut higher_orders: Vec<BakePass> = (3..=settings.multiple_scattering_orders)
             .map(|order| {
-                // Order k reads order k − 1 (even orders sit in buffer 0).
-                let previous = &scattering_orders[(order as usize - 1) % 2];
-                let next = &scattering_orders[order as usize % 2];
+                // Order k reads order k − 1 (even orders sit in texture 0).
+                let previous = &orders[(order as usize - 1) % 2];
+                let next = &orders[order as usize % 2];
                 BakePass {
                     pipeline: next_order_pipeline.clone(),
-                    luts: luts(
-                        "atmos LUTs for a multiple-scattering order",
-                        [&transmittance, previous, p, p],
+                    tables: table_group(
+                        "atmos tables for a scattering order",
+                        [&transmittance, previous, pa, p3, p3],
                     ),
-                    output: outputs(
-                        "atmos multiple-scattering outputs (next order)",
-                        next,
-                        &multiple_scattering,
-                    ),
-                    workgroups: [
-                        groups(s.multiple_scattering_width),
-                        groups(s.multiple_scattering_height),
-                    ],
+                    outputs: order_outputs("atmos scattering order outputs", next),
+                    workgroups: ms_workgroups,
                     label: "atmos multiple-scattering order",
                 }
             })
             .collect();
-        let render_luts = luts(
-            "atmos LUTs for rendering",
+        // The sum into the LUT (binding 2 of the outputs); the last order written is
+        // bound at binding 0 unused, never read in this dispatch.
+        let last = &orders[settings.multiple_scattering_orders as usize % 2];
+        let scratch = &orders[(settings.multiple_scattering_orders as usize + 1) % 2];
+        higher_orders.push(BakePass {
+            pipeline: compute_pipeline(
+                device,
+                &ms_layout,
+                "atmos::lut_multiple_scattering",
+                "finish_multiple_scattering_lut",
+            )?,
+            tables: table_group(
+                "atmos tables for the multiple-scattering sum",
+                [&transmittance, last, pa, p3, p3],
+            ),
+            outputs: order_outputs("atmos multiple-scattering sum outputs", scratch),
+            workgroups: ms_workgroups,
+            label: "atmos multiple-scattering sum",
+        });
+        let tables = table_group(
+            "atmos LUT tables",
             [
                 &transmittance,
                 &multiple_scattering,
                 &sky_view,
-                &aerial_perspective,
+                &aerial_perspective_radiance,
+                &aerial_perspective_transmittance,
             ],
         );
         Ok(Self {
@@ -342,39 +631,59 @@ impl LutBaker {
             transmittance,
             multiple_scattering,
             sky_view,
-            aerial_perspective,
-            layout,
-            output_layout,
+            aerial_perspective_radiance,
+            aerial_perspective_transmittance,
+            layouts,
             uniforms,
-            render_luts,
+            tables,
             passes,
             higher_orders,
         })
     }
 
     /// Writes the frame camera the per-frame passes (sky view, aerial perspective)
-    /// bake for. The static passes (transmittance, multiple scattering) ignore it.
+    /// bake for, and the lookups of a caller's shader read. The static passes
+    /// (transmittance, multiple scattering) ignore it.
     pub fn prepare(&self, queue: &wgpu::Queue, camera: &FrameCamera) {
         queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(camera));
     }
 
-    /// The settings the buffers were sized for.
+    /// The settings the tables were sized for.
     pub fn settings(&self) -> &LutSettingsUniform {
         &self.settings
     }
+
+    /// The two bind-group layouts (uniforms, tables).
+    pub fn layouts(&self) -> &LutLayouts {
+        &self.layouts
+    }
+
+    /// The uniforms' bind group ([`LutLayouts::uniforms`]).
+    pub fn uniform_bind_group(&self) -> &wgpu::BindGroup {
+        &self.uniforms
+    }
+
+    /// The tables' bind group ([`LutLayouts::tables`]): valid to read once the static
+    /// bakes and this frame's bakes are submitted.
+    pub fn table_bind_group(&self) -> &wgpu::BindGroup {
+        &self.tables
+    }
+
+    /// The stages the layouts expose the LUTs to.
+    pub const STAGES: wgpu::ShaderStages = READ_STAGES;
 
     fn record(&self, pass: &mut wgpu::ComputePass<'_>, which: usize) {
         let bake = &self.passes[which];
         pass.set_pipeline(&bake.pipeline);
         pass.set_bind_group(0, &self.uniforms, &[]);
-        pass.set_bind_group(1, &bake.luts, &[]);
-        pass.set_bind_group(2, &bake.output, &[]);
+        pass.set_bind_group(1, &bake.tables, &[]);
+        pass.set_bind_group(2, &bake.outputs, &[]);
         pass.dispatch_workgroups(bake.workgroups[0], bake.workgroups[1], 1);
         if which == MULTIPLE_SCATTERING {
             for order in &self.higher_orders {
                 pass.set_pipeline(&order.pipeline);
-                pass.set_bind_group(1, &order.luts, &[]);
-                pass.set_bind_group(2, &order.output, &[]);
+                pass.set_bind_group(1, &order.tables, &[]);
+                pass.set_bind_group(2, &order.outputs, &[]);
                 pass.dispatch_workgroups(order.workgroups[0], order.workgroups[1], 1);
             }
         }
@@ -411,7 +720,7 @@ impl LutBaker {
     }
 
     /// Records the multiple-scattering bake (one pass of one dispatch per scattering
-    /// order; reads the transmittance LUT).
+    /// order and one for the sum; reads the transmittance LUT).
     pub fn encode_multiple_scattering(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -492,21 +801,24 @@ impl LutBaker {
         self.record(pass, AERIAL_PERSPECTIVE);
     }
 
-    /// Transmittance LUT (`vec4<f32>` texels, row-major).
-    pub fn transmittance_lut(&self) -> &wgpu::Buffer {
-        &self.transmittance
+    /// Transmittance LUT (`transmittance_width × _height`).
+    pub fn transmittance_texture(&self) -> &wgpu::Texture {
+        &self.transmittance.texture
     }
-    /// Multiple-scattering LUT.
-    pub fn multiple_scattering_lut(&self) -> &wgpu::Buffer {
-        &self.multiple_scattering
+    /// Multiple-scattering LUT (six layers: the field's moments).
+    pub fn multiple_scattering_texture(&self) -> &wgpu::Texture {
+        &self.multiple_scattering.texture
     }
-    /// Sky-view LUT.
-    pub fn sky_view_lut(&self) -> &wgpu::Buffer {
-        &self.sky_view
+    /// Sky-view LUT (layer 0 radiance; layer 1 transmittance when stored).
+    pub fn sky_view_texture(&self) -> &wgpu::Texture {
+        &self.sky_view.texture
     }
-    /// Aerial-perspective volume (two texels per froxel, see
-    /// [`crate::lut::aerial_perspective`]).
-    pub fn aerial_perspective_volume(&self) -> &wgpu::Buffer {
-        &self.aerial_perspective
+    /// Aerial-perspective radiance (3-D: froxel x, y, depth slice).
+    pub fn aerial_perspective_radiance_texture(&self) -> &wgpu::Texture {
+        &self.aerial_perspective_radiance.texture
+    }
+    /// Aerial-perspective transmittance (3-D, as the radiance).
+    pub fn aerial_perspective_transmittance_texture(&self) -> &wgpu::Texture {
+        &self.aerial_perspective_transmittance.texture
     }
 }

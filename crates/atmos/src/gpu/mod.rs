@@ -1,10 +1,22 @@
 //! GPU passes of `atmos` (feature `gpu`, on by default). Bring your own device: every
-//! type takes `&wgpu::Device` / `&wgpu::Queue`, `prepare` only writes buffers and
-//! `encode` records into the caller's encoder; nothing here creates a device or submits.
+//! type takes `&wgpu::Device` / `&wgpu::Queue`; `new` creates pipelines and long-lived
+//! resources, `prepare` writes uniforms and creates the frame's bind groups, `encode`
+//! only records into the caller's encoder; nothing here creates a device or submits.
 //!
-//! Every rung's renderer follows one convention, so a caller (and
-//! `cargo xtask tradeoff atmos`) can swap them: `new(device, &Atmosphere, settings)`,
-//! `prepare(queue, &FrameCamera)`, `encode(encoder, &FrameOutput, timestamp_writes)`.
+//! Two ways in:
+//!
+//! * **Into your own engine**: [`AtmosphereLuts`] bakes the precomputed rung's tables
+//!   into textures with public bind-group layouts; [`sky::SkyPass`] draws the sky into
+//!   your colour target (inside your render pass); your own shaders apply aerial
+//!   perspective to your geometry with `atmos::aerial_perspective`'s WGSL
+//!   (`apply_aerial_perspective`, composed at the bind groups you choose with
+//!   [`composer_with_lut_groups`]); [`crate::frame::LocalFrame`] converts between your
+//!   frame (+y up, metres from an origin on the ground) and the planet's.
+//! * **Whole frames of radiance** (the ladder, for measurements and the CPU/GPU image
+//!   tests): every rung's renderer follows one convention, so a caller (and
+//!   `cargo xtask tradeoff atmos`) can swap them: `new(device, &Atmosphere, settings)`,
+//!   `prepare(queue, &FrameCamera, &FrameOutput)`, `encode(encoder, timestamp_writes)`,
+//!   writing a [`FrameOutput`] (two textures).
 
 pub mod closed_form;
 pub mod frame_output;
@@ -12,7 +24,11 @@ pub mod luts;
 pub mod precomputed;
 pub mod resources;
 pub mod single_scattering;
+pub mod sky;
 
 pub use closed_form::{ClosedFormRenderer, EvaluationFrequency};
 pub use frame_output::FrameOutput;
+pub use luts::{AtmosphereLuts, LutLayouts, composer_with_lut_groups, lut_bindings_wgsl};
+pub use precomputed::PrecomputedRenderer;
 pub use single_scattering::SingleScatteringRenderer;
+pub use sky::{SkyPass, SkyPassDescriptor};

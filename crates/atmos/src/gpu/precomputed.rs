@@ -1,5 +1,6 @@
 //! The precomputed rung's GPU renderer: per-frame LUT bakes (sky view, aerial
-//! perspective) and a per-pixel lookup pass writing a [`FrameOutput`]. Twin of
+//! perspective) and a per-pixel lookup pass writing a [`FrameOutput`]. To draw the sky
+//! into your own colour target instead, see [`crate::gpu::sky::SkyPass`]. Twin of
 //! [`crate::lut::precomputed_sky::shade_pixel`].
 //!
 //! Passes and timing: [`PrecomputedRenderer::encode`] records **one** compute pass
@@ -14,16 +15,19 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::frame::FrameCamera;
 use crate::gpu::FrameOutput;
-use crate::gpu::luts::{LutBaker, compute_pipeline};
+use crate::gpu::luts::{AtmosphereLuts, compute_pipeline};
+use crate::gpu::resources::storage_texture_entry;
 use crate::lut::LutSettings;
 use crate::{AtmosError, Atmosphere, GpuError};
 
 /// Renders frames with the precomputed rung.
 #[derive(Debug)]
 pub struct PrecomputedRenderer {
-    baker: LutBaker,
+    luts: AtmosphereLuts,
     pipeline: wgpu::ComputePipeline,
-    camera: Option<FrameCamera>,
+    output_layout: wgpu::BindGroupLayout,
+    /// The camera and the output's bind group, made by [`Self::prepare`].
+    prepared: Option<(FrameCamera, wgpu::BindGroup)>,
     /// True until an encoder holds the static bakes ([`Self::encode`] or
     /// [`Self::encode_static_luts`] recorded them). Only recording clears it, so any
     /// number of `prepare` calls before the first `encode` keep the bakes scheduled.
@@ -31,64 +35,91 @@ pub struct PrecomputedRenderer {
 }
 
 impl PrecomputedRenderer {
-    /// Validates the atmosphere and settings; creates pipelines and LUT buffers.
+    /// Validates the atmosphere and settings; creates pipelines and LUT textures.
     pub fn new(
         device: &wgpu::Device,
         atmosphere: &Atmosphere,
         settings: LutSettings,
     ) -> Result<Self, AtmosError> {
-        let baker = LutBaker::new(device, atmosphere, &settings)?;
-        let pipeline = compute_pipeline(
-            device,
-            &baker.layout,
-            "atmos::lut_render",
-            "render_precomputed",
-        )?;
+        let luts = AtmosphereLuts::new(device, atmosphere, &settings)?;
+        let output_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("atmos precomputed frame output"),
+            entries: &[
+                storage_texture_entry(0, wgpu::TextureViewDimension::D2),
+                storage_texture_entry(1, wgpu::TextureViewDimension::D2),
+            ],
+        });
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("atmos precomputed frame"),
+            bind_group_layouts: &[
+                Some(&luts.layouts().uniforms),
+                Some(&luts.layouts().tables),
+                Some(&output_layout),
+            ],
+            immediate_size: 0,
+        });
+        let pipeline =
+            compute_pipeline(device, &layout, "atmos::lut_render", "render_precomputed")?;
         Ok(Self {
-            baker,
+            luts,
             pipeline,
-            camera: None,
+            output_layout,
+            prepared: None,
             static_luts_pending: AtomicBool::new(true),
         })
     }
 
-    /// Writes the camera uniform. Until an encoder has recorded the static bakes
-    /// (transmittance, multiple scattering), the next [`Self::encode`] records them
-    /// first: submit that encoder before relying on later frames (or bake them yourself
-    /// with [`Self::encode_static_luts`] and use the split API). Calling `prepare`
-    /// again before encoding only replaces the camera.
-    pub fn prepare(&mut self, queue: &wgpu::Queue, camera: &FrameCamera) {
-        self.baker.prepare(queue, camera);
-        self.camera = Some(*camera);
-    }
-
-    /// The LUT passes and buffers (for reading the LUTs back or timing single bakes).
-    pub fn baker(&self) -> &LutBaker {
-        &self.baker
-    }
-
-    fn output_group(&self, output: &FrameOutput) -> Result<wgpu::BindGroup, AtmosError> {
-        let camera = self.camera.as_ref().ok_or_else(|| {
-            AtmosError::from(GpuError::NotPrepared {
-                pass: "PrecomputedRenderer",
-            })
-        })?;
+    /// Writes the camera uniform and binds `output` (checked against the camera's
+    /// frame size). Until an encoder has recorded the static bakes (transmittance,
+    /// multiple scattering), the next [`Self::encode`] records them first: submit that
+    /// encoder before relying on later frames (or bake them yourself with
+    /// [`Self::encode_static_luts`] and use the split API). Calling `prepare` again
+    /// before encoding only replaces the camera and the output.
+    pub fn prepare(
+        &mut self,
+        queue: &wgpu::Queue,
+        camera: &FrameCamera,
+        output: &FrameOutput,
+    ) -> Result<(), AtmosError> {
+        self.prepared = None;
         output.check_camera(camera)?;
-        Ok(self
-            .baker
+        let group = self
+            .luts
             .device
             .create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("atmos precomputed frame output"),
-                layout: &self.baker.output_layout,
+                layout: &self.output_layout,
                 entries: &output.bind_group_entries(0),
-            }))
+            });
+        self.luts.prepare(queue, camera);
+        self.prepared = Some((*camera, group));
+        Ok(())
     }
 
-    fn record_pixels(&self, pass: &mut wgpu::ComputePass<'_>, group: &wgpu::BindGroup) {
-        let camera = self.camera.as_ref().expect("checked by output_group");
+    /// The LUT textures and their bake passes (to bind the tables in another pipeline,
+    /// read them back, or time single bakes).
+    pub fn luts(&self) -> &AtmosphereLuts {
+        &self.luts
+    }
+
+    fn prepared(&self) -> Result<&(FrameCamera, wgpu::BindGroup), AtmosError> {
+        self.prepared.as_ref().ok_or_else(|| {
+            GpuError::NotPrepared {
+                pass: "PrecomputedRenderer",
+            }
+            .into()
+        })
+    }
+
+    fn record_pixels(
+        &self,
+        pass: &mut wgpu::ComputePass<'_>,
+        prepared: &(FrameCamera, wgpu::BindGroup),
+    ) {
+        let (camera, group) = prepared;
         pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &self.baker.uniforms, &[]);
-        pass.set_bind_group(1, &self.baker.render_luts, &[]);
+        pass.set_bind_group(0, self.luts.uniform_bind_group(), &[]);
+        pass.set_bind_group(1, self.luts.table_bind_group(), &[]);
         pass.set_bind_group(2, group, &[]);
         pass.dispatch_workgroups(camera.width.div_ceil(8), camera.height.div_ceil(8), 1);
     }
@@ -98,19 +129,18 @@ impl PrecomputedRenderer {
     pub fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
-        output: &FrameOutput,
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), AtmosError> {
-        let group = self.output_group(output)?;
+        let prepared = self.prepared()?;
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("atmos precomputed frame"),
             timestamp_writes,
         });
         // Checked and cleared only once the pass exists, so a failed `encode` (missing
-        // `prepare`, mismatched output) leaves the bakes scheduled.
+        // `prepare`) leaves the bakes scheduled.
         let static_luts = self.static_luts_pending.swap(false, Ordering::Relaxed);
-        self.baker.record_into(&mut pass, static_luts);
-        self.record_pixels(&mut pass, &group);
+        self.luts.record_into(&mut pass, static_luts);
+        self.record_pixels(&mut pass, prepared);
         Ok(())
     }
 
@@ -120,7 +150,7 @@ impl PrecomputedRenderer {
         encoder: &mut wgpu::CommandEncoder,
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
-        self.baker.encode_static_luts(encoder, timestamp_writes);
+        self.luts.encode_static_luts(encoder, timestamp_writes);
         self.static_luts_pending.store(false, Ordering::Relaxed);
     }
 
@@ -130,22 +160,21 @@ impl PrecomputedRenderer {
         encoder: &mut wgpu::CommandEncoder,
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
-        self.baker.encode_frame_luts(encoder, timestamp_writes);
+        self.luts.encode_frame_luts(encoder, timestamp_writes);
     }
 
     /// Per pixel: the lookup pass (one pass), reading LUTs baked earlier.
     pub fn encode_pixels(
         &self,
         encoder: &mut wgpu::CommandEncoder,
-        output: &FrameOutput,
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), AtmosError> {
-        let group = self.output_group(output)?;
+        let prepared = self.prepared()?;
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("atmos precomputed pixels"),
             timestamp_writes,
         });
-        self.record_pixels(&mut pass, &group);
+        self.record_pixels(&mut pass, prepared);
         Ok(())
     }
 }

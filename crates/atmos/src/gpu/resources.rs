@@ -1,10 +1,16 @@
-//! Small constructors every atmos pass (and `render`'s present pass) shares: compute
-//! bind-group layout entries for buffers, per-frame uniform buffers, and the one
-//! binding layout of the per-pixel frame renderers (rungs 1 and 2).
+//! Small constructors every atmos pass (and `render`'s passes) shares: bind-group layout
+//! entries for buffers and textures, per-frame uniform buffers, and the one binding
+//! layout of the per-pixel frame renderers (rungs 1 and 2).
 
 use crate::frame::FrameCamera;
 use crate::gpu::FrameOutput;
 use crate::{AtmosError, GpuError};
+
+/// The stages a table or uniform of atmos may be read from: compute bakes and a user's
+/// render pipelines alike.
+pub const READ_STAGES: wgpu::ShaderStages = wgpu::ShaderStages::COMPUTE
+    .union(wgpu::ShaderStages::VERTEX)
+    .union(wgpu::ShaderStages::FRAGMENT);
 
 /// A compute-stage buffer binding of type `ty` (uniform or storage), unsized.
 pub fn compute_buffer_entry(
@@ -33,6 +39,49 @@ pub fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     compute_buffer_entry(binding, wgpu::BufferBindingType::Uniform)
 }
 
+/// A uniform-buffer binding readable from [`READ_STAGES`].
+pub fn shared_uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        visibility: READ_STAGES,
+        ..uniform_entry(binding)
+    }
+}
+
+/// An unfilterable-float sampled texture of `dimension`, readable from
+/// [`READ_STAGES`] (read with `textureLoad`).
+pub fn float_texture_entry(
+    binding: u32,
+    dimension: wgpu::TextureViewDimension,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: READ_STAGES,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+            view_dimension: dimension,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+/// A compute-stage write-only `rgba32float` storage texture of `dimension`.
+pub fn storage_texture_entry(
+    binding: u32,
+    dimension: wgpu::TextureViewDimension,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::StorageTexture {
+            access: wgpu::StorageTextureAccess::WriteOnly,
+            format: FrameOutput::FORMAT,
+            view_dimension: dimension,
+        },
+        count: None,
+    }
+}
+
 /// A `UNIFORM | COPY_DST` buffer of `size` bytes, written by a pass's `prepare`.
 pub fn uniform_buffer(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
     device.create_buffer(&wgpu::BufferDescriptor {
@@ -43,14 +92,36 @@ pub fn uniform_buffer(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Bu
     })
 }
 
+/// Errors unless the device can write `rgba32float` storage textures from compute
+/// passes and read them unfiltered (every WebGPU adapter can; a downlevel GL adapter
+/// may not).
+pub fn check_texture_support(device: &wgpu::Device) -> Result<(), AtmosError> {
+    if device.limits().max_storage_textures_per_shader_stage < 2 {
+        return Err(GpuError::UnsupportedFormat {
+            format: "rgba32float",
+            need: "write-only storage textures (max_storage_textures_per_shader_stage < 2)",
+        }
+        .into());
+    }
+    Ok(())
+}
+
 /// Bindings of a frame renderer's pass (group 0): the camera uniform (0), the model's
-/// parameter uniform (1), the [`FrameOutput`] radiance and transmittance (2, 3), then
-/// the renderer's own storage buffers (4, …).
+/// parameter uniform (1), the [`FrameOutput`] radiance and transmittance storage
+/// textures (2, 3), then the renderer's own storage buffers (4, …).
 #[derive(Debug)]
 pub(crate) struct FramePassLayout {
     pub(crate) bind_group: wgpu::BindGroupLayout,
     pub(crate) pipeline: wgpu::PipelineLayout,
     label: &'static str,
+}
+
+/// What a frame renderer's `prepare` made for its `encode`: the camera and the bind
+/// group of the frame's resources.
+#[derive(Debug)]
+pub(crate) struct PreparedFrame {
+    pub(crate) camera: FrameCamera,
+    pub(crate) bind_group: wgpu::BindGroup,
 }
 
 impl FramePassLayout {
@@ -59,9 +130,11 @@ impl FramePassLayout {
         let entries: Vec<_> = [
             compute_buffer_entry(0, wgpu::BufferBindingType::Uniform),
             compute_buffer_entry(1, wgpu::BufferBindingType::Uniform),
+            storage_texture_entry(2, wgpu::TextureViewDimension::D2),
+            storage_texture_entry(3, wgpu::TextureViewDimension::D2),
         ]
         .into_iter()
-        .chain((2..4 + own_storage).map(|binding| compute_buffer_entry(binding, storage)))
+        .chain((4..4 + own_storage).map(|binding| compute_buffer_entry(binding, storage)))
         .collect();
         let bind_group = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(label),
@@ -79,24 +152,23 @@ impl FramePassLayout {
         }
     }
 
-    /// The camera `prepare` uploaded, checked against `output`'s size, and the bind
-    /// group of this frame's buffers.
-    pub(crate) fn bind(
+    /// The bind group of this frame's resources, for `prepare`: `camera` checked
+    /// against `output`'s size.
+    pub(crate) fn prepare(
         &self,
         device: &wgpu::Device,
-        prepared: Option<FrameCamera>,
-        camera: &wgpu::Buffer,
+        camera: &FrameCamera,
+        camera_buffer: &wgpu::Buffer,
         parameters: &wgpu::Buffer,
         output: &FrameOutput,
         own_storage: &[&wgpu::Buffer],
-    ) -> Result<(FrameCamera, wgpu::BindGroup), AtmosError> {
-        let prepared = prepared.ok_or(GpuError::NotPrepared { pass: self.label })?;
-        output.check_camera(&prepared)?;
+    ) -> Result<PreparedFrame, AtmosError> {
+        output.check_camera(camera)?;
         let [radiance, transmittance] = output.bind_group_entries(2);
         let entries: Vec<_> = [
             wgpu::BindGroupEntry {
                 binding: 0,
-                resource: camera.as_entire_binding(),
+                resource: camera_buffer.as_entire_binding(),
             },
             wgpu::BindGroupEntry {
                 binding: 1,
@@ -121,6 +193,19 @@ impl FramePassLayout {
             layout: &self.bind_group,
             entries: &entries,
         });
-        Ok((prepared, bind_group))
+        Ok(PreparedFrame {
+            camera: *camera,
+            bind_group,
+        })
+    }
+
+    /// What `prepare` made, or the typed error of an `encode` before `prepare`.
+    pub(crate) fn prepared<'a>(
+        &self,
+        prepared: &'a Option<PreparedFrame>,
+    ) -> Result<&'a PreparedFrame, AtmosError> {
+        prepared
+            .as_ref()
+            .ok_or_else(|| GpuError::NotPrepared { pass: self.label }.into())
     }
 }

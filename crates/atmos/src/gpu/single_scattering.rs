@@ -12,16 +12,16 @@
 //!     glam::DVec3::new(0.0, 0.0, 6_360_002.0), glam::DVec3::X, glam::DVec3::Z,
 //!     1.2, 1280, 720, glam::DVec3::new(0.5, 0.0, 0.866), None)?;
 //! let output = FrameOutput::new(device, 1280, 720)?;
-//! sky.prepare(queue, &camera);
+//! sky.prepare(queue, &camera, &output)?;
 //! let mut encoder = device.create_command_encoder(&Default::default());
-//! sky.encode(&mut encoder, &output, None)?;
+//! sky.encode(&mut encoder, None)?;
 //! queue.submit([encoder.finish()]);
 //! # Ok(()) }
 //! ```
 
 use crate::frame::FrameCamera;
 use crate::gpu::FrameOutput;
-use crate::gpu::resources::{FramePassLayout, uniform_buffer};
+use crate::gpu::resources::{FramePassLayout, PreparedFrame, uniform_buffer};
 use crate::single_scattering::SingleScatteringSettings;
 use crate::{AtmosError, Atmosphere, AtmosphereParameters};
 
@@ -33,8 +33,8 @@ const KERNEL: &str = r"
 
 @group(0) @binding(0) var<uniform> camera: FrameCamera;
 @group(0) @binding(1) var<uniform> atmosphere: AtmosphereParameters;
-@group(0) @binding(2) var<storage, read_write> radiance_out: array<vec4<f32>>;
-@group(0) @binding(3) var<storage, read_write> transmittance_out: array<vec4<f32>>;
+@group(0) @binding(2) var radiance_out: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(3) var transmittance_out: texture_storage_2d<rgba32float, write>;
 
 override view_samples: u32 = 32u;
 override light_samples: u32 = 8u;
@@ -57,9 +57,8 @@ fn render_single_scattering(@builtin(global_invocation_id) gid: vec3<u32>) {
         view_samples,
         light_samples,
     );
-    let index = gid.x + camera.width * gid.y;
-    radiance_out[index] = vec4<f32>(sample.radiance, 1.0);
-    transmittance_out[index] = vec4<f32>(sample.transmittance, 1.0);
+    textureStore(radiance_out, gid.xy, vec4<f32>(sample.radiance, 1.0));
+    textureStore(transmittance_out, gid.xy, vec4<f32>(sample.transmittance, 1.0));
 }
 ";
 
@@ -102,7 +101,7 @@ pub struct SingleScatteringRenderer {
     camera: wgpu::Buffer,
     atmosphere: wgpu::Buffer,
     parameters: AtmosphereParameters,
-    prepared: Option<FrameCamera>,
+    prepared: Option<PreparedFrame>,
 }
 
 impl SingleScatteringRenderer {
@@ -160,33 +159,41 @@ impl SingleScatteringRenderer {
         self.settings
     }
 
-    /// Uploads the camera (and sun) of the next frame, and the atmosphere.
-    pub fn prepare(&mut self, queue: &wgpu::Queue, camera: &FrameCamera) {
-        queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(camera));
-        queue.write_buffer(&self.atmosphere, 0, bytemuck::bytes_of(&self.parameters));
-        self.prepared = Some(*camera);
-    }
-
-    /// Records the frame into `encoder` (one compute pass, 8×8 workgroups).
-    pub fn encode(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
+    /// Uploads the camera (and sun) of the next frame and the atmosphere, and binds
+    /// `output` (checked against the camera's frame size) for [`Self::encode`].
+    pub fn prepare(
+        &mut self,
+        queue: &wgpu::Queue,
+        camera: &FrameCamera,
         output: &FrameOutput,
-        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), AtmosError> {
-        let (camera, bind_group) = self.layout.bind(
+        self.prepared = None;
+        let prepared = self.layout.prepare(
             &self.device,
-            self.prepared,
+            camera,
             &self.camera,
             &self.atmosphere,
             output,
             &[],
         )?;
+        queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(camera));
+        queue.write_buffer(&self.atmosphere, 0, bytemuck::bytes_of(&self.parameters));
+        self.prepared = Some(prepared);
+        Ok(())
+    }
+
+    /// Records the prepared frame into `encoder` (one compute pass, 8×8 workgroups).
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), AtmosError> {
+        let PreparedFrame { camera, bind_group } = self.layout.prepared(&self.prepared)?;
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("atmos single scattering"),
             timestamp_writes,
         });
-        pass.set_bind_group(0, &bind_group, &[]);
+        pass.set_bind_group(0, bind_group, &[]);
         pass.set_pipeline(&self.pipeline);
         pass.dispatch_workgroups(camera.width.div_ceil(8), camera.height.div_ceil(8), 1);
         Ok(())

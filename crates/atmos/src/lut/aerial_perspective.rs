@@ -6,8 +6,8 @@
 //! slice, clipped to the atmosphere (ground and top) — beyond the ground the values
 //! stay constant.
 //!
-//! Layout: two `[f32; 4]` per froxel — index 2k radiance (rgb, 1), 2k + 1
-//! transmittance (rgb, 1) — with k = x + W·(y + H·z). Twin of
+//! Layout: planar like the GPU's two 3-D textures — froxel k = x + W·(y + H·z) holds
+//! its radiance (rgb, 1) at index k and its transmittance (rgb, 1) at W·H·D + k. Twin of
 //! `shaders/atmos/lut_aerial_perspective.wgsl` (bake) and `lut_sampling.wgsl` (lookup).
 
 use crate::frame::FrameCamera;
@@ -25,7 +25,7 @@ use super::{LutSettingsUniform, blend_footprint};
 pub struct AerialPerspectiveVolume {
     /// Froxels (x, y, depth).
     pub size: [u32; 3],
-    /// Two texels per froxel (radiance, transmittance).
+    /// The radiance volume, then the transmittance volume (`W·H·D` texels each).
     pub texels: Vec<[f32; 4]>,
 }
 
@@ -140,12 +140,13 @@ pub fn bake_aerial_perspective(
             });
         }
     });
-    let mut texels = vec![[0.0f32; 4]; 2 * columns * d as usize];
+    let volume = columns * d as usize;
+    let mut texels = vec![[0.0f32; 4]; 2 * volume];
     for (column, values) in per_column.iter().enumerate() {
         for z in 0..d as usize {
             let k = column + columns * z;
-            texels[2 * k] = values[2 * z];
-            texels[2 * k + 1] = values[2 * z + 1];
+            texels[k] = values[2 * z];
+            texels[volume + k] = values[2 * z + 1];
         }
     }
     AerialPerspectiveVolume {
@@ -174,8 +175,9 @@ pub fn lookup_aerial_perspective(
             return if which == 0 { [0.0; 3] } else { [1.0; 3] };
         }
         let z = z as u32;
+        let offset = which * (w * h * d) as usize;
         blend_footprint(&volume.texels, &f, |x, y| {
-            2 * (x + w * (y + h * z)) as usize + which
+            offset + (x + w * (y + h * z)) as usize
         })
     };
     let z1 = (z0 + 1.0).min((d - 1) as f32);

@@ -23,6 +23,7 @@
 //! the CPU twin reads exactly what the GPU reads.
 
 pub mod aerial_perspective;
+pub mod drop_in;
 pub mod multiple_scattering_lut;
 pub mod multiple_scattering_moments;
 pub mod parameterization;
@@ -48,6 +49,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../../shaders/lut_multiple_scattering_moments.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "atmos::lut_bindings",
+        source: include_str!("../../shaders/lut_bindings.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "atmos::lut_sampling",
         source: include_str!("../../shaders/lut_sampling.wgsl"),
     },
@@ -68,8 +73,20 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../../shaders/lut_aerial_perspective.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "atmos::lut_shading",
+        source: include_str!("../../shaders/lut_shading.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "atmos::lut_render",
         source: include_str!("../../shaders/lut_render.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "atmos::aerial_perspective",
+        source: include_str!("../../shaders/aerial_perspective.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "atmos::sky_pass",
+        source: include_str!("../../shaders/sky_pass.wgsl"),
     },
 ];
 
@@ -77,8 +94,8 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
 /// ground or to space) for a viewer inside the atmosphere: a speed-for-accuracy choice.
 ///
 /// Measured against the default-settings reference on 2,304 queries (viewers 0 – 50 km,
-/// suns −6° … 90°; `cargo test --release -p atmos --test luts -- --ignored
-/// view_transmittance_against_the_reference --nocapture`); see the atmos README for
+/// suns −6° … 90°; `cargo test -p atmos --test luts -- --nocapture
+/// view_transmittance_against_the_reference`); see the atmos README for
 /// the figures and the per-query cost of each choice.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ViewTransmittance {

@@ -4,9 +4,9 @@
 //! texel also holds the transmittance of its view ray (to the ground or space, from
 //! the transmittance LUT): a pixel then reads one footprint for both, instead of a
 //! ray–sphere test and one or two transmittance lookups (half of a CPU query's cost).
-//! Entries per texel
-//! ([`super::LutSettingsUniform::sky_view_entries_per_texel`]) e = 2 or 1: radiance at
-//! e·i, transmittance at e·i + 1, i = x + width·y. Its rows are mapped non-linearly so
+//! Layers ([`super::LutSettingsUniform::sky_view_entries_per_texel`]: 2 or 1), planar
+//! like the GPU's texture array: radiance (layer 0) of texel (x, y) at
+//! x + width·y, transmittance (layer 1) at x + width·(y + height). Its rows are mapped non-linearly so
 //! the horizon, where radiance changes fastest, gets the most texels; the horizon
 //! itself lies between the two middle rows, and lookups never blend a sky row with a
 //! ground row.
@@ -83,14 +83,12 @@ pub fn bake_sky_view_lut(bindings: &LutBindings<'_>, r: f32, mu_s: f32) -> Lut2d
     let entries = fill_parallel((width * height) as usize, |i| {
         sky_view_texel(bindings, r, mu_s, i as u32 % width, i as u32 / width)
     });
-    let texels = entries
+    let texel = |[r, g, b]: [f32; 3]| [r, g, b, 1.0];
+    let radiance = entries.iter().map(|&(radiance, _)| texel(radiance));
+    let transmittance = entries
         .iter()
-        .flat_map(|&(radiance, transmittance)| {
-            std::iter::once(radiance)
-                .chain(transmittance)
-                .map(|[r, g, b]| [r, g, b, 1.0])
-        })
-        .collect();
+        .filter_map(|&(_, transmittance)| transmittance.map(texel));
+    let texels = radiance.chain(transmittance).collect();
     Lut2d {
         width,
         height,
@@ -130,10 +128,9 @@ pub fn lookup_sky_view(
     } else {
         bilinear_footprint(uv, width, height, half, height - 1)
     };
-    let entries = settings.sky_view_entries_per_texel() as usize;
-    let blend = |which: usize| {
+    let blend = |layer: u32| {
         blend_footprint(&sky_view.texels, &f, |x, y| {
-            entries * (x + width * y) as usize + which
+            (x + width * (y + height * layer)) as usize
         })
     };
     let transmittance = if settings.sky_view_transmittance != 0 {

@@ -335,8 +335,8 @@ fn render_ladder_gpu(rung: Rung, scene: &SkyScene) -> Result<(Vec<u32>, String),
             };
             let mut sky =
                 atmos::gpu::ClosedFormRenderer::new(&device, &atmosphere, frequency).map_err(e)?;
-            sky.prepare(&queue, &camera);
-            sky.encode(&mut encoder, &frame, None).map_err(e)?;
+            sky.prepare(&queue, &camera, &frame).map_err(e)?;
+            sky.encode(&mut encoder, None).map_err(e)?;
         }
         Rung::Precomputed => {
             let mut sky = atmos::gpu::precomputed::PrecomputedRenderer::new(
@@ -345,8 +345,8 @@ fn render_ladder_gpu(rung: Rung, scene: &SkyScene) -> Result<(Vec<u32>, String),
                 Default::default(),
             )
             .map_err(e)?;
-            sky.prepare(&queue, &camera);
-            sky.encode(&mut encoder, &frame, None).map_err(e)?;
+            sky.prepare(&queue, &camera, &frame).map_err(e)?;
+            sky.encode(&mut encoder, None).map_err(e)?;
         }
         Rung::Single => {
             let mut sky = atmos::gpu::single_scattering::SingleScatteringRenderer::new(
@@ -355,18 +355,18 @@ fn render_ladder_gpu(rung: Rung, scene: &SkyScene) -> Result<(Vec<u32>, String),
                 Default::default(),
             )
             .map_err(e)?;
-            sky.prepare(&queue, &camera);
-            sky.encode(&mut encoder, &frame, None).map_err(e)?;
+            sky.prepare(&queue, &camera, &frame).map_err(e)?;
+            sky.encode(&mut encoder, None).map_err(e)?;
         }
         Rung::Reference | Rung::ReferenceSpectral => {
             return Err("the reference rung runs on the CPU only".into());
         }
     }
     let mut presenter = render::gpu::Presenter::new(&device).map_err(|e| e.to_string())?;
-    presenter.prepare(&queue, &camera, &present);
     presenter
-        .encode(&mut encoder, &frame)
+        .prepare(&queue, &camera, &present, &frame)
         .map_err(|e| e.to_string())?;
+    presenter.encode(&mut encoder).map_err(|e| e.to_string())?;
     let pixels = presenter
         .pixel_buffer()
         .ok_or("present pass has no pixel buffer")?;

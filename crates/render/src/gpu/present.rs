@@ -6,7 +6,7 @@ use atmos::gpu::FrameOutput;
 
 use crate::RenderError;
 use crate::present::PresentParameters;
-use atmos::gpu::resources::{compute_buffer_entry as entry, uniform_buffer};
+use atmos::gpu::resources::{compute_buffer_entry as entry, float_texture_entry, uniform_buffer};
 
 /// Compute pass turning a [`FrameOutput`] into packed RGBA8 pixels.
 #[derive(Debug)]
@@ -17,7 +17,8 @@ pub struct Presenter {
     camera: wgpu::Buffer,
     params: wgpu::Buffer,
     pixels: Option<(u32, u32, wgpu::Buffer)>,
-    prepared: Option<FrameCamera>,
+    /// The camera and the frame's bind group, made by [`Self::prepare`].
+    prepared: Option<(FrameCamera, wgpu::BindGroup)>,
 }
 
 impl Presenter {
@@ -28,14 +29,14 @@ impl Presenter {
             label: Some("render present"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
         });
-        let read = wgpu::BufferBindingType::Storage { read_only: true };
+        let texture = |binding| float_texture_entry(binding, wgpu::TextureViewDimension::D2);
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("render present"),
             entries: &[
                 entry(0, wgpu::BufferBindingType::Uniform),
                 entry(1, wgpu::BufferBindingType::Uniform),
-                entry(2, read),
-                entry(3, read),
+                texture(2),
+                texture(3),
                 entry(4, wgpu::BufferBindingType::Storage { read_only: false }),
             ],
         });
@@ -71,15 +72,19 @@ impl Presenter {
         })
     }
 
-    /// Uploads the frame's camera and display constants; (re)allocates the pixels.
+    /// Uploads the frame's camera and display constants, (re)allocates the pixels and
+    /// binds `frame` (checked against the camera's frame size) for [`Self::encode`].
     pub fn prepare(
         &mut self,
         queue: &wgpu::Queue,
         camera: &FrameCamera,
         params: &PresentParameters,
-    ) {
-        queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(camera));
-        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(params));
+        frame: &FrameOutput,
+    ) -> Result<(), RenderError> {
+        self.prepared = None;
+        frame
+            .check_camera(camera)
+            .map_err(RenderError::Atmosphere)?;
         if self
             .pixels
             .as_ref()
@@ -93,22 +98,8 @@ impl Presenter {
             });
             self.pixels = Some((camera.width, camera.height, buffer));
         }
-        self.prepared = Some(*camera);
-    }
-
-    /// Records the pass reading `frame`.
-    pub fn encode(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        frame: &FrameOutput,
-    ) -> Result<(), RenderError> {
-        let (camera, (_, _, pixels)) = self
-            .prepared
-            .zip(self.pixels.as_ref())
-            .ok_or(RenderError::NotPrepared)?;
-        frame
-            .check_camera(&camera)
-            .map_err(RenderError::Atmosphere)?;
+        let (_, _, pixels) = self.pixels.as_ref().expect("allocated above");
+        let [radiance, transmittance] = frame.bind_group_entries(2);
         let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("render present"),
             layout: &self.layout,
@@ -121,26 +112,29 @@ impl Presenter {
                     binding: 1,
                     resource: self.params.as_entire_binding(),
                 },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: frame.radiance().as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: frame.transmittance().as_entire_binding(),
-                },
+                radiance,
+                transmittance,
                 wgpu::BindGroupEntry {
                     binding: 4,
                     resource: pixels.as_entire_binding(),
                 },
             ],
         });
+        queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(camera));
+        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(params));
+        self.prepared = Some((*camera, bind_group));
+        Ok(())
+    }
+
+    /// Records the pass reading the prepared frame.
+    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder) -> Result<(), RenderError> {
+        let (camera, bind_group) = self.prepared.as_ref().ok_or(RenderError::NotPrepared)?;
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("render present"),
             timestamp_writes: None,
         });
         pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &bind_group, &[]);
+        pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups(camera.width.div_ceil(8), camera.height.div_ceil(8), 1);
         Ok(())
     }

@@ -104,39 +104,30 @@ fn gpu_bake_with(
     which: Which,
     settings: &LutSettings,
 ) -> Result<Vec<f32>, String> {
-    let baker = atmos::gpu::luts::LutBaker::new(&gpu.device, &Atmosphere::earth(), settings)
+    let luts = atmos::gpu::AtmosphereLuts::new(&gpu.device, &Atmosphere::earth(), settings)
         .map_err(|e| e.to_string())?;
-    baker.prepare(&gpu.queue, &camera());
+    luts.prepare(&gpu.queue, &camera());
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    baker.encode_static_luts(&mut encoder, None);
-    baker.encode_frame_luts(&mut encoder, None);
+    luts.encode_static_luts(&mut encoder, None);
+    luts.encode_frame_luts(&mut encoder, None);
     gpu.queue.submit([encoder.finish()]);
-    let s = baker.settings();
-    let (buffer, texels) = match which {
-        Which::Transmittance => (
-            baker.transmittance_lut(),
-            s.transmittance_width * s.transmittance_height,
-        ),
-        Which::MultipleScattering => (
-            baker.multiple_scattering_lut(),
-            s.multiple_scattering_width
-                * s.multiple_scattering_height
-                * atmos::lut::multiple_scattering_moments::MULTIPLE_SCATTERING_LAYERS,
-        ),
-        Which::SkyView => (
-            baker.sky_view_lut(),
-            s.sky_view_entries_per_texel() * s.sky_view_width * s.sky_view_height,
-        ),
-        Which::AerialPerspective => (
-            baker.aerial_perspective_volume(),
-            2 * s.aerial_perspective_width
-                * s.aerial_perspective_height
-                * s.aerial_perspective_depth,
-        ),
+    // Texture readbacks are layer-major, the CPU twin's planar layout.
+    let textures = match which {
+        Which::Transmittance => vec![luts.transmittance_texture()],
+        Which::MultipleScattering => vec![luts.multiple_scattering_texture()],
+        Which::SkyView => vec![luts.sky_view_texture()],
+        Which::AerialPerspective => vec![
+            luts.aerial_perspective_radiance_texture(),
+            luts.aerial_perspective_transmittance_texture(),
+        ],
     };
-    let bytes = skyscape_harness::read_buffer(gpu, "atmos LUT", buffer, 0, u64::from(texels) * 16)
-        .map_err(|e| e.to_string())?;
-    Ok(bytemuck::cast_slice::<u8, f32>(&bytes).to_vec())
+    let mut values = Vec::new();
+    for texture in textures {
+        let bytes =
+            skyscape_harness::read_texture(gpu, "atmos LUT", texture).map_err(|e| e.to_string())?;
+        values.extend_from_slice(bytemuck::cast_slice::<u8, f32>(&bytes));
+    }
+    Ok(values)
 }
 
 /// A 20×12 frame from 300 m looking at the horizon (sky and ground rows), with no
@@ -187,16 +178,17 @@ fn frame_gpu(
     .map_err(|e| e.to_string())?;
     let output = atmos::gpu::FrameOutput::new(&gpu.device, camera.width, camera.height)
         .map_err(|e| e.to_string())?;
-    renderer.prepare(&gpu.queue, &camera);
+    renderer
+        .prepare(&gpu.queue, &camera, &output)
+        .map_err(|e| e.to_string())?;
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     renderer
-        .encode(&mut encoder, &output, None)
+        .encode(&mut encoder, None)
         .map_err(|e| e.to_string())?;
     gpu.queue.submit([encoder.finish()]);
-    let bytes = u64::from(camera.width * camera.height) * 16;
     let mut values = Vec::new();
-    for buffer in [output.radiance(), output.transmittance()] {
-        let read = skyscape_harness::read_buffer(gpu, "atmos frame", buffer, 0, bytes)
+    for texture in [output.radiance(), output.transmittance()] {
+        let read = skyscape_harness::read_texture(gpu, "atmos frame", texture)
             .map_err(|e| e.to_string())?;
         values.extend_from_slice(bytemuck::cast_slice::<u8, f32>(&read));
     }

@@ -1,0 +1,50 @@
+// The sky drawn into a caller's colour target (a render pipeline: one full-screen
+// triangle, normally drawn first with depth writes off, as seed 000 draws its sky
+// hemisphere): each pixel of the frame camera gets the whole view ray's in-scatter
+// (atmos::lut_shading's unlimited_view_segment) and, where the ray sees the sun's disc
+// and not the ground, the disc through the ray's transmittance. Bindings: the LUT
+// groups 0 and 1 (atmos::lut_bindings) and this pass's parameters in group 2. Twin:
+// atmos::lut::drop_in::sky_pass_radiance.
+#import atmos::lut_shading
+
+struct SkyPassParameters {
+    // Radiance of the sun's disc above the atmosphere (Atmosphere::sun_disc_radiance;
+    // zero: no disc).
+    sun_disc_radiance: vec3<f32>,
+    // cos(the sun's angular radius).
+    cos_sun_radius: f32,
+    // Multiplies the output (e.g. an exposure, or watts to the target's unit).
+    radiance_scale: f32,
+    // The clip-space depth the triangle is drawn at (1: the far plane; 0 with reverse z).
+    depth: f32,
+    padding: vec2<f32>,
+}
+
+@group(2) @binding(0) var<uniform> sky_pass: SkyPassParameters;
+
+@vertex
+fn sky_pass_vertex(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
+    let corner = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));
+    return vec4<f32>(corner * 2.0 - 1.0, sky_pass.depth, 1.0);
+}
+
+// The radiance the pass writes at `pixel` of the frame camera (before radiance_scale).
+fn sky_pass_radiance(pixel: vec2<u32>, parameters: SkyPassParameters) -> vec3<f32> {
+    let camera = frame_camera;
+    let direction = frame_view_direction(pixel, camera);
+    let cosines = view_cosines(camera, direction, lut_atmosphere.planet_radius);
+    let segment = unlimited_view_segment(cosines.x, cosines.y, cosines.z, cosines.w);
+    let mu = cosines.y;
+    // Rays at the ground: only mu < 0 can meet it (docs/architecture.md).
+    let sees_ground = mu < 0.0 && ray_sphere_intersect(cosines.x, mu, lut_atmosphere.planet_radius).x >= 0.0;
+    if !sees_ground && cosines.w >= parameters.cos_sun_radius {
+        return segment.radiance + segment.transmittance * parameters.sun_disc_radiance;
+    }
+    return segment.radiance;
+}
+
+@fragment
+fn sky_pass_fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    let pixel = vec2<u32>(position.xy);
+    return vec4<f32>(sky_pass_radiance(pixel, sky_pass) * sky_pass.radiance_scale, 1.0);
+}
