@@ -25,8 +25,10 @@
 
 pub mod angle;
 pub mod colour;
+pub mod draw;
 pub mod error;
 pub mod horizontal;
+pub mod light;
 pub mod moon;
 pub mod moon_phase;
 pub mod observer;
@@ -40,7 +42,8 @@ pub mod time;
 
 pub use angle::Angle;
 pub use error::{CelestialError, Result};
-pub use horizontal::{Horizontal, equatorial_to_horizontal};
+pub use horizontal::{Horizontal, equatorial_to_horizontal, parallactic_angle};
+pub use light::{LuminanceScale, MoonLight};
 pub use moon::{MoonPosition, moon_position};
 pub use moon_phase::{EquatorialPlace, MoonPhase, moon_disc_incidence_cosine, moon_phase};
 pub use observer::Observer;
@@ -61,11 +64,16 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         name: "celestial::moon",
         source: include_str!("../shaders/moon.wgsl"),
     },
+    skyscape_wgsl::Module {
+        name: "celestial::draw",
+        source: include_str!("../shaders/draw.wgsl"),
+    },
 ];
 
-/// A composer holding the common modules and the celestial ones.
+/// A composer holding the common modules, atmos' modules (the drawing imports its
+/// geometry, phase functions and frame camera) and the celestial ones.
 pub fn composer() -> skyscape_wgsl::Composer {
-    let mut composer = skyscape_wgsl::Composer::with_common();
+    let mut composer = atmos::composer();
     composer
         .add_modules(WGSL_MODULES)
         .expect("celestial WGSL module names are unique and well formed");
@@ -89,7 +97,7 @@ mod tests {
     #[test]
     fn wgsl_modules_compose_and_validate() {
         let composer = super::composer();
-        assert_eq!(super::WGSL_MODULES.len(), 2);
+        assert_eq!(super::WGSL_MODULES.len(), 3);
         for module in super::WGSL_MODULES {
             assert!(module.name.starts_with("celestial::"));
             let source = composer.compose_module(module.name).unwrap();
