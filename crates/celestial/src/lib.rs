@@ -24,13 +24,16 @@
 //! Bad input is a [`CelestialError`] naming the field and the value.
 
 pub mod angle;
+pub mod clouds;
 pub mod colour;
+pub mod dome;
 pub mod draw;
 pub mod error;
 pub mod horizontal;
 pub mod light;
 pub mod moon;
 pub mod moon_phase;
+pub mod objects;
 pub mod observer;
 pub mod photometry;
 pub mod planets;
@@ -39,6 +42,7 @@ pub mod sidereal;
 pub mod stars;
 pub mod sun;
 pub mod time;
+pub mod visibility;
 
 pub use angle::Angle;
 pub use error::{CelestialError, Result};
@@ -67,6 +71,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {
         name: "celestial::draw",
         source: include_str!("../shaders/draw.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "celestial::clouds",
+        source: include_str!("../shaders/clouds.wgsl"),
     },
 ];
 
@@ -97,7 +105,7 @@ mod tests {
     #[test]
     fn wgsl_modules_compose_and_validate() {
         let composer = super::composer();
-        assert_eq!(super::WGSL_MODULES.len(), 3);
+        assert_eq!(super::WGSL_MODULES.len(), 4);
         for module in super::WGSL_MODULES {
             assert!(module.name.starts_with("celestial::"));
             let source = composer.compose_module(module.name).unwrap();

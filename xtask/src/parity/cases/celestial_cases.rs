@@ -159,6 +159,7 @@ pub fn cases() -> Vec<Case> {
     ]
     .into_iter()
     .chain(draw_cases())
+    .chain(cloud_cases())
     .collect()
 }
 
@@ -968,6 +969,621 @@ fn draw_cases() -> Vec<Case> {
                 why: "sin θ = |view × d| carries 5u absolute (ratio 5u/sin ρ), then the limb \
                       factor's or the Lommel–Seeliger bound; the transmittance exponent moves \
                       by μ's 3u times its slope plus its own rounding, exp's 3 + 2|arg| ULP",
+            },
+        },
+    ]
+}
+
+// ---------------------------------------------------------------- celestial::clouds
+
+use skyscape_wgsl::common::{hash_combine, unit_float_from_bits};
+
+/// f64 value noise: the same lattice hashes (integers, bit-equal), f64 blending.
+fn noise64(x: f64, y: f64, seed: u32) -> f64 {
+    let (fx, fy) = (x.floor(), y.floor());
+    let (ix, iy) = (fx as i32, fy as i32);
+    let (tx, ty) = (x - fx, y - fy);
+    let corner = |dx: i32, dy: i32| {
+        f64::from(unit_float_from_bits(hash_combine(
+            hash_combine(seed, ix.wrapping_add(dx) as u32),
+            iy.wrapping_add(dy) as u32,
+        )))
+    };
+    let sx = tx * tx * (3.0 - 2.0 * tx);
+    let sy = ty * ty * (3.0 - 2.0 * ty);
+    let bottom = corner(0, 0) + (corner(1, 0) - corner(0, 0)) * sx;
+    let top = corner(0, 1) + (corner(1, 1) - corner(0, 1)) * sx;
+    bottom + (top - bottom) * sy
+}
+
+fn fbm64(x: f64, y: f64, octaves: u32, seed: u32) -> f64 {
+    let (mut sum, mut amplitude, mut total, mut frequency) = (0.0, 1.0, 0.0, 1.0);
+    for octave in 0..octaves {
+        sum += amplitude * noise64(x * frequency, y * frequency, hash_combine(seed, octave));
+        total += amplitude;
+        amplitude *= 0.5;
+        frequency *= 2.0;
+    }
+    sum / total
+}
+
+/// Blending error of the value noise: the smoothstep weights (≈ 6u) and two lerps of
+/// corner differences ≤ 1 (≈ 6u): 12u absolute.
+const NOISE_ERROR: f64 = 12.0 * U;
+
+/// Largest slope of the value noise per lattice unit: the smoothstep's 1.5 times a
+/// corner difference ≤ 1, in each axis.
+const NOISE_SLOPE: f64 = 1.5;
+
+/// The fBm's absolute error when its coordinates carry `dx` (lattice units of the
+/// first octave): each octave's blending error and slope·frequency·dx, weighted by
+/// its amplitude over the total; the coordinate scalings by powers of two are exact.
+fn fbm_error(octaves: u32, dx: f64) -> f64 {
+    let (mut sum, mut amplitude, mut total, mut frequency) = (0.0, 1.0, 0.0, 1.0);
+    for _ in 0..octaves {
+        sum += amplitude * (NOISE_ERROR + 2.0 * NOISE_SLOPE * frequency * dx);
+        total += amplitude;
+        amplitude *= 0.5;
+        frequency *= 2.0;
+    }
+    sum / total + 4.0 * U * f64::from(octaves)
+}
+
+fn noise_grid() -> Vec<Vec<f64>> {
+    let mut grid = Vec::new();
+    for seed in [0.0, 7.0, 123_456.0] {
+        for x in linspace(-40.0, 40.0, 61) {
+            for y in linspace(-3.1, 57.3, 61) {
+                grid.push(vec![x, y, seed]);
+            }
+        }
+    }
+    grid
+}
+
+fn fbm_grid() -> Vec<Vec<f64>> {
+    let mut grid = Vec::new();
+    for octaves in [1.0, 3.0, 5.0] {
+        for seed in [0.0, 99.0] {
+            for x in linspace(-20.0, 60.0, 41) {
+                for y in linspace(-5.5, 30.25, 41) {
+                    grid.push(vec![x, y, octaves, seed]);
+                }
+            }
+        }
+    }
+    grid
+}
+
+/// The case's layers: one per kind (texture constants, τ, g) at 2 km, 300 m thick,
+/// seed 5, coverage 0.5.
+fn case_layers() -> Vec<celestial::clouds::CloudLayerUniforms> {
+    static LAYERS: std::sync::OnceLock<Vec<celestial::clouds::CloudLayerUniforms>> =
+        std::sync::OnceLock::new();
+    LAYERS.get_or_init(make_case_layers).clone()
+}
+
+fn make_case_layers() -> Vec<celestial::clouds::CloudLayerUniforms> {
+    let frame = celestial::clouds::CloudLayerFrame {
+        planet_radius_m: R_GROUND,
+        offset_m: [300.0, -200.0],
+        fog_extinction_per_m: 3.912 / 30_000.0,
+        exp2_fog: false,
+        sun_direction: [0.0, 0.6, 0.8],
+        sunlight: [1.0, 0.95, 0.9],
+        skylight: [0.3, 0.4, 0.6],
+        fog_colour: [0.2, 0.25, 0.3],
+    };
+    celestial::clouds::CloudKind::ALL
+        .iter()
+        .map(|&kind| {
+            let layer = celestial::clouds::CloudLayer {
+                seed: 5,
+                coverage: 0.5,
+                ..celestial::clouds::CloudLayer::new(2000.0, 300.0, 100.0, 40_000.0, kind)
+                    .expect("valid layer")
+            };
+            layer.uniforms(&frame)
+        })
+        .collect()
+}
+
+/// A layer uniform from a case row: x[k0..] = base, top, curved, feature, stretch,
+/// octaves, seed, threshold, softness, τ, g, exp2 (the rest fixed as `case_layers`).
+fn layer_from(x: &[f64], k0: usize) -> celestial::clouds::CloudLayerUniforms {
+    static FIRST: std::sync::OnceLock<celestial::clouds::CloudLayerUniforms> =
+        std::sync::OnceLock::new();
+    let mut layer = *FIRST.get_or_init(|| case_layers()[0]);
+    layer.base_radius = x[k0] as f32;
+    layer.top_radius = x[k0 + 1] as f32;
+    layer.curved = x[k0 + 2] as u32;
+    layer.feature_size = x[k0 + 3] as f32;
+    layer.stretch = x[k0 + 4] as f32;
+    layer.octaves = x[k0 + 5] as u32;
+    layer.seed = x[k0 + 6] as u32;
+    layer.threshold = x[k0 + 7] as f32;
+    layer.softness = x[k0 + 8] as f32;
+    layer.optical_thickness = x[k0 + 9] as f32;
+    layer.asymmetry = x[k0 + 10] as f32;
+    layer.exp2_fog = x[k0 + 11] as u32;
+    layer
+}
+
+fn layer_row(layer: &celestial::clouds::CloudLayerUniforms, curved: u32, exp2: u32) -> Vec<f64> {
+    vec![
+        f64::from(layer.base_radius),
+        f64::from(layer.top_radius),
+        f64::from(curved),
+        f64::from(layer.feature_size),
+        f64::from(layer.stretch),
+        f64::from(layer.octaves),
+        f64::from(layer.seed),
+        f64::from(layer.threshold),
+        f64::from(layer.softness),
+        f64::from(layer.optical_thickness),
+        f64::from(layer.asymmetry),
+        f64::from(exp2),
+    ]
+}
+
+/// The WGSL constructor of the case's layer from `x{k0}…` (the fixed fields as
+/// `case_layers`): offset (300, −200), half span 20 km, fog 3.912/30 km, the light.
+macro_rules! layer_wgsl {
+    ($k:literal, $k1:literal, $k2:literal, $k3:literal, $k4:literal, $k5:literal, $k6:literal, $k7:literal, $k8:literal, $k9:literal, $k10:literal, $k11:literal) => {
+        concat!(
+            "let layer = CloudLayerUniforms(",
+            $k,
+            ", ",
+            $k1,
+            ", 6360000.0, u32(",
+            $k2,
+            "), ",
+            $k3,
+            ", ",
+            $k4,
+            ", u32(",
+            $k5,
+            "), u32(",
+            $k6,
+            "), ",
+            $k7,
+            ", ",
+            $k8,
+            ", ",
+            $k9,
+            ", ",
+            $k10,
+            ", vec2<f32>(300.0, -200.0), 20000.0, 0.0001304, ",
+            "vec3<f32>(0.0, 0.6, 0.8), u32(",
+            $k11,
+            "), vec3<f32>(1.0, 0.95, 0.9), 0.0, ",
+            "vec3<f32>(0.3, 0.4, 0.6), 0.0, vec3<f32>(0.2, 0.25, 0.3), 0.0); "
+        )
+    };
+}
+
+fn density64(u: f64, v: f64, l: &celestial::clouds::CloudLayerUniforms) -> f64 {
+    let x = u / (f64::from(l.feature_size) * f64::from(l.stretch));
+    let y = v / f64::from(l.feature_size);
+    let n = fbm64(x, y, l.octaves, l.seed);
+    let t = ((n - f64::from(l.threshold)) / f64::from(l.softness) + 0.5).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// Density error when (u, v) carry `duv` metres: the coordinates' own quotient
+/// rounding (WGSL division 2.5 ULP, twice: 6u relative) plus `duv`, through the fBm's
+/// slope, then the threshold map's slope 1.5/softness.
+fn density_error(u: f64, v: f64, duv: f64, l: &celestial::clouds::CloudLayerUniforms) -> f64 {
+    let scale = f64::from(l.feature_size);
+    let dx = (6.0 * U * u.abs().max(v.abs()) + duv) / scale;
+    1.5 / f64::from(l.softness) * (fbm_error(l.octaves, dx) + 4.0 * U) + 4.0 * U
+}
+
+fn density_grid() -> Vec<Vec<f64>> {
+    let mut grid = Vec::new();
+    for (k, layer) in case_layers().iter().enumerate() {
+        for u in linspace(-25_000.0, 25_000.0, 45) {
+            for v in linspace(-25_000.0, 25_000.0, 45) {
+                let mut row = vec![u + 37.0 * k as f64, v];
+                row.extend(layer_row(layer, 1, 0));
+                grid.push(row);
+            }
+        }
+    }
+    grid
+}
+
+fn reflectance64(tau: f64, g: f64, mu: f64) -> f64 {
+    if mu <= 0.0 {
+        return 0.0;
+    }
+    let scaled = (1.0 - g) * tau;
+    let direct = 1.0 - (-tau / mu).exp();
+    ((scaled + (2.0 / 3.0 - mu) * direct) / (4.0 / 3.0 + scaled)).clamp(0.0, 1.0)
+}
+
+fn distance64(r: f64, mu: f64, layer_radius: f64, curved: u32) -> f64 {
+    if curved != 0 {
+        let hit = f64ref::ray_sphere_intersect(r, mu, layer_radius);
+        if r < layer_radius {
+            return hit[1];
+        }
+        if hit[0] >= 0.0 && mu < 0.0 {
+            return hit[0];
+        }
+        return -1.0;
+    }
+    let height = layer_radius - r;
+    if (height > 0.0 && mu > 0.0) || (height < 0.0 && mu < 0.0) {
+        return height / mu;
+    }
+    -1.0
+}
+
+fn layer_distance_grid() -> Vec<Vec<f64>> {
+    let mut grid = Vec::new();
+    for altitude in [0.0, 500.0, 2_000.0, 2_150.0, 9_000.0] {
+        let r = R_GROUND + altitude;
+        for layer_altitude in [1_000.0, 2_100.0, 6_000.0] {
+            let radius = R_GROUND + layer_altitude;
+            for curved in [0.0, 1.0] {
+                for mu in cosines(301) {
+                    let mu32 = f64::from(mu as f32);
+                    let (r32, radius32) = (f64::from(r as f32), f64::from(radius as f32));
+                    if curved == 1.0 {
+                        let (d, error) = discriminant_and_error(r32, mu32, radius32);
+                        if d.abs() < error {
+                            continue;
+                        }
+                    }
+                    grid.push(vec![r, mu, radius, curved]);
+                }
+            }
+        }
+    }
+    grid
+}
+
+/// Flat: height/μ (the height difference is exact, the quotient 2.5 ULP in WGSL);
+/// curved: the ray–sphere bound.
+fn layer_distance_bound(x: &[f64]) -> Vec<f64> {
+    let d = distance64(x[0], x[1], x[2], x[3] as u32);
+    if x[3] == 0.0 {
+        return vec![3.0 * U * d.abs()];
+    }
+    let bounds = ray_sphere_bound(&[x[0], x[1], x[2]]);
+    vec![bounds[0].max(bounds[1])]
+}
+
+/// The case's background behind the layer.
+const CLOUD_BACKGROUND: [f64; 3] = [0.1, 0.2, 0.5];
+
+/// f64 twin of `cloud_layer_radiance` with the hit distance scaled by `1 + stretch`
+/// (to measure the result's sensitivity to the distance's rounding).
+fn layer_radiance64(x: &[f64], stretch: f64) -> Vec<f64> {
+    let l = layer_from(x, 4);
+    let view = [x[0], x[1], x[2]];
+    let r = x[3];
+    let (base, top) = (f64::from(l.base_radius), f64::from(l.top_radius));
+    let background = CLOUD_BACKGROUND;
+    if r >= base && r <= top {
+        return background.to_vec();
+    }
+    let below = r < base;
+    let surface = if below { base } else { top };
+    let mut distance = distance64(r, view[2], surface, l.curved);
+    if distance < 0.0 {
+        return background.to_vec();
+    }
+    distance *= 1.0 + stretch;
+    let horizontal = [view[0] * distance, view[1] * distance];
+    let reach = horizontal[0].hypot(horizontal[1]);
+    let half_span = f64::from(l.half_span);
+    if reach >= half_span {
+        return background.to_vec();
+    }
+    let rim = (2.0 * (1.0 - reach / half_span)).min(1.0);
+    let density = density64(
+        horizontal[0] + f64::from(l.offset[0]),
+        horizontal[1] + f64::from(l.offset[1]),
+        &l,
+    );
+    if density <= 0.0 {
+        return background.to_vec();
+    }
+    let hit_z = r + view[2] * distance;
+    let mu_hit = if l.curved != 0 {
+        (view[0] * horizontal[0] + view[1] * horizontal[1] + view[2] * hit_z) / surface
+    } else {
+        view[2]
+    };
+    let slant = mu_hit.abs().max(0.01);
+    let tau = f64::from(l.optical_thickness) * density;
+    let g = f64::from(l.asymmetry);
+    let opacity = (1.0 - (-tau / slant).exp()) * rim;
+    let mu_sun = f64::from(l.sun_direction[2]);
+    let reflectance = reflectance64(tau, g, mu_sun);
+    let direct = if mu_sun > 0.0 {
+        (-tau / mu_sun).exp()
+    } else {
+        1.0
+    };
+    let (diffuse, sky) = if below {
+        (
+            (1.0 - reflectance - direct).max(0.0),
+            (1.0 - reflectance64(tau, g, 0.5) - (-tau / 0.5).exp()).max(0.0),
+        )
+    } else {
+        (reflectance, reflectance64(tau, g, 0.5))
+    };
+    let beta = f64::from(l.fog_extinction);
+    let fog = if l.exp2_fog != 0 {
+        let x = beta * distance;
+        (-(x * x) / 3.912_023_005_428_146).exp()
+    } else {
+        (-beta * distance).exp()
+    };
+    (0..3)
+        .map(|i| {
+            let lit = (diffuse * f64::from(l.sunlight[i]) * mu_sun.max(0.0)
+                + sky * f64::from(l.skylight[i]))
+                / std::f64::consts::PI;
+            let seen = fog * lit + (1.0 - fog) * f64::from(l.fog_colour[i]);
+            background[i] + opacity * (seen - background[i])
+        })
+        .collect()
+}
+
+/// The layer radiance's forward bound: its change when the hit distance moves by its
+/// rounding (a relative 4u for flat layers, the ray–sphere bound for curved ones,
+/// which also moves the texture coordinates), plus the density's own bound carried
+/// through the opacity (∂α/∂τ = e^{−τ/μ}/μ), and 32u of the radiance for the
+/// exponentials and the blend.
+fn layer_radiance_bound(x: &[f64]) -> Vec<f64> {
+    let reference = layer_radiance64(x, 0.0);
+    let l = layer_from(x, 4);
+    let r = x[3];
+    let below = r < f64::from(l.base_radius);
+    let surface = if below {
+        f64::from(l.base_radius)
+    } else {
+        f64::from(l.top_radius)
+    };
+    let distance = distance64(r, x[2], surface, l.curved);
+    if distance <= 0.0 {
+        return vec![0.0; 3];
+    }
+    let relative = if l.curved != 0 {
+        let b = ray_sphere_bound(&[r, x[2], surface]);
+        b[0].max(b[1]) / distance + 4.0 * U
+    } else {
+        4.0 * U
+    };
+    let plus = layer_radiance64(x, relative);
+    let minus = layer_radiance64(x, -relative);
+    let horizontal = [x[0] * distance, x[1] * distance];
+    let density_bound = density_error(
+        horizontal[0] + f64::from(l.offset[0]),
+        horizontal[1] + f64::from(l.offset[1]),
+        4.0 * U * distance,
+        &l,
+    );
+    let tau_bound = f64::from(l.optical_thickness) * density_bound;
+    (0..3)
+        .map(|i| {
+            let sensitivity = (plus[i] - reference[i])
+                .abs()
+                .max((minus[i] - reference[i]).abs());
+            // The opacity's and the lighting's response to τ: ≤ 1/0.01 per unit τ for
+            // the slant, bounded by the radiance swing |seen − background| ≤ 2.
+            sensitivity + (tau_bound * 100.0).min(1.0) * 2.0 + 32.0 * U * reference[i].abs()
+        })
+        .collect()
+}
+
+fn layer_radiance_grid() -> Vec<Vec<f64>> {
+    let mut grid = Vec::new();
+    let layers = case_layers();
+    for (k, layer) in layers.iter().enumerate() {
+        for altitude in [500.0, 4_000.0] {
+            for curved in [0u32, 1] {
+                for exp2 in [0u32, 1] {
+                    for e in linspace(-1.45, 1.45, 15) {
+                        for a in linspace(0.0, 6.0, 14) {
+                            let view = unit(e, a + 0.1 * k as f64);
+                            let mut row = view.to_vec();
+                            row.push(R_GROUND + altitude);
+                            row.extend(layer_row(layer, curved, exp2));
+                            grid.push(row);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    grid
+}
+
+fn cloud_cases() -> Vec<Case> {
+    vec![
+        Case {
+            name: "celestial::cloud_value_noise",
+            imports: &["celestial::clouds"],
+            arity: (3, 1),
+            wgsl: "y0 = cloud_value_noise(x0, x1, u32(x2));",
+            grid: noise_grid,
+            cpu: |x| {
+                vec![celestial::clouds::cloud_value_noise(
+                    x[0],
+                    x[1],
+                    x[2] as u32,
+                )]
+            },
+            reference: |x| vec![noise64(x[0], x[1], x[2] as u32)],
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: NOISE_ERROR,
+                rel: 0.0,
+                ulp: 0.0,
+                bound: None,
+                why: "the lattice hashes are integers (bit-equal); the smoothstep weights (6u) \
+                      and two lerps of corner differences ≤ 1 (6u) round: 12u absolute",
+            },
+        },
+        Case {
+            name: "celestial::cloud_fbm",
+            imports: &["celestial::clouds"],
+            arity: (4, 1),
+            wgsl: "y0 = cloud_fbm(x0, x1, u32(x2), u32(x3));",
+            grid: fbm_grid,
+            cpu: |x| {
+                vec![celestial::clouds::cloud_fbm(
+                    x[0],
+                    x[1],
+                    x[2] as u32,
+                    x[3] as u32,
+                )]
+            },
+            reference: |x| vec![fbm64(x[0], x[1], x[2] as u32, x[3] as u32)],
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 0.0,
+                bound: Some(|x| vec![fbm_error(x[2] as u32, 0.0)]),
+                why: "each octave's 12u blending error weighted by its amplitude (the \
+                      frequency scalings are powers of two, exact), 4u per octave for the \
+                      weighted sum and the normalisation",
+            },
+        },
+        Case {
+            name: "celestial::cloud_density",
+            imports: &["celestial::clouds"],
+            arity: (14, 1),
+            wgsl: concat!(
+                layer_wgsl!(
+                    "x2", "x3", "x4", "x5", "x6", "x7", "x8", "x9", "x10", "x11", "x12", "x13"
+                ),
+                "y0 = cloud_density(x0, x1, layer);"
+            ),
+            grid: density_grid,
+            cpu: |x| {
+                let l = layer_from(&x.iter().map(|&v| f64::from(v)).collect::<Vec<_>>(), 2);
+                vec![celestial::clouds::cloud_density(x[0], x[1], &l)]
+            },
+            reference: |x| vec![density64(x[0], x[1], &layer_from(x, 2))],
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 2.0,
+                bound: Some(|x| vec![density_error(x[0], x[1], 0.0, &layer_from(x, 2))]),
+                why: "u/(size·stretch) and v/size round (WGSL division 2.5 ULP: 6u of the \
+                      coordinate), moving the fBm by its slope (1.5 per lattice unit per octave, \
+                      ×frequency×amplitude) plus its blending error; the threshold map scales by \
+                      1.5/softness",
+            },
+        },
+        Case {
+            name: "celestial::cloud_reflectance",
+            imports: &["celestial::clouds"],
+            arity: (3, 1),
+            wgsl: "y0 = cloud_reflectance(x0, x1, x2);",
+            grid: || {
+                let mut grid = Vec::new();
+                for tau in logspace(1e-3, 200.0, 60) {
+                    for g in [0.0, 0.75, 0.85, 0.95] {
+                        for mu in linspace(-0.2, 1.0, 49) {
+                            grid.push(vec![tau, g, mu]);
+                        }
+                    }
+                }
+                grid
+            },
+            cpu: |x| vec![celestial::clouds::cloud_reflectance(x[0], x[1], x[2])],
+            reference: |x| vec![reflectance64(x[0], x[1], x[2])],
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 4.0,
+                bound: Some(|x| {
+                    if x[2] <= 0.0 {
+                        return vec![0.0];
+                    }
+                    let arg = x[0] / x[2];
+                    let direct = 1.0 - (-arg).exp();
+                    let scaled = (1.0 - x[1]) * x[0];
+                    let denominator = 4.0 / 3.0 + scaled;
+                    // exp (3 + 2|arg| ULP of e^{−arg}, times |2/3 − μ|), the sums' rounding
+                    // relative to their terms, the quotient.
+                    let numerator_error =
+                        exp_relative_error(arg) * (-arg).exp() * (2.0 / 3.0 - x[2]).abs()
+                            + 6.0 * U * (scaled.abs() + (2.0 / 3.0 - x[2]).abs() * direct);
+                    vec![numerator_error / denominator + 4.0 * U * reflectance64(x[0], x[1], x[2])]
+                }),
+                why: "exp(−τ/μ) (3 + 2|τ/μ| ULP) times |2/3 − μ|, the numerator's sum (6u of \
+                      its terms), over the denominator, and the quotient's 4u",
+            },
+        },
+        Case {
+            name: "celestial::cloud_layer_distance",
+            imports: &["celestial::clouds"],
+            arity: (4, 1),
+            wgsl: "y0 = cloud_layer_distance(x0, x1, x2, u32(x3));",
+            grid: layer_distance_grid,
+            cpu: |x| {
+                vec![celestial::clouds::cloud_layer_distance(
+                    x[0],
+                    x[1],
+                    x[2],
+                    x[3] as u32,
+                )]
+            },
+            reference: |x| vec![distance64(x[0], x[1], x[2], x[3] as u32)],
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 2.0,
+                bound: Some(layer_distance_bound),
+                why: "flat: the height difference is exact (Sterbenz), the quotient 2.5 ULP; \
+                      curved: atmos' ray–sphere forward bound (rays within rounding of \
+                      tangency are left out, as in atmos' case)",
+            },
+        },
+        Case {
+            name: "celestial::cloud_layer_radiance",
+            imports: &["celestial::clouds"],
+            arity: (16, 3),
+            wgsl: concat!(
+                layer_wgsl!(
+                    "x4", "x5", "x6", "x7", "x8", "x9", "x10", "x11", "x12", "x13", "x14", "x15"
+                ),
+                "let l = cloud_layer_radiance(vec3<f32>(x0, x1, x2), x3, layer, \
+                 vec3<f32>(0.1, 0.2, 0.5)); y0 = l.x; y1 = l.y; y2 = l.z;"
+            ),
+            grid: layer_radiance_grid,
+            cpu: |x| {
+                let l = layer_from(&x.iter().map(|&v| f64::from(v)).collect::<Vec<_>>(), 4);
+                celestial::clouds::cloud_layer_radiance(
+                    [x[0], x[1], x[2]],
+                    x[3],
+                    &l,
+                    [0.1, 0.2, 0.5],
+                )
+                .to_vec()
+            },
+            reference: |x| layer_radiance64(x, 0.0),
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 4.0,
+                bound: Some(layer_radiance_bound),
+                why: "the f64 twin's change when the hit distance moves by its rounding (flat \
+                      4u, curved the ray–sphere bound; it moves the texture too), the density's \
+                      bound through the opacity, 32u for the exponentials and blends",
             },
         },
     ]
