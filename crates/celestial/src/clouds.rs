@@ -496,7 +496,7 @@ pub fn draw_order(layers: &[CloudLayer], altitude_m: f64) -> Vec<usize> {
 }
 
 /// A typed error for an index past the list of layers.
-pub fn no_layer(index: usize, count: usize) -> CelestialError {
+pub(crate) fn no_layer(index: usize, count: usize) -> CelestialError {
     CelestialError::NoSuchIndex {
         field: "cloud layer index",
         index,

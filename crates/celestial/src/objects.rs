@@ -268,6 +268,13 @@ impl<'a> SkyObjectsBuilder<'a> {
     /// The sun's disc: the atmosphere's angular radius and irradiance, limb-darkened per
     /// channel, through the transmittance fitted across the disc.
     pub fn sun_disc(&self) -> Result<DiscObject> {
+        self.sun_disc_towards(self.sun_direction.to_array())
+    }
+
+    /// [`Self::sun_disc`] drawn along `direction` (the apparent, refracted place) while
+    /// the air stays lit from the builder's sun.
+    pub fn sun_disc_towards(&self, direction: [f64; 3]) -> Result<DiscObject> {
+        let direction = unit_direction("sun disc direction", direction)?;
         let radius = self.atmosphere.sun_angular_radius;
         let solid_angle = std::f64::consts::TAU * (1.0 - radius.cos());
         let TransmittanceFit {
@@ -275,9 +282,9 @@ impl<'a> SkyObjectsBuilder<'a> {
             slope,
             curvature,
             mu_centre,
-        } = self.transmittance_fit(self.sun_direction, radius)?;
+        } = self.transmittance_fit(direction, radius)?;
         Ok(DiscObject {
-            direction: self.sun_direction.as_vec3().to_array(),
+            direction: direction.as_vec3().to_array(),
             sin_radius: radius.sin() as f32,
             radiance: self
                 .atmosphere
@@ -299,13 +306,21 @@ impl<'a> SkyObjectsBuilder<'a> {
     /// the sun as seen from the moon, scaled so the disc delivers the moon's irradiance,
     /// through the transmittance fitted across the disc.
     pub fn moon_disc(&self) -> Result<DiscObject> {
+        match &self.moon {
+            Some(moon) => self.moon_disc_towards(moon.direction),
+            None => Ok(DiscObject::NONE),
+        }
+    }
+
+    /// [`Self::moon_disc`] drawn along `direction` (the apparent place).
+    pub fn moon_disc_towards(&self, direction: [f64; 3]) -> Result<DiscObject> {
         let Some(moon) = &self.moon else {
             return Ok(DiscObject::NONE);
         };
         let radius = moon.angular_radius.radians();
         let solid_angle = std::f64::consts::TAU * (1.0 - radius.cos());
         let mean = draw::lommel_seeliger_disc_mean(moon.phase_angle);
-        let direction = unit_direction("moon.direction", moon.direction)?;
+        let direction = unit_direction("moon disc direction", direction)?;
         if mean <= 0.0 {
             return Ok(DiscObject::NONE);
         }
@@ -386,18 +401,24 @@ impl<'a> SkyObjectsBuilder<'a> {
     /// The aureole's inputs along the sun: transmittance and Mie scattering optical
     /// depth of the viewer's path to space toward the sun (0 when the planet hides it).
     pub fn aureole(&self) -> Result<Aureole> {
+        self.aureole_towards(self.sun_direction.to_array())
+    }
+
+    /// [`Self::aureole`] around the sun drawn along `direction`.
+    pub fn aureole_towards(&self, direction: [f64; 3]) -> Result<Aureole> {
+        let direction = unit_direction("aureole direction", direction)?;
         let atmosphere = self.atmosphere;
         let r = atmosphere.planet_radius + self.altitude_m.max(0.0);
-        if self.hits_ground(self.sun_direction) {
+        if self.hits_ground(direction) {
             return Ok(Aureole {
                 irradiance: atmosphere.sun_irradiance,
                 transmittance: [0.0; 3],
                 mie_optical_depth: [0.0; 3],
                 mie_g: atmosphere.mie_g,
-                direction: self.sun_direction.to_array(),
+                direction: direction.to_array(),
             });
         }
-        let mu = self.sun_direction.z;
+        let mu = direction.z;
         let exit = atmos::reference::ray_sphere_intersect(r, mu, atmosphere.top_radius)[1].max(0.0);
         let path = atmos::closed_form_sky::closed_form_segment_path(
             r,
@@ -408,10 +429,10 @@ impl<'a> SkyObjectsBuilder<'a> {
         );
         Ok(Aureole {
             irradiance: atmosphere.sun_irradiance,
-            transmittance: self.transmittance(self.sun_direction.to_array())?,
+            transmittance: self.transmittance(direction.to_array())?,
             mie_optical_depth: atmosphere.mie_scattering.map(|b| b * path),
             mie_g: atmosphere.mie_g,
-            direction: self.sun_direction.to_array(),
+            direction: direction.to_array(),
         })
     }
 }

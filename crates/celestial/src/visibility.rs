@@ -25,14 +25,26 @@ pub const MIN_VISIBILITY_M: f64 = 1.0;
 /// in green light, so an input this large says "clear air").
 pub const MAX_VISIBILITY_M: f64 = 1.0e6;
 
-/// Checks a visibility (m), naming `field`.
+/// Checks a visibility a user gives (m), naming `field`.
 pub fn check_visibility(field: &'static str, visibility_m: f64) -> Result<f64> {
     check_range(field, visibility_m, MIN_VISIBILITY_M, MAX_VISIBILITY_M, "m")
 }
 
-/// Extinction coefficient (1/m) for a visibility: `−ln(0.02)/V = 3.912/V`.
+/// Shortest visibility accepted where it is derived rather than given (m): inside
+/// several overlapping cloud layers the effective visibility can fall below the 1 m a
+/// user may set.
+pub const MIN_DERIVED_VISIBILITY_M: f64 = 1e-3;
+
+/// Extinction coefficient (1/m) for a visibility (m, in [1 mm, 1000 km]):
+/// `−ln(0.02)/V = 3.912/V`.
 pub fn extinction_from_visibility(visibility_m: f64) -> Result<f64> {
-    let v = check_visibility("visibility_m", visibility_m)?;
+    let v = check_range(
+        "visibility_m",
+        visibility_m,
+        MIN_DERIVED_VISIBILITY_M,
+        MAX_VISIBILITY_M,
+        "m",
+    )?;
     Ok(-KOSCHMIEDER_CONTRAST.ln() / v)
 }
 
@@ -155,7 +167,7 @@ mod tests {
             assert!(exp2_fog_factor(1.5 * v, v) < koschmieder_fog_factor(1.5 * v, v));
         }
         assert!((extinction_from_visibility(1000.0).unwrap() - 3.912e-3).abs() < 1e-6);
-        for bad in [0.0, 0.5, -1.0, f64::NAN, 2e6] {
+        for bad in [0.0, 1e-4, -1.0, f64::NAN, 2e6] {
             let e = extinction_from_visibility(bad).unwrap_err().to_string();
             assert!(e.contains("visibility_m"), "{e}");
         }
