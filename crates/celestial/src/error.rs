@@ -97,6 +97,10 @@ pub enum CelestialError {
         /// The call it needs before it.
         missing: &'static str,
     },
+    /// The GPU pass cannot run (see [`crate::gpu::GpuError`]).
+    #[cfg(feature = "gpu")]
+    #[error("GPU: {0}")]
+    Gpu(#[source] crate::gpu::GpuError),
     /// WGSL composition failed (a bug in skyscape's shaders, reported, not a panic).
     #[error("WGSL composition: {0}")]
     Shader(#[from] skyscape_wgsl::ComposeError),

@@ -29,6 +29,8 @@ pub mod colour;
 pub mod dome;
 pub mod draw;
 pub mod error;
+#[cfg(feature = "gpu")]
+pub mod gpu;
 pub mod horizontal;
 pub mod light;
 pub mod moon;
@@ -79,6 +81,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         name: "celestial::clouds",
         source: include_str!("../shaders/clouds.wgsl"),
     },
+    skyscape_wgsl::Module {
+        name: "celestial::sky_objects",
+        source: include_str!("../shaders/sky_objects.wgsl"),
+    },
 ];
 
 /// A composer holding the common modules, atmos' modules (the drawing imports its
@@ -105,10 +111,96 @@ mod tests {
         );
     }
 
+    /// Every `#[repr(C)]` block shared with WGSL has its struct's size and offsets.
+    #[test]
+    fn uniform_twins_match_their_wgsl_layouts() {
+        use crate::clouds::CloudLayerUniforms;
+        use crate::draw::{DiscObject, PointSource};
+        use crate::objects::SkyObjectsUniforms;
+        let composer = super::composer();
+        let wgsl = |module: &str, name: &str| {
+            let source = composer.compose_module(module).unwrap();
+            let parsed = skyscape_wgsl::validate(module, &source).unwrap();
+            skyscape_wgsl::struct_layout(&parsed, name)
+                .unwrap_or_else(|| panic!("no struct {name} in {module}"))
+        };
+        let twins = [
+            (
+                skyscape_wgsl::rust_layout!(DiscObject {
+                    direction,
+                    sin_radius,
+                    radiance,
+                    kind,
+                    shading,
+                    mu_centre,
+                    log_transmittance,
+                    padding0,
+                    log_transmittance_slope,
+                    padding1,
+                    log_transmittance_curvature,
+                    padding2,
+                }),
+                wgsl("celestial::draw", "DiscObject"),
+            ),
+            (
+                skyscape_wgsl::rust_layout!(PointSource {
+                    direction,
+                    illuminance_lux,
+                    colour,
+                    background_luminance,
+                    transmittance,
+                    scintillation,
+                }),
+                wgsl("celestial::draw", "PointSource"),
+            ),
+            (
+                skyscape_wgsl::rust_layout!(SkyObjectsUniforms {
+                    camera,
+                    planet_radius,
+                    lux_per_unit,
+                    sprite_sigma_px,
+                    far_depth,
+                }),
+                wgsl("celestial::sky_objects", "SkyObjectsUniforms"),
+            ),
+            (
+                skyscape_wgsl::rust_layout!(CloudLayerUniforms {
+                    base_radius,
+                    top_radius,
+                    planet_radius,
+                    curved,
+                    feature_size,
+                    stretch,
+                    octaves,
+                    seed,
+                    threshold,
+                    softness,
+                    optical_thickness,
+                    asymmetry,
+                    offset,
+                    half_span,
+                    fog_extinction,
+                    sun_direction,
+                    exp2_fog,
+                    sunlight,
+                    padding0,
+                    skylight,
+                    padding1,
+                    fog_colour,
+                    padding2,
+                }),
+                wgsl("celestial::clouds", "CloudLayerUniforms"),
+            ),
+        ];
+        for (rust, wgsl) in twins {
+            rust.check_twin_of(&wgsl).unwrap_or_else(|e| panic!("{e}"));
+        }
+    }
+
     #[test]
     fn wgsl_modules_compose_and_validate() {
         let composer = super::composer();
-        assert_eq!(super::WGSL_MODULES.len(), 4);
+        assert_eq!(super::WGSL_MODULES.len(), 5);
         for module in super::WGSL_MODULES {
             assert!(module.name.starts_with("celestial::"));
             let source = composer.compose_module(module.name).unwrap();
