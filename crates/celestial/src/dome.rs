@@ -219,6 +219,20 @@ impl SkyDome {
         self
     }
 
+    /// Every vertex's colour replaced by `f(direction, colour)` (unit east/north/up
+    /// direction of the vertex).
+    pub fn map_vertices(mut self, f: impl Fn([f64; 3], [f64; 3]) -> [f64; 3]) -> Self {
+        for ring in 0..5 {
+            let count = if ring == 0 { 1 } else { DOME_SIDES };
+            for i in 0..count {
+                let direction = dome_vertex(ring, i, self.spin).normalize().to_array();
+                let k = slot(ring, i);
+                self.colours[k] = f(direction, self.colours[k]);
+            }
+        }
+        self
+    }
+
     /// The rotation.
     pub fn spin(&self) -> Angle {
         self.spin

@@ -133,7 +133,8 @@ pub struct Paint {
     /// Radiance at the horizon in the azimuths of the dome's 12 vertices (vertex 0
     /// toward the sun).
     pub fog_colours: [[f64; 3]; DOME_SIDES],
-    /// The coloured dome.
+    /// The coloured dome (the model's radiance minus the aureole at each vertex: the
+    /// aureole is drawn per pixel over it).
     pub dome: SkyDome,
     /// The sun's angle from the zenith (SGSky's `sun_angle`).
     pub sun_angle: Angle,
@@ -434,9 +435,21 @@ impl Sky {
             let v = dome_vertex(3, i, placement.spin).normalize();
             *fog = builder.sky(v.to_array())?.radiance;
         }
+        // The dome carries the sky without the aureole's forward peak, which no 12-sided
+        // mesh resolves: the aureole is drawn per pixel on top (render_backdrop_cpu), so
+        // each vertex gets the model's radiance minus the aureole there (≥ 0).
+        let residual = |direction: [f64; 3], colour: [f64; 3]| {
+            let aureole = aureole.radiance(direction.map(|c| c as f32));
+            std::array::from_fn(|i| (colour[i] - f64::from(aureole[i])).max(0.0))
+        };
         let dome = match self.options.dome {
             DomeColouring::SeedWeights => {
-                SkyDome::seed_weights(sky_colour, fog_colours, placement.spin)
+                let zenith = residual([0.0, 0.0, 1.0], sky_colour);
+                let mut fog = fog_colours;
+                for (i, f) in fog.iter_mut().enumerate() {
+                    *f = residual(dome_vertex(3, i, placement.spin).normalize().to_array(), *f);
+                }
+                SkyDome::seed_weights(zenith, fog, placement.spin)
             }
             DomeColouring::Model => {
                 let sunlit = SkyDome::from_model(
@@ -455,7 +468,7 @@ impl Sky {
                     placement.moon_light.sky_scale(&self.atmosphere),
                     placement.spin,
                 )?;
-                sunlit.plus(&moonlit)
+                sunlit.plus(&moonlit).map_vertices(residual)
             }
         };
         // Each layer's light: the stronger of sun and moon at its altitude.
@@ -693,7 +706,12 @@ impl Sky {
     }
 
     /// SGSky's stage 2 on the CPU: composites every cloud layer over `radiance` (the
-    /// scene already drawn, row-major for `camera`), farthest first.
+    /// scene already drawn, row-major for `camera`), farthest first; then the in-cloud
+    /// fog of the layers the viewer is in or near (those are not drawn as sheets when
+    /// the viewer is inside; in their transition zones both) (the extinction `modify_vis` uses,
+    /// integrated along each view: [`crate::clouds::in_cloud_transmittance`]) toward
+    /// the nearest such layer's interior colour. Puffs change the reported visibility,
+    /// not this image.
     pub fn render_clouds_cpu(&self, camera: &FrameCamera, radiance: &mut [[f32; 3]]) -> Result<()> {
         let p = camera.position;
         let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
@@ -708,12 +726,45 @@ impl Sky {
                 unit: "pixels",
             });
         }
+        // The layer whose fog the viewer is in (the most immersed), with its colour.
+        let paint = self.painted("render_clouds_cpu")?;
+        let fog_layer = (0..self.layers.len())
+            .filter(|&i| self.layers[i].immersion(altitude) > 0.0)
+            .max_by(|&a, &b| {
+                self.layers[a]
+                    .immersion(altitude)
+                    .total_cmp(&self.layers[b].immersion(altitude))
+            });
+        let interior = fog_layer.map(|i| {
+            let light = &paint.layer_light[i];
+            let frame = CloudLayerFrame {
+                planet_radius_m: self.atmosphere.planet_radius,
+                offset_m: [0.0, 0.0],
+                fog_extinction_per_m: 0.0,
+                exp2_fog: false,
+                sun_direction: light.direction,
+                sunlight: light.irradiance,
+                skylight: light.skylight,
+                fog_colour: [0.0; 3],
+            };
+            crate::clouds::cloud_interior_radiance(&self.layers[i].uniforms(&frame))
+        });
         for y in 0..camera.height {
             for x in 0..camera.width {
                 let view = atmos::frame::frame_view_direction([x, y], camera);
                 let out = &mut radiance[(y * camera.width + x) as usize];
                 for (_, layer) in &layers {
                     *out = crate::clouds::cloud_layer_radiance(view, r, layer, *out);
+                }
+                if let Some(colour) = interior {
+                    let t = crate::clouds::in_cloud_transmittance(
+                        &self.layers,
+                        altitude,
+                        f64::from(view[2]),
+                    ) as f32;
+                    for i in 0..3 {
+                        out[i] = t * out[i] + (1.0 - t) * colour[i];
+                    }
                 }
             }
         }
