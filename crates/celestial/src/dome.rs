@@ -143,6 +143,17 @@ pub enum DomeColouring {
     Model,
 }
 
+/// What [`SkyDome::paint`] returns.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PaintedDome {
+    /// The coloured dome.
+    pub dome: SkyDome,
+    /// Radiance at the zenith.
+    pub sky_colour: [f64; 3],
+    /// Radiance at the horizon in the 12 vertex azimuths.
+    pub fog_colours: [[f64; 3]; DOME_SIDES],
+}
+
 /// A coloured, rotated 12-sided dome.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SkyDome {
@@ -175,9 +186,25 @@ impl SkyDome {
         Self { spin, colours }
     }
 
+    /// Every vertex coloured by `colour(direction)` (unit east/north/up direction).
+    pub fn from_fn(
+        spin: Angle,
+        mut colour: impl FnMut([f64; 3]) -> Result<[f64; 3]>,
+    ) -> Result<Self> {
+        let mut colours = vec![[0.0; 3]; 1 + 4 * DOME_SIDES];
+        for ring in 0..5 {
+            let count = if ring == 0 { 1 } else { DOME_SIDES };
+            for i in 0..count {
+                colours[slot(ring, i)] = colour(dome_vertex(ring, i, spin).normalize().to_array())?;
+            }
+        }
+        Ok(Self { spin, colours })
+    }
+
     /// Every vertex coloured by `model` (built from `atmosphere`) for a viewer
-    /// `altitude_m` up, lit along `light` (east/north/up, unit) — call once per light
-    /// source and [`SkyDome::plus`] them (radiance is linear in the source).
+    /// `altitude_m` up, lit along `light` (east/north/up, unit), times `scale` per
+    /// channel — call once per light source and [`SkyDome::plus`] them (radiance is
+    /// linear in the source).
     pub fn from_model(
         model: &dyn SkyModel,
         atmosphere: &Atmosphere,
@@ -187,26 +214,60 @@ impl SkyDome {
         spin: Angle,
     ) -> Result<Self> {
         let position = DVec3::new(0.0, 0.0, atmosphere.planet_radius + altitude_m);
-        let mut colours = vec![[0.0; 3]; 1 + 4 * DOME_SIDES];
-        for ring in 0..5 {
-            let count = if ring == 0 { 1 } else { DOME_SIDES };
-            for i in 0..count {
-                let view = dome_vertex(ring, i, spin).normalize();
-                let query = SkyQuery::new(
-                    atmosphere.planet_radius,
-                    position,
-                    view,
-                    DVec3::from_array(light),
-                )
-                .map_err(|source| CelestialError::Atmos {
-                    field: "dome vertex query",
-                    source,
-                })?;
-                let radiance = model.evaluate(&query).radiance;
-                colours[slot(ring, i)] = std::array::from_fn(|c| radiance[c] * scale[c]);
-            }
+        Self::from_fn(spin, |view| {
+            let query = SkyQuery::new(
+                atmosphere.planet_radius,
+                position,
+                DVec3::from_array(view),
+                DVec3::from_array(light),
+            )
+            .map_err(|source| CelestialError::Atmos {
+                field: "dome vertex query",
+                source,
+            })?;
+            let radiance = model.evaluate(&query).radiance;
+            Ok(std::array::from_fn(|c| radiance[c] * scale[c]))
+        })
+    }
+
+    /// The dome the `Sky` facade paints: from `sky(direction)` (sunlit + moonlit
+    /// radiance) minus `aureole(direction)` at each vertex (the aureole's forward peak is
+    /// drawn per pixel over the dome, which cannot resolve it), coloured as
+    /// `colouring` says. Returns the dome, the zenith's radiance and the horizon's in
+    /// the 12 vertex azimuths (the full radiances, for fog).
+    pub fn paint(
+        colouring: DomeColouring,
+        spin: Angle,
+        mut sky: impl FnMut([f64; 3]) -> Result<[f64; 3]>,
+        aureole: impl Fn([f64; 3]) -> [f64; 3],
+    ) -> Result<PaintedDome> {
+        let residual = |direction: [f64; 3], colour: [f64; 3]| -> [f64; 3] {
+            let a = aureole(direction);
+            std::array::from_fn(|i| (colour[i] - a[i]).max(0.0))
+        };
+        let zenith = [0.0, 0.0, 1.0];
+        let sky_colour = sky(zenith)?;
+        let mut fog_colours = [[0.0; 3]; DOME_SIDES];
+        for (i, fog) in fog_colours.iter_mut().enumerate() {
+            *fog = sky(dome_vertex(3, i, spin).normalize().to_array())?;
         }
-        Ok(Self { spin, colours })
+        let dome = match colouring {
+            DomeColouring::SeedWeights => {
+                let mut fog = fog_colours;
+                for (i, f) in fog.iter_mut().enumerate() {
+                    *f = residual(dome_vertex(3, i, spin).normalize().to_array(), *f);
+                }
+                SkyDome::seed_weights(residual(zenith, sky_colour), fog, spin)
+            }
+            DomeColouring::Model => {
+                SkyDome::from_fn(spin, |direction| Ok(residual(direction, sky(direction)?)))?
+            }
+        };
+        Ok(PaintedDome {
+            dome,
+            sky_colour,
+            fog_colours,
+        })
     }
 
     /// The sum of two domes with the same rotation (sunlit + moonlit).

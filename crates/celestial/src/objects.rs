@@ -369,6 +369,23 @@ impl<'a> SkyObjectsBuilder<'a> {
         Ok(sample)
     }
 
+    /// The sky toward `view` from the model itself (one query per light source), whatever
+    /// the background sampling: what the dome's vertices take.
+    pub fn sky_exact(&self, view: [f64; 3]) -> Result<SkySample> {
+        let view = unit_direction("view", view)?;
+        let mut sample = self.model.evaluate(&self.query(view, self.sun_direction)?);
+        if let Some(moon) = &self.moon {
+            let lit = self
+                .model
+                .evaluate(&self.query(view, DVec3::from_array(moon.direction))?);
+            let scale = moon.sky_scale(self.atmosphere);
+            for ((total, moonlit), s) in sample.radiance.iter_mut().zip(lit.radiance).zip(scale) {
+                *total += moonlit * s;
+            }
+        }
+        Ok(sample)
+    }
+
     /// A star or planet along `direction` with illuminance `illuminance_lx` above the
     /// atmosphere and unit-luminance `colour`: the transmittance toward it and the
     /// luminance of the sky behind it (natural night-sky floor included); hidden (zero

@@ -22,7 +22,7 @@ use glam::DVec3;
 
 use crate::clouds::{CloudLayer, CloudLayerFrame, CloudLayerUniforms, draw_order, no_layer};
 use crate::colour::star_colour_from_b_minus_v;
-use crate::dome::{DOME_SIDES, DomeColouring, SkyDome, dome_vertex, spin_from_azimuth};
+use crate::dome::{DOME_SIDES, DomeColouring, SkyDome, spin_from_azimuth};
 use crate::draw::{DiscObject, PointSource, star_detection_threshold};
 use crate::error::{CelestialError, Result, check_range};
 use crate::light::{LuminanceScale, MoonLight};
@@ -428,49 +428,15 @@ impl Sky {
                 star.colour,
             )?;
         }
-        // Sky and fog colours, the dome.
-        let sky_colour = builder.sky([0.0, 0.0, 1.0])?.radiance;
-        let mut fog_colours = [[0.0; 3]; DOME_SIDES];
-        for (i, fog) in fog_colours.iter_mut().enumerate() {
-            let v = dome_vertex(3, i, placement.spin).normalize();
-            *fog = builder.sky(v.to_array())?.radiance;
-        }
-        // The dome carries the sky without the aureole's forward peak, which no 12-sided
-        // mesh resolves: the aureole is drawn per pixel on top (render_backdrop_cpu), so
-        // each vertex gets the model's radiance minus the aureole there (≥ 0).
-        let residual = |direction: [f64; 3], colour: [f64; 3]| {
-            let aureole = aureole.radiance(direction.map(|c| c as f32));
-            std::array::from_fn(|i| (colour[i] - f64::from(aureole[i])).max(0.0))
-        };
-        let dome = match self.options.dome {
-            DomeColouring::SeedWeights => {
-                let zenith = residual([0.0, 0.0, 1.0], sky_colour);
-                let mut fog = fog_colours;
-                for (i, f) in fog.iter_mut().enumerate() {
-                    *f = residual(dome_vertex(3, i, placement.spin).normalize().to_array(), *f);
-                }
-                SkyDome::seed_weights(zenith, fog, placement.spin)
-            }
-            DomeColouring::Model => {
-                let sunlit = SkyDome::from_model(
-                    model,
-                    &self.atmosphere,
-                    altitude,
-                    sun_light,
-                    [1.0; 3],
-                    placement.spin,
-                )?;
-                let moonlit = SkyDome::from_model(
-                    model,
-                    &self.atmosphere,
-                    altitude,
-                    placement.moon_light.direction,
-                    placement.moon_light.sky_scale(&self.atmosphere),
-                    placement.spin,
-                )?;
-                sunlit.plus(&moonlit).map_vertices(residual)
-            }
-        };
+        // Sky and fog colours, the dome (13 or 49 model queries per light source).
+        let painted = SkyDome::paint(
+            self.options.dome,
+            placement.spin,
+            |direction| Ok(builder.sky_exact(direction)?.radiance),
+            |direction| aureole.radiance(direction.map(|c| c as f32)).map(f64::from),
+        )?;
+        let (dome, sky_colour, fog_colours) =
+            (painted.dome, painted.sky_colour, painted.fog_colours);
         // Each layer's light: the stronger of sun and moon at its altitude.
         let mut layer_light = Vec::with_capacity(self.layers.len());
         for layer in &self.layers {
