@@ -16,7 +16,7 @@
 //! * **Sun**: a disc of the atmosphere's `sun_angular_radius` whose mean radiance is
 //!   `sun_irradiance / Ω` (Ω the disc's solid angle), darkened toward the limb by the
 //!   power law `I(μ)/I(1) = μ^α(λ)` of Hestroffer & Magnan (1998, A&A 333, 338:
-//!   α = −0.023 + 0.292/λ[µm]) at each channel's wavelength, normalised so the disc
+//!   α = −0.023 + 0.292/λ with λ in µm) at each channel's wavelength, normalised so the disc
 //!   still delivers `sun_irradiance` ([`sun_disc_limb_factor`]).
 //! * **Aureole**: the single-scattered Mie light around the sun, which per-pixel atmos
 //!   rungs already contain but a coarse dome cannot resolve: for a view within a few

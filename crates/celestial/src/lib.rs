@@ -21,6 +21,13 @@
 //!   [`moon_disc_incidence_cosine`]: formulas written once over the float type, with
 //!   WGSL twins in [`WGSL_MODULES`].
 //!
+//! * drawing ([`draw`], [`objects`], the `gpu` module): the sun's limb-darkened disc and Mie
+//!   aureole, the moon's lit sphere, stars and planets as sprites fading in by contrast
+//!   against the sky, all through `atmos`' transmittance; [`light`]: the moon as a light
+//!   source and the photometric scale of atmos' unit;
+//! * seed 004's SGSky: the [`Sky`] facade, [`dome`] (the 12-sided dome), [`clouds`]
+//!   (cloud layers) and [`visibility`] (Koschmieder and exp² fog).
+//!
 //! Bad input is a [`CelestialError`] naming the field and the value.
 
 pub mod angle;
@@ -96,6 +103,11 @@ pub fn composer() -> skyscape_wgsl::Composer {
         .expect("celestial WGSL module names are unique and well formed");
     composer
 }
+
+/// The README's examples, compiled as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
 
 #[cfg(test)]
 mod tests {
