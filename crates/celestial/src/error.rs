@@ -69,6 +69,41 @@ pub enum CelestialError {
         #[source]
         source: solar_positioning::Error,
     },
+    /// atmos rejected an input `celestial` passed on (an atmosphere, a sky query, a dome
+    /// resolution); the source names atmos' field and value.
+    #[error("{field}: atmos rejected it")]
+    Atmos {
+        /// What was being built.
+        field: &'static str,
+        /// atmos' error.
+        #[source]
+        source: atmos::AtmosError,
+    },
+    /// An index past the end of a list (a cloud layer that does not exist).
+    #[error("{field} = {index} but there are only {count}")]
+    NoSuchIndex {
+        /// The rejected field.
+        field: &'static str,
+        /// The index given.
+        index: usize,
+        /// How many there are.
+        count: usize,
+    },
+    /// A call that needs an earlier one (e.g. `repaint` before `reposition`).
+    #[error("{call} needs {missing} first")]
+    OutOfOrder {
+        /// The call made.
+        call: &'static str,
+        /// The call it needs before it.
+        missing: &'static str,
+    },
+    /// The GPU pass cannot run (see [`crate::gpu::GpuError`]).
+    #[cfg(feature = "gpu")]
+    #[error("GPU: {0}")]
+    Gpu(#[source] crate::gpu::GpuError),
+    /// WGSL composition failed (a bug in skyscape's shaders, reported, not a panic).
+    #[error("WGSL composition: {0}")]
+    Shader(#[from] skyscape_wgsl::ComposeError),
     /// The shipped star catalogue could not be loaded.
     #[error("the star catalogue {field} could not be loaded")]
     Catalogue {

@@ -32,6 +32,22 @@ pub fn equatorial_to_horizontal<F: Float>(hour_angle: F, declination: F, latitud
     [azimuth, elevation]
 }
 
+/// Parallactic angle q (radians) of a body at local `hour_angle` (west positive) and
+/// `declination`, seen from `latitude`: the position angle of the zenith direction on
+/// the body's disc, counted like position angles from the direction of the north
+/// celestial pole toward east (Meeus eq. 14.1,
+/// `tan q = sin H / (tan φ cos δ − sin δ cos H)`, in the `atan2` form with `tan φ`
+/// multiplied through by `cos φ`, so it stays finite at the poles). A disc feature at
+/// position angle χ lies at χ − q from the zenith direction (Meeus ch. 48: the bright
+/// limb's tilt as the observer sees it). At the zenith itself q is `atan2(0, 0)` of
+/// the rounded components: arbitrary but finite.
+pub fn parallactic_angle<F: Float>(hour_angle: F, declination: F, latitude: F) -> F {
+    let (sin_h, cos_h) = hour_angle.sin_cos();
+    let (sin_d, cos_d) = declination.sin_cos();
+    let (sin_p, cos_p) = latitude.sin_cos();
+    (sin_h * cos_p).atan2(sin_p * cos_d - cos_p * sin_d * cos_h)
+}
+
 /// A direction in the observer's sky.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Horizontal {
@@ -52,6 +68,25 @@ impl Horizontal {
         Horizontal {
             azimuth: Angle::from_radians(azimuth),
             elevation: Angle::from_radians(elevation),
+        }
+    }
+
+    /// The unit vector of this direction in the observer's east/north/up frame
+    /// (x east, y north, z up): the frame `celestial`'s drawing and the `Sky` facade
+    /// use, with the atmosphere's planet-centred viewer on the +z axis.
+    pub fn to_enu(&self) -> [f64; 3] {
+        let (sin_a, cos_a) = self.azimuth.radians().sin_cos();
+        let (sin_e, cos_e) = self.elevation.radians().sin_cos();
+        [cos_e * sin_a, cos_e * cos_a, sin_e]
+    }
+
+    /// The direction of an east/north/up vector (need not be unit; a zero vector gives
+    /// azimuth 0, elevation 0).
+    pub fn from_enu(enu: [f64; 3]) -> Self {
+        let [east, north, up] = enu;
+        Horizontal {
+            azimuth: Angle::from_radians(east.atan2(north)).wrapped_positive(),
+            elevation: Angle::from_radians(up.atan2(east.hypot(north))),
         }
     }
 
@@ -76,6 +111,79 @@ mod tests {
         let sky = Horizontal::from_equatorial(h, dec, lat);
         assert!((sky.azimuth.degrees() - 248.0337).abs() < 1e-4, "{sky:?}");
         assert!((sky.elevation.degrees() - 15.1249).abs() < 1e-4, "{sky:?}");
+    }
+
+    /// q is the position angle of the zenith direction: built independently from the
+    /// unit vectors (the disc's north and east in the sky plane, and the zenith's
+    /// projection), at many places and hour angles, including the poles' neighbourhood.
+    #[test]
+    fn parallactic_angle_is_the_position_angle_of_the_zenith() {
+        let cross = |a: [f64; 3], b: [f64; 3]| {
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]
+        };
+        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let reject = |a: [f64; 3], m: [f64; 3]| {
+            let d = dot(a, m);
+            [a[0] - d * m[0], a[1] - d * m[1], a[2] - d * m[2]]
+        };
+        for lat in [-89.0, -60.0, -10.0, 0.0, 20.0, 52.0, 89.0] {
+            for h in [-170.0, -90.0, -30.0, -1.0, 1.0, 45.0, 120.0] {
+                for dec in [-50.0, -5.0, 0.0, 30.0, 70.0] {
+                    let latitude = Angle::from_degrees(lat);
+                    let body = Horizontal::from_equatorial(
+                        Angle::from_degrees(h),
+                        Angle::from_degrees(dec),
+                        latitude,
+                    )
+                    .to_enu();
+                    // The north celestial pole in east/north/up.
+                    let pole = [0.0, latitude.cos(), latitude.sin()];
+                    let north = reject(pole, body);
+                    let east = cross(north, body);
+                    let zenith = reject([0.0, 0.0, 1.0], body);
+                    let expected = dot(zenith, east).atan2(dot(zenith, north));
+                    let q = parallactic_angle(
+                        Angle::from_degrees(h).radians(),
+                        Angle::from_degrees(dec).radians(),
+                        latitude.radians(),
+                    );
+                    let diff = Angle::from_radians(q - expected).wrapped_signed().degrees();
+                    assert!(
+                        diff.abs() < 1e-9,
+                        "φ {lat} H {h} δ {dec}: {q} vs {expected}"
+                    );
+                }
+            }
+        }
+        // On the meridian south of the zenith (northern observer) the zenith is toward
+        // the pole: q = 0; north of the zenith it is opposite: q = 180°.
+        let q = parallactic_angle(0.0, 0.2, 0.8_f64);
+        assert!(q.abs() < 1e-12);
+        let q = parallactic_angle(0.0, 1.2, 0.8_f64);
+        assert!((q.abs() - std::f64::consts::PI).abs() < 1e-12);
+    }
+
+    #[test]
+    fn enu_round_trip() {
+        for (az, el) in [(0.0, 0.0), (90.0, 10.0), (200.0, -30.0), (359.0, 89.0)] {
+            let h = Horizontal {
+                azimuth: Angle::from_degrees(az),
+                elevation: Angle::from_degrees(el),
+            };
+            let back = Horizontal::from_enu(h.to_enu());
+            assert!((back.azimuth - h.azimuth).wrapped_signed().degrees().abs() < 1e-9);
+            assert!((back.elevation - h.elevation).degrees().abs() < 1e-9);
+        }
+        let east = Horizontal {
+            azimuth: Angle::from_degrees(90.0),
+            elevation: Angle::ZERO,
+        }
+        .to_enu();
+        assert!((east[0] - 1.0).abs() < 1e-15 && east[1].abs() < 1e-15);
     }
 
     #[test]

@@ -21,32 +21,51 @@
 //!   [`moon_disc_incidence_cosine`]: formulas written once over the float type, with
 //!   WGSL twins in [`WGSL_MODULES`].
 //!
+//! * drawing ([`draw`], [`objects`], the `gpu` module): the sun's limb-darkened disc and Mie
+//!   aureole, the moon's lit sphere, stars and planets as sprites fading in by contrast
+//!   against the sky, all through `atmos`' transmittance; [`light`]: the moon as a light
+//!   source and the photometric scale of atmos' unit;
+//! * seed 004's SGSky: the [`Sky`] facade, [`dome`] (the 12-sided dome), [`clouds`]
+//!   (cloud layers) and [`visibility`] (Koschmieder and exp² fog).
+//!
 //! Bad input is a [`CelestialError`] naming the field and the value.
 
 pub mod angle;
+pub mod clouds;
 pub mod colour;
+pub mod dome;
+pub mod draw;
 pub mod error;
+#[cfg(feature = "gpu")]
+pub mod gpu;
 pub mod horizontal;
+pub mod light;
 pub mod moon;
 pub mod moon_phase;
+pub mod objects;
 pub mod observer;
 pub mod photometry;
 pub mod planets;
 pub mod refraction;
+pub mod scintillation;
 pub mod sidereal;
+pub mod sky;
 pub mod stars;
 pub mod sun;
 pub mod time;
+pub mod visibility;
 
 pub use angle::Angle;
 pub use error::{CelestialError, Result};
-pub use horizontal::{Horizontal, equatorial_to_horizontal};
+pub use horizontal::{Horizontal, equatorial_to_horizontal, parallactic_angle};
+pub use light::{LuminanceScale, MoonLight};
 pub use moon::{MoonPosition, moon_position};
 pub use moon_phase::{EquatorialPlace, MoonPhase, moon_disc_incidence_cosine, moon_phase};
 pub use observer::Observer;
 pub use photometry::{ZERO_MAGNITUDE_ILLUMINANCE_LX, illuminance_from_magnitude};
 pub use planets::{Planet, PlanetPosition, planet_position};
 pub use refraction::{AirConditions, apparent_elevation};
+pub use sky::{FogModel, Sky, SkyOptions};
 pub use stars::{SkyStar, StarCatalogue};
 pub use sun::{SunPosition, sun_position};
 pub use time::Instant;
@@ -61,16 +80,34 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         name: "celestial::moon",
         source: include_str!("../shaders/moon.wgsl"),
     },
+    skyscape_wgsl::Module {
+        name: "celestial::draw",
+        source: include_str!("../shaders/draw.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "celestial::clouds",
+        source: include_str!("../shaders/clouds.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "celestial::sky_objects",
+        source: include_str!("../shaders/sky_objects.wgsl"),
+    },
 ];
 
-/// A composer holding the common modules and the celestial ones.
+/// A composer holding the common modules, atmos' modules (the drawing imports its
+/// geometry, phase functions and frame camera) and the celestial ones.
 pub fn composer() -> skyscape_wgsl::Composer {
-    let mut composer = skyscape_wgsl::Composer::with_common();
+    let mut composer = atmos::composer();
     composer
         .add_modules(WGSL_MODULES)
         .expect("celestial WGSL module names are unique and well formed");
     composer
 }
+
+/// The README's examples, compiled as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
 
 #[cfg(test)]
 mod tests {
@@ -86,10 +123,96 @@ mod tests {
         );
     }
 
+    /// Every `#[repr(C)]` block shared with WGSL has its struct's size and offsets.
+    #[test]
+    fn uniform_twins_match_their_wgsl_layouts() {
+        use crate::clouds::CloudLayerUniforms;
+        use crate::draw::{DiscObject, PointSource};
+        use crate::objects::SkyObjectsUniforms;
+        let composer = super::composer();
+        let wgsl = |module: &str, name: &str| {
+            let source = composer.compose_module(module).unwrap();
+            let parsed = skyscape_wgsl::validate(module, &source).unwrap();
+            skyscape_wgsl::struct_layout(&parsed, name)
+                .unwrap_or_else(|| panic!("no struct {name} in {module}"))
+        };
+        let twins = [
+            (
+                skyscape_wgsl::rust_layout!(DiscObject {
+                    direction,
+                    sin_radius,
+                    radiance,
+                    kind,
+                    shading,
+                    mu_centre,
+                    log_transmittance,
+                    padding0,
+                    log_transmittance_slope,
+                    padding1,
+                    log_transmittance_curvature,
+                    padding2,
+                }),
+                wgsl("celestial::draw", "DiscObject"),
+            ),
+            (
+                skyscape_wgsl::rust_layout!(PointSource {
+                    direction,
+                    illuminance_lux,
+                    colour,
+                    background_luminance,
+                    transmittance,
+                    scintillation,
+                }),
+                wgsl("celestial::draw", "PointSource"),
+            ),
+            (
+                skyscape_wgsl::rust_layout!(SkyObjectsUniforms {
+                    camera,
+                    planet_radius,
+                    lux_per_unit,
+                    sprite_sigma_px,
+                    far_depth,
+                }),
+                wgsl("celestial::sky_objects", "SkyObjectsUniforms"),
+            ),
+            (
+                skyscape_wgsl::rust_layout!(CloudLayerUniforms {
+                    base_radius,
+                    top_radius,
+                    planet_radius,
+                    curved,
+                    feature_size,
+                    stretch,
+                    octaves,
+                    seed,
+                    threshold,
+                    softness,
+                    optical_thickness,
+                    asymmetry,
+                    offset,
+                    half_span,
+                    fog_extinction,
+                    sun_direction,
+                    exp2_fog,
+                    sunlight,
+                    padding0,
+                    skylight,
+                    padding1,
+                    fog_colour,
+                    padding2,
+                }),
+                wgsl("celestial::clouds", "CloudLayerUniforms"),
+            ),
+        ];
+        for (rust, wgsl) in twins {
+            rust.check_twin_of(&wgsl).unwrap_or_else(|e| panic!("{e}"));
+        }
+    }
+
     #[test]
     fn wgsl_modules_compose_and_validate() {
         let composer = super::composer();
-        assert_eq!(super::WGSL_MODULES.len(), 2);
+        assert_eq!(super::WGSL_MODULES.len(), 5);
         for module in super::WGSL_MODULES {
             assert!(module.name.starts_with("celestial::"));
             let source = composer.compose_module(module.name).unwrap();

@@ -12,7 +12,7 @@ use std::f64::consts::TAU;
 
 use crate::angle::Angle;
 use crate::error::Result;
-use crate::horizontal::Horizontal;
+use crate::horizontal::{Horizontal, parallactic_angle};
 use crate::moon_phase::{EquatorialPlace, MoonPhase, moon_phase};
 use crate::observer::Observer;
 use crate::sidereal::{local_apparent_sidereal_time, nutation, true_obliquity};
@@ -196,6 +196,18 @@ pub struct MoonPosition {
     pub angular_radius: Angle,
     /// Phase, illuminated fraction and bright limb seen by the observer.
     pub phase: MoonPhase,
+    /// Parallactic angle q at the topocentric place: the position angle of the zenith
+    /// direction on the disc ([`crate::horizontal::parallactic_angle`]).
+    pub parallactic_angle: Angle,
+}
+
+impl MoonPosition {
+    /// The bright limb's tilt as the observer sees it: the angle χ − q of the bright
+    /// limb's midpoint from the zenith direction on the disc, counted like position
+    /// angles (toward celestial east's side), in [0°, 360°) (Meeus ch. 48).
+    pub fn bright_limb_from_zenith(&self) -> Angle {
+        (self.phase.bright_limb - self.parallactic_angle).wrapped_positive()
+    }
 }
 
 /// The moon for `observer` at `instant`: Schlyter's place, apparent (nutation,
@@ -225,12 +237,18 @@ pub fn moon_position(instant: &Instant, observer: &Observer) -> Result<MoonPosit
         declination: sun.declination,
         distance_m: sun.distance_m,
     };
+    let parallactic_angle = Angle::from_radians(parallactic_angle(
+        topocentric_hour_angle.radians(),
+        topocentric.declination.radians(),
+        observer.latitude().radians(),
+    ));
     Ok(MoonPosition {
         airless,
         geocentric,
         topocentric,
         angular_radius: Angle::from_radians((MOON_RADIUS_M / topocentric.distance_m).asin()),
         phase: moon_phase(&topocentric, &sun_place),
+        parallactic_angle,
     })
 }
 

@@ -50,6 +50,18 @@ impl Planet {
         Planet::Jupiter,
         Planet::Saturn,
     ];
+
+    /// The planet's B−V colour index (Allen's *Astrophysical Quantities*, 4th ed., Cox
+    /// 2000, §12.3): its reflected sunlight's colour, for drawing it.
+    pub fn b_minus_v(self) -> f64 {
+        match self {
+            Planet::Mercury => 0.93,
+            Planet::Venus => 0.82,
+            Planet::Mars => 1.36,
+            Planet::Jupiter => 0.83,
+            Planet::Saturn => 1.04,
+        }
+    }
 }
 
 /// Orbital elements at day `d`: node, inclination, argument of perihelion (radians),

@@ -82,3 +82,71 @@ fn parallax_lowers_the_moon() {
         }
     }
 }
+
+/// The drawing builds the moon's lighting in 3-D (the direction from the moon to the
+/// sun in the observer's east/north/up frame, `MoonLight::toward_sun`); Meeus ch. 48
+/// gives the phase angle i and the bright limb χ from right ascensions and
+/// declinations, and χ − q its tilt from the zenith. The two agree over a lunation
+/// every 7 h, at three latitudes (both hemispheres).
+#[test]
+fn three_dimensional_lighting_matches_meeus_phase_and_bright_limb_tilt() {
+    use celestial::{LuminanceScale, MoonLight, sun_position};
+    let atmosphere = atmos::Atmosphere::earth();
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let reject = |a: [f64; 3], m: [f64; 3]| {
+        let d = dot(a, m);
+        [a[0] - d * m[0], a[1] - d * m[1], a[2] - d * m[2]]
+    };
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let (mut worst_phase, mut worst_tilt, mut checked) = (0.0_f64, 0.0_f64, 0);
+    for lat in [-45.0, 10.0, 60.0] {
+        let observer =
+            Observer::new(Angle::from_degrees(lat), Angle::from_degrees(20.0), 0.0).unwrap();
+        for step in 0..100 {
+            let start = Instant::parse("2024-04-01T00:00:00Z").unwrap();
+            let utc = start.utc() + chrono::Duration::hours(7 * step);
+            let instant = Instant::from_utc(utc).unwrap();
+            let sun = sun_position(&instant, &observer).unwrap();
+            let moon = moon_position(&instant, &observer).unwrap();
+            let scale = LuminanceScale::new(&atmosphere, sun.distance_m).unwrap();
+            let light = MoonLight::new(&moon, &sun, &atmosphere, &scale).unwrap();
+            let m = light.direction;
+            let phase = dot(light.toward_sun, m.map(|c| -c))
+                .clamp(-1.0, 1.0)
+                .acos()
+                .to_degrees();
+            worst_phase = worst_phase.max((phase - moon.phase.phase_angle.degrees()).abs());
+            let i = moon.phase.phase_angle.degrees();
+            if !(10.0..170.0).contains(&i) {
+                continue;
+            }
+            let pole = [0.0, observer.latitude().cos(), observer.latitude().sin()];
+            let north = reject(pole, m);
+            let east = cross(north, m);
+            let position_angle = |d: [f64; 3]| {
+                let d = reject(d, m);
+                dot(d, east).atan2(dot(d, north))
+            };
+            let tilt = position_angle(light.toward_sun) - position_angle([0.0, 0.0, 1.0]);
+            let diff = (Angle::from_radians(tilt) - moon.bright_limb_from_zenith())
+                .wrapped_signed()
+                .degrees();
+            worst_tilt = worst_tilt.max(diff.abs());
+            checked += 1;
+        }
+    }
+    println!(
+        "3-D lighting vs Meeus 48: phase angle max {worst_phase:.4}°, tilt max {worst_tilt:.4}° ({checked} cases)"
+    );
+    assert!(checked > 200);
+    // Both use the same topocentric moon; Meeus' i and χ use the sun's geocentric place
+    // (8.8″ of parallax) and an exact formula, so they agree to rounding plus that.
+    assert!(worst_phase < 0.01, "{worst_phase}");
+    assert!(worst_tilt < 0.05, "{worst_tilt}");
+}

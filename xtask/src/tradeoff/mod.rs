@@ -6,11 +6,13 @@
 pub mod plot;
 
 mod atmos;
+mod sky_dome;
 mod terrain;
 
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: cargo xtask tradeoff <atmos|terrain> [--quick] [--backend BACKENDS]";
+const USAGE: &str =
+    "usage: cargo xtask tradeoff <atmos|terrain|sky-dome> [--quick] [--backend BACKENDS]";
 
 /// Options shared by every subsystem.
 #[derive(Debug, Default, Clone)]
@@ -54,6 +56,7 @@ pub fn run(args: &[String]) -> ExitCode {
     let result = match subsystem.as_str() {
         "atmos" => atmos::run(&options),
         "terrain" => terrain::run(&options),
+        "sky-dome" => sky_dome::run(&options),
         other => Err(format!("unknown subsystem `{other}`\n{USAGE}")),
     };
     match result {
