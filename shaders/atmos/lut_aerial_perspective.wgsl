@@ -23,6 +23,13 @@ fn bake_aerial_perspective(@builtin(global_invocation_id) id: vec3<u32>) {
     let mu_s = cosines.z;
     let nu = cosines.w;
     let segment = ray_segment_in_atmosphere(r, mu, lut_atmosphere.planet_radius, lut_atmosphere.top_radius);
+    // A column that meets the ground goes on through it (air at ground density) to
+    // the top, so the lookup's blend of neighbouring columns stays right at a low
+    // camera's horizon (Rust: aerial_perspective_column).
+    var end = segment.y;
+    if segment.z > 0.5 {
+        end = ray_sphere_intersect(r, mu, lut_atmosphere.top_radius).y;
+    }
     let rayleigh_phase_value = rayleigh_phase(nu);
     let mie_phase_value = cornette_shanks_phase(nu, lut_atmosphere.mie_g);
     let depth = lut_settings.aerial_perspective_depth;
@@ -33,12 +40,13 @@ fn bake_aerial_perspective(@builtin(global_invocation_id) id: vec3<u32>) {
         for (var step = 0u; step < steps; step++) {
             let a = f32(slice * steps + step) * step_length;
             let lo = max(a, segment.x);
-            let hi = min(a + step_length, segment.y);
+            let hi = min(a + step_length, end);
             if hi > lo {
                 let dt = hi - lo;
                 let point = point_along_ray(r, mu, mu_s, nu, lo + 0.5 * dt);
-                let medium = medium_at_altitude(lut_atmosphere, point.x - lut_atmosphere.planet_radius);
-                let source = scattering_source(medium, point.x, point.y, point.z, nu, rayleigh_phase_value, mie_phase_value);
+                let r_t = max(point.x, lut_atmosphere.planet_radius);
+                let medium = medium_at_altitude(lut_atmosphere, r_t - lut_atmosphere.planet_radius);
+                let source = scattering_source(medium, r_t, point.y, point.z, nu, rayleigh_phase_value, mie_phase_value);
                 march = integrate_scattering_step(march, source, medium.extinction, dt);
             }
         }

@@ -39,9 +39,16 @@ fn shade_pixel(pixel: vec2<u32>) -> ScatteringSegment {
     if camera.max_distance >= UNLIMITED_DISTANCE {
         return unlimited_view_segment(r, mu, mu_s, nu);
     }
-    if camera.max_distance <= lut_settings.aerial_perspective_range {
+    // The segment ends at the ground if the ray meets it first (the volume's columns go
+    // on through the ground, for the lookups' blend between columns).
+    let segment = ray_segment_in_atmosphere(r, mu, lut_atmosphere.planet_radius, lut_atmosphere.top_radius);
+    var distance = camera.max_distance;
+    if segment.z > 0.5 {
+        distance = min(camera.max_distance, segment.y);
+    }
+    if distance <= lut_settings.aerial_perspective_range {
         let uv = vec2<f32>((f32(pixel.x) + 0.5) / f32(camera.width), (f32(pixel.y) + 0.5) / f32(camera.height));
-        return lookup_aerial_perspective(uv, camera.max_distance);
+        return lookup_aerial_perspective(uv, distance);
     }
     return march_view_segment(r, mu, mu_s, nu, camera.max_distance, lut_settings.pixel_samples);
 }

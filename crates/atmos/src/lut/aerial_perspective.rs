@@ -3,14 +3,17 @@
 //! finite distance. Slice k (of D) ends at (k + 1)·range/D; a virtual slice at distance 0
 //! holds (0 radiance, transmittance 1), so lookups are exact at the camera. Each
 //! froxel column is marched once, front to back, `steps_per_slice` uniform steps per
-//! slice, clipped to the atmosphere (ground and top) — beyond the ground the values
-//! stay constant.
+//! slice, from where it enters the atmosphere to where it leaves the top: a column
+//! that meets the ground goes on through it in air at ground density, so the lookup's
+//! blend of neighbouring columns stays right at a low camera's horizon (see
+//! [`aerial_perspective_column`]).
 //!
 //! Layout: planar like the GPU's two 3-D textures — froxel k = x + W·(y + H·z) holds
 //! its radiance (rgb, 1) at index k and its transmittance (rgb, 1) at W·H·D + k. Twin of
 //! `shaders/atmos/lut_aerial_perspective.wgsl` (bake) and `lut_sampling.wgsl` (lookup).
 
 use crate::frame::FrameCamera;
+use crate::geometry::ray_sphere_intersect;
 use crate::phase::{cornette_shanks_phase, rayleigh_phase};
 
 use super::parameterization::bilinear_footprint;
@@ -71,6 +74,16 @@ pub fn aerial_perspective_column(
     let direction = froxel_view_direction(uv, camera);
     let [r, mu, mu_s, nu] = view_cosines(camera, direction, atmosphere.planet_radius);
     let segment = ray_segment_in_atmosphere(r, mu, atmosphere.planet_radius, atmosphere.top_radius);
+    // A column that meets the ground goes on through it (in air at ground density) to
+    // the top. Nothing behind the ground is looked up for its own sake, but a lookup
+    // blends neighbouring columns: near the horizon of a low camera, one column meets
+    // the ground a few kilometres out while its neighbour sees a distant mountain, and
+    // a column stopped at the ground would hold that mountain's haze at a few km's.
+    let end = if segment[2] > 0.5 {
+        ray_sphere_intersect(r, mu, atmosphere.top_radius)[1]
+    } else {
+        segment[1]
+    };
     let rayleigh_phase_value = rayleigh_phase(nu);
     let mie_phase_value = cornette_shanks_phase(nu, atmosphere.mie_g);
     let depth = s.aerial_perspective_depth;
@@ -82,10 +95,11 @@ pub fn aerial_perspective_column(
         for step in 0..steps {
             let a = (slice * steps + step) as f32 * step_length;
             let lo = a.max(segment[0]);
-            let hi = (a + step_length).min(segment[1]);
+            let hi = (a + step_length).min(end);
             if hi > lo {
                 let dt = hi - lo;
-                let [r_t, mu_t, mu_s_t] = point_along_ray(r, mu, mu_s, nu, lo + 0.5 * dt);
+                let [r_below, mu_t, mu_s_t] = point_along_ray(r, mu, mu_s, nu, lo + 0.5 * dt);
+                let r_t = r_below.max(atmosphere.planet_radius);
                 let medium = medium_at_altitude(atmosphere, r_t - atmosphere.planet_radius);
                 let source = scattering_source(
                     bindings,

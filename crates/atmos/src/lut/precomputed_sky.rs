@@ -32,7 +32,9 @@ use super::aerial_perspective::{
 };
 use super::multiple_scattering_lut::bake_multiple_scattering_lut;
 use super::parameterization::view_sun_cos_azimuth;
-use super::raymarch::{LutBindings, ScatteringSegment, march_view_segment};
+use super::raymarch::{
+    LutBindings, ScatteringSegment, march_view_segment, ray_segment_in_atmosphere,
+};
 use super::sky_view_lut::{bake_sky_view_lut, lookup_sky_view, sky_view_r_mu_s};
 use super::transmittance_lut::bake_transmittance_lut;
 use super::{Lut2d, LutSettings, LutSettingsUniform};
@@ -133,13 +135,21 @@ pub fn shade_pixel(luts: &StaticLuts, frame: &FrameLuts, pixel: [u32; 2]) -> Sca
     if camera.max_distance >= UNLIMITED_DISTANCE {
         return unlimited_view_segment(&bindings, &frame.sky_view, r, mu, mu_s, nu);
     }
-    if camera.max_distance <= settings.aerial_perspective_range {
+    // The segment ends at the ground if the ray meets it first (the volume's columns go
+    // on through the ground, for the lookups' blend between columns).
+    let segment = ray_segment_in_atmosphere(r, mu, atmosphere.planet_radius, atmosphere.top_radius);
+    let distance = if segment[2] > 0.5 {
+        camera.max_distance.min(segment[1])
+    } else {
+        camera.max_distance
+    };
+    if distance <= settings.aerial_perspective_range {
         let uv = [
             (pixel[0] as f32 + 0.5) / camera.width as f32,
             (pixel[1] as f32 + 0.5) / camera.height as f32,
         ];
         let [radiance, transmittance] =
-            lookup_aerial_perspective(&frame.aerial_perspective, settings, uv, camera.max_distance);
+            lookup_aerial_perspective(&frame.aerial_perspective, settings, uv, distance);
         return ScatteringSegment {
             radiance,
             transmittance,

@@ -408,5 +408,83 @@ pub fn cases() -> Vec<Case> {
                       absolute for components that cancel to ~0 (|d| = 1, so 3.4u)",
             },
         },
+        Case {
+            name: "atmos::local_to_planet_direction",
+            imports: &["atmos::aerial_perspective"],
+            arity: (3, 3),
+            wgsl: "let d = local_to_planet_direction(vec3<f32>(x0, x1, x2)); y0 = d.x; y1 = d.y; y2 = d.z;",
+            grid: || {
+                let values: Vec<f64> = linspace(-1e5, 1e5, 21)
+                    .chain([0.0, -0.0, 1e-30, 3.5, -7.25])
+                    .collect();
+                let mut grid = Vec::new();
+                for &x in &values {
+                    for &y in &values {
+                        for &z in &values {
+                            grid.push(vec![x, y, z]);
+                        }
+                    }
+                }
+                grid
+            },
+            cpu: |x| atmos::frame::local_to_planet_direction([x[0], x[1], x[2]]).to_vec(),
+            reference: |x| {
+                // The rotation (x, y, z) → (x, −z, y) as a matrix product in f64.
+                let m = [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]];
+                (0..3)
+                    .map(|i| (0..3).map(|j| m[i][j] * x[j]).sum())
+                    .collect()
+            },
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 0.0,
+                bound: None,
+                why: "a permutation and a sign change: exact on every side",
+            },
+        },
+        Case {
+            name: "atmos::frame_screen_position",
+            imports: &["atmos::aerial_perspective"],
+            arity: (2, 3),
+            wgsl: "let c = FrameCamera(vec3<f32>(0.0, 0.0, 6361000.0), 1280u, vec3<f32>(0.0, -1.0, 0.0), \
+                   720u, vec3<f32>(0.0, 0.0, 1.0), 0.75, vec3<f32>(1.0, 0.0, 0.0), 1e30, \
+                   vec3<f32>(0.0, 0.6, 0.8), 0u); \
+                   let d = frame_view_direction(vec2<u32>(u32(x0), u32(x1)), c); \
+                   let p = frame_screen_position(c, d); y0 = p.x; y1 = p.y; y2 = p.z;",
+            grid: || {
+                let mut grid = Vec::new();
+                for y in (0..720).step_by(7).chain([719]) {
+                    for x in (0..1280).step_by(13).chain([1279]) {
+                        grid.push(vec![f64::from(x), f64::from(y)]);
+                    }
+                }
+                grid
+            },
+            cpu: |x| {
+                let camera = frame_camera_wgsl_and_rust();
+                let d = atmos::frame::frame_view_direction([x[0] as u32, x[1] as u32], &camera);
+                atmos::lut::drop_in::frame_screen_position(&camera, d).to_vec()
+            },
+            reference: |x| {
+                // The pixel's centre in [0, 1]², and its direction's cosine to forward.
+                let aspect = 1280.0 / 720.0;
+                let ndc_x = (2.0 * (x[0] + 0.5) / 1280.0 - 1.0) * 0.75 * aspect;
+                let ndc_y = (1.0 - 2.0 * (x[1] + 0.5) / 720.0) * 0.75;
+                let depth = 1.0 / (1.0 + ndc_x * ndc_x + ndc_y * ndc_y).sqrt();
+                vec![(x[0] + 0.5) / 1280.0, (x[1] + 0.5) / 720.0, depth]
+            },
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 2e-6,
+                rel: 0.0,
+                ulp: 8.0,
+                bound: None,
+                why: "the direction's 8 ULP (frame_view_direction) through two dot products \
+                      and a division by depth·tan·aspect ≤ 1.6 in [0.5, 1]: ≈ 3e-6 of the NDC \
+                      coordinate, halved to [0, 1]; 2e-6 absolute (a 1/400 of a pixel)",
+            },
+        },
     ]
 }
