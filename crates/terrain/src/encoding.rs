@@ -12,7 +12,7 @@
 //! The normalisation `(a + π/2)/π` is [`crate::encode_horizon_angle`] (computed in
 //! `f64`), so the seed-000 RGBA PNGs ([`crate::NormalMap::to_rgba_png`]) hold the same
 //! integers. The decode is what a shader does after sampling a unorm texture: the
-//! hardware returns `q / (2^b − 1)` and [`crate::shadow::decode_horizon_angle`] (WGSL
+//! hardware returns `q / (2^b − 1)` and [`crate::twins::decode_horizon_angle`] (WGSL
 //! twin in `terrain::shadow`) maps it back. The round trip is off by at most half a
 //! step, `π / (2 (2^b − 1))`: 6.2e−3 rad (0.36°) for 8 bits, more than the sun's
 //! angular radius (4.65e−3 rad); 2.4e−5 rad for 16 bits (plus `f32` rounding of the

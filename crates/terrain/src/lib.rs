@@ -20,7 +20,9 @@
 //! * [`raycast`]: the exact ray-cast horizon over the bilinear surface (`f64`), the
 //!   reference the trade-off (`cargo xtask tradeoff terrain`) measures maps against;
 //! * `gpu` (default feature): horizon bakes in WGSL compute (east/west, or any azimuth
-//!   on the same digital lines) that record into the caller's encoder.
+//!   on the same digital lines) that record into the caller's encoder;
+//! * [`prelude`]: the types and bakes a typical program needs, in one `use`;
+//! * [`twins`]: the shader helpers only `cargo xtask parity` calls on their own.
 //!
 //! Frames and units: SI, radians; heightfields row-major with `x` east and rows
 //! south; normals and sun directions in east–north–up; azimuths clockwise from north.
@@ -46,6 +48,47 @@ mod normal;
 pub mod raycast;
 pub mod shadow;
 pub mod tilted;
+
+/// The types and entry points a typical program needs: `use terrain::prelude::*;`.
+///
+/// ```
+/// use terrain::prelude::*;
+/// let hf = Heightfield::from_fn(16, 16, 30.0, |x, y| (x + y) as f32)?;
+/// let normals = NormalMap::from_heightfield(&hf);
+/// let maps = bake_east_west(&hf, &HorizonOptions::flat(), Algorithm::HullSweep)?;
+/// let lit = shadow::self_shadow_east_west(
+///     maps.east.angle(3, 3)?,
+///     maps.west.angle(3, 3)?,
+///     glam::Vec3::new(0.6, 0.0, 0.8),
+///     shadow::SUN_ANGULAR_RADIUS,
+/// );
+/// assert!(lit > 0.99 && normals.normal(3, 3)?[2] > 0.9);
+/// # Ok::<(), TerrainError>(())
+/// ```
+pub mod prelude {
+    pub use crate::shadow;
+    pub use crate::{
+        Algorithm, AzimuthHorizonMaps, BitDepth, EastWestHorizon, Heightfield, HorizonEncoding,
+        HorizonMap, HorizonOptions, NormalMap, TerrainError, bake_azimuths, bake_east_west,
+        bake_horizon,
+    };
+}
+
+/// Rust twins of WGSL helpers that only `cargo xtask parity` (and this crate's tests)
+/// call on their own, with their `f64` references.
+///
+/// They are public so that the parity harness can compare each one with its WGSL
+/// twin, but a program does not need them: [`shadow::soft_shadow`] and
+/// [`shadow::self_shadow_east_west`] compose them, and
+/// [`decode_horizon_unorm8`]/[`decode_horizon_unorm16`] decode stored texels. They
+/// stay defined beside their siblings in [`shadow`] (which mirrors
+/// `shaders/terrain/shadow.wgsl` function for function) and are hidden there.
+pub mod twins {
+    #[doc(inline)]
+    pub use crate::shadow::reference::{soft_shadow_f64, sun_disc_visible_fraction_f64};
+    #[doc(inline)]
+    pub use crate::shadow::{decode_horizon_angle, hard_shadow, sun_disc_visible_fraction};
+}
 
 pub use encoding::{
     HorizonEncoding, decode_horizon_unorm8, decode_horizon_unorm16, encode_horizon_unorm8,

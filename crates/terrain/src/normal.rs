@@ -46,7 +46,7 @@ fn quantise(v: f64, max: f64) -> f64 {
 
 /// Encodes a horizon angle (radians, [-π/2, π/2]) as a normalised value in [0, 1]:
 /// `(angle + π/2) / π`. A unorm texture holding `round(value * (2^bits - 1))` decodes
-/// with [`crate::shadow::decode_horizon_angle`].
+/// with [`crate::twins::decode_horizon_angle`].
 ///
 /// A NaN or an angle beyond `±f32::FRAC_PI_2` (which no bake produces) is
 /// [`TerrainError::HorizonAngle`]. `f32::FRAC_PI_2` itself lies 4.4e-8 above π/2;

@@ -1,6 +1,8 @@
 //! Shadow queries and the seed-000 shading term: `f32` twins of
 //! `shaders/terrain/shadow.wgsl` and `shaders/terrain/shading.wgsl` (same names,
-//! argument order and units), plus `f64` references in [`reference`](mod@reference).
+//! argument order and units). The twins only `cargo xtask parity` calls on their own
+//! (the horizon decode, the hard shadow, the disc's visible fraction) and their `f64`
+//! references are in [`crate::twins`].
 //!
 //! Directions are unit vectors in the local east–north–up frame (`x` east, `y`
 //! north, `z` up), pointing *towards* the sun; angles are radians; azimuths are
@@ -21,11 +23,13 @@ pub const SUN_ANGULAR_RADIUS: f32 = 0.004_650_467;
 /// Decodes a horizon angle from a unorm alpha value in `[0, 1]` (as sampled from an
 /// 8- or 16-bit texture): `alpha · π − π/2`. Inverse of
 /// [`crate::encode_horizon_angle`].
+#[doc(hidden)]
 pub fn decode_horizon_angle(alpha: f32) -> f32 {
     alpha * PI - 0.5 * PI
 }
 
 /// 1 when the sun's centre is above the horizon angle, else 0.
+#[doc(hidden)]
 pub fn hard_shadow(sun_elevation: f32, horizon_angle: f32) -> f32 {
     if sun_elevation > horizon_angle {
         1.0
@@ -44,6 +48,7 @@ pub fn hard_shadow(sun_elevation: f32, horizon_angle: f32) -> f32 {
 /// area uses the series of `(u − sin u)/2` instead, so there is no cancellation. The
 /// only transcendental is `atan2`: WGSL allows `sin` an absolute error of 2⁻¹¹, and
 /// lavapipe's `asin` was measured 1.4e-4 off in this formula, both far too coarse.
+#[doc(hidden)]
 pub fn sun_disc_visible_fraction(x: f32) -> f32 {
     let a = x.abs().min(1.0);
     let root = ((1.0 - a) * (1.0 + a)).sqrt();
@@ -159,7 +164,8 @@ pub fn terrain_shading(
     albedo * k
 }
 
-/// `f64` references.
+/// `f64` references (parity's, re-exported from [`crate::twins`]).
+#[doc(hidden)]
 pub mod reference {
     /// Visible fraction of a disc whose centre is `x` radii above a line:
     /// `1/2 + (asin x + x·sqrt(1 − x²)) / π` (clamped outside `[-1, 1]`).

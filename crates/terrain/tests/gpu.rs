@@ -7,9 +7,9 @@ use glam::Vec3;
 use terrain::generate::{GeneratorParams, generate};
 use terrain::gpu::GpuHorizonBaker;
 use terrain::shadow::{
-    SUN_ANGULAR_RADIUS, azimuth_layers, self_shadow_east_west, soft_shadow,
-    sun_disc_visible_fraction, terrain_shading,
+    SUN_ANGULAR_RADIUS, azimuth_layers, self_shadow_east_west, soft_shadow, terrain_shading,
 };
+use terrain::twins::sun_disc_visible_fraction;
 use terrain::{Algorithm, Heightfield, HorizonOptions, bake_east_west};
 
 /// GPU vs CPU tolerance of the bake, radians: f32 evaluation of the same formula

@@ -1,6 +1,6 @@
 //! Normal maps and their export.
 
-use terrain::shadow::decode_horizon_angle;
+use terrain::twins::decode_horizon_angle;
 use terrain::{
     Algorithm, BitDepth, Heightfield, HorizonOptions, NormalMap, bake_east_west,
     encode_horizon_angle,

@@ -1,10 +1,13 @@
 //! Shadow queries and the shading term (CPU side).
 
 use glam::Vec3;
-use terrain::shadow::reference::{soft_shadow_f64, sun_disc_visible_fraction_f64};
 use terrain::shadow::{
-    SUN_ANGULAR_RADIUS, azimuth_layers, decode_horizon_angle, hard_shadow, self_shadow_east_west,
-    soft_shadow, sun_azimuth, sun_disc_visible_fraction, sun_elevation, terrain_shading,
+    SUN_ANGULAR_RADIUS, azimuth_layers, self_shadow_east_west, soft_shadow, sun_azimuth,
+    sun_elevation, terrain_shading,
+};
+use terrain::twins::{
+    decode_horizon_angle, hard_shadow, soft_shadow_f64, sun_disc_visible_fraction,
+    sun_disc_visible_fraction_f64,
 };
 
 #[test]

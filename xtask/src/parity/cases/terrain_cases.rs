@@ -86,12 +86,8 @@ pub fn cases() -> Vec<Case> {
                 }
                 v.into_iter().map(|x| vec![x]).collect()
             },
-            cpu: |x| vec![terrain::shadow::sun_disc_visible_fraction(x[0])],
-            reference: |x| {
-                vec![terrain::shadow::reference::sun_disc_visible_fraction_f64(
-                    x[0],
-                )]
-            },
+            cpu: |x| vec![terrain::twins::sun_disc_visible_fraction(x[0])],
+            reference: |x| vec![terrain::twins::sun_disc_visible_fraction_f64(x[0])],
             audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
@@ -119,11 +115,7 @@ pub fn cases() -> Vec<Case> {
                 grid
             },
             cpu: |x| vec![terrain::shadow::soft_shadow(x[0], x[1], x[2])],
-            reference: |x| {
-                vec![terrain::shadow::reference::soft_shadow_f64(
-                    x[0], x[1], x[2],
-                )]
-            },
+            reference: |x| vec![terrain::twins::soft_shadow_f64(x[0], x[1], x[2])],
             audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
@@ -214,7 +206,7 @@ pub fn cases() -> Vec<Case> {
                 v.extend([0.0, 1.0, 0.5, 1e-7, 1.0 - 1e-7]);
                 v.into_iter().map(|a| vec![a]).collect()
             },
-            cpu: |x| vec![terrain::shadow::decode_horizon_angle(x[0])],
+            cpu: |x| vec![terrain::twins::decode_horizon_angle(x[0])],
             reference: |x| vec![x[0] * std::f64::consts::PI - std::f64::consts::FRAC_PI_2],
             audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
@@ -254,7 +246,7 @@ pub fn cases() -> Vec<Case> {
                 }
                 grid
             },
-            cpu: |x| vec![terrain::shadow::hard_shadow(x[0], x[1])],
+            cpu: |x| vec![terrain::twins::hard_shadow(x[0], x[1])],
             reference: |x| vec![if x[0] > x[1] { 1.0 } else { 0.0 }],
             audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
@@ -436,7 +428,7 @@ pub fn cases() -> Vec<Case> {
             },
             reference: |x| {
                 let horizon = if x[2] >= 0.0 { x[0] } else { x[1] };
-                vec![terrain::shadow::reference::soft_shadow_f64(
+                vec![terrain::twins::soft_shadow_f64(
                     elevation_f64(x[2], x[3], x[4]),
                     horizon,
                     x[5],
