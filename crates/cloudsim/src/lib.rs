@@ -22,6 +22,9 @@
 //! Draws are counter based ([`rng`]), so all three agree bit for bit for the same seed,
 //! whatever the thread count. [`density()`] turns the `cld` history into a smooth
 //! `f32` volume.
+//!
+//! [`prelude`] holds the types a typical program needs; [`twins`] the draw helpers that
+//! only `cargo xtask parity` calls on their own.
 
 mod error;
 mod model;
@@ -45,6 +48,40 @@ pub use model::{
 };
 pub use sim::Simulation;
 pub use state::{NaiveState, PackedState};
+
+/// The types a typical program needs: `use cloudsim::prelude::*;`.
+///
+/// ```
+/// use cloudsim::prelude::*;
+/// let mut config = Config::new(GridSize::new(32, 16, 8));
+/// config.seed = 7;
+/// config.probabilities = Probabilities { activation: 0.01, ..Probabilities::default() };
+/// let mut sim = Simulation::new(Model::new(config)?)?;
+/// sim.advance(20)?;
+/// let volume = sim.density()?; // f32 per cell, x fastest
+/// assert_eq!(volume.len(), 32 * 16 * 8);
+/// assert!(volume.iter().all(|d| (0.0..=1.0).contains(d)));
+/// # Ok::<(), Error>(())
+/// ```
+pub mod prelude {
+    pub use crate::{
+        Boundary, Config, Ellipsoid, Error, GridSize, Model, NaiveState, PackedState,
+        Probabilities, Simulation, Smoothing, density,
+    };
+}
+
+/// Rust twins of the WGSL draw helpers that only `cargo xtask parity` calls on their
+/// own (each compared bit for bit with its WGSL twin and with an independent
+/// re-derivation).
+///
+/// The simulation composes them ([`rng::uniform16`] for the naive reference, a
+/// 16-word batch of [`below_lane_thresholds`] for the packed one), so a program does
+/// not need them. They stay defined in [`rng`], which mirrors `shaders/cloudsim/rng.wgsl`
+/// function for function, and are hidden there.
+pub mod twins {
+    #[doc(inline)]
+    pub use crate::rng::{below_lane_thresholds, plane_bits};
+}
 
 /// The crate's WGSL modules, canonical under `shaders/cloudsim/`.
 pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[

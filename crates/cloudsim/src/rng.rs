@@ -76,6 +76,7 @@ pub fn word_key(key: u32, word: u32) -> u32 {
 
 /// Bit plane `plane` (0 = most significant) of the 32 lanes' uniform numbers of a word
 /// (`plane_bits` in WGSL).
+#[doc(hidden)]
 #[inline(always)]
 pub fn plane_bits(word_key: u32, plane: u32) -> u32 {
     hash_combine(word_key, plane)
@@ -145,6 +146,7 @@ pub fn uniform_threshold_planes(threshold: u32) -> [u32; LANE_PLANES] {
 /// first, stopping once no lane is still equal (`below_lane_thresholds` in WGSL).
 /// Lanes outside `candidates` are 0. Equal to comparing [`uniform16`] with each lane's
 /// threshold one cell at a time.
+#[doc(hidden)]
 pub fn below_lane_thresholds(
     key: u32,
     word: u32,

@@ -95,7 +95,7 @@ fn plane_bits_case() -> Case {
         },
         cpu: |x| {
             let wk = cloudsim::rng::word_key(join(f64::from(x[0]), f64::from(x[1])), x[2] as u32);
-            halves(cloudsim::rng::plane_bits(wk, x[3] as u32)).to_vec()
+            halves(cloudsim::twins::plane_bits(wk, x[3] as u32)).to_vec()
         },
         reference: |x| {
             let wk = second::combine(join(x[0], x[1]), x[2] as u32);
@@ -196,7 +196,7 @@ fn below_lane_thresholds_case() -> Case {
 
 fn below(x: &[f64]) -> u32 {
     let planes = cloudsim::rng::uniform_threshold_planes(x[5] as u32);
-    cloudsim::rng::below_lane_thresholds(join(x[0], x[1]), x[2] as u32, join(x[3], x[4]), &planes)
+    cloudsim::twins::below_lane_thresholds(join(x[0], x[1]), x[2] as u32, join(x[3], x[4]), &planes)
 }
 
 fn wind_shift_case() -> Case {

@@ -105,7 +105,7 @@ mod tests {
             let planes = cloudsim::rng::uniform_threshold_planes(threshold);
             assert_eq!(
                 below_threshold(key, 5, 0xffff_0f0f, threshold),
-                cloudsim::rng::below_lane_thresholds(key, 5, 0xffff_0f0f, &planes)
+                cloudsim::twins::below_lane_thresholds(key, 5, 0xffff_0f0f, &planes)
             );
         }
         assert_eq!(uniform16(key, 9, 31), cloudsim::rng::uniform16(key, 9, 31));
