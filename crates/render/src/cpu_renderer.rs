@@ -128,12 +128,29 @@ pub fn sun_irradiance_at(scene: &PreparedScene, elevation: f64) -> Result<Vec3, 
     ))
 }
 
+/// The precomputed rung's tables for one frame: the CPU twins of the GPU's passes
+/// (`atmos::lut::drop_in`) read them, so the two renderers shade alike.
+struct PrecomputedFrame<'a> {
+    luts: &'a atmos::lut::StaticLuts,
+    frame: atmos::lut::FrameLuts,
+    sky: atmos::lut::drop_in::SkyPassParameters,
+}
+
 /// Linear radiance of every pixel, row-major (the HDR image before display).
 pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, RenderError> {
     let camera = &scene.camera;
     let (width, height) = (camera.width as usize, camera.height as usize);
     let light = match &scene.terrain {
         Some(terrain) => Some(terrain_light(scene, terrain)?),
+        None => None,
+    };
+    let precomputed = match &scene.precomputed {
+        Some(sky) => Some(PrecomputedFrame {
+            luts: sky.static_luts(),
+            frame: atmos::lut::FrameLuts::bake(sky.static_luts(), camera),
+            sky: atmos::lut::drop_in::SkyPassParameters::new(&scene.atmosphere, true, 1.0, 0.0)
+                .map_err(atmos_error)?,
+        }),
         None => None,
     };
     let mut out = vec![
@@ -147,7 +164,12 @@ pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, Rend
         .enumerate()
         .try_for_each(|(row, pixels)| {
             for (column, pixel) in pixels.iter_mut().enumerate() {
-                *pixel = shade_pixel(scene, light.as_ref(), [column as u32, row as u32])?;
+                *pixel = shade_pixel(
+                    scene,
+                    light.as_ref(),
+                    precomputed.as_ref(),
+                    [column as u32, row as u32],
+                )?;
             }
             Ok::<(), RenderError>(())
         })?;
@@ -176,15 +198,31 @@ pub fn render_cpu(scene: &PreparedScene) -> Result<Frame, RenderError> {
     })
 }
 
-fn terrain_light<'a>(
+/// What lights a scene's terrain, per frame, shared by the CPU renderer and the GPU's
+/// terrain pass: the sky's irradiance (once per frame, at the terrain's mean elevation
+/// under the camera: its change with elevation across the relief is not modelled) and
+/// the sun in terrain's east–north–up frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TerrainLighting {
+    /// `atmos::ground_irradiance`'s sky term on a horizontal surface.
+    pub sky_irradiance: Vec3,
+    /// Unit direction toward the sun, east–north–up.
+    pub sun_enu: Vec3,
+    /// The sun's elevation (rad), `terrain::shadow::sun_elevation`.
+    pub sun_elevation: f32,
+    /// The sun's azimuth (rad), `terrain::shadow::sun_azimuth`.
+    pub sun_azimuth: f32,
+    /// The terrain's lowest and highest elevation (m).
+    pub elevation_range: [f64; 2],
+}
+
+/// The lighting of `terrain` in `scene` (see [`TerrainLighting`]).
+pub fn terrain_lighting(
     scene: &PreparedScene,
-    terrain: &'a PreparedTerrain,
-) -> Result<TerrainLight<'a>, RenderError> {
-    let tracer = terrain::intersect::HeightfieldTracer::new(&terrain.heightfield);
-    let offset = terrain.map_offset();
-    // The sky's irradiance once per frame, at the terrain's mean elevation under the
-    // camera (its change with elevation across the relief is not modelled).
-    let [low, high] = tracer.elevation_range();
+    terrain: &PreparedTerrain,
+) -> Result<TerrainLighting, RenderError> {
+    let [low, high] =
+        terrain::intersect::HeightfieldTracer::new(&terrain.heightfield).elevation_range();
     let mean = 0.5 * (low + high);
     let c = scene.camera_position;
     let here = DVec3::new(c.x, scene.atmosphere.planet_radius + mean, c.z);
@@ -196,9 +234,25 @@ fn terrain_light<'a>(
         atmos::ground_irradiance::HemisphereQuadrature::default(),
     )
     .map_err(atmos_error)?;
-    let sky = irradiance.sky.map(|v| v as f32);
     let s = scene.sun.as_vec3();
     let sun_enu = Vec3::new(s.x, -s.z, s.y);
+    Ok(TerrainLighting {
+        sky_irradiance: Vec3::from_array(irradiance.sky.map(|v| v as f32)),
+        sun_enu,
+        sun_elevation: terrain::shadow::sun_elevation(sun_enu),
+        sun_azimuth: terrain::shadow::sun_azimuth(sun_enu),
+        elevation_range: [low, high],
+    })
+}
+
+fn terrain_light<'a>(
+    scene: &PreparedScene,
+    terrain: &'a PreparedTerrain,
+) -> Result<TerrainLight<'a>, RenderError> {
+    let tracer = terrain::intersect::HeightfieldTracer::new(&terrain.heightfield);
+    let offset = terrain.map_offset();
+    let lighting = terrain_lighting(scene, terrain)?;
+    let [low, high] = lighting.elevation_range;
     let sun_table = (0..SUN_TABLE_SIZE)
         .map(|k| {
             let f = k as f64 / (SUN_TABLE_SIZE - 1) as f64;
@@ -209,10 +263,10 @@ fn terrain_light<'a>(
         terrain,
         tracer,
         offset,
-        sky_irradiance: Vec3::from_array(sky),
-        sun_enu,
-        sun_elevation: terrain::shadow::sun_elevation(sun_enu),
-        sun_azimuth: terrain::shadow::sun_azimuth(sun_enu),
+        sky_irradiance: lighting.sky_irradiance,
+        sun_enu: lighting.sun_enu,
+        sun_elevation: lighting.sun_elevation,
+        sun_azimuth: lighting.sun_azimuth,
         sun_table,
         elevation_range: [low, high],
     })
@@ -233,6 +287,7 @@ impl atmos::SkyModel for ModelRef<'_> {
 fn shade_pixel(
     scene: &PreparedScene,
     light: Option<&TerrainLight<'_>>,
+    precomputed: Option<&PrecomputedFrame<'_>>,
     pixel: [u32; 2],
 ) -> Result<PixelRadiance, RenderError> {
     let camera = &scene.camera;
@@ -247,12 +302,19 @@ fn shade_pixel(
             .tracer
             .intersect(origin, direction, scene.near, scene.far)
         {
-            let radiance = shade_terrain(scene, light, view, &hit)?;
+            let radiance = shade_terrain(scene, light, precomputed, view, &hit)?;
             return Ok(PixelRadiance {
                 radiance,
                 terrain_distance: Some(hit.distance as f32),
             });
         }
+    }
+    if let Some(p) = precomputed {
+        // The twin of the GPU's sky pass (the sun's disc included).
+        return Ok(PixelRadiance {
+            radiance: atmos::lut::drop_in::sky_pass_radiance(p.luts, &p.frame, pixel, &p.sky),
+            terrain_distance: None,
+        });
     }
     let query = atmos::SkyQuery::new(planet, scene.camera_position, view, scene.sun)
         .map_err(atmos_error)?;
@@ -302,6 +364,7 @@ fn filtered(values: &[f32], texels: &[usize; 4], weights: &[f32; 4]) -> f32 {
 fn shade_terrain(
     scene: &PreparedScene,
     light: &TerrainLight<'_>,
+    precomputed: Option<&PrecomputedFrame<'_>>,
     view: DVec3,
     hit: &terrain::intersect::SurfaceHit,
 ) -> Result<[f32; 3], RenderError> {
@@ -338,15 +401,46 @@ fn shade_terrain(
     };
     let elevation = hit.position[2];
     let albedo = terrain.albedo.albedo(elevation as f32, normal_enu.z);
+    let n = normal_enu;
+    if let Some(p) = precomputed {
+        // The twins of the GPU terrain pass: the sun and the aerial perspective from
+        // the same tables, at the point's offset from the camera (world axes).
+        let planet = scene.atmosphere.planet_radius;
+        let c = scene.camera_position;
+        let world = DVec3::new(
+            hit.position[0] - light.offset[0],
+            hit.position[2],
+            hit.position[1] - light.offset[1],
+        );
+        let eye = DVec3::new(c.x, c.y - planet, c.z);
+        let offset = (world.as_vec3() - eye.as_vec3()).to_array();
+        let sun = atmos::lut::drop_in::sunlight_at(p.luts, &scene.camera, offset);
+        let surface = surface_radiance(
+            n,
+            n.z,
+            light.sun_enu,
+            albedo,
+            self_shadow,
+            1.0,
+            Vec3::from_array(sun),
+            light.sky_irradiance,
+        );
+        return Ok(atmos::lut::drop_in::apply_aerial_perspective(
+            p.luts,
+            &p.frame,
+            surface.to_array(),
+            offset,
+        ));
+    }
     let sun_at_point = light.sun_at_elevation(elevation);
     let planet = scene.atmosphere.planet_radius;
-    let n = normal_enu;
     let surface = surface_radiance(
         n,
         n.z,
         light.sun_enu,
         albedo,
         self_shadow,
+        1.0,
         sun_at_point,
         light.sky_irradiance,
     );
@@ -382,6 +476,32 @@ pub fn write_png(path: &std::path::Path, frame: &Frame) -> Result<(), image::Ima
         image::ExtendedColorType::Rgba8,
         image::ImageFormat::Png,
     )?;
+    std::fs::rename(&temporary, path).map_err(|e| {
+        let _ = std::fs::remove_file(&temporary);
+        image::ImageError::IoError(e)
+    })
+}
+
+/// Writes linear HDR radiance (`width × height` RGB, row-major, the unit of the sun's
+/// irradiance per sr, before exposure) as a 32-bit float OpenEXR, atomically like
+/// [`write_png`]. Behind the `exr` feature (on with the default `cli`).
+#[cfg(feature = "exr")]
+pub fn write_exr(
+    path: &std::path::Path,
+    width: u32,
+    height: u32,
+    radiance: &[[f32; 3]],
+) -> Result<(), image::ImageError> {
+    let floats: Vec<f32> = radiance.iter().flatten().copied().collect();
+    let image = image::Rgb32FImage::from_raw(width, height, floats).ok_or_else(|| {
+        image::ImageError::Parameter(image::error::ParameterError::from_kind(
+            image::error::ParameterErrorKind::DimensionMismatch,
+        ))
+    })?;
+    let mut temporary = path.as_os_str().to_owned();
+    temporary.push(".partial");
+    let temporary = std::path::PathBuf::from(temporary);
+    image.save_with_format(&temporary, image::ImageFormat::OpenExr)?;
     std::fs::rename(&temporary, path).map_err(|e| {
         let _ = std::fs::remove_file(&temporary);
         image::ImageError::IoError(e)

@@ -14,12 +14,6 @@
 //! # Ok(())
 //! # }
 //! ```
-//!
-//! ```
-//! let scene = render::SkyScene { width: 32, height: 18, ..Default::default() };
-//! let pixels = render::sky::render_sky_cpu(&scene).unwrap();
-//! assert_eq!(pixels.len(), 32 * 18);
-//! ```
 
 pub mod cpu_renderer;
 pub mod error;
@@ -27,12 +21,11 @@ pub mod error;
 pub mod gpu;
 pub mod present;
 pub mod scene;
-pub mod sky;
+pub mod terrain_mesh;
 pub mod terrain_shading;
 pub mod tonemap;
 
 pub use error::RenderError;
-pub use sky::{ClosedFormAtmosphere, SkyScene, SkyUniforms};
 
 /// The WGSL modules of this crate, importable as `#import render::<name>`.
 pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
@@ -45,18 +38,38 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/present.wgsl"),
     },
     skyscape_wgsl::Module {
-        name: "render::sky_closed_form",
-        source: include_str!("../shaders/sky_closed_form.wgsl"),
+        name: "render::terrain_shading",
+        source: include_str!("../shaders/terrain_shading.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::terrain",
+        source: include_str!("../shaders/terrain.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::display",
+        source: include_str!("../shaders/display.wgsl"),
     },
 ];
 
-/// A composer with the common, `atmos` and `render` modules.
+/// A composer with the common, `atmos`, `terrain`, `celestial` and `render` modules.
 pub fn composer() -> skyscape_wgsl::Composer {
     let mut composer = atmos::composer();
+    add_composed_crates(&mut composer);
+    composer
+}
+
+/// Adds the modules of the crates `render` composes (beyond atmos and common) to a
+/// composer: terrain's, celestial's and its own.
+pub fn add_composed_crates(composer: &mut skyscape_wgsl::Composer) {
+    composer
+        .add_modules(terrain::WGSL_MODULES)
+        .expect("terrain WGSL module names are unique and well formed");
+    composer
+        .add_modules(celestial::WGSL_MODULES)
+        .expect("celestial WGSL module names are unique and well formed");
     composer
         .add_modules(WGSL_MODULES)
         .expect("render WGSL module names are unique and well formed");
-    composer
 }
 
 #[cfg(test)]
@@ -86,8 +99,8 @@ mod wgsl_tests {
     /// structs.
     #[test]
     fn uniform_twins_match_their_wgsl_layouts() {
-        use crate::SkyUniforms;
         use crate::present::PresentParameters;
+        use crate::terrain_shading::AlbedoRampUniform;
         let composer = super::composer();
         let wgsl = |module: &str, name: &str| {
             let source = composer.compose_module(module).unwrap();
@@ -97,20 +110,16 @@ mod wgsl_tests {
         };
         let twins = [
             (
-                skyscape_wgsl::rust_layout!(SkyUniforms {
-                    camera_right,
-                    camera_up,
-                    camera_forward,
-                    sun_direction,
-                    beta_rayleigh,
-                    beta_mie,
-                    sun_irradiance_at_camera,
-                    sun_disc_radiance,
-                    sunlight_in_scatter,
-                    display,
-                    image,
+                skyscape_wgsl::rust_layout!(AlbedoRampUniform {
+                    heights,
+                    colors,
+                    steep_color,
+                    stop_count,
+                    cos_steep,
+                    cos_gentle,
+                    padding,
                 }),
-                wgsl("render::sky_closed_form", "SkyUniforms"),
+                wgsl("render::terrain_shading", "AlbedoRamp"),
             ),
             (
                 skyscape_wgsl::rust_layout!(PresentParameters {

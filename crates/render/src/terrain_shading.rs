@@ -24,9 +24,40 @@ pub struct AlbedoRamp {
 /// The width of the slope blend, degrees.
 const SLOPE_BLEND_DEG: f64 = 10.0;
 
+/// The most stops a ramp may have (the GPU's uniform holds this many).
+pub const MAX_ALBEDO_STOPS: usize = 8;
+
+/// The ramp as the GPU's uniform (layout identical to WGSL `AlbedoRamp` in
+/// `shaders/render/terrain_shading.wgsl`): heights packed four to a vec4.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct AlbedoRampUniform {
+    /// Stop elevations (m), `heights[k / 4][k % 4]`.
+    pub heights: [[f32; 4]; 2],
+    /// Stop colours (rgb, 0).
+    pub colors: [[f32; 4]; MAX_ALBEDO_STOPS],
+    /// Rock colour.
+    pub steep_color: [f32; 3],
+    /// Number of stops (1..=8).
+    pub stop_count: u32,
+    /// cos(steep slope).
+    pub cos_steep: f32,
+    /// cos(steep slope − 10°).
+    pub cos_gentle: f32,
+    /// Keeps the struct a multiple of 16 bytes.
+    pub padding: [f32; 2],
+}
+
 impl AlbedoRamp {
     /// Checks and converts `[terrain.albedo]`; the error is (key, value as typed, rule).
     pub fn new(section: &AlbedoSection) -> Result<Self, (&'static str, String, String)> {
+        if section.heights.len() > MAX_ALBEDO_STOPS {
+            return Err((
+                "heights",
+                format!("{} stops", section.heights.len()),
+                format!("at most {MAX_ALBEDO_STOPS} stops"),
+            ));
+        }
         if section.heights.is_empty() || section.heights.len() != section.colors.len() {
             return Err((
                 "colors",
@@ -83,7 +114,26 @@ impl AlbedoRamp {
         })
     }
 
+    /// The GPU uniform of this ramp.
+    pub fn uniform(&self) -> AlbedoRampUniform {
+        let mut uniform = AlbedoRampUniform {
+            heights: [[0.0; 4]; 2],
+            colors: [[0.0; 4]; MAX_ALBEDO_STOPS],
+            steep_color: self.steep_color.to_array(),
+            stop_count: self.heights.len() as u32,
+            cos_steep: self.cos_steep,
+            cos_gentle: self.cos_gentle,
+            padding: [0.0; 2],
+        };
+        for (k, (&h, c)) in self.heights.iter().zip(&self.colors).enumerate() {
+            uniform.heights[k / 4][k % 4] = h;
+            uniform.colors[k] = [c.x, c.y, c.z, 0.0];
+        }
+        uniform
+    }
+
     /// Albedo at `elevation` (m) on a surface whose unit normal has up component `up`.
+    /// Twin of WGSL `terrain_albedo`.
     pub fn albedo(&self, elevation: f32, up: f32) -> Vec3 {
         let n = self.heights.len();
         let by_height = if elevation <= self.heights[0] {
@@ -110,17 +160,21 @@ impl AlbedoRamp {
 ///   a surface tilted by `θ` sees the fraction `(1 + cos θ)/2` of an isotropic sky
 ///   (the view factor of a tilted plane to the upper hemisphere) — the sky's
 ///   anisotropy and the terrain's occlusion of it are not modelled;
-/// * `normal`, `sun`: unit, one frame; `up` is `normal`'s up component.
+/// * `normal`, `sun`: unit, one frame; `up` is `normal`'s up component;
+/// * `cloud_shadow`: the sun's transmittance through the clouds above the point (1: none).
+///
+/// Twin of WGSL `surface_radiance` (`shaders/render/terrain_shading.wgsl`).
+#[allow(clippy::too_many_arguments)] // mirrors the WGSL signature
 pub fn surface_radiance(
     normal: Vec3,
     up: f32,
     sun: Vec3,
     albedo: Vec3,
     self_shadow: f32,
+    cloud_shadow: f32,
     sun_irradiance_at_point: Vec3,
     sky_irradiance: Vec3,
 ) -> Vec3 {
-    let cloud_shadow = 1.0; // no clouds in scenes yet
     let direct = terrain::shadow::terrain_shading(normal, sun, albedo, self_shadow, cloud_shadow)
         * sun_irradiance_at_point;
     let ambient = albedo * sky_irradiance * (0.5 * (1.0 + up));
@@ -170,8 +224,26 @@ mod tests {
     fn a_shadowed_surface_keeps_only_the_sky_light() {
         let n = Vec3::Y;
         let sun = Vec3::new(0.0, 0.5, -0.75f32.sqrt());
-        let lit = surface_radiance(n, 1.0, sun, Vec3::ONE, 1.0, Vec3::ONE, Vec3::splat(0.2));
-        let dark = surface_radiance(n, 1.0, sun, Vec3::ONE, 0.0, Vec3::ONE, Vec3::splat(0.2));
+        let lit = surface_radiance(
+            n,
+            1.0,
+            sun,
+            Vec3::ONE,
+            1.0,
+            1.0,
+            Vec3::ONE,
+            Vec3::splat(0.2),
+        );
+        let dark = surface_radiance(
+            n,
+            1.0,
+            sun,
+            Vec3::ONE,
+            0.0,
+            1.0,
+            Vec3::ONE,
+            Vec3::splat(0.2),
+        );
         assert!((dark - Vec3::splat(0.2 / std::f32::consts::PI)).length() < 1e-6);
         assert!((lit - dark - Vec3::splat(0.5 / std::f32::consts::PI)).length() < 1e-6);
     }

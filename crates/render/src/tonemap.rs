@@ -70,9 +70,89 @@ pub fn fraction_within_lsb(a: &[u32], b: &[u32], lsb: u8) -> Result<f64, RenderE
     Ok(close as f64 / a.len() as f64)
 }
 
+/// Fraction of pixels of `a` that have a pixel within `lsb` code values (every
+/// channel) somewhere in the `(2 radius + 1)²` neighbourhood of the same place in `b`,
+/// and the other way round (the smaller of the two). A comparison for images whose
+/// geometry may land a pixel apart: the GPU rasterises the terrain as triangles, the
+/// CPU reference renderer ray casts the bilinear surface, so where the terrain is
+/// finer than a pixel the two sample neighbouring points of it. `width` is the row
+/// length; errors as [`fraction_within_lsb`], and when `width` does not divide the
+/// pixel count.
+pub fn fraction_within_lsb_of_neighbourhood(
+    a: &[u32],
+    b: &[u32],
+    width: usize,
+    lsb: u8,
+    radius: usize,
+) -> Result<f64, RenderError> {
+    fraction_within_lsb(a, b, lsb)?;
+    if a.is_empty() {
+        return Ok(1.0);
+    }
+    if width == 0 || a.len() % width != 0 {
+        return Err(RenderError::InvalidParameter {
+            field: "width",
+            value: width.to_string(),
+            reason: "must divide the pixel count",
+        });
+    }
+    let height = a.len() / width;
+    let close = |p: u32, q: u32| {
+        p.to_le_bytes()
+            .iter()
+            .zip(q.to_le_bytes())
+            .all(|(x, y)| x.abs_diff(y) <= lsb)
+    };
+    let one_way = |from: &[u32], to: &[u32]| {
+        let mut matched = 0usize;
+        for y in 0..height {
+            for x in 0..width {
+                let pixel = from[y * width + x];
+                let rows = y.saturating_sub(radius)..(y + radius + 1).min(height);
+                let found = rows.into_iter().any(|yy| {
+                    (x.saturating_sub(radius)..(x + radius + 1).min(width))
+                        .any(|xx| close(pixel, to[yy * width + xx]))
+                });
+                matched += usize::from(found);
+            }
+        }
+        matched as f64 / from.len() as f64
+    };
+    Ok(one_way(a, b).min(one_way(b, a)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn neighbourhood_agreement_forgives_a_one_pixel_shift_only() {
+        // A bright column one pixel apart: strict agreement fails on two columns,
+        // the 3×3 neighbourhood forgives it, a two-pixel shift is not forgiven.
+        let image = |column: usize| -> Vec<u32> {
+            (0..8 * 4)
+                .map(|i| {
+                    if i % 8 == column {
+                        0xffff_ffff
+                    } else {
+                        0xff00_0000
+                    }
+                })
+                .collect()
+        };
+        let (a, b, c) = (image(3), image(4), image(5));
+        assert_eq!(fraction_within_lsb(&a, &b, 2).unwrap(), 0.75);
+        assert_eq!(
+            fraction_within_lsb_of_neighbourhood(&a, &b, 8, 2, 1).unwrap(),
+            1.0
+        );
+        assert!(fraction_within_lsb_of_neighbourhood(&a, &c, 8, 2, 1).unwrap() < 1.0);
+        assert_eq!(
+            fraction_within_lsb_of_neighbourhood(&a, &a, 8, 0, 0).unwrap(),
+            1.0
+        );
+        assert!(fraction_within_lsb_of_neighbourhood(&a, &b, 7, 2, 1).is_err());
+    }
 
     #[test]
     fn srgb_endpoints_and_continuity() {

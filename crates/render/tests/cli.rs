@@ -14,12 +14,14 @@ fn skyscape(args: &[&str]) -> std::process::Output {
 fn compare_without_a_gpu_image_is_an_error() {
     // Each would compare the CPU image with itself and report 100 %.
     for args in [
-        &["--cpu", "--compare"][..],
-        &["--rung", "reference", "--compare"][..],
+        &["render", "--cpu", "--compare"][..],
+        &["render", "--rung", "reference", "--compare"][..],
+        &["render", "--rung", "single", "--explain"][..],
     ] {
         let output = skyscape(args);
         assert_eq!(output.status.code(), Some(2), "{args:?}");
         let stderr = String::from_utf8_lossy(&output.stderr);
-        assert!(stderr.contains("--compare"), "{args:?}: {stderr}");
+        let flag = args[args.len() - 1];
+        assert!(stderr.contains(flag), "{args:?}: {stderr}");
     }
 }

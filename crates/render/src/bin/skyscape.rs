@@ -1,190 +1,404 @@
-//! `skyscape`: renders a scene to a PNG, on the GPU when an adapter exists, else on
-//! the CPU twin. Run `skyscape --help` for the options.
+//! `skyscape`: renders an outdoor scene (a scene file, or a shipped scene by name) to
+//! a PNG or an OpenEXR, on the GPU when an adapter exists, on the CPU reference
+//! renderer otherwise or with `--cpu`. `skyscape --help` lists the commands.
 
-use render::SkyScene;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-const HELP: &str = "\
-skyscape — render an outdoor scene to a PNG
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use render::gpu::{SceneRenderer, SceneRendererSettings};
+use render::scene::shipped::{SHIPPED, shipped};
+use render::scene::{PreparedScene, Scene};
 
-USAGE:
-    skyscape [OPTIONS]
-    skyscape render SCENE.toml [-o OUT.png] [--width N] [--height N]
-                               a scene file (sky + terrain) on the CPU reference
-                               renderer; see docs/scenes.md and scenes/default.toml
-
-With no options, renders the default scene (a clear afternoon seen from 2 m above
-the ground: sky with seed 000's closed-form Rayleigh + Mie scattering, the sun and
-its glow, the ground through aerial perspective) to target/skyscape/default.png.
-
-OPTIONS:
-    -o, --output PATH          where to write the PNG [target/skyscape/default.png]
-        --width N              image width in pixels [960]
-        --height N             image height in pixels [540]
-        --sun-elevation DEG    sun elevation above the horizon, degrees [20.05]
-        --sun-azimuth DEG      sun azimuth from north towards east, degrees [34.4]
-        --view-elevation DEG   camera pitch, degrees [20.05]
-        --view-azimuth DEG     camera heading from north towards east, degrees [0]
-        --fov DEG              vertical field of view, degrees [80.2]
-        --altitude M           camera altitude above the ground, metres [2]
-        --exposure X           exposure before the 1 − exp(−x) tone map [20]
-        --mie-scale X          multiply Mie scattering (haze) by X [1]
-        --mie-g G              Mie anisotropy, |G| < 1 [0.8]
-        --seed N               dither seed [0]
-        --rung NAME            which model of the atmosphere renders the sky [sky]:
-                                 sky                 seed 000's closed form with the lit
-                                                     ground and the sun (the default image)
-                                 closed-form         ladder rung 1, per pixel
-                                 closed-form-vertex  ladder rung 1, per vertex of a 16×32 dome
-                                 single              ladder rung 2, single scattering (32/8)
-                                 precomputed         ladder rung 3, Hillaire-style LUTs
-                                 reference           ladder rung 4, the f64 reference (CPU
-                                                     only, slow: use a small --width/--height)
-                                 reference-spectral  rung 4 at 18 wavelengths through the
-                                                     CIE 1931 observer (CPU only, 6× slower)
-                               Ladder rungs show the atmosphere alone: in-scatter, the sun
-                               disc through it, the ground dark behind aerial perspective.
-        --cpu                  render on the CPU even if a GPU adapter exists
-        --compare              render on both and report how many pixels agree
-    -h, --help                 print this help
-
-ENVIRONMENT:
-    WGPU_BACKEND               restrict the adapter search (vulkan, gl, …)
-";
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Rung {
-    Sky,
-    ClosedForm,
-    ClosedFormVertex,
-    Single,
-    Precomputed,
-    Reference,
-    ReferenceSpectral,
+#[derive(Debug, Parser)]
+#[command(
+    name = "skyscape",
+    version,
+    about = "Render an outdoor scene: sky, terrain and the atmosphere between",
+    long_about = "Render an outdoor scene — sky and aerial perspective from atmospheric \
+                  scattering, terrain with self-shadows — from a TOML scene file or a \
+                  shipped scene. With no command, renders the default scene.\n\n\
+                  Scene files: docs/scenes.md. Environment: WGPU_BACKEND restricts the \
+                  adapter search (vulkan, gl, metal, dx12)."
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
 }
 
-impl Rung {
-    fn parse(name: &str) -> Result<Self, String> {
-        Ok(match name {
-            "sky" => Self::Sky,
-            "closed-form" => Self::ClosedForm,
-            "closed-form-vertex" => Self::ClosedFormVertex,
-            "single" => Self::Single,
-            "precomputed" => Self::Precomputed,
-            "reference" => Self::Reference,
-            "reference-spectral" => Self::ReferenceSpectral,
-            other => {
-                return Err(format!(
-                    "--rung: `{other}` is not one of sky, closed-form, closed-form-vertex, single, precomputed, reference, reference-spectral"
-                ));
-            }
-        })
-    }
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Render a scene (a .toml file or a shipped scene's name; default: "default").
+    Render(RenderArgs),
+    /// Say which passes a scene runs on the GPU, which it skips and why, and what each
+    /// costs (measured with GPU timestamps on the chosen adapter).
+    Explain {
+        /// The scene: a .toml file or a shipped scene's name.
+        scene: String,
+        /// Restrict the adapter search to these backends (vulkan, gl, metal, dx12).
+        #[arg(long)]
+        backend: Option<String>,
+    },
+    /// List the shipped scenes.
+    Scenes,
+    /// List the adapters wgpu finds and which one skyscape would use.
+    Adapters {
+        /// Restrict the search to these backends.
+        #[arg(long)]
+        backend: Option<String>,
+    },
 }
 
-struct Options {
-    rung: Rung,
-    scene: SkyScene,
-    output: PathBuf,
-    cpu_only: bool,
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum Format {
+    /// 8-bit sRGB, tone-mapped and dithered.
+    Png,
+    /// 32-bit float linear radiance (the unit of the sun's irradiance per sr).
+    Exr,
+}
+
+#[derive(Debug, Args, Default)]
+struct RenderArgs {
+    /// The scene: a .toml file or a shipped scene's name (`skyscape scenes`).
+    scene: Option<String>,
+    /// Where to write the image [the scene's output.path, else target/skyscape/NAME.png].
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Image width, pixels (overrides the scene's).
+    #[arg(long)]
+    width: Option<u32>,
+    /// Image height, pixels (overrides the scene's).
+    #[arg(long)]
+    height: Option<u32>,
+    /// Output format [from the output's extension, else png].
+    #[arg(long, value_enum)]
+    format: Option<Format>,
+    /// Render on the CPU reference renderer even if a GPU adapter exists.
+    #[arg(long)]
+    cpu: bool,
+    /// Render on the GPU and on the CPU and report how many pixels agree.
+    #[arg(long, conflicts_with = "cpu")]
     compare: bool,
+    /// Print the passes that run and their measured GPU cost.
+    #[arg(long)]
+    explain: bool,
+    /// The atmosphere's rung (overrides the scene's): closed-form, closed-form-vertex,
+    /// single, precomputed, reference, reference-spectral.
+    #[arg(long)]
+    rung: Option<String>,
+    /// The sun's elevation, degrees (overrides the scene's).
+    #[arg(long, allow_negative_numbers = true)]
+    sun_elevation_deg: Option<f64>,
+    /// The sun's azimuth clockwise from north, degrees (overrides the scene's).
+    #[arg(long, allow_negative_numbers = true)]
+    sun_azimuth_deg: Option<f64>,
+    /// Exposure before the 1 − exp(−x) tone map (overrides the scene's).
+    #[arg(long)]
+    exposure: Option<f32>,
+    /// Render this many frames of the scene's animation (numbered files).
+    #[arg(long)]
+    frames: Option<u32>,
+    /// Only frames a..b (half-open) of the animation, to split it across machines.
+    #[arg(long, value_parser = parse_range)]
+    frame_range: Option<(u32, u32)>,
+    /// Create the output's folder if it does not exist (otherwise a missing folder is
+    /// an error).
+    #[arg(long)]
+    mkdir: bool,
+    /// Restrict the adapter search to these backends (vulkan, gl, metal, dx12).
+    #[arg(long)]
+    backend: Option<String>,
 }
 
-fn parse(args: &[String]) -> Result<Option<Options>, String> {
-    let mut options = Options {
-        rung: Rung::Sky,
-        scene: SkyScene::default(),
-        output: PathBuf::from("target/skyscape/default.png"),
-        cpu_only: false,
-        compare: false,
+fn parse_range(text: &str) -> Result<(u32, u32), String> {
+    let (a, b) = text
+        .split_once("..")
+        .ok_or_else(|| format!("`{text}` is not a range a..b"))?;
+    let parse = |s: &str| {
+        s.parse::<u32>()
+            .map_err(|_| format!("`{s}` in `{text}` is not a frame number"))
     };
-    let mut iter = args.iter();
-    while let Some(flag) = iter.next() {
-        let mut value = || iter.next().ok_or_else(|| format!("{flag} needs a value"));
-        let number = |text: &String| -> Result<f32, String> {
-            text.parse::<f32>()
-                .map_err(|_| format!("{flag}: `{text}` is not a number"))
-        };
-        let integer = |text: &String| -> Result<u32, String> {
-            text.parse::<u32>()
-                .map_err(|_| format!("{flag}: `{text}` is not a non-negative integer"))
-        };
-        let s = &mut options.scene;
-        match flag.as_str() {
-            "-h" | "--help" => return Ok(None),
-            "-o" | "--output" => options.output = PathBuf::from(value()?),
-            "--width" => s.width = integer(value()?)?,
-            "--height" => s.height = integer(value()?)?,
-            "--sun-elevation" => s.sun_elevation = number(value()?)?.to_radians(),
-            "--sun-azimuth" => s.sun_azimuth = number(value()?)?.to_radians(),
-            "--view-elevation" => s.camera_elevation = number(value()?)?.to_radians(),
-            "--view-azimuth" => s.camera_azimuth = number(value()?)?.to_radians(),
-            "--fov" => s.vertical_fov = number(value()?)?.to_radians(),
-            "--altitude" => s.camera_altitude = number(value()?)?,
-            "--exposure" => s.exposure = number(value()?)?,
-            "--mie-scale" => {
-                let scale = number(value()?)?;
-                if !(scale.is_finite() && scale >= 0.0) {
-                    return Err(format!("--mie-scale: {scale} must be a finite number ≥ 0"));
-                }
-                s.atmosphere.mie_scattering *= scale;
+    let (a, b) = (parse(a)?, parse(b)?);
+    if a >= b {
+        return Err(format!("`{text}`: the range must not be empty (a < b)"));
+    }
+    Ok((a, b))
+}
+
+/// A failure: bad input (exit 2, the message names the field and value) or a runtime
+/// failure (exit 1).
+enum Failure {
+    Input(String),
+    Runtime(String),
+}
+
+impl Failure {
+    fn exit(self) -> ExitCode {
+        match self {
+            Failure::Input(message) => {
+                eprintln!("skyscape: {message}");
+                ExitCode::from(2)
             }
-            "--mie-g" => s.atmosphere.mie_g = number(value()?)?,
-            "--seed" => s.dither_seed = integer(value()?)?,
-            "--rung" => options.rung = Rung::parse(value()?)?,
-            "--cpu" => options.cpu_only = true,
-            "--compare" => options.compare = true,
-            other => return Err(format!("unknown option `{other}` (see --help)")),
+            Failure::Runtime(message) => {
+                eprintln!("skyscape: {message}");
+                ExitCode::FAILURE
+            }
         }
     }
-    options.scene.validate().map_err(|e| e.to_string())?;
-    Ok(Some(options))
 }
 
-/// The first adapter wgpu finds (honouring WGPU_BACKEND), its device and a label
-/// saying what kind of adapter it is.
-fn open_device() -> Result<(wgpu::Device, wgpu::Queue, String), String> {
-    let instance =
-        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-    let adapter = pollster::block_on(wgpu::util::initialize_adapter_from_env_or_default(
-        &instance, None,
-    ))
-    .map_err(|e| format!("no GPU adapter: {e}"))?;
-    let info = adapter.get_info();
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        None => render_command(RenderArgs::default()),
+        Some(Command::Render(args)) => render_command(args),
+        Some(Command::Explain { scene, backend }) => explain_command(&scene, backend.as_deref()),
+        Some(Command::Scenes) => {
+            for scene in SHIPPED {
+                println!("{:<10} {}", scene.name, scene.description);
+            }
+            Ok(())
+        }
+        Some(Command::Adapters { backend }) => adapters_command(backend.as_deref()),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(failure) => failure.exit(),
+    }
+}
+
+/// The backends named by `--backend` or `WGPU_BACKEND`; a name wgpu does not know is
+/// an error, not a silent fallback to the CPU.
+fn backends(flag: Option<&str>) -> Result<wgpu::Backends, Failure> {
+    const KNOWN: &[&str] = &[
+        "vulkan",
+        "vk",
+        "gl",
+        "gles",
+        "opengl",
+        "metal",
+        "mtl",
+        "dx12",
+        "d3d12",
+        "webgpu",
+        "primary",
+        "secondary",
+        "all",
+    ];
+    let (value, source) = match flag {
+        Some(value) => (value.to_owned(), "--backend"),
+        None => match std::env::var("WGPU_BACKEND") {
+            Ok(value) => (value, "WGPU_BACKEND"),
+            Err(_) => return Ok(wgpu::Backends::all()),
+        },
+    };
+    for name in value.split(',').map(str::trim).filter(|n| !n.is_empty()) {
+        if !KNOWN.contains(&name.to_ascii_lowercase().as_str()) {
+            return Err(Failure::Input(format!(
+                "{source} = \"{value}\": `{name}` is not a backend (vulkan, gl, metal, dx12)"
+            )));
+        }
+    }
+    let backends = wgpu::Backends::from_comma_list(&value);
+    if backends.is_empty() {
+        return Err(Failure::Input(format!(
+            "{source} = \"{value}\": names no backend"
+        )));
+    }
+    Ok(backends)
+}
+
+fn instance(backends: wgpu::Backends) -> wgpu::Instance {
+    let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+    descriptor.backends = backends;
+    wgpu::Instance::new(descriptor)
+}
+
+fn describe(info: &wgpu::AdapterInfo) -> String {
     let kind = if info.device_type == wgpu::DeviceType::Cpu {
         "a CPU adapter (software rasteriser)"
     } else {
         "the GPU"
     };
-    let label = format!("{kind}: {} ({:?})", info.name, info.backend);
-    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-        label: Some("skyscape"),
-        ..Default::default()
-    }))
-    .map_err(|e| format!("adapter {} refused a device: {e}", info.name))?;
-    Ok((device, queue, label))
+    format!("{kind}: {} ({:?})", info.name, info.backend)
 }
 
-/// Copies a pixel buffer back (the binary owns its device, so it may submit and wait).
-fn read_pixels(
+fn adapters_command(backend: Option<&str>) -> Result<(), Failure> {
+    let instance = instance(backends(backend)?);
+    let adapters = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::all()));
+    if adapters.is_empty() {
+        println!("no adapter: skyscape renders on the CPU reference renderer");
+    }
+    for adapter in &adapters {
+        let info = adapter.get_info();
+        println!(
+            "{:?} {:?} {} ({})",
+            info.backend, info.device_type, info.name, info.driver
+        );
+    }
+    match pollster::block_on(wgpu::util::initialize_adapter_from_env_or_default(
+        &instance, None,
+    )) {
+        Ok(adapter) => println!("chosen: {}", describe(&adapter.get_info())),
+        Err(_) if !adapters.is_empty() => println!("chosen: none usable"),
+        Err(_) => {}
+    }
+    Ok(())
+}
+
+/// A device on the first adapter wgpu finds for `backends`, with timestamps when the
+/// adapter has them, and what it is.
+fn open_device(
+    backends: wgpu::Backends,
+) -> Result<(wgpu::Device, wgpu::Queue, wgpu::AdapterInfo), String> {
+    let instance = instance(backends);
+    let adapter = pollster::block_on(wgpu::util::initialize_adapter_from_env_or_default(
+        &instance, None,
+    ))
+    .map_err(|e| format!("no GPU adapter: {e}"))?;
+    let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
+    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        label: Some("skyscape"),
+        required_features: features,
+        required_limits: adapter.limits(),
+        ..Default::default()
+    }))
+    .map_err(|e| format!("no device on {}: {e}", adapter.get_info().name))?;
+    Ok((device, queue, adapter.get_info()))
+}
+
+/// The scene named on the command line (a file, or a shipped scene) and its name.
+fn load_scene(name: Option<&str>) -> Result<(Scene, String), Failure> {
+    let name = name.unwrap_or("default");
+    let path = Path::new(name);
+    if path.extension().is_some() || path.exists() {
+        let scene =
+            Scene::open(path).map_err(|e| Failure::Input(format!("{}: {e}", path.display())))?;
+        let stem = path
+            .file_stem()
+            .map_or_else(|| "scene".to_owned(), |s| s.to_string_lossy().into_owned());
+        return Ok((scene, stem));
+    }
+    let shipped = shipped(name).ok_or_else(|| {
+        let names: Vec<&str> = SHIPPED.iter().map(|s| s.name).collect();
+        Failure::Input(format!(
+            "scene `{name}`: no such file, and not a shipped scene ({})",
+            names.join(", ")
+        ))
+    })?;
+    let scene = Scene::parse(shipped.source, ".")
+        .map_err(|e| Failure::Input(format!("shipped scene {name}: {e}")))?;
+    Ok((scene, name.to_owned()))
+}
+
+/// Applies the command line's overrides to the scene's values.
+fn apply_overrides(scene: &mut Scene, args: &RenderArgs) -> Result<(), Failure> {
+    let file = &mut scene.file;
+    if let Some(width) = args.width {
+        file.output.width = width;
+    }
+    if let Some(height) = args.height {
+        file.output.height = height;
+    }
+    if let Some(exposure) = args.exposure {
+        file.output.exposure = exposure;
+    }
+    if let Some(elevation) = args.sun_elevation_deg {
+        file.sun.elevation_deg = elevation;
+    }
+    if let Some(azimuth) = args.sun_azimuth_deg {
+        file.sun.azimuth_deg = azimuth;
+    }
+    if let Some(rung) = &args.rung {
+        file.atmosphere.rung = render::scene::Rung::from_name(rung).ok_or_else(|| {
+            Failure::Input(format!(
+                "--rung `{rung}`: not one of closed-form, closed-form-vertex, single, \
+                 precomputed, reference, reference-spectral"
+            ))
+        })?;
+    }
+    Ok(())
+}
+
+fn prepare(scene: &Scene, label: &str) -> Result<PreparedScene, Failure> {
+    let spinner = indicatif::ProgressBar::new_spinner().with_message(format!(
+        "preparing {label}: atmosphere tables, terrain, horizon maps"
+    ));
+    spinner.enable_steady_tick(std::time::Duration::from_millis(120));
+    let prepared = scene
+        .prepare()
+        .map_err(|e| Failure::Input(format!("{label}: {e}")));
+    spinner.finish_and_clear();
+    prepared
+}
+
+/// Where a frame goes: the given path, else the scene's, else target/skyscape/NAME;
+/// numbered when the animation has several frames.
+fn output_path(
+    args: &RenderArgs,
+    scene: &Scene,
+    name: &str,
+    format: Format,
+    frame: Option<u32>,
+) -> Result<PathBuf, Failure> {
+    let extension = match format {
+        Format::Png => "png",
+        Format::Exr => "exr",
+    };
+    let (path, default) = match args
+        .output
+        .clone()
+        .or_else(|| scene.file.output.path.clone())
+    {
+        Some(path) => (path, false),
+        None => (
+            PathBuf::from(format!("target/skyscape/{name}.{extension}")),
+            true,
+        ),
+    };
+    let path = match frame {
+        Some(frame) => {
+            let stem = path
+                .file_stem()
+                .map_or_else(|| name.into(), |s| s.to_string_lossy().into_owned());
+            path.with_file_name(format!("{stem}_{frame:04}.{extension}"))
+        }
+        None => path,
+    };
+    if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty())
+        && !parent.is_dir()
+    {
+        if default || args.mkdir {
+            std::fs::create_dir_all(parent)
+                .map_err(|e| Failure::Runtime(format!("creating {}: {e}", parent.display())))?;
+        } else {
+            return Err(Failure::Input(format!(
+                "output `{}`: the folder {} does not exist (create it, or pass --mkdir)",
+                path.display(),
+                parent.display()
+            )));
+        }
+    }
+    Ok(path)
+}
+
+/// Reads a `COPY_SRC` buffer back (blocks on the device).
+fn read_buffer(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
-    mut encoder: wgpu::CommandEncoder,
-    pixels: &wgpu::Buffer,
-    count: usize,
-) -> Result<Vec<u32>, String> {
-    let size = 4 * count as u64;
-    let readback = device.create_buffer(&wgpu::BufferDescriptor {
+    buffer: &wgpu::Buffer,
+) -> Result<Vec<u8>, String> {
+    let staging = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("skyscape readback"),
-        size,
+        size: buffer.size(),
         usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
-    encoder.copy_buffer_to_buffer(pixels, 0, &readback, 0, size);
+    let mut encoder = device.create_command_encoder(&Default::default());
+    encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, buffer.size());
     queue.submit([encoder.finish()]);
     let (sender, receiver) = std::sync::mpsc::channel();
-    readback.map_async(wgpu::MapMode::Read, .., move |r| {
+    staging.map_async(wgpu::MapMode::Read, .., move |r| {
         let _ = sender.send(r);
     });
     device
@@ -193,411 +407,301 @@ fn read_pixels(
     receiver
         .recv()
         .map_err(|e| e.to_string())?
-        .map_err(|e| format!("mapping the pixels: {e}"))?;
-    let view = readback.get_mapped_range(..).map_err(|e| e.to_string())?;
-    let out = bytemuck::cast_slice::<u8, u32>(&view).to_vec();
-    drop(view);
-    readback.unmap();
-    Ok(out)
+        .map_err(|e| format!("reading back: {e}"))?;
+    let bytes = staging
+        .get_mapped_range(..)
+        .map_err(|e| e.to_string())?
+        .to_vec();
+    staging.unmap();
+    Ok(bytes)
 }
 
-/// Renders the default sky pass on the GPU.
-fn render_gpu(scene: &SkyScene) -> Result<(Vec<u32>, String), String> {
-    let (device, queue, label) = open_device()?;
-    let mut sky = render::gpu::SkyRenderer::new(&device).map_err(|e| e.to_string())?;
-    sky.prepare(&device, &queue, scene)
-        .map_err(|e| e.to_string())?;
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-        label: Some("skyscape"),
+/// The GPU frame's HDR radiance (rgba16float) as f32 RGB.
+fn read_radiance(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+) -> Result<Vec<[f32; 3]>, String> {
+    let size = texture.size();
+    let row = size.width * 8;
+    let padded =
+        row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("skyscape radiance"),
+        size: u64::from(padded) * u64::from(size.height),
+        usage: wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
     });
-    sky.encode(&mut encoder).map_err(|e| e.to_string())?;
-    let pixels = sky.pixel_buffer().ok_or("sky pass has no pixel buffer")?;
-    let count = scene.width as usize * scene.height as usize;
-    Ok((read_pixels(&device, &queue, encoder, pixels, count)?, label))
-}
-
-/// The scene's atmosphere as an `atmos::Atmosphere` (Earth, with the scene's haze,
-/// anisotropy, albedo and sun).
-fn ladder_atmosphere(scene: &SkyScene) -> atmos::Atmosphere {
-    let a = &scene.atmosphere;
-    let mut atmosphere = atmos::Atmosphere::earth();
-    let earth_mie = atmosphere.mie_scattering[0];
-    let haze = f64::from(a.mie_scattering) / earth_mie;
-    atmosphere.planet_radius = f64::from(a.planet_radius);
-    atmosphere.top_radius = atmosphere.planet_radius + 100_000.0;
-    atmosphere.rayleigh_scattering = a.rayleigh_scattering.map(f64::from);
-    atmosphere.rayleigh_scale_height = f64::from(a.rayleigh_scale_height);
-    atmosphere.mie_scattering = atmosphere.mie_scattering.map(|b| b * haze);
-    atmosphere.mie_extinction = atmosphere.mie_extinction.map(|b| b * haze);
-    atmosphere.mie_scale_height = f64::from(a.mie_scale_height);
-    atmosphere.mie_g = f64::from(a.mie_g);
-    atmosphere.ground_albedo = [f64::from(a.ground_albedo); 3];
-    atmosphere.sun_irradiance = a.sun_irradiance.map(f64::from);
-    atmosphere.sun_angular_radius = f64::from(a.sun_angular_radius);
-    atmosphere
-}
-
-/// The scene's camera as an `atmos` frame camera (the scene's frame is y-up).
-fn ladder_camera(scene: &SkyScene) -> Result<atmos::frame::FrameCamera, String> {
-    let d = |v: glam::Vec3| v.as_dvec3();
-    let position = glam::DVec3::new(
-        0.0,
-        f64::from(scene.atmosphere.planet_radius) + f64::from(scene.camera_altitude),
-        0.0,
+    let mut encoder = device.create_command_encoder(&Default::default());
+    encoder.copy_texture_to_buffer(
+        texture.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: None,
+            },
+        },
+        size,
     );
-    atmos::frame::FrameCamera::look_at(
-        position,
-        d(render::sky::direction_from_angles(
-            scene.camera_elevation,
-            scene.camera_azimuth,
-        )),
-        glam::DVec3::Y,
-        f64::from(scene.vertical_fov),
-        scene.width,
-        scene.height,
-        d(render::sky::direction_from_angles(
-            scene.sun_elevation,
-            scene.sun_azimuth,
-        )),
-        None,
-    )
-    .map_err(|e| e.to_string())
+    queue.submit([encoder.finish()]);
+    let bytes = read_buffer(device, queue, &buffer)?;
+    Ok(bytes
+        .chunks(padded as usize)
+        .flat_map(|line| {
+            let f = |b: &[u8]| half::f16::from_bits(u16::from_le_bytes([b[0], b[1]])).to_f32();
+            line[..row as usize]
+                .chunks(8)
+                .map(|t| [f(&t[0..2]), f(&t[2..4]), f(&t[4..6])])
+                .collect::<Vec<_>>()
+        })
+        .collect())
 }
 
-const DOME: atmos::dome::DomeResolution = atmos::dome::DomeResolution {
-    rings: 16,
-    segments: 32,
-};
+/// One rendered frame.
+struct Rendered {
+    pixels: Vec<u32>,
+    radiance: Option<Vec<[f32; 3]>>,
+    device: String,
+    pass_seconds: Vec<(&'static str, f64)>,
+}
 
-fn ladder_model(
-    rung: Rung,
-    atmosphere: &atmos::Atmosphere,
-) -> Result<Box<dyn atmos::SkyModel + Sync>, String> {
-    let e = |e: atmos::AtmosError| e.to_string();
-    Ok(match rung {
-        Rung::Sky | Rung::ClosedForm => {
-            Box::new(atmos::closed_form_sky::ClosedFormSky::new(atmosphere).map_err(e)?)
-        }
-        Rung::ClosedFormVertex => Box::new(
-            atmos::dome::DomeInterpolated::new(
-                atmos::closed_form_sky::ClosedFormSky::new(atmosphere).map_err(e)?,
-                DOME,
-                atmosphere,
-            )
-            .map_err(e)?,
-        ),
-        Rung::Single => Box::new(
-            atmos::single_scattering::SingleScatteringSky::new(atmosphere, Default::default())
-                .map_err(e)?,
-        ),
-        Rung::Precomputed => {
-            Box::new(atmos::lut::PrecomputedSky::new(atmosphere, &Default::default()).map_err(e)?)
-        }
-        Rung::Reference => Box::new(
-            atmos::reference::ReferenceSky::new(atmosphere, Default::default()).map_err(e)?,
-        ),
-        Rung::ReferenceSpectral => Box::new(
-            atmos::reference::SpectralReferenceSky::new(atmosphere, Default::default())
-                .map_err(e)?,
-        ),
+fn render_gpu(
+    scene: &PreparedScene,
+    backends: wgpu::Backends,
+    want_radiance: bool,
+    timestamps: bool,
+) -> Result<Rendered, String> {
+    let (device, queue, info) = open_device(backends)?;
+    let settings = SceneRendererSettings {
+        timestamps,
+        ..Default::default()
+    };
+    let mut renderer =
+        SceneRenderer::new(&device, &queue, scene, settings).map_err(|e| e.to_string())?;
+    renderer.prepare(&queue, scene).map_err(|e| e.to_string())?;
+    let mut encoder = device.create_command_encoder(&Default::default());
+    renderer.encode(&mut encoder).map_err(|e| e.to_string())?;
+    queue.submit([encoder.finish()]);
+    let pixels =
+        bytemuck::cast_slice(&read_buffer(&device, &queue, renderer.pixel_buffer())?).to_vec();
+    let radiance = if want_radiance {
+        Some(read_radiance(&device, &queue, renderer.radiance_texture())?)
+    } else {
+        None
+    };
+    let pass_seconds = match renderer.pass_seconds() {
+        Some(result) => result?,
+        None => Vec::new(),
+    };
+    Ok(Rendered {
+        pixels,
+        radiance,
+        device: describe(&info),
+        pass_seconds,
     })
 }
 
-fn render_ladder_cpu(rung: Rung, scene: &SkyScene) -> Result<Vec<u32>, String> {
-    let atmosphere = ladder_atmosphere(scene);
-    let camera = ladder_camera(scene)?;
-    let present =
-        render::present::PresentParameters::new(&atmosphere, scene.exposure, scene.dither_seed)
-            .map_err(|e| e.to_string())?;
-    let model = ladder_model(rung, &atmosphere)?;
-    render::present::render_model_cpu(model.as_ref(), atmosphere.planet_radius, &camera, &present)
-        .map_err(|e| e.to_string())
+fn render_cpu(scene: &PreparedScene) -> Result<Rendered, String> {
+    let radiance = render::cpu_renderer::render_radiance(scene).map_err(|e| e.to_string())?;
+    let frame = render::cpu_renderer::render_cpu(scene).map_err(|e| e.to_string())?;
+    Ok(Rendered {
+        pixels: frame.pixels,
+        radiance: Some(radiance.iter().map(|p| p.radiance).collect()),
+        device: "the CPU reference renderer".into(),
+        pass_seconds: Vec::new(),
+    })
 }
 
-fn render_ladder_gpu(rung: Rung, scene: &SkyScene) -> Result<(Vec<u32>, String), String> {
-    let e = |e: atmos::AtmosError| e.to_string();
-    let atmosphere = ladder_atmosphere(scene);
-    let camera = ladder_camera(scene)?;
-    let present =
-        render::present::PresentParameters::new(&atmosphere, scene.exposure, scene.dither_seed)
-            .map_err(|e| e.to_string())?;
-    let (device, queue, label) = open_device()?;
-    let frame = atmos::gpu::FrameOutput::new(&device, scene.width, scene.height).map_err(e)?;
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-        label: Some("skyscape ladder"),
+fn write(
+    path: &Path,
+    scene: &PreparedScene,
+    format: Format,
+    rendered: &Rendered,
+) -> Result<(), Failure> {
+    let (width, height) = (scene.camera.width, scene.camera.height);
+    let result = match format {
+        Format::Png => render::cpu_renderer::write_png(
+            path,
+            &render::cpu_renderer::Frame {
+                width,
+                height,
+                pixels: rendered.pixels.clone(),
+            },
+        ),
+        Format::Exr => {
+            let radiance = rendered.radiance.as_deref().unwrap_or_default();
+            render::cpu_renderer::write_exr(path, width, height, radiance)
+        }
+    };
+    result.map_err(|e| Failure::Input(format!("writing {}: {e}", path.display())))
+}
+
+fn print_passes(scene: &PreparedScene, rendered: &Rendered) {
+    println!("passes ({}):", rendered.device);
+    for (pass, plan) in render::gpu::scene::planned_passes(scene) {
+        let time = rendered
+            .pass_seconds
+            .iter()
+            .find(|(label, _)| *label == pass)
+            .map(|(_, s)| format!("{:.3} ms", s * 1e3));
+        match plan {
+            Ok(what) => println!(
+                "  run   {pass:<22} {:<12} {what}",
+                time.unwrap_or_else(|| "(no timestamps)".into())
+            ),
+            Err(why) => println!("  skip  {pass:<22} {:<12} {why}", "—"),
+        }
+    }
+}
+
+fn render_command(args: RenderArgs) -> Result<(), Failure> {
+    let backends = backends(args.backend.as_deref())?;
+    let (mut scene, name) = load_scene(args.scene.as_deref())?;
+    apply_overrides(&mut scene, &args)?;
+    let format = args.format.unwrap_or_else(|| {
+        match args
+            .output
+            .as_ref()
+            .and_then(|p| p.extension())
+            .and_then(|e| e.to_str())
+        {
+            Some("exr") => Format::Exr,
+            _ => Format::Png,
+        }
     });
-    match rung {
-        Rung::Sky | Rung::ClosedForm | Rung::ClosedFormVertex => {
-            let frequency = if rung == Rung::ClosedFormVertex {
-                atmos::gpu::EvaluationFrequency::PerVertex(DOME)
+    if (args.compare || args.explain)
+        && scene.file.atmosphere.rung != render::scene::Rung::Precomputed
+    {
+        // The other rungs have no GPU passes: comparing would set the CPU image
+        // against itself.
+        return Err(Failure::Input(format!(
+            "{} needs a GPU image, and rung `{}` renders on the CPU reference renderer only \
+             (the GPU scene renderer draws the precomputed rung)",
+            if args.compare {
+                "--compare"
             } else {
-                atmos::gpu::EvaluationFrequency::PerPixel
-            };
-            let mut sky =
-                atmos::gpu::ClosedFormRenderer::new(&device, &atmosphere, frequency).map_err(e)?;
-            sky.prepare(&queue, &camera, &frame).map_err(e)?;
-            sky.encode(&mut encoder, None).map_err(e)?;
-        }
-        Rung::Precomputed => {
-            let mut sky = atmos::gpu::precomputed::PrecomputedRenderer::new(
-                &device,
-                &atmosphere,
-                Default::default(),
-            )
-            .map_err(e)?;
-            sky.prepare(&queue, &camera, &frame).map_err(e)?;
-            sky.encode(&mut encoder, None).map_err(e)?;
-        }
-        Rung::Single => {
-            let mut sky = atmos::gpu::single_scattering::SingleScatteringRenderer::new(
-                &device,
-                &atmosphere,
-                Default::default(),
-            )
-            .map_err(e)?;
-            sky.prepare(&queue, &camera, &frame).map_err(e)?;
-            sky.encode(&mut encoder, None).map_err(e)?;
-        }
-        Rung::Reference | Rung::ReferenceSpectral => {
-            return Err("the reference rung runs on the CPU only".into());
-        }
+                "--explain"
+            },
+            scene.file.atmosphere.rung.name()
+        )));
     }
-    let mut presenter = render::gpu::Presenter::new(&device).map_err(|e| e.to_string())?;
-    presenter
-        .prepare(&queue, &camera, &present, &frame)
-        .map_err(|e| e.to_string())?;
-    presenter.encode(&mut encoder).map_err(|e| e.to_string())?;
-    let pixels = presenter
-        .pixel_buffer()
-        .ok_or("present pass has no pixel buffer")?;
-    Ok((
-        read_pixels(&device, &queue, encoder, pixels, camera.pixel_count())?,
-        label,
-    ))
-}
-
-fn write_png(path: &PathBuf, scene: &SkyScene, pixels: &[u32]) -> Result<(), String> {
-    if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
-        std::fs::create_dir_all(parent)
-            .map_err(|e| format!("creating {}: {e}", parent.display()))?;
+    let animation = scene.file.animation;
+    let frames = args.frames.or(animation.map(|a| a.frames)).unwrap_or(1);
+    if frames == 0 {
+        return Err(Failure::Input("--frames 0: must be ≥ 1".into()));
     }
-    let bytes: Vec<u8> = pixels.iter().flat_map(|p| p.to_le_bytes()).collect();
-    image::save_buffer(
-        path,
-        &bytes,
-        scene.width,
-        scene.height,
-        image::ExtendedColorType::Rgba8,
-    )
-    .map_err(|e| format!("writing {}: {e}", path.display()))
-}
-
-/// `skyscape render SCENE [-o OUT] [--width N] [--height N]`: a scene file drawn by
-/// the CPU reference renderer (`render::cpu_renderer`; the GPU scene passes are to
-/// come). Bad input exits with code 2, naming the line, column, field and value.
-fn render_scene_command(args: &[String]) -> ExitCode {
-    const USAGE: &str = "usage: skyscape render SCENE.toml [-o OUT.png] [--width N] [--height N]";
-    let mut scene_path = None;
-    let mut output = None;
-    let mut size = [None, None];
-    let mut iter = args.iter();
-    while let Some(arg) = iter.next() {
-        let mut value = || {
-            iter.next()
-                .ok_or_else(|| format!("{arg} needs a value ({USAGE})"))
-        };
-        let parsed = match arg.as_str() {
-            "-h" | "--help" => {
-                println!(
-                    "{USAGE}\nScene files: docs/scenes.md; the shipped one: scenes/default.toml"
-                );
-                return ExitCode::SUCCESS;
-            }
-            "-o" | "--output" => value().map(|v| output = Some(PathBuf::from(v))),
-            "--width" | "--height" => value().and_then(|v| {
-                let n = v
-                    .parse::<u32>()
-                    .map_err(|_| format!("{arg}: `{v}` is not a non-negative integer"))?;
-                size[usize::from(arg == "--height")] = Some(n);
-                Ok(())
-            }),
-            other if other.starts_with('-') => Err(format!("unknown option `{other}` ({USAGE})")),
-            other if scene_path.is_none() => {
-                scene_path = Some(PathBuf::from(other));
-                Ok(())
-            }
-            other => Err(format!("unexpected argument `{other}` ({USAGE})")),
-        };
-        if let Err(message) = parsed {
-            eprintln!("skyscape render: {message}");
-            return ExitCode::from(2);
-        }
+    let range = args.frame_range.unwrap_or((0, frames));
+    if range.1 > frames {
+        return Err(Failure::Input(format!(
+            "--frame-range {}..{}: the animation has {frames} frames",
+            range.0, range.1
+        )));
     }
-    let Some(scene_path) = scene_path else {
-        eprintln!("skyscape render: no scene file ({USAGE})");
-        return ExitCode::from(2);
-    };
-    let mut scene = match render::scene::Scene::open(&scene_path) {
-        Ok(scene) => scene,
-        Err(e) => {
-            eprintln!("skyscape render: {}: {e}", scene_path.display());
-            return ExitCode::from(2);
+    let bar = (range.1 - range.0 > 1)
+        .then(|| indicatif::ProgressBar::new(u64::from(range.1 - range.0)).with_message("frames"));
+    for frame in range.0..range.1 {
+        let mut frame_scene = scene.clone();
+        if let Some(animation) = animation {
+            animation.apply(&mut frame_scene.file, frame);
         }
-    };
-    let out = &mut scene.file.output;
-    out.width = size[0].unwrap_or(out.width);
-    out.height = size[1].unwrap_or(out.height);
-    // A folder the user names must exist; the default one is created.
-    let output = match output.or_else(|| out.path.clone()) {
-        Some(path) => path,
-        None => {
-            let default = PathBuf::from("target/skyscape/scene.png");
-            if let Err(e) = std::fs::create_dir_all("target/skyscape") {
-                eprintln!("skyscape render: creating target/skyscape: {e}");
-                return ExitCode::FAILURE;
-            }
-            default
-        }
-    };
-    let start = std::time::Instant::now();
-    let prepared = match scene.prepare() {
-        Ok(prepared) => prepared,
-        Err(e) => {
-            eprintln!("skyscape render: {}: {e}", scene_path.display());
-            return ExitCode::from(2);
-        }
-    };
-    let frame = match render::cpu_renderer::render_cpu(&prepared) {
-        Ok(frame) => frame,
-        Err(e) => {
-            eprintln!("skyscape render: {e}");
-            return ExitCode::FAILURE;
-        }
-    };
-    if let Err(e) = render::cpu_renderer::write_png(&output, &frame) {
-        eprintln!("skyscape render: writing {}: {e}", output.display());
-        return ExitCode::from(2);
-    }
-    println!(
-        "rendered {} ({}×{}, {}) on the CPU reference renderer in {:.2} s\nwrote {}",
-        scene_path.display(),
-        frame.width,
-        frame.height,
-        prepared.sky_model.label(),
-        start.elapsed().as_secs_f64(),
-        output.display()
-    );
-    ExitCode::SUCCESS
-}
-
-fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    if args.first().map(String::as_str) == Some("render") {
-        return render_scene_command(&args[1..]);
-    }
-    let options = match parse(&args) {
-        Ok(Some(options)) => options,
-        Ok(None) => {
-            print!("{HELP}");
-            return ExitCode::SUCCESS;
-        }
-        Err(message) => {
-            eprintln!("skyscape: {message}");
-            return ExitCode::FAILURE;
-        }
-    };
-    let scene = &options.scene;
-    let rung = options.rung;
-    // --compare checks the GPU image against the CPU twin: without a GPU image it would
-    // compare the CPU image with itself and report 100 %.
-    if options.compare {
-        let conflict = if options.cpu_only {
-            Some("--cpu renders no GPU image".to_string())
-        } else if matches!(rung, Rung::Reference | Rung::ReferenceSpectral) {
-            Some("the reference rungs have no GPU version".to_string())
-        } else {
+        let start = std::time::Instant::now();
+        let prepared = prepare(&frame_scene, &name)?;
+        let gpu = if args.cpu {
             None
-        };
-        if let Some(conflict) = conflict {
-            eprintln!(
-                "skyscape: --compare compares the GPU image with the CPU twin, but {conflict}"
-            );
-            return ExitCode::from(2);
-        }
-    }
-    let cpu = || match rung {
-        Rung::Sky => render::sky::render_sky_cpu(scene).map_err(|e| e.to_string()),
-        _ => render_ladder_cpu(rung, scene),
-    };
-    let result = if matches!(rung, Rung::Reference | Rung::ReferenceSpectral) {
-        cpu().map(|p| {
-            (
-                p,
-                "the CPU (the reference rung has no GPU version)".to_string(),
-            )
-        })
-    } else if options.cpu_only {
-        cpu().map(|p| (p, "the CPU twin (--cpu)".to_string()))
-    } else {
-        let gpu = match rung {
-            Rung::Sky => render_gpu(scene),
-            _ => render_ladder_gpu(rung, scene),
-        };
-        match gpu {
-            Ok(done) => Ok(done),
-            Err(reason) => {
-                eprintln!("skyscape: {reason}; rendering on the CPU twin instead");
-                cpu().map(|p| (p, "the CPU twin (no GPU adapter)".to_string()))
-            }
-        }
-    };
-    let (pixels, device) = match result {
-        Ok(done) => done,
-        Err(message) => {
-            eprintln!("skyscape: {message}");
-            return ExitCode::FAILURE;
-        }
-    };
-    if let Err(message) = write_png(&options.output, scene, &pixels) {
-        eprintln!("skyscape: {message}");
-        return ExitCode::FAILURE;
-    }
-    println!(
-        "rendered {}×{} on {device}\nwrote {}",
-        scene.width,
-        scene.height,
-        options.output.display()
-    );
-    if options.compare {
-        match (cpu(), options.cpu_only) {
-            (Ok(_), _) if device.starts_with("the CPU twin") => {
-                eprintln!(
-                    "skyscape: --compare: no GPU adapter, so there is no GPU image to compare \
-                     with the CPU twin"
-                );
-                return ExitCode::FAILURE;
-            }
-            (Ok(reference), _) => {
-                let agreement = |lsb| {
-                    render::tonemap::fraction_within_lsb(&pixels, &reference, lsb)
-                        .map(|fraction| 100.0 * fraction)
-                };
-                match (agreement(2), agreement(0)) {
-                    (Ok(close), Ok(identical)) => println!(
-                        "--compare: {close:.4} % of pixels within 2 LSB of the CPU twin, \
-                         {identical:.4} % identical"
-                    ),
-                    (Err(e), _) | (_, Err(e)) => {
-                        eprintln!("skyscape: {e}");
-                        return ExitCode::FAILURE;
-                    }
+        } else {
+            match render_gpu(&prepared, backends, format == Format::Exr, args.explain) {
+                Ok(rendered) => Some(rendered),
+                Err(reason) if args.compare || args.explain => {
+                    return Err(Failure::Runtime(format!(
+                        "{} needs a GPU image: {reason}",
+                        if args.compare {
+                            "--compare"
+                        } else {
+                            "--explain"
+                        }
+                    )));
+                }
+                Err(reason) => {
+                    eprintln!("skyscape: {reason}; rendering on the CPU reference renderer");
+                    None
                 }
             }
-            (Err(message), _) => {
-                eprintln!("skyscape: {message}");
-                return ExitCode::FAILURE;
+        };
+        let rendered = match gpu {
+            Some(rendered) => rendered,
+            None => render_cpu(&prepared).map_err(Failure::Runtime)?,
+        };
+        let numbered = (frames > 1).then_some(frame);
+        let path = output_path(&args, &frame_scene, &name, format, numbered)?;
+        write(&path, &prepared, format, &rendered)?;
+        if let Some(bar) = &bar {
+            bar.inc(1);
+        }
+        println!(
+            "rendered {name}{} ({}×{}, {}) on {} in {:.2} s\nwrote {}",
+            numbered.map_or_else(String::new, |f| format!(" frame {f}")),
+            prepared.camera.width,
+            prepared.camera.height,
+            prepared.sky_model.label(),
+            rendered.device,
+            start.elapsed().as_secs_f64(),
+            path.display()
+        );
+        if args.explain {
+            print_passes(&prepared, &rendered);
+        }
+        if args.compare {
+            let cpu = render_cpu(&prepared).map_err(Failure::Runtime)?;
+            let within =
+                |lsb| render::tonemap::fraction_within_lsb(&rendered.pixels, &cpu.pixels, lsb);
+            match (within(2), within(0)) {
+                (Ok(close), Ok(identical)) => println!(
+                    "--compare: {:.4} % of pixels within 2 LSB of the CPU reference renderer, \
+                     {:.4} % identical",
+                    100.0 * close,
+                    100.0 * identical
+                ),
+                (Err(e), _) | (_, Err(e)) => return Err(Failure::Runtime(e.to_string())),
             }
         }
     }
-    ExitCode::SUCCESS
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
+    Ok(())
+}
+
+fn explain_command(name: &str, backend: Option<&str>) -> Result<(), Failure> {
+    let backends = backends(backend)?;
+    let (scene, label) = load_scene(Some(name))?;
+    let prepared = prepare(&scene, &label)?;
+    println!(
+        "{label}: {}×{}, {}, terrain {}",
+        prepared.camera.width,
+        prepared.camera.height,
+        prepared.sky_model.label(),
+        prepared.terrain.as_ref().map_or_else(
+            || "none".to_owned(),
+            |t| format!(
+                "{}×{} texels",
+                t.heightfield.width(),
+                t.heightfield.height()
+            )
+        )
+    );
+    match render_gpu(&prepared, backends, false, true) {
+        Ok(rendered) => print_passes(&prepared, &rendered),
+        Err(reason) => {
+            println!("no GPU passes ({reason}): the CPU reference renderer would draw it");
+            for (pass, plan) in render::gpu::scene::planned_passes(&prepared) {
+                match plan {
+                    Ok(what) => println!("  (run) {pass:<22} {what}"),
+                    Err(why) => println!("  skip  {pass:<22} {why}"),
+                }
+            }
+        }
+    }
+    Ok(())
 }

@@ -44,6 +44,7 @@
 mod error;
 mod locate;
 pub mod prepare;
+pub mod shipped;
 
 pub use error::{Location, SceneError};
 pub use prepare::{PreparedScene, PreparedTerrain};
@@ -156,6 +157,33 @@ pub struct SceneFile {
     /// Image size, exposure, where to write it.
     #[serde(default)]
     pub output: OutputSection,
+    /// A sequence of frames (`skyscape render --frames`, numbered files).
+    pub animation: Option<AnimationSection>,
+}
+
+/// `[animation]`: frames of the scene with the sun moving (a time-lapse). Frames are
+/// independent (frame `k` is the scene with the sun moved `k` steps), so any range of
+/// them can be rendered anywhere (`--frame-range a..b`).
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AnimationSection {
+    /// Frames in the sequence.
+    pub frames: u32,
+    /// The sun's elevation change per frame, degrees.
+    #[serde(default)]
+    pub sun_elevation_deg_per_frame: f64,
+    /// The sun's azimuth change per frame, degrees.
+    #[serde(default)]
+    pub sun_azimuth_deg_per_frame: f64,
+}
+
+impl AnimationSection {
+    /// The scene's values at `frame` (its sun moved `frame` steps).
+    pub fn apply(&self, file: &mut SceneFile, frame: u32) {
+        let k = f64::from(frame);
+        file.sun.elevation_deg += k * self.sun_elevation_deg_per_frame;
+        file.sun.azimuth_deg += k * self.sun_azimuth_deg_per_frame;
+    }
 }
 
 /// `[camera]`: a pinhole camera in the world frame.
@@ -219,6 +247,21 @@ pub enum Rung {
 }
 
 impl Rung {
+    /// Every rung.
+    pub const ALL: [Rung; 6] = [
+        Self::ClosedForm,
+        Self::ClosedFormVertex,
+        Self::Single,
+        Self::Precomputed,
+        Self::Reference,
+        Self::ReferenceSpectral,
+    ];
+
+    /// The rung called `name` (as [`Rung::name`] spells it).
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|rung| rung.name() == name)
+    }
+
     /// The name as written in a scene file and on the command line.
     pub fn name(self) -> &'static str {
         match self {

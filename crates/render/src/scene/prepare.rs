@@ -88,6 +88,10 @@ pub struct PreparedScene {
     pub far: f64,
     /// The terrain, if any.
     pub terrain: Option<PreparedTerrain>,
+    /// The precomputed rung's CPU tables, when the scene uses it: the CPU renderer then
+    /// draws with the twins of the GPU's passes (`atmos::lut::drop_in`), so the two
+    /// images agree pixel for pixel.
+    pub precomputed: Option<std::sync::Arc<atmos::lut::PrecomputedSky>>,
 }
 
 impl std::fmt::Debug for PreparedScene {
@@ -240,7 +244,7 @@ impl Scene {
         }
 
         // The expensive parts last, once every cheap check has passed.
-        let (sky_model, segment_model) = self.models(&atmosphere)?;
+        let (sky_model, segment_model, precomputed) = self.models(&atmosphere)?;
         let terrain = self.terrain()?;
         Ok(PreparedScene {
             atmosphere,
@@ -254,6 +258,7 @@ impl Scene {
             near: cam.near,
             far: cam.far,
             terrain,
+            precomputed,
         })
     }
 
@@ -298,10 +303,18 @@ impl Scene {
     }
 
     /// The rung's models (sky, finite segments).
+    #[allow(clippy::type_complexity)]
     fn models(
         &self,
         atmosphere: &atmos::Atmosphere,
-    ) -> Result<(SharedSkyModel, SharedSkyModel), SceneError> {
+    ) -> Result<
+        (
+            SharedSkyModel,
+            SharedSkyModel,
+            Option<std::sync::Arc<atmos::lut::PrecomputedSky>>,
+        ),
+        SceneError,
+    > {
         use atmos::closed_form_sky::ClosedFormSky;
         let rung = self.file.atmosphere.rung;
         let e = |e| self.atmos_error(&["atmosphere", "rung"], format!("\"{}\"", rung.name()), e);
@@ -315,15 +328,24 @@ impl Scene {
                 )
                 .map_err(e)?;
                 let per_pixel = Box::new(ClosedFormSky::new(atmosphere).map_err(e)?);
-                return Ok((Box::new(dome), per_pixel));
+                return Ok((Box::new(dome), per_pixel, None));
             }
             Rung::Single => Box::new(
                 atmos::single_scattering::SingleScatteringSky::new(atmosphere, Default::default())
                     .map_err(e)?,
             ),
-            Rung::Precomputed => Box::new(
-                atmos::lut::PrecomputedSky::new(atmosphere, &Default::default()).map_err(e)?,
-            ),
+            Rung::Precomputed => {
+                let sky = std::sync::Arc::new(
+                    atmos::lut::PrecomputedSky::new(atmosphere, &Default::default()).map_err(e)?,
+                );
+                let model: SharedSkyModel = Box::new(ArcModel(sky.clone()));
+                let shared = std::sync::Arc::new(model);
+                return Ok((
+                    Box::new(SharedModel(shared.clone())),
+                    Box::new(SharedModel(shared)),
+                    Some(sky),
+                ));
+            }
             Rung::Reference => Box::new(
                 atmos::reference::ReferenceSky::new(atmosphere, Default::default()).map_err(e)?,
             ),
@@ -337,6 +359,7 @@ impl Scene {
         Ok((
             Box::new(SharedModel(shared.clone())),
             Box::new(SharedModel(shared)),
+            None,
         ))
     }
 
@@ -486,6 +509,21 @@ fn terrain_field(error: &terrain::TerrainError) -> &'static str {
 struct SharedModel(std::sync::Arc<SharedSkyModel>);
 
 impl atmos::SkyModel for SharedModel {
+    fn label(&self) -> String {
+        self.0.label()
+    }
+    fn evaluate(&self, query: &atmos::SkyQuery) -> atmos::SkySample {
+        self.0.evaluate(query)
+    }
+    fn evaluate_batch(&self, queries: &[atmos::SkyQuery]) -> Vec<atmos::SkySample> {
+        self.0.evaluate_batch(queries)
+    }
+}
+
+/// The precomputed sky behind an `Arc`, as a model.
+struct ArcModel(std::sync::Arc<atmos::lut::PrecomputedSky>);
+
+impl atmos::SkyModel for ArcModel {
     fn label(&self) -> String {
         self.0.label()
     }

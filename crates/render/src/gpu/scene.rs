@@ -1,0 +1,733 @@
+//! A scene on the GPU: `atmos`' tables and sky pass, the terrain's tiles, the display
+//! pass. Bring your own device; [`SceneRenderer::new`] builds only the passes the
+//! scene needs (no terrain: no terrain pipeline, no buffers), [`SceneRenderer::prepare`]
+//! writes the frame's uniforms and tile list, [`SceneRenderer::encode`] records:
+//!
+//! 1. compute: the LUT bakes (the static ones once, the sky view and aerial
+//!    perspective per frame);
+//! 2. render: the sky (drawn first, depth writes off, seed 000), then the terrain
+//!    (reverse-z depth);
+//! 3. compute: the display pass (exposure, tone map, sRGB, dither) into RGBA8 pixels.
+//!
+//! The CPU twin is `render::cpu_renderer` (the same shading functions, ray cast
+//! instead of rasterised). Only the precomputed rung has GPU passes here; the others
+//! render on the CPU.
+
+use atmos::gpu::AtmosphereLuts;
+use atmos::gpu::sky::{SkyPass, SkyPassDescriptor};
+use atmos::lut::drop_in::SkyPassParameters;
+use glam::Vec3;
+use wgpu::util::DeviceExt as _;
+
+use crate::RenderError;
+use crate::cpu_renderer::terrain_lighting;
+use crate::gpu::timer::PassTimes;
+use crate::scene::Rung;
+use crate::scene::prepare::{HorizonMaps, PreparedScene, PreparedTerrain};
+use crate::terrain_mesh::{TerrainLod, Tile, tile_mesh};
+use crate::terrain_shading::AlbedoRampUniform;
+
+const HDR: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// Quality choices of the GPU renderer.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SceneRendererSettings {
+    /// The terrain's largest projected geometric error, pixels (0: every tile at full
+    /// resolution).
+    pub terrain_error_px: f64,
+    /// Record GPU timestamps per pass (when the device can).
+    pub timestamps: bool,
+}
+
+impl Default for SceneRendererSettings {
+    fn default() -> Self {
+        Self {
+            terrain_error_px: 1.0,
+            timestamps: false,
+        }
+    }
+}
+
+/// The terrain pass's uniform (layout identical to WGSL `TerrainUniform`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct TerrainUniform {
+    /// Clip from world.
+    pub view_projection: [[f32; 4]; 4],
+    /// The camera's world position (m).
+    pub camera: [f32; 3],
+    /// Metres per texel.
+    pub spacing: f32,
+    /// World (x, z) + this = map (x, y), metres.
+    pub map_offset: [f32; 2],
+    /// Texels (width, height).
+    pub map_size: [u32; 2],
+    /// The sun, east–north–up.
+    pub sun_enu: [f32; 3],
+    /// The sun's angular radius (rad), from the atmosphere.
+    pub sun_angular_radius: f32,
+    /// The sky's irradiance on a horizontal surface.
+    pub sky_irradiance: [f32; 3],
+    /// The sun's elevation (rad).
+    pub sun_elevation: f32,
+    /// The sun's azimuth (rad).
+    pub sun_azimuth: f32,
+    /// 0: east/west pair; N: N azimuth layers.
+    pub horizon_layers: u32,
+    /// Alignment.
+    pub padding: [f32; 2],
+    /// The albedo ramp.
+    pub albedo: AlbedoRampUniform,
+}
+
+/// The display pass's uniform (WGSL `DisplayParameters`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct DisplayParameters {
+    /// Pixels.
+    pub width: u32,
+    /// Pixels.
+    pub height: u32,
+    /// Exposure before `1 − exp(−x)`.
+    pub exposure: f32,
+    /// Dither seed.
+    pub dither_seed: u32,
+}
+
+/// The terrain's GPU resources.
+#[derive(Debug)]
+struct TerrainPass {
+    pipeline: wgpu::RenderPipeline,
+    uniform: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+    grid: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    index_count: u32,
+    tiles: wgpu::Buffer,
+    tile_capacity: usize,
+    tile_count: u32,
+    lod: TerrainLod,
+}
+
+/// Every pass of a scene on the GPU.
+#[derive(Debug)]
+pub struct SceneRenderer {
+    device: wgpu::Device,
+    width: u32,
+    height: u32,
+    settings: SceneRendererSettings,
+    luts: AtmosphereLuts,
+    sky: SkyPass,
+    terrain: Option<TerrainPass>,
+    hdr: wgpu::Texture,
+    hdr_view: wgpu::TextureView,
+    depth_view: wgpu::TextureView,
+    display_pipeline: wgpu::ComputePipeline,
+    display_uniform: wgpu::Buffer,
+    display_group: wgpu::BindGroup,
+    pixels: wgpu::Buffer,
+    static_luts_pending: bool,
+    prepared: bool,
+    times: Option<PassTimes>,
+}
+
+fn storage_read(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: true },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+fn uniform_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+/// The passes a scene needs on the GPU, and those it skips, with the reason (what
+/// `skyscape explain` prints).
+pub fn planned_passes(scene: &PreparedScene) -> Vec<(&'static str, Result<&'static str, String>)> {
+    let mut plan = vec![
+        (
+            "atmosphere LUT bakes",
+            Ok(
+                "transmittance and multiple scattering once; sky view and aerial perspective per frame",
+            ),
+        ),
+        (
+            "sky",
+            Ok("atmos' sky pass, drawn first with depth writes off (seed 000)"),
+        ),
+    ];
+    plan.push((
+        "terrain",
+        if scene.terrain.is_some() {
+            Ok("instanced quadtree tiles, seed 000's shading, aerial perspective per pixel")
+        } else {
+            Err("the scene has no [terrain]: no terrain pipeline, no horizon maps".into())
+        },
+    ));
+    plan.push((
+        "display",
+        Ok("exposure, 1 − exp(−x), sRGB, dither to RGBA8"),
+    ));
+    plan
+}
+
+impl SceneRenderer {
+    /// Builds the passes `scene` needs. Errors for a rung without GPU passes (render
+    /// it on the CPU) and for resources beyond the device's limits.
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &PreparedScene,
+        settings: SceneRendererSettings,
+    ) -> Result<Self, RenderError> {
+        if scene.rung != Rung::Precomputed {
+            return Err(RenderError::InvalidParameter {
+                field: "atmosphere.rung",
+                value: format!("\"{}\"", scene.rung.name()),
+                reason: "the GPU renderer draws the precomputed rung; render other rungs on \
+                         the CPU (--cpu)",
+            });
+        }
+        let (width, height) = (scene.camera.width, scene.camera.height);
+        let limit = device.limits().max_texture_dimension_2d;
+        if width > limit || height > limit {
+            return Err(RenderError::InvalidParameter {
+                field: "output.width",
+                value: format!("{width}×{height}"),
+                reason: "beyond the device's largest texture side",
+            });
+        }
+        let luts = AtmosphereLuts::new(device, &scene.atmosphere, &Default::default())?;
+        let sky = SkyPass::new(
+            device,
+            &luts,
+            &SkyPassDescriptor {
+                depth_format: Some(DEPTH),
+                ..SkyPassDescriptor::new(HDR)
+            },
+        )?;
+        let target = |format, usage| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("render scene target"),
+                size: wgpu::Extent3d {
+                    width,
+                    height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            })
+        };
+        let hdr = target(
+            HDR,
+            wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC,
+        );
+        let depth = target(DEPTH, wgpu::TextureUsages::RENDER_ATTACHMENT);
+        let hdr_view = hdr.create_view(&Default::default());
+        let depth_view = depth.create_view(&Default::default());
+        let terrain = match &scene.terrain {
+            Some(terrain) => Some(Self::terrain_pass(device, &luts, terrain)?),
+            None => None,
+        };
+
+        // Display: HDR texture → packed RGBA8.
+        let source = crate::composer().compose_module("render::display")?;
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("render display"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("render display"),
+            entries: &[
+                uniform_entry(0, wgpu::ShaderStages::COMPUTE),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Storage { read_only: false },
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("render display"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let display_pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("render display"),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some("display_main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        let display_uniform = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render display parameters"),
+            size: std::mem::size_of::<DisplayParameters>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let pixels = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render display pixels"),
+            size: 4 * u64::from(width) * u64::from(height),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let display_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("render display"),
+            layout: &layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: display_uniform.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&hdr_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: pixels.as_entire_binding(),
+                },
+            ],
+        });
+        let times = if settings.timestamps {
+            let mut labels = vec!["atmosphere LUT bakes", "sky"];
+            if terrain.is_some() {
+                labels.push("terrain");
+            }
+            labels.push("display");
+            PassTimes::new(device, queue, labels)
+        } else {
+            None
+        };
+        Ok(Self {
+            device: device.clone(),
+            width,
+            height,
+            settings,
+            luts,
+            sky,
+            terrain,
+            hdr,
+            hdr_view,
+            depth_view,
+            display_pipeline,
+            display_uniform,
+            display_group,
+            pixels,
+            static_luts_pending: true,
+            prepared: false,
+            times,
+        })
+    }
+
+    fn terrain_pass(
+        device: &wgpu::Device,
+        luts: &AtmosphereLuts,
+        terrain: &PreparedTerrain,
+    ) -> Result<TerrainPass, RenderError> {
+        let hf = &terrain.heightfield;
+        let texels = hf.width() * hf.height();
+        let heights: Vec<f32> = hf.elevations().iter().map(|&e| e as f32).collect();
+        let normals: Vec<[f32; 4]> = terrain
+            .normals
+            .normals()
+            .iter()
+            .map(|n| [n[0], n[1], n[2], 0.0])
+            .collect();
+        let horizons: Vec<f32> = match &terrain.horizon {
+            HorizonMaps::EastWest(maps) => maps
+                .east
+                .angles()
+                .iter()
+                .chain(maps.west.angles())
+                .copied()
+                .collect(),
+            HorizonMaps::Azimuths(maps) => maps
+                .layers()
+                .iter()
+                .flat_map(|layer| layer.angles().iter().copied())
+                .collect(),
+        };
+        let limit = device.limits().max_storage_buffer_binding_size;
+        let bytes = (horizons.len().max(4 * texels) * 4) as u64;
+        if bytes > limit {
+            return Err(RenderError::InvalidParameter {
+                field: "terrain",
+                value: format!("{}×{} texels", hf.width(), hf.height()),
+                reason: "its horizon maps exceed the device's storage-buffer binding size",
+            });
+        }
+        let storage = |label: &str, contents: &[u8]| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage: wgpu::BufferUsages::STORAGE,
+            })
+        };
+        let heights = storage("render terrain heights", bytemuck::cast_slice(&heights));
+        let normals = storage("render terrain normals", bytemuck::cast_slice(&normals));
+        let horizons = storage("render terrain horizons", bytemuck::cast_slice(&horizons));
+        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render terrain uniform"),
+            size: std::mem::size_of::<TerrainUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("render terrain"),
+            entries: &[
+                uniform_entry(0, stages),
+                storage_read(1, wgpu::ShaderStages::VERTEX),
+                storage_read(2, wgpu::ShaderStages::FRAGMENT),
+                storage_read(3, wgpu::ShaderStages::FRAGMENT),
+            ],
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("render terrain"),
+            layout: &layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: uniform.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: heights.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: normals.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: horizons.as_entire_binding(),
+                },
+            ],
+        });
+        let source = crate::composer().compose_module("render::terrain")?;
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("render terrain"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("render terrain"),
+            bind_group_layouts: &[
+                Some(&luts.layouts().uniforms),
+                Some(&luts.layouts().tables),
+                Some(&layout),
+            ],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("render terrain"),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("terrain_vertex"),
+                compilation_options: Default::default(),
+                buffers: &[
+                    Some(wgpu::VertexBufferLayout {
+                        array_stride: 16,
+                        step_mode: wgpu::VertexStepMode::Vertex,
+                        attributes: &wgpu::vertex_attr_array![0 => Uint32x4],
+                    }),
+                    Some(wgpu::VertexBufferLayout {
+                        array_stride: std::mem::size_of::<Tile>() as u64,
+                        step_mode: wgpu::VertexStepMode::Instance,
+                        attributes: &wgpu::vertex_attr_array![1 => Uint32x2, 2 => Uint32, 3 => Float32],
+                    }),
+                ],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH,
+                depth_write_enabled: Some(true),
+                // Reverse z: near 1, infinitely far 0.
+                depth_compare: Some(wgpu::CompareFunction::Greater),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("terrain_fragment"),
+                compilation_options: Default::default(),
+                targets: &[Some(HDR.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let (grid, indices) = tile_mesh();
+        let grid = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("render terrain tile grid"),
+            contents: bytemuck::cast_slice(&grid),
+            usage: wgpu::BufferUsages::VERTEX,
+        });
+        let index_count = indices.len() as u32;
+        let indices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("render terrain tile indices"),
+            contents: bytemuck::cast_slice(&indices),
+            usage: wgpu::BufferUsages::INDEX,
+        });
+        let lod = TerrainLod::new(hf);
+        let tile_capacity = 256;
+        let tiles = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render terrain tiles"),
+            size: (tile_capacity * std::mem::size_of::<Tile>()) as u64,
+            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Ok(TerrainPass {
+            pipeline,
+            uniform,
+            bind_group,
+            grid,
+            indices,
+            index_count,
+            tiles,
+            tile_capacity,
+            tile_count: 0,
+            lod,
+        })
+    }
+
+    /// Writes the frame's uniforms: the LUTs' camera, the sky pass's sun disc, the
+    /// terrain's view and lighting and its tiles, the display's exposure.
+    pub fn prepare(
+        &mut self,
+        queue: &wgpu::Queue,
+        scene: &PreparedScene,
+    ) -> Result<(), RenderError> {
+        let camera = &scene.camera;
+        if (camera.width, camera.height) != (self.width, self.height) {
+            return Err(RenderError::InvalidParameter {
+                field: "output.width",
+                value: format!("{}×{}", camera.width, camera.height),
+                reason: "differs from the size the renderer was built for",
+            });
+        }
+        self.luts.prepare(queue, camera);
+        self.sky.prepare(
+            queue,
+            &SkyPassParameters::new(&scene.atmosphere, true, 1.0, 0.0)?,
+        );
+        queue.write_buffer(
+            &self.display_uniform,
+            0,
+            bytemuck::bytes_of(&DisplayParameters {
+                width: self.width,
+                height: self.height,
+                exposure: scene.present.exposure,
+                dither_seed: scene.present.dither_seed,
+            }),
+        );
+        if let (Some(pass), Some(terrain)) = (&mut self.terrain, &scene.terrain) {
+            let lighting = terrain_lighting(scene, terrain)?;
+            let planet = scene.atmosphere.planet_radius;
+            let eye = scene.camera_position - glam::DVec3::new(0.0, planet, 0.0);
+            let eye32 = eye.as_vec3();
+            let view = glam::camera::rh::view::look_to_mat4(
+                eye32,
+                Vec3::from_array(camera.forward),
+                Vec3::from_array(camera.up),
+            );
+            let fov_y = 2.0 * camera.tan_half_fov_y.atan();
+            let aspect = camera.width as f32 / camera.height as f32;
+            let projection = glam::camera::rh::proj::directx::perspective_infinite_reverse(
+                fov_y,
+                aspect,
+                scene.near.max(0.01) as f32,
+            );
+            let offset = terrain.map_offset();
+            let hf = &terrain.heightfield;
+            let uniform = TerrainUniform {
+                view_projection: (projection * view).to_cols_array_2d(),
+                camera: eye32.to_array(),
+                spacing: hf.spacing() as f32,
+                map_offset: [offset[0] as f32, offset[1] as f32],
+                map_size: [hf.width() as u32, hf.height() as u32],
+                sun_enu: lighting.sun_enu.to_array(),
+                sun_angular_radius: scene.atmosphere.sun_angular_radius as f32,
+                sky_irradiance: lighting.sky_irradiance.to_array(),
+                sun_elevation: lighting.sun_elevation,
+                sun_azimuth: lighting.sun_azimuth,
+                horizon_layers: match &terrain.horizon {
+                    HorizonMaps::EastWest(_) => 0,
+                    HorizonMaps::Azimuths(maps) => maps.count() as u32,
+                },
+                padding: [0.0; 2],
+                albedo: terrain.albedo.uniform(),
+            };
+            queue.write_buffer(&pass.uniform, 0, bytemuck::bytes_of(&uniform));
+            let pixels_per_radian =
+                f64::from(camera.height) / (2.0 * f64::from(camera.tan_half_fov_y));
+            let camera_map = [eye.x + offset[0], eye.z + offset[1], eye.y];
+            let tiles = pass.lod.select(
+                camera_map,
+                pixels_per_radian,
+                self.settings.terrain_error_px,
+            );
+            if tiles.len() > pass.tile_capacity {
+                pass.tile_capacity = tiles.len().next_power_of_two();
+                pass.tiles = self.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("render terrain tiles"),
+                    size: (pass.tile_capacity * std::mem::size_of::<Tile>()) as u64,
+                    usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                });
+            }
+            queue.write_buffer(&pass.tiles, 0, bytemuck::cast_slice(&tiles));
+            pass.tile_count = tiles.len() as u32;
+        }
+        self.prepared = true;
+        Ok(())
+    }
+
+    /// Records the frame (see the module documentation).
+    pub fn encode(&mut self, encoder: &mut wgpu::CommandEncoder) -> Result<(), RenderError> {
+        if !self.prepared {
+            return Err(RenderError::NotPrepared);
+        }
+        let times = self.times.as_ref();
+        // The static bakes once (untimed: per atmosphere, not per frame).
+        if self.static_luts_pending {
+            self.luts.encode_static_luts(encoder, None);
+            self.static_luts_pending = false;
+        }
+        self.luts.encode_frame_luts(
+            encoder,
+            times.and_then(|t| t.compute_writes("atmosphere LUT bakes")),
+        );
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("render scene"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &self.hdr_view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &self.depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(0.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: times.and_then(|t| t.render_writes("sky")),
+                ..Default::default()
+            });
+            self.sky.draw(&mut pass, &self.luts)?;
+        }
+        if let Some(terrain) = &self.terrain {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("render terrain"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &self.hdr_view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &self.depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: times.and_then(|t| t.render_writes("terrain")),
+                ..Default::default()
+            });
+            pass.set_pipeline(&terrain.pipeline);
+            pass.set_bind_group(0, self.luts.uniform_bind_group(), &[]);
+            pass.set_bind_group(1, self.luts.table_bind_group(), &[]);
+            pass.set_bind_group(2, &terrain.bind_group, &[]);
+            pass.set_vertex_buffer(0, terrain.grid.slice(..));
+            pass.set_vertex_buffer(1, terrain.tiles.slice(..));
+            pass.set_index_buffer(terrain.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..terrain.index_count, 0, 0..terrain.tile_count);
+        }
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("render display"),
+                timestamp_writes: times.and_then(|t| t.compute_writes("display")),
+            });
+            pass.set_pipeline(&self.display_pipeline);
+            pass.set_bind_group(0, &self.display_group, &[]);
+            pass.dispatch_workgroups(self.width.div_ceil(8), self.height.div_ceil(8), 1);
+        }
+        if let Some(times) = times {
+            times.resolve(encoder);
+        }
+        Ok(())
+    }
+
+    /// The frame's RGBA8 pixels (one `u32` each, R in the low byte; `COPY_SRC`).
+    pub fn pixel_buffer(&self) -> &wgpu::Buffer {
+        &self.pixels
+    }
+
+    /// The frame's HDR radiance (`rgba16float`, before the exposure).
+    pub fn radiance_texture(&self) -> &wgpu::Texture {
+        &self.hdr
+    }
+
+    /// Tiles the terrain drew in the prepared frame.
+    pub fn terrain_tiles(&self) -> u32 {
+        self.terrain.as_ref().map_or(0, |t| t.tile_count)
+    }
+
+    /// GPU seconds per pass of the last submitted frame (after its submission), when
+    /// timestamps were asked for and the device has them.
+    pub fn pass_seconds(&self) -> Option<Result<Vec<(&'static str, f64)>, String>> {
+        self.times.as_ref().map(|t| t.read(&self.device))
+    }
+}

@@ -1,0 +1,38 @@
+//! The scenes shipped with skyscape (`scenes/*.toml`, embedded in the crate so the
+//! binary renders them by name from anywhere): `skyscape scenes` lists them,
+//! `skyscape render NAME` renders one.
+
+/// A shipped scene: its name, what it shows, and its TOML.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ShippedScene {
+    /// The name `skyscape render` takes.
+    pub name: &'static str,
+    /// One line on what it shows.
+    pub description: &'static str,
+    /// The scene file.
+    pub source: &'static str,
+}
+
+/// Every shipped scene, the default first.
+pub const SHIPPED: &[ShippedScene] = &[
+    ShippedScene {
+        name: "default",
+        description: "a clear afternoon over procedural mountains",
+        source: include_str!("../../scenes/default.toml"),
+    },
+    ShippedScene {
+        name: "sunset",
+        description: "the sun 2° above the horizon: long terrain shadows, a red sun",
+        source: include_str!("../../scenes/sunset.toml"),
+    },
+    ShippedScene {
+        name: "orbit",
+        description: "the planet's limb from 400 km up, the sun just above it",
+        source: include_str!("../../scenes/orbit.toml"),
+    },
+];
+
+/// The shipped scene called `name`.
+pub fn shipped(name: &str) -> Option<&'static ShippedScene> {
+    SHIPPED.iter().find(|scene| scene.name == name)
+}

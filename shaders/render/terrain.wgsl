@@ -1,0 +1,130 @@
+// The GPU terrain of a scene: the quadtree's tiles (render::terrain_mesh) drawn
+// instanced, each vertex reading the heightfield; each fragment shaded as the CPU
+// reference renderer shades a ray's hit (render::cpu_renderer): bilinear normal and
+// horizon angles, seed 000's terrain term with a soft self-shadow, the sun through the
+// precomputed rung's transmittance, the sky's irradiance, then the aerial perspective
+// between the camera and the point (atmos::aerial_perspective).
+//
+// Bindings: the LUTs in groups 0 and 1 (atmos::lut_bindings), the terrain in group 2.
+// World frame: metres, x east, y up, z south, the camera's planet frame's axes; the
+// map frame: x east from texel 0, y south from row 0 (texels × spacing).
+#import atmos::aerial_perspective
+#import terrain::shadow
+#import render::terrain_shading
+
+struct TerrainUniform {
+    view_projection: mat4x4<f32>,
+    // The camera's world position (m).
+    camera: vec3<f32>,
+    // Metres per texel.
+    spacing: f32,
+    // World (x, z) + map_offset = map (x, y) in metres.
+    map_offset: vec2<f32>,
+    map_size: vec2<u32>,
+    // The sun in the terrain's east–north–up frame.
+    sun_enu: vec3<f32>,
+    sun_angular_radius: f32,
+    // The sky's irradiance on a horizontal surface (atmos::ground_irradiance).
+    sky_irradiance: vec3<f32>,
+    sun_elevation: f32,
+    sun_azimuth: f32,
+    // 0: seed 000's east/west pair (horizons holds east then west); N: N azimuth layers.
+    horizon_layers: u32,
+    padding: vec2<f32>,
+    albedo: AlbedoRamp,
+}
+
+@group(2) @binding(0) var<uniform> terrain: TerrainUniform;
+@group(2) @binding(1) var<storage, read> heights: array<f32>;
+// Unit normals (east, north, up, 0).
+@group(2) @binding(2) var<storage, read> normals: array<vec4<f32>>;
+// Horizon angles (rad): layer k of texel i at i + k·width·height.
+@group(2) @binding(3) var<storage, read> horizons: array<f32>;
+
+struct TerrainVarying {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+}
+
+fn height_at(texel: vec2<u32>) -> f32 {
+    let t = min(texel, terrain.map_size - vec2<u32>(1u));
+    return heights[t.x + terrain.map_size.x * t.y];
+}
+
+@vertex
+fn terrain_vertex(@location(0) grid: vec4<u32>, @location(1) tile_origin: vec2<u32>, @location(2) tile_step: u32, @location(3) tile_skirt: f32) -> TerrainVarying {
+    let texel = min(tile_origin + grid.xy * tile_step, terrain.map_size - vec2<u32>(1u));
+    var elevation = height_at(texel);
+    if grid.z != 0u {
+        elevation -= tile_skirt;
+    }
+    let map = vec2<f32>(texel) * terrain.spacing;
+    let world = vec3<f32>(map.x - terrain.map_offset.x, elevation, map.y - terrain.map_offset.y);
+    return TerrainVarying(terrain.view_projection * vec4<f32>(world, 1.0), world);
+}
+
+// Bilinear footprint of a fractional texel position: the four texel indices and the
+// weights (texel x, y clamped so the footprint stays inside the map). Twin:
+// render::cpu_renderer's bilinear_texels.
+struct TexelFootprint {
+    index: vec4<u32>,
+    weight: vec4<f32>,
+}
+
+fn texel_footprint(texel: vec2<f32>) -> TexelFootprint {
+    let w = terrain.map_size.x;
+    let h = terrain.map_size.y;
+    let i = min(u32(max(floor(texel.x), 0.0)), w - 2u);
+    let j = min(u32(max(floor(texel.y), 0.0)), h - 2u);
+    let fx = texel.x - f32(i);
+    let fy = texel.y - f32(j);
+    return TexelFootprint(
+        vec4<u32>(j * w + i, j * w + i + 1u, (j + 1u) * w + i, (j + 1u) * w + i + 1u),
+        vec4<f32>((1.0 - fx) * (1.0 - fy), fx * (1.0 - fy), (1.0 - fx) * fy, fx * fy),
+    );
+}
+
+fn filtered_horizon(f: TexelFootprint, layer: u32) -> f32 {
+    let base = layer * terrain.map_size.x * terrain.map_size.y;
+    return horizons[base + f.index.x] * f.weight.x + horizons[base + f.index.y] * f.weight.y
+        + horizons[base + f.index.z] * f.weight.z + horizons[base + f.index.w] * f.weight.w;
+}
+
+// A texel's horizon angle toward the sun's azimuth, between its two neighbouring
+// layers (terrain::AzimuthHorizonMaps::horizon_angle).
+fn azimuth_horizon(texel: u32, layers: AzimuthLayers) -> f32 {
+    let size = terrain.map_size.x * terrain.map_size.y;
+    let a = horizons[layers.lower * size + texel];
+    let b = horizons[layers.upper * size + texel];
+    return a + (b - a) * layers.weight;
+}
+
+// Radiance of the terrain at world position `world`, seen from the camera.
+fn terrain_radiance(world: vec3<f32>) -> vec3<f32> {
+    let map = vec2<f32>(world.x, world.z) + terrain.map_offset;
+    let f = texel_footprint(map / terrain.spacing);
+    let n = normals[f.index.x] * f.weight.x + normals[f.index.y] * f.weight.y
+        + normals[f.index.z] * f.weight.z + normals[f.index.w] * f.weight.w;
+    var normal = vec3<f32>(0.0, 0.0, 1.0);
+    if dot(n.xyz, n.xyz) > 0.0 {
+        normal = normalize(n.xyz);
+    }
+    var self_shadow: f32;
+    if terrain.horizon_layers == 0u {
+        self_shadow = self_shadow_east_west(filtered_horizon(f, 0u), filtered_horizon(f, 1u), terrain.sun_enu, terrain.sun_angular_radius);
+    } else {
+        let layers = azimuth_layers(terrain.sun_azimuth, terrain.horizon_layers);
+        let horizon = azimuth_horizon(f.index.x, layers) * f.weight.x + azimuth_horizon(f.index.y, layers) * f.weight.y
+            + azimuth_horizon(f.index.z, layers) * f.weight.z + azimuth_horizon(f.index.w, layers) * f.weight.w;
+        self_shadow = soft_shadow(terrain.sun_elevation, horizon, terrain.sun_angular_radius);
+    }
+    let albedo = terrain_albedo(terrain.albedo, world.y, normal.z);
+    let offset = world - terrain.camera;
+    let surface = surface_radiance(normal, normal.z, terrain.sun_enu, albedo, self_shadow, 1.0, sunlight_at(offset), terrain.sky_irradiance);
+    return apply_aerial_perspective(surface, offset);
+}
+
+@fragment
+fn terrain_fragment(in: TerrainVarying) -> @location(0) vec4<f32> {
+    return vec4<f32>(terrain_radiance(in.world), 1.0);
+}
