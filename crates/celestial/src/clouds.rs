@@ -312,6 +312,7 @@ const KOSCHMIEDER_OPTICAL_DEPTH: f32 = 3.912_023;
 
 /// Value noise in [0, 1) at (x, y) (lattice units): the four corners' hashes (seed,
 /// cell x, cell y) blended with the smoothstep of the fractional position.
+#[doc(hidden)]
 pub fn cloud_value_noise(x: f32, y: f32, seed: u32) -> f32 {
     let (fx, fy) = (x.floor(), y.floor());
     let (ix, iy) = (fx as i32, fy as i32);
@@ -331,6 +332,7 @@ pub fn cloud_value_noise(x: f32, y: f32, seed: u32) -> f32 {
 
 /// fBm: `octaves` octaves of [`cloud_value_noise`], each twice the frequency and half
 /// the amplitude of the previous (with its own seed), normalised to [0, 1).
+#[doc(hidden)]
 pub fn cloud_fbm(x: f32, y: f32, octaves: u32, seed: u32) -> f32 {
     let (mut sum, mut amplitude, mut total, mut frequency) = (0.0f32, 1.0f32, 0.0f32, 1.0f32);
     for octave in 0..octaves {
@@ -346,6 +348,7 @@ pub fn cloud_fbm(x: f32, y: f32, octaves: u32, seed: u32) -> f32 {
 /// Cloud density in [0, 1] at horizontal position (`u`, `v`) metres on the layer:
 /// fBm at the layer's scale, stretched along u, through the coverage threshold with
 /// the kind's soft edge (a smoothstep of width `softness` centred on `threshold`).
+#[doc(hidden)]
 pub fn cloud_density(u: f32, v: f32, layer: &CloudLayerUniforms) -> f32 {
     let x = u / (layer.feature_size * layer.stretch);
     let y = v / layer.feature_size;
@@ -357,6 +360,7 @@ pub fn cloud_density(u: f32, v: f32, layer: &CloudLayerUniforms) -> f32 {
 /// Eddington two-stream reflectance of a conservative layer of optical thickness
 /// `optical_thickness` and asymmetry `asymmetry`, lit at cosine `mu_sun` (Lacis &
 /// Hansen 1974); the sun below the layer's horizon (μ₀ ≤ 0) reflects nothing.
+#[doc(hidden)]
 pub fn cloud_reflectance(optical_thickness: f32, asymmetry: f32, mu_sun: f32) -> f32 {
     if mu_sun <= 0.0 {
         return 0.0;
@@ -369,6 +373,7 @@ pub fn cloud_reflectance(optical_thickness: f32, asymmetry: f32, mu_sun: f32) ->
 /// Distance (m) along a view from radius `r` with zenith cosine `mu` to the layer
 /// surface of radius `layer_radius`: the sphere (curved) or the plane at that altitude
 /// (flat); −1 when the view does not reach it (or the viewer is on it).
+#[doc(hidden)]
 pub fn cloud_layer_distance(r: f32, mu: f32, layer_radius: f32, curved: u32) -> f32 {
     if curved != 0 {
         let hit = atmos::geometry::ray_sphere_intersect(r, mu, layer_radius);

@@ -71,6 +71,7 @@ fn constant<F: Float>(x: f64) -> F {
 /// on the solar surface; 0 outside the disc. `(α + 2)/2` makes the disc's mean 1 (the
 /// disc average of μ^α is 2/(α + 2)), so the disc delivers the irradiance it would
 /// without darkening.
+#[doc(hidden)]
 pub fn sun_disc_limb_factor<F: Float>(
     sin_offset: F,
     cos_offset: F,
@@ -107,6 +108,7 @@ pub fn sun_aureole_radiance(
 }
 
 /// The f64 reference of [`sun_aureole_radiance`] (atmos' f64 phase function).
+#[doc(hidden)]
 pub fn sun_aureole_radiance_f64(
     cos_offset: f64,
     mie_g: f64,
@@ -133,6 +135,7 @@ fn dot<F: Float>(a: [F; 3], b: [F; 3]) -> F {
 /// cosine of the incidence, `n · to_sun` with the surface normal
 /// n = ρ̂-offset − moon·μ. The disc average of this factor is
 /// [`lommel_seeliger_disc_mean`].
+#[doc(hidden)]
 pub fn moon_disc_lommel_seeliger<F: Float>(
     view: [F; 3],
     moon: [F; 3],
@@ -243,6 +246,7 @@ pub fn point_source_irradiance(
 /// falls for σ ≥ [`MIN_SPRITE_SIGMA_PX`] (the grid's aliasing error is
 /// 4·e^{−2π²σ²} ≈ 2 × 10⁻⁴ there, 3 % at σ = 0.5), less the tail beyond the
 /// [`SPRITE_CUTOFF_SIGMAS`] cut (e⁻⁸ = 3 × 10⁻⁴).
+#[doc(hidden)]
 pub fn point_sprite_weight<F: Float>(offset_squared: F, sigma: F) -> F {
     let two: F = constant(2.0);
     let two_pi: F = constant(std::f64::consts::TAU);

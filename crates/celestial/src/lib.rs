@@ -28,7 +28,9 @@
 //! * seed 004's SGSky: the [`Sky`] facade, [`dome`] (the 12-sided dome), [`clouds`]
 //!   (cloud layers) and [`visibility`] (Koschmieder and exp² fog).
 //!
-//! Bad input is a [`CelestialError`] naming the field and the value.
+//! Bad input is a [`CelestialError`] naming the field and the value. [`prelude`] holds
+//! the types a typical program needs; [`twins`] the drawing helpers that only
+//! `cargo xtask parity` calls on their own.
 
 pub mod angle;
 pub mod clouds;
@@ -69,6 +71,53 @@ pub use sky::{FogModel, Sky, SkyOptions};
 pub use stars::{SkyStar, StarCatalogue};
 pub use sun::{SunPosition, sun_position};
 pub use time::Instant;
+
+/// The types and entry points a typical program needs: `use celestial::prelude::*;`.
+/// ([`crate::Result`] is left out so that it does not shadow `std`'s.)
+///
+/// ```
+/// use celestial::prelude::*;
+/// let observer = Observer::new(Angle::from_degrees(52.0), Angle::from_degrees(5.0), 0.0)?;
+/// let noon = Instant::parse("2024-06-21T11:40:00Z")?;
+/// let sun = sun_position(&noon, &observer)?;
+/// // Near the June solstice's noon at 52° N the sun stands about 61.4° high, due south.
+/// assert!((sun.airless.elevation.degrees() - 61.4).abs() < 0.2);
+/// assert!((sun.airless.azimuth.degrees() - 180.0).abs() < 5.0);
+/// # Ok::<(), CelestialError>(())
+/// ```
+pub mod prelude {
+    pub use crate::clouds::{CloudKind, CloudLayer};
+    pub use crate::{
+        AirConditions, Angle, CelestialError, FogModel, Horizontal, Instant, LuminanceScale,
+        MoonLight, MoonPhase, MoonPosition, Observer, Planet, PlanetPosition, Sky, SkyOptions,
+        SkyStar, StarCatalogue, SunPosition, apparent_elevation, moon_phase, moon_position,
+        planet_position, sun_position,
+    };
+}
+
+/// Rust twins of WGSL drawing helpers that only `cargo xtask parity` calls on their
+/// own, and the f64 reference of the aureole.
+///
+/// The drawing composes them: [`draw::disc_object_radiance`] shades the sun's disc
+/// with [`sun_disc_limb_factor`] and the moon's with [`moon_disc_lommel_seeliger`],
+/// the sprites are splatted with [`point_sprite_weight`], and a cloud layer's
+/// [`clouds::cloud_layer_radiance`] is built from [`cloud_layer_distance`],
+/// [`cloud_density`] (over [`cloud_fbm`] and [`cloud_value_noise`]) and
+/// [`cloud_reflectance`]; a program draws through those, the `Sky` facade or the `gpu`
+/// pass. They stay defined in [`draw`] and [`clouds`], which mirror
+/// `shaders/celestial/draw.wgsl` and `clouds.wgsl` function for function, and are
+/// hidden there.
+pub mod twins {
+    #[doc(inline)]
+    pub use crate::clouds::{
+        cloud_density, cloud_fbm, cloud_layer_distance, cloud_reflectance, cloud_value_noise,
+    };
+    #[doc(inline)]
+    pub use crate::draw::{
+        moon_disc_lommel_seeliger, point_sprite_weight, sun_aureole_radiance_f64,
+        sun_disc_limb_factor,
+    };
+}
 
 /// The crate's WGSL, canonical under `shaders/celestial/`.
 pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[

@@ -225,7 +225,7 @@ fn limb_factor_error(
     exponent: f64,
     d_sin: f64,
 ) -> f64 {
-    let f = |s: f64| celestial::draw::sun_disc_limb_factor(s, cos_offset, sin_radius, exponent);
+    let f = |s: f64| celestial::twins::sun_disc_limb_factor(s, cos_offset, sin_radius, exponent);
     let y = f(sin_offset);
     let sensitivity = (f(sin_offset + d_sin) - y)
         .abs()
@@ -658,9 +658,9 @@ fn disc_object_reference(x: &[f64]) -> Vec<f64> {
     (0..3)
         .map(|i| {
             let shape = if x[7] == 1.0 {
-                celestial::draw::sun_disc_limb_factor(sin_offset, cos_offset, x[6], x[8 + i])
+                celestial::twins::sun_disc_limb_factor(sin_offset, cos_offset, x[6], x[8 + i])
             } else {
-                celestial::draw::moon_disc_lommel_seeliger(view, d, x[6], [x[8], x[9], x[10]])
+                celestial::twins::moon_disc_lommel_seeliger(view, d, x[6], [x[8], x[9], x[10]])
             };
             let c = DISC_CHANNEL_SCALE[i];
             let log_t = x[12] * c + dmu * (x[13] * c + dmu * x[14] * c);
@@ -732,12 +732,12 @@ fn draw_cases() -> Vec<Case> {
             wgsl: "y0 = sun_disc_limb_factor(x0, x1, x2, x3);",
             grid: limb_grid,
             cpu: |x| {
-                vec![celestial::draw::sun_disc_limb_factor(
+                vec![celestial::twins::sun_disc_limb_factor(
                     x[0], x[1], x[2], x[3],
                 )]
             },
             reference: |x| {
-                vec![celestial::draw::sun_disc_limb_factor(
+                vec![celestial::twins::sun_disc_limb_factor(
                     x[0], x[1], x[2], x[3],
                 )]
             },
@@ -765,7 +765,7 @@ fn draw_cases() -> Vec<Case> {
                 )]
             },
             reference: |x| {
-                vec![celestial::draw::sun_aureole_radiance_f64(
+                vec![celestial::twins::sun_aureole_radiance_f64(
                     x[0], x[1], x[2], x[3], x[4],
                 )]
             },
@@ -788,7 +788,7 @@ fn draw_cases() -> Vec<Case> {
                    x6, vec3<f32>(x7, x8, x9));",
             grid: ls_grid,
             cpu: |x| {
-                vec![celestial::draw::moon_disc_lommel_seeliger(
+                vec![celestial::twins::moon_disc_lommel_seeliger(
                     [x[0], x[1], x[2]],
                     [x[3], x[4], x[5]],
                     x[6],
@@ -796,7 +796,7 @@ fn draw_cases() -> Vec<Case> {
                 )]
             },
             reference: |x| {
-                vec![celestial::draw::moon_disc_lommel_seeliger(
+                vec![celestial::twins::moon_disc_lommel_seeliger(
                     [x[0], x[1], x[2]],
                     [x[3], x[4], x[5]],
                     x[6],
@@ -868,8 +868,8 @@ fn draw_cases() -> Vec<Case> {
             arity: (2, 1),
             wgsl: "y0 = point_sprite_weight(x0, x1);",
             grid: sprite_grid,
-            cpu: |x| vec![celestial::draw::point_sprite_weight(x[0], x[1])],
-            reference: |x| vec![celestial::draw::point_sprite_weight(x[0], x[1])],
+            cpu: |x| vec![celestial::twins::point_sprite_weight(x[0], x[1])],
+            reference: |x| vec![celestial::twins::point_sprite_weight(x[0], x[1])],
             audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
@@ -877,7 +877,7 @@ fn draw_cases() -> Vec<Case> {
                 ulp: 4.0,
                 bound: Some(|x| {
                     let argument = x[0] / (2.0 * x[1] * x[1]);
-                    let y = celestial::draw::point_sprite_weight(x[0], x[1]);
+                    let y = celestial::twins::point_sprite_weight(x[0], x[1]);
                     vec![y * (exp_relative_error(argument) + 3.0 * U * argument + 4.0 * U)]
                 }),
                 why: "the exponent r²/(2σ²) rounds (3u relative, amplified 1:1 by exp), exp's \
@@ -1412,13 +1412,7 @@ fn cloud_cases() -> Vec<Case> {
             arity: (3, 1),
             wgsl: "y0 = cloud_value_noise(x0, x1, u32(x2));",
             grid: noise_grid,
-            cpu: |x| {
-                vec![celestial::clouds::cloud_value_noise(
-                    x[0],
-                    x[1],
-                    x[2] as u32,
-                )]
-            },
+            cpu: |x| vec![celestial::twins::cloud_value_noise(x[0], x[1], x[2] as u32)],
             reference: |x| vec![noise64(x[0], x[1], x[2] as u32)],
             audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
@@ -1437,7 +1431,7 @@ fn cloud_cases() -> Vec<Case> {
             wgsl: "y0 = cloud_fbm(x0, x1, u32(x2), u32(x3));",
             grid: fbm_grid,
             cpu: |x| {
-                vec![celestial::clouds::cloud_fbm(
+                vec![celestial::twins::cloud_fbm(
                     x[0],
                     x[1],
                     x[2] as u32,
@@ -1469,7 +1463,7 @@ fn cloud_cases() -> Vec<Case> {
             grid: density_grid,
             cpu: |x| {
                 let l = layer_from(&x.iter().map(|&v| f64::from(v)).collect::<Vec<_>>(), 2);
-                vec![celestial::clouds::cloud_density(x[0], x[1], &l)]
+                vec![celestial::twins::cloud_density(x[0], x[1], &l)]
             },
             reference: |x| vec![density64(x[0], x[1], &layer_from(x, 2))],
             audit: Audit::INDEPENDENT,
@@ -1500,7 +1494,7 @@ fn cloud_cases() -> Vec<Case> {
                 }
                 grid
             },
-            cpu: |x| vec![celestial::clouds::cloud_reflectance(x[0], x[1], x[2])],
+            cpu: |x| vec![celestial::twins::cloud_reflectance(x[0], x[1], x[2])],
             reference: |x| vec![reflectance64(x[0], x[1], x[2])],
             audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
@@ -1533,7 +1527,7 @@ fn cloud_cases() -> Vec<Case> {
             wgsl: "y0 = cloud_layer_distance(x0, x1, x2, u32(x3));",
             grid: layer_distance_grid,
             cpu: |x| {
-                vec![celestial::clouds::cloud_layer_distance(
+                vec![celestial::twins::cloud_layer_distance(
                     x[0],
                     x[1],
                     x[2],
