@@ -9,12 +9,9 @@
 //!
 //! [`CloudVolume`] holds a density grid placed in metres (cloudsim's axis order) with its
 //! extinction per unit density; [`reference`](mod@reference) integrates its trilinear density exactly along
-//! a ray (f64 optical depth and transmittance); [`propagate::propagate_physical`] is the
-//! CPU physical-mode slice propagation (no WGSL twin or GPU pass yet).
-//!
-//! The slice-attenuation pass (ping-pong textures) and cone-marched lighting
-//! (6 + 1 far samples, Beer, forward scattering) build on these and on `atmos`'
-//! phase functions, imported in WGSL with `#import atmos::phase`.
+//! a ray (f64 optical depth and transmittance); [`propagate`](mod@propagate) is seed 002's
+//! slice propagation (physical and faithful modes) written once over the float type, with
+//! its WGSL pass [`gpu::SlicePropagation`] (feature `gpu`).
 //!
 //! ```
 //! // A fully dense slice passing 60 % of the light, after one that passed 80 %.
@@ -28,6 +25,9 @@ pub mod reference;
 pub mod slice;
 pub mod volume;
 
+#[cfg(feature = "gpu")]
+pub mod gpu;
+
 pub use volume::{CloudVolume, VolumeError};
 
 /// The WGSL modules of this crate, importable as `#import cloudlight::<name>`.
@@ -39,6 +39,14 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {
         name: "cloudlight::jitter",
         source: include_str!("../shaders/jitter.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "cloudlight::slice_propagation",
+        source: include_str!("../shaders/slice_propagation.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "cloudlight::slice_propagation_pass",
+        source: include_str!("../shaders/slice_propagation_pass.wgsl"),
     },
 ];
 

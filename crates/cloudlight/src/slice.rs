@@ -8,7 +8,11 @@ pub fn slice_attenuation(
     smoothed_density: f32,
     attenuation_ratio: f32,
 ) -> f32 {
-    light_from_previous_slice * (1.0 - (1.0 - attenuation_ratio) * smoothed_density)
+    crate::propagate::attenuate(
+        light_from_previous_slice,
+        smoothed_density,
+        attenuation_ratio,
+    )
 }
 
 #[cfg(test)]
