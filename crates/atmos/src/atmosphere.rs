@@ -452,11 +452,13 @@ atmosphere_fields!(AtmosphereParameters, f32);
 atmosphere_fields!(Atmosphere, f64);
 
 /// exp(−altitude/scale_height).
+#[doc(hidden)]
 pub fn exponential_density<F: Real>(altitude: F, scale_height: F) -> F {
     (-altitude / scale_height).exp()
 }
 
 /// 1 at `center`, linearly 0 at `center ± half_width`.
+#[doc(hidden)]
 pub fn tent_density<F: Real>(altitude: F, center: F, half_width: F) -> F {
     (F::one() - (altitude - center).abs() / half_width).max(F::zero())
 }

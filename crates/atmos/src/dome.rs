@@ -95,6 +95,7 @@ fn constant<F: Float>(x: f64) -> F {
 /// radius `sphere_radius` seen from radius `r` (m): `−√(r² − R²)/r`, with `r² − R²`
 /// formed as `(r − R)(r + R)` so that a viewer a metre up keeps its digits in f32;
 /// 0 on or inside the sphere.
+#[doc(hidden)]
 pub fn dome_horizon_mu<F: Float>(r: F, sphere_radius: F) -> F {
     let tangent_squared = ((r - sphere_radius) * (r + sphere_radius)).max(F::zero());
     -(tangent_squared.sqrt() / r)
@@ -106,6 +107,7 @@ pub fn dome_horizon_mu<F: Float>(r: F, sphere_radius: F) -> F {
 /// documentation). Rows are placed in `mu`, not in elevation, so that neither side
 /// needs a transcendental function: a GPU's `asin` (thousands of ULP on some drivers)
 /// would move a view across the seam.
+#[doc(hidden)]
 pub fn dome_row_mu<F: Float>(row: u32, rings: u32, r: F, planet_radius: F, top_radius: F) -> F {
     let seam: F = constant(DOME_SEAM_OFFSET);
     let horizon = dome_horizon_mu(r, planet_radius);
@@ -135,6 +137,7 @@ pub fn dome_row_mu<F: Float>(row: u32, rings: u32, r: F, planet_radius: F, top_r
 /// The fractional row (in `[0, rings + 1]`) of a view whose zenith cosine is `mu`: the
 /// inverse of [`dome_row_mu`], on the view's own side of the horizon seam (a view at or
 /// above the horizon maps to `≥ rings/2 + 1`, one below it to `≤ rings/2`).
+#[doc(hidden)]
 pub fn dome_row_coordinate<F: Float>(
     mu: F,
     rings: u32,

@@ -5,6 +5,10 @@
 //! used as ground truth by `cargo xtask parity`. Conventions (SI units, `r`/`mu`
 //! naming) are in `docs/architecture.md`.
 //!
+//! [`prelude`] holds the types a typical program needs (the atmosphere, the rungs of
+//! the ladder, the camera, and with feature `gpu` the renderers); [`twins`] the
+//! helpers that only `cargo xtask parity` and the tests call on their own.
+//!
 //! ```
 //! use atmos::phase::{henyey_greenstein_phase, rayleigh_phase};
 //! // Forward scattering by haze dominates the Rayleigh lobe near the sun.
@@ -32,6 +36,77 @@ pub mod transmittance;
 pub use atmosphere::{AtmosError, Atmosphere, AtmosphereParameters, GpuError, SUN_ANGULAR_RADIUS};
 pub use ladder::{SkyModel, SkyQuery, SkySample};
 pub use skyscape_wgsl::common::PI;
+
+/// The types a typical program needs: `use atmos::prelude::*;`.
+///
+/// ```
+/// use atmos::prelude::*;
+/// let earth = Atmosphere::earth();
+/// let sky = ClosedFormSky::new(&earth)?; // any rung implements SkyModel
+/// let viewer = glam::DVec3::new(0.0, 0.0, earth.planet_radius + 2.0);
+/// let sun = glam::DVec3::new(0.6, 0.0, 0.8);
+/// let query = SkyQuery::new(earth.planet_radius, viewer, glam::DVec3::Z, sun)?;
+/// let zenith: SkySample = sky.evaluate(&query);
+/// assert!(zenith.radiance[2] > zenith.radiance[0]); // a blue sky
+/// # Ok::<(), AtmosError>(())
+/// ```
+pub mod prelude {
+    pub use crate::closed_form_sky::ClosedFormSky;
+    pub use crate::dome::{DomeInterpolated, DomeResolution};
+    pub use crate::frame::{FrameCamera, LocalFrame};
+    #[cfg(feature = "gpu")]
+    pub use crate::gpu::{
+        AtmosphereLuts, ClosedFormRenderer, FrameOutput, PrecomputedRenderer,
+        SingleScatteringRenderer, SkyPass, SkyPassDescriptor,
+    };
+    pub use crate::lut::PrecomputedSky;
+    pub use crate::reference::{ReferenceSettings, ReferenceSky};
+    pub use crate::single_scattering::{SingleScatteringSettings, SingleScatteringSky};
+    pub use crate::{
+        AtmosError, Atmosphere, AtmosphereParameters, GpuError, SUN_ANGULAR_RADIUS, SkyModel,
+        SkyQuery, SkySample,
+    };
+}
+
+/// Rust twins of WGSL helpers that only `cargo xtask parity` and the tests call on
+/// their own.
+///
+/// Each is a step of a public model (the density profile and the optical lengths of
+/// the single-scattering march, one ray-march step of the LUT bakes, the
+/// multiple-scattering moments' per-direction terms, the dome's row placement, the
+/// drop-in camera's projection), public so that the parity harness can compare it with
+/// its WGSL twin; a program goes through the models instead ([`SkyModel`], the LUT
+/// bakes and lookups, the `gpu` renderers). The generic ones are also the f64
+/// references (instantiated at f64, re-exported in [`reference`](mod@reference) and
+/// [`lut::reference`]). They stay defined beside their siblings, in the files that
+/// mirror their WGSL modules function for function, and are hidden there.
+pub mod twins {
+    #[doc(inline)]
+    pub use crate::atmosphere::{exponential_density, tent_density};
+    #[doc(inline)]
+    pub use crate::dome::{dome_horizon_mu, dome_row_coordinate, dome_row_mu};
+    #[doc(inline)]
+    pub use crate::lut::drop_in::frame_screen_position;
+    #[doc(inline)]
+    pub use crate::lut::multiple_scattering_moments::{
+        direction_zenith_sample, multiple_scattering_ground_irradiance,
+        multiple_scattering_ground_irradiance_channel, scattered_multiple_scattering,
+        scattered_multiple_scattering_channel, sun_frame_direction,
+    };
+    #[doc(inline)]
+    pub use crate::lut::raymarch::{
+        integrate_scattering_step, point_along_ray, radius_along_ray, ray_segment_in_atmosphere,
+        scattering_step_fraction,
+    };
+    #[doc(inline)]
+    pub use crate::lut::transmittance_lut::exponential_step_integral;
+    #[doc(inline)]
+    pub use crate::single_scattering::{
+        density_profile, extinction_from_densities, light_path_transmittance,
+        lowest_point_distance, mean_transmittance_over_segment, optical_lengths,
+        ray_sample_distance, single_scattering_inside,
+    };
+}
 
 /// The WGSL modules of this crate, importable as `#import atmos::<name>`.
 pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[

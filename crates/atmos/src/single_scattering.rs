@@ -71,6 +71,7 @@ fn scale<F: Real>(a: [F; 3], s: F) -> [F; 3] {
 }
 
 /// Relative densities at an altitude: (Rayleigh, Mie, ozone), each 1 at its reference.
+#[doc(hidden)]
 pub fn density_profile<A: AtmosphereFields>(atmosphere: &A, altitude: A::Real) -> [A::Real; 3] {
     [
         exponential_density(altitude, atmosphere.rayleigh_scale_height()),
@@ -85,6 +86,7 @@ pub fn density_profile<A: AtmosphereFields>(atmosphere: &A, altitude: A::Real) -
 
 /// Extinction (1/m) per channel from relative densities (Rayleigh, Mie, ozone); also
 /// maps optical lengths (m) to optical depths.
+#[doc(hidden)]
 pub fn extinction_from_densities<A: AtmosphereFields>(
     atmosphere: &A,
     densities: [A::Real; 3],
@@ -105,6 +107,7 @@ pub fn extinction_from_densities<A: AtmosphereFields>(
 /// on each side of `t_split`, so samples crowd where the ray passes lowest (the densest
 /// air). The segments depend only on the whole ray, never on where a caller cuts it, so
 /// cutting it later only adds light (aerial perspective is monotone).
+#[doc(hidden)]
 pub fn ray_sample_distance<F: Real>(s: F, t_split: F, ray_length: F) -> F {
     let s_split = t_split / ray_length;
     if s <= s_split && s_split > F::zero() {
@@ -116,6 +119,7 @@ pub fn ray_sample_distance<F: Real>(s: F, t_split: F, ray_length: F) -> F {
 }
 
 /// Where a ray from (`r`, `mu`) of length `ray_length` passes closest to the planet centre.
+#[doc(hidden)]
 pub fn lowest_point_distance<F: Real>(r: F, mu: F, ray_length: F) -> F {
     (-r * mu).clamp(F::zero(), ray_length)
 }
@@ -123,6 +127,7 @@ pub fn lowest_point_distance<F: Real>(r: F, mu: F, ray_length: F) -> F {
 /// ∫₀^`ray_length` density(altitude(t)) dt (m) for (Rayleigh, Mie, ozone):
 /// `sample_count` segments (at least one) laid out by [`ray_sample_distance`], each
 /// sampled at its parameter midpoint.
+#[doc(hidden)]
 pub fn optical_lengths<A: AtmosphereFields>(
     atmosphere: &A,
     r: A::Real,
@@ -158,6 +163,7 @@ pub fn optical_lengths<A: AtmosphereFields>(
 /// Transmittance from a point at `altitude` (m) with sun zenith cosine `mu_s` to the
 /// sun through the shell; 0 where the planet hides the sun (the shadow of the earth),
 /// tested on the altitude since r = R + altitude rounds sub-metre altitudes away in f32.
+#[doc(hidden)]
 pub fn light_path_transmittance<A: AtmosphereFields>(
     atmosphere: &A,
     altitude: A::Real,
@@ -178,6 +184,7 @@ pub fn light_path_transmittance<A: AtmosphereFields>(
 
 /// (1 − e^{−x})/x per channel (1 at x = 0): the mean transmittance across a segment of
 /// optical depth x with constant extinction.
+#[doc(hidden)]
 pub fn mean_transmittance_over_segment<F: Real>(optical_depth: [F; 3]) -> [F; 3] {
     optical_depth.map(|x| {
         if x == F::zero() {
@@ -191,6 +198,7 @@ pub fn mean_transmittance_over_segment<F: Real>(optical_depth: [F; 3]) -> [F; 3]
 /// Single scattering for a viewer inside the shell (`r` ≤ top radius; below the ground
 /// counts as on it), up to the ground, the top or `max_distance`.
 #[allow(clippy::too_many_arguments)] // mirrors the WGSL signature
+#[doc(hidden)]
 pub fn single_scattering_inside<A: AtmosphereFields>(
     atmosphere: &A,
     r: A::Real,

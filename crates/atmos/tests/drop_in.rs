@@ -7,8 +7,9 @@
 
 use atmos::frame::{FrameCamera, LocalFrame};
 use atmos::gpu::{composer_with_lut_groups, lut_bindings_wgsl};
-use atmos::lut::drop_in::{aerial_perspective, frame_screen_position};
+use atmos::lut::drop_in::aerial_perspective;
 use atmos::lut::{FrameLuts, LutSettings, StaticLuts};
+use atmos::twins::frame_screen_position;
 use atmos::{Atmosphere, SUN_ANGULAR_RADIUS};
 use glam::DVec3;
 

@@ -533,7 +533,7 @@ fn aerial_perspective_agrees_with_a_direct_march() {
         // A ray that meets the ground ends between two slice ends, where the lookup
         // interpolates in depth (the columns go on through the ground): 4 % at these
         // 2 km slices (2.9 % measured); elsewhere it ends on a slice end: 2 %.
-        let segment = atmos::lut::raymarch::ray_segment_in_atmosphere(r, mu, R, TOP);
+        let segment = atmos::twins::ray_segment_in_atmosphere(r, mu, R, TOP);
         let bound = if segment[2] > 0.5 && segment[1] < 20_000.0 {
             0.04
         } else {

@@ -305,7 +305,7 @@ fn seed_000_observations_hold() {
 
 #[test]
 fn the_planet_shadows_exactly_below_the_horizon_dip() {
-    use atmos::single_scattering::light_path_transmittance;
+    use atmos::twins::light_path_transmittance;
     let u = Atmosphere::earth().to_uniforms().unwrap();
     for altitude in [0.3f32, 10.0, 1000.0, 50_000.0] {
         let r = R + f64::from(altitude);

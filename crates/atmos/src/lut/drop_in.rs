@@ -100,6 +100,7 @@ pub fn sky_pass_radiance(
 /// Where a unit direction lands on the frame camera's image: `[u, v, depth]` with `u, v`
 /// in [0, 1] over the image (x right, y down) and `depth` the cosine to the camera's
 /// forward axis (≤ 0: behind the camera). Inverse of [`frame_view_direction`].
+#[doc(hidden)]
 pub fn frame_screen_position(camera: &FrameCamera, direction: [f32; 3]) -> [f32; 3] {
     let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     let aspect = camera.width as f32 / camera.height as f32;

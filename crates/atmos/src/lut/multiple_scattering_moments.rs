@@ -63,6 +63,7 @@ impl MultipleScatteringMoments {
 /// of zenith cosine `mu` and sun cosine `nu` at a point where the sun's zenith cosine
 /// is `mu_s` (v_y ≥ 0: the field is mirror-symmetric in y). With the sun at the zenith
 /// the frame's x is arbitrary and v_x = 0.
+#[doc(hidden)]
 pub fn sun_frame_direction<F: Real>(mu: F, mu_s: F, nu: F) -> [F; 3] {
     let (zero, one) = (F::zero(), F::one());
     let horizontal = ((one - mu) * (one + mu)).max(zero).sqrt();
@@ -81,6 +82,7 @@ pub fn sun_frame_direction<F: Real>(mu: F, mu_s: F, nu: F) -> [F; 3] {
 /// frame): Ψ + 3 g₁ d·v + (15/2) g₂ vᵀA v, ≥ 0. The floor at 0 is the truncation's:
 /// a forward-peaked phase's bands 0–2 dip below zero sideways, and a field far from
 /// smooth (none in an Earth-like sky) could follow them; radiance cannot.
+#[doc(hidden)]
 pub fn scattered_multiple_scattering(
     moments: &MultipleScatteringMoments,
     direction: [f32; 3],
@@ -104,6 +106,7 @@ pub fn scattered_multiple_scattering(
 
 /// One channel of [`scattered_multiple_scattering`]: `moments` = [Ψ, d_x, d_z, A_xx,
 /// A_zz, A_xz] (the f64 instantiation is the parity reference).
+#[doc(hidden)]
 pub fn scattered_multiple_scattering_channel<F: Real>(
     moments: [F; 6],
     direction: [F; 3],
@@ -118,6 +121,7 @@ pub fn scattered_multiple_scattering_channel<F: Real>(
 
 /// Irradiance over π that a horizontal surface receives from the upper hemisphere of
 /// the field: Ψ + 2 d_z + (15/8) A_zz (bands ≤ 2 of the clamped cosine), ≥ 0.
+#[doc(hidden)]
 pub fn multiple_scattering_ground_irradiance(moments: &MultipleScatteringMoments) -> [f32; 3] {
     std::array::from_fn(|c| {
         multiple_scattering_ground_irradiance_channel(
@@ -129,6 +133,7 @@ pub fn multiple_scattering_ground_irradiance(moments: &MultipleScatteringMoments
 }
 
 /// One channel of [`multiple_scattering_ground_irradiance`].
+#[doc(hidden)]
 pub fn multiple_scattering_ground_irradiance_channel<F: Real>(
     mean: F,
     first_moment_z: F,
@@ -145,6 +150,7 @@ pub fn multiple_scattering_ground_irradiance_channel<F: Real>(
 /// where rays graze the ground and cross the most air, and across the step between
 /// sky and ground. Uniform strata in μ (Hillaire's) under-weight the bright grazing
 /// rays: at 8 × 8 directions they read orders ≥ 2 about 7 % low.
+#[doc(hidden)]
 pub fn direction_zenith_sample<F: Real>(r: F, planet_radius: F, i: u32, k: u32) -> [F; 2] {
     let (zero, one, two, half) = (F::zero(), F::one(), F::of(2.0), F::of(0.5));
     let ratio = (planet_radius / r).min(one);

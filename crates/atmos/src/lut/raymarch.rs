@@ -62,6 +62,7 @@ pub fn medium_at_altitude(atmosphere: &AtmosphereParameters, altitude: f32) -> M
 
 /// Distance from the planet centre of the point `t` metres along the ray (generic:
 /// the f64 instantiation is the reference).
+#[doc(hidden)]
 pub fn radius_along_ray<F: Real>(r: F, mu: F, t: F) -> F {
     (r * r + t * (F::of(2.0) * r * mu + t))
         .max(F::zero())
@@ -83,6 +84,7 @@ pub fn sun_transmittance(bindings: &LutBindings<'_>, r: f32, mu_s: f32) -> [f32;
 
 /// ∫₀^dt e^{−σ s} ds = (1 − e^{−σ dt})/σ, and dt where σ = 0: the weight of a
 /// constant source over one step (Hillaire 2020 §5.6.3's energy-conserving step).
+#[doc(hidden)]
 pub fn scattering_step_fraction<F: Real>(extinction: F, dt: F) -> F {
     if extinction > F::zero() {
         F::one_minus_exp_neg(extinction * dt) / extinction
@@ -96,6 +98,7 @@ pub fn scattering_step_fraction<F: Real>(extinction: F, dt: F) -> F {
 /// ray misses the atmosphere. `r` is clamped to ≥ planet_radius (a viewer below the
 /// ground is treated as on it).
 /// Generic: the f64 instantiation is the reference.
+#[doc(hidden)]
 pub fn ray_segment_in_atmosphere<F: Real>(r: F, mu: F, planet_radius: F, top_radius: F) -> [F; 3] {
     let zero = F::zero();
     let r = r.max(planet_radius);
@@ -126,6 +129,7 @@ pub struct ScatteringSegment<F = f32> {
 /// The point `t` metres along the ray (`r`, `mu`) whose sun zenith cosine is `mu_s` and
 /// view–sun cosine `nu`: `[r_t, mu_t, mu_s_t]` there (generic: the f64 instantiation is
 /// the reference).
+#[doc(hidden)]
 pub fn point_along_ray<F: Real>(r: F, mu: F, mu_s: F, nu: F, t: F) -> [F; 3] {
     let one = F::one();
     let r_t = radius_along_ray(r, mu, t);
@@ -141,6 +145,7 @@ pub fn point_along_ray<F: Real>(r: F, mu: F, mu_s: F, nu: F, t: F) -> [F; 3] {
 /// seen through the march's transmittance so far, is added to its radiance; the
 /// transmittance is multiplied by the step's (generic: the f64 instantiation is the
 /// reference).
+#[doc(hidden)]
 pub fn integrate_scattering_step<F: Real>(
     march: ScatteringSegment<F>,
     source: [F; 3],

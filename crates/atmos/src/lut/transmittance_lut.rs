@@ -18,6 +18,7 @@ use super::{Lut2d, LutSettingsUniform, fill_parallel};
 /// the 1.2 km Mie layer by 19 % (sinh(dt/2H)/(dt/2H) with dt = 2.5 km).
 /// Generic: the f64 instantiation is the reference (its 1 − e^{−Δ} the independent
 /// `expm1` form).
+#[doc(hidden)]
 pub fn exponential_step_integral<F: Real>(x0: F, x1: F, dt: F) -> F {
     let delta = x1 - x0;
     let start = (-x0).exp();

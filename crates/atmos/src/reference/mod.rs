@@ -30,8 +30,10 @@ pub fn one_minus_exp_neg(x: f64) -> f64 {
     <f64 as crate::real::Real>::one_minus_exp_neg(x)
 }
 
+#[doc(inline)]
 pub use crate::atmosphere::{exponential_density, extinction_at_altitude, tent_density};
 
+#[doc(inline)]
 pub use crate::single_scattering::{
     density_profile, extinction_from_densities, light_path_transmittance, lowest_point_distance,
     mean_transmittance_over_segment, optical_lengths, ray_sample_distance, single_scattering,

@@ -74,7 +74,7 @@ pub fn cases() -> Vec<Case> {
                 }
                 grid
             },
-            cpu: |x| vec![atmos::atmosphere::exponential_density(x[0], x[1])],
+            cpu: |x| vec![atmos::twins::exponential_density(x[0], x[1])],
             reference: |x| vec![f64ref::exponential_density(x[0], x[1])],
             audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
@@ -97,7 +97,7 @@ pub fn cases() -> Vec<Case> {
                     .map(|h| vec![h, 25_000.0, 15_000.0])
                     .collect()
             },
-            cpu: |x| vec![atmos::atmosphere::tent_density(x[0], x[1], x[2])],
+            cpu: |x| vec![atmos::twins::tent_density(x[0], x[1], x[2])],
             reference: |x| vec![f64ref::tent_density(x[0], x[1], x[2])],
             audit: Audit::INDEPENDENT,
             tolerance: Tolerance {

@@ -2,7 +2,7 @@
 //! and the f64 reference are one generic function instantiated twice.
 
 use super::*;
-use atmos::dome::{dome_horizon_mu, dome_row_coordinate, dome_row_mu};
+use atmos::twins::{dome_horizon_mu, dome_row_coordinate, dome_row_mu};
 
 /// Viewer altitudes (m): the ground, a millimetre, a metre … geostationary orbit,
 /// both sides of the atmosphere's top.

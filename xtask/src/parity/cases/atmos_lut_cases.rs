@@ -615,13 +615,8 @@ pub fn cases() -> Vec<Case> {
                    y0 = s.x; y1 = s.y; y2 = s.z;",
             grid: segment_grid,
             cpu: |x| {
-                atmos::lut::raymarch::ray_segment_in_atmosphere(
-                    x[0],
-                    x[1],
-                    R_GROUND as f32,
-                    R_TOP as f32,
-                )
-                .to_vec()
+                atmos::twins::ray_segment_in_atmosphere(x[0], x[1], R_GROUND as f32, R_TOP as f32)
+                    .to_vec()
             },
             reference: |x| lut64::ray_segment_in_atmosphere(x[0], x[1], R_GROUND, R_TOP).to_vec(),
             audit: Audit::INDEPENDENT,
@@ -641,7 +636,7 @@ pub fn cases() -> Vec<Case> {
             arity: (3, 1),
             wgsl: "y0 = radius_along_ray(x0, x1, x2);",
             grid: radius_grid,
-            cpu: |x| vec![atmos::lut::raymarch::radius_along_ray(x[0], x[1], x[2])],
+            cpu: |x| vec![atmos::twins::radius_along_ray(x[0], x[1], x[2])],
             reference: |x| vec![lut64::radius_along_ray(x[0], x[1], x[2])],
             audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
@@ -659,7 +654,7 @@ pub fn cases() -> Vec<Case> {
             arity: (5, 3),
             wgsl: "let p = point_along_ray(x0, x1, x2, x3, x4); y0 = p.x; y1 = p.y; y2 = p.z;",
             grid: point_along_ray_grid,
-            cpu: |x| atmos::lut::raymarch::point_along_ray(x[0], x[1], x[2], x[3], x[4]).to_vec(),
+            cpu: |x| atmos::twins::point_along_ray(x[0], x[1], x[2], x[3], x[4]).to_vec(),
             reference: |x| lut64::point_along_ray(x[0], x[1], x[2], x[3], x[4]).to_vec(),
             audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
@@ -686,7 +681,7 @@ pub fn cases() -> Vec<Case> {
                     radiance: [x[0], x[1], x[2]],
                     transmittance: [x[3], x[4], x[5]],
                 };
-                let m = atmos::lut::raymarch::integrate_scattering_step(
+                let m = atmos::twins::integrate_scattering_step(
                     march,
                     [x[6], x[7], x[8]],
                     [x[9], x[10], x[11]],
@@ -717,11 +712,7 @@ pub fn cases() -> Vec<Case> {
             arity: (3, 1),
             wgsl: "y0 = exponential_step_integral(x0, x1, x2);",
             grid: step_integral_grid,
-            cpu: |x| {
-                vec![atmos::lut::transmittance_lut::exponential_step_integral(
-                    x[0], x[1], x[2],
-                )]
-            },
+            cpu: |x| vec![atmos::twins::exponential_step_integral(x[0], x[1], x[2])],
             reference: |x| vec![lut64::exponential_step_integral(x[0], x[1], x[2])],
             audit: Audit::INDEPENDENT,
             tolerance: Tolerance {

@@ -203,7 +203,7 @@ pub fn cases() -> Vec<Case> {
             arity: (3, 3),
             wgsl: "let v = sun_frame_direction(x0, x1, x2); y0 = v.x; y1 = v.y; y2 = v.z;",
             grid: sun_frame_grid,
-            cpu: |x| moments32::sun_frame_direction(x[0], x[1], x[2]).to_vec(),
+            cpu: |x| atmos::twins::sun_frame_direction(x[0], x[1], x[2]).to_vec(),
             reference: |x| lut64::sun_frame_direction(x[0], x[1], x[2]).to_vec(),
             audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
@@ -230,8 +230,11 @@ pub fn cases() -> Vec<Case> {
                     |layer| [x[layer]; 3],
                 ));
                 vec![
-                    moments32::scattered_multiple_scattering(&m, [x[6], x[7], x[8]], [x[9], x[10]])
-                        [0],
+                    atmos::twins::scattered_multiple_scattering(
+                        &m,
+                        [x[6], x[7], x[8]],
+                        [x[9], x[10]],
+                    )[0],
                 ]
             },
             reference: |x| {
@@ -267,7 +270,7 @@ pub fn cases() -> Vec<Case> {
                     anisotropy_zz: [x[2]; 3],
                     ..Default::default()
                 };
-                vec![moments32::multiple_scattering_ground_irradiance(&m)[0]]
+                vec![atmos::twins::multiple_scattering_ground_irradiance(&m)[0]]
             },
             reference: |x| {
                 vec![lut64::multiple_scattering_ground_irradiance(
@@ -293,7 +296,7 @@ pub fn cases() -> Vec<Case> {
             wgsl: "let s = direction_zenith_sample(x0, x1, u32(x2), u32(x3)); y0 = s.x; y1 = s.y;",
             grid: zenith_sample_grid,
             cpu: |x| {
-                moments32::direction_zenith_sample(x[0], x[1], x[2] as u32, x[3] as u32).to_vec()
+                atmos::twins::direction_zenith_sample(x[0], x[1], x[2] as u32, x[3] as u32).to_vec()
             },
             reference: |x| {
                 lut64::direction_zenith_sample(x[0], x[1], x[2] as u32, x[3] as u32).to_vec()

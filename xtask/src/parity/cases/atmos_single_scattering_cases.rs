@@ -358,11 +358,7 @@ pub fn cases() -> Vec<Case> {
                 }
                 grid
             },
-            cpu: |x| {
-                vec![atmos::single_scattering::ray_sample_distance(
-                    x[0], x[1], x[2],
-                )]
-            },
+            cpu: |x| vec![atmos::twins::ray_sample_distance(x[0], x[1], x[2])],
             reference: |x| vec![f64ref::ray_sample_distance(x[0], x[1], x[2])],
             audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
@@ -389,11 +385,7 @@ pub fn cases() -> Vec<Case> {
                 }
                 grid
             },
-            cpu: |x| {
-                vec![atmos::single_scattering::lowest_point_distance(
-                    x[0], x[1], x[2],
-                )]
-            },
+            cpu: |x| vec![atmos::twins::lowest_point_distance(x[0], x[1], x[2])],
             reference: |x| vec![f64ref::lowest_point_distance(x[0], x[1], x[2])],
             audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
@@ -414,7 +406,7 @@ pub fn cases() -> Vec<Case> {
                 "let d = density_profile(earth, x0); y0 = d.x; y1 = d.y; y2 = d.z;"
             ),
             grid: || profile_altitudes().into_iter().map(|h| vec![h]).collect(),
-            cpu: |x| atmos::single_scattering::density_profile(&earth32(), x[0]).to_vec(),
+            cpu: |x| atmos::twins::density_profile(&earth32(), x[0]).to_vec(),
             reference: |x| f64ref::density_profile(&earth_f32_as_f64(), x[0]).to_vec(),
             audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
@@ -457,8 +449,7 @@ pub fn cases() -> Vec<Case> {
                 grid
             },
             cpu: |x| {
-                atmos::single_scattering::extinction_from_densities(&earth32(), [x[0], x[1], x[2]])
-                    .to_vec()
+                atmos::twins::extinction_from_densities(&earth32(), [x[0], x[1], x[2]]).to_vec()
             },
             reference: |x| {
                 f64ref::extinction_from_densities(&earth_f32_as_f64(), [x[0], x[1], x[2]]).to_vec()
@@ -495,8 +486,7 @@ pub fn cases() -> Vec<Case> {
                     .collect()
             },
             cpu: |x| {
-                atmos::single_scattering::optical_lengths(&earth32(), x[0], x[1], x[2], x[3] as u32)
-                    .to_vec()
+                atmos::twins::optical_lengths(&earth32(), x[0], x[1], x[2], x[3] as u32).to_vec()
             },
             reference: |x| {
                 f64ref::optical_lengths(&earth_f32_as_f64(), x[0], x[1], x[2], x[3] as u32).to_vec()
@@ -522,13 +512,7 @@ pub fn cases() -> Vec<Case> {
             ),
             grid: light_path_transmittance_grid,
             cpu: |x| {
-                atmos::single_scattering::light_path_transmittance(
-                    &earth32(),
-                    x[0],
-                    x[1],
-                    x[2] as u32,
-                )
-                .to_vec()
+                atmos::twins::light_path_transmittance(&earth32(), x[0], x[1], x[2] as u32).to_vec()
             },
             reference: |x| {
                 f64ref::light_path_transmittance(&earth_f32_as_f64(), x[0], x[1], x[2] as u32)
@@ -559,10 +543,7 @@ pub fn cases() -> Vec<Case> {
                     .map(|x| vec![x, 0.5 * x, 2.0 * x])
                     .collect()
             },
-            cpu: |x| {
-                atmos::single_scattering::mean_transmittance_over_segment([x[0], x[1], x[2]])
-                    .to_vec()
-            },
+            cpu: |x| atmos::twins::mean_transmittance_over_segment([x[0], x[1], x[2]]).to_vec(),
             reference: |x| f64ref::mean_transmittance_over_segment([x[0], x[1], x[2]]).to_vec(),
             audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
@@ -596,7 +577,7 @@ pub fn cases() -> Vec<Case> {
             ),
             grid: || single_scattering_grid(100_000.0, 41),
             cpu: |x| {
-                let s = atmos::single_scattering::single_scattering_inside(
+                let s = atmos::twins::single_scattering_inside(
                     &earth32(),
                     x[0],
                     x[1],
