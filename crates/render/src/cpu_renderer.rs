@@ -148,8 +148,13 @@ pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, Rend
         Some(sky) => Some(PrecomputedFrame {
             luts: sky.static_luts(),
             frame: atmos::lut::FrameLuts::bake(sky.static_luts(), camera),
-            sky: atmos::lut::drop_in::SkyPassParameters::new(&scene.atmosphere, true, 1.0, 0.0)
-                .map_err(atmos_error)?,
+            sky: atmos::lut::drop_in::SkyPassParameters::new(
+                &scene.atmosphere,
+                scene.sky_objects.is_none(),
+                1.0,
+                0.0,
+            )
+            .map_err(atmos_error)?,
         }),
         None => None,
     };
@@ -173,6 +178,19 @@ pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, Rend
             }
             Ok::<(), RenderError>(())
         })?;
+    if let Some(frame) = &scene.sky_objects {
+        // The twin of the GPU's sky-objects pass: added where the sky shows (the GPU
+        // pass's depth test hides them behind terrain).
+        let mut objects = vec![[0.0f32; 3]; width * height];
+        celestial::objects::render_sky_objects_cpu(frame, &mut objects)?;
+        for (pixel, added) in out.iter_mut().zip(&objects) {
+            if pixel.terrain_distance.is_none() {
+                for (value, a) in pixel.radiance.iter_mut().zip(added) {
+                    *value += a;
+                }
+            }
+        }
+    }
     Ok(out)
 }
 
@@ -516,7 +534,7 @@ mod tests {
     fn the_sun_table_matches_a_query_per_point() {
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/default.toml");
         let mut scene = crate::scene::Scene::open(path).unwrap();
-        scene.file.sun.elevation_deg = 4.0; // low sun: transmittance changes fastest
+        scene.file.sun.as_mut().unwrap().elevation_deg = 4.0; // low sun: transmittance changes fastest
         let prepared = scene.prepare().unwrap();
         let terrain = prepared.terrain.as_ref().unwrap();
         let light = terrain_light(&prepared, terrain).unwrap();

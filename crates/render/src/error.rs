@@ -1,7 +1,7 @@
 //! Errors of the `render` crate.
 
 /// What went wrong, naming the field and the value.
-#[derive(Debug, thiserror::Error, PartialEq)]
+#[derive(Debug, thiserror::Error)]
 pub enum RenderError {
     /// A scene parameter is outside its valid range (or not finite).
     #[error("invalid scene: `{field}` = {value}: {reason}")]
@@ -21,6 +21,9 @@ pub enum RenderError {
     #[error("atmos: {0}")]
     Atmosphere(#[from] atmos::AtmosError),
     /// WGSL composition failed (a bug in skyscape's shaders).
+    /// `celestial` failed to draw the sky objects.
+    #[error("celestial: {0}")]
+    Celestial(#[from] celestial::CelestialError),
     #[error("WGSL composition: {0}")]
     Shader(#[from] skyscape_wgsl::ComposeError),
 }

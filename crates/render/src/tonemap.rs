@@ -208,9 +208,9 @@ mod tests {
     fn agreement_counts_pixels_with_every_channel_close() {
         let a = [pack_rgba8([10.0, 20.0, 30.0]), pack_rgba8([0.0, 0.0, 0.0])];
         let b = [pack_rgba8([12.0, 18.0, 30.0]), pack_rgba8([0.0, 3.0, 0.0])];
-        assert_eq!(fraction_within_lsb(&a, &b, 2), Ok(0.5));
-        assert_eq!(fraction_within_lsb(&a, &b, 3), Ok(1.0));
-        assert_eq!(fraction_within_lsb(&a, &a, 0), Ok(1.0));
+        assert_eq!(fraction_within_lsb(&a, &b, 2).unwrap(), 0.5);
+        assert_eq!(fraction_within_lsb(&a, &b, 3).unwrap(), 1.0);
+        assert_eq!(fraction_within_lsb(&a, &a, 0).unwrap(), 1.0);
         assert!(fraction_within_lsb(&a, &b[..1], 0).is_err());
     }
 

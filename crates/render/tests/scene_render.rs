@@ -359,3 +359,86 @@ fn a_png16_heightfield_loads_with_its_cell_size_and_height_scale() {
     render_cpu(&prepared).unwrap();
     let _ = std::fs::remove_dir_all(&folder);
 }
+
+const NIGHT_SCENE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/night.toml");
+
+#[test]
+fn a_night_scene_is_dark_with_the_moon_and_stars_visible() {
+    let mut scene = Scene::open(NIGHT_SCENE).unwrap();
+    scene.file.output.width = 160;
+    scene.file.output.height = 90;
+    let prepared = scene.prepare().unwrap();
+    assert!(
+        prepared.sun_elevation_deg() < -18.0,
+        "{}",
+        prepared.sun_elevation_deg()
+    );
+    let objects = prepared
+        .sky_objects
+        .as_ref()
+        .expect("[time] places the sky objects");
+    assert!(
+        objects.points.len() > 100,
+        "{} point sources",
+        objects.points.len()
+    );
+    let radiance = render_radiance(&prepared).unwrap();
+    let mut values: Vec<f64> = radiance.iter().map(|p| luminance(p.radiance)).collect();
+    values.sort_by(f64::total_cmp);
+    let median = values[values.len() / 2];
+    let brightest = values[values.len() - 1];
+    // The sky and the ridges are dark (the sun is 60° down); the moon and the stars
+    // stand out by orders of magnitude.
+    let day = default_scene(16, 9).prepare().unwrap();
+    let day_median = {
+        let mut v: Vec<f64> = render_radiance(&day)
+            .unwrap()
+            .iter()
+            .map(|p| luminance(p.radiance))
+            .collect();
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    assert!(
+        median < 1e-6 * day_median,
+        "night median {median:e}, day {day_median:e}"
+    );
+    let stars = values
+        .iter()
+        .filter(|&&v| v > 1e3 * median.max(1e-12))
+        .count();
+    assert!(stars >= 5, "{stars} pixels far brighter than the night sky");
+    assert!(
+        brightest > 1e4 * median.max(1e-12),
+        "the moon: {brightest:e} vs {median:e}"
+    );
+    // Terrain hides the objects behind it.
+    assert!(
+        radiance
+            .iter()
+            .filter(|p| p.terrain_distance.is_some())
+            .all(|p| luminance(p.radiance) < 10.0 * median.max(1e-12) + 1e-9),
+        "a star drawn over terrain"
+    );
+}
+
+#[test]
+fn time_and_place_errors_name_the_key() {
+    let timed = VALID.replace(
+        "[sun]\nelevation_deg = 30.0\nazimuth_deg = 180.0\n",
+        "[time]\nutc = \"2024-12-15T21:00:00Z\"\nlatitude_deg = 46.5\nlongitude_deg = 8.0\n",
+    );
+    let prepared = Scene::parse(&timed, ".").unwrap().prepare().unwrap();
+    assert!(prepared.sky_objects.is_some());
+    let both = format!("{VALID}{}", &timed[timed.find("[time]").unwrap()..]);
+    let e = parse_error(&both);
+    assert_eq!(e.field(), Some("time.utc"), "{e}");
+    let e = parse_error(&timed.replace("2024-12-15T21:00:00Z", "2024-13-15T21:00:00Z"));
+    assert_eq!(e.field(), Some("time.utc"), "{e}");
+    assert!(e.to_string().contains("2024-13-15"), "{e}");
+    let e = parse_error(&timed.replace("latitude_deg = 46.5", "latitude_deg = 96.5"));
+    assert_eq!(e.field(), Some("time.latitude_deg"), "{e}");
+    assert!(e.to_string().contains("96.5"), "{e}");
+    let e = parse_error(&format!("{VALID}[sky_objects]\nenabled = true\n"));
+    assert_eq!(e.field(), Some("sky_objects.enabled"), "{e}");
+}

@@ -303,11 +303,28 @@ fn apply_overrides(scene: &mut Scene, args: &RenderArgs) -> Result<(), Failure> 
     if let Some(exposure) = args.exposure {
         file.output.exposure = exposure;
     }
-    if let Some(elevation) = args.sun_elevation_deg {
-        file.sun.elevation_deg = elevation;
-    }
-    if let Some(azimuth) = args.sun_azimuth_deg {
-        file.sun.azimuth_deg = azimuth;
+    // An explicit sun replaces the scene's [time] (then no sky objects are placed).
+    let current = file.sun.map(|sun| (sun.elevation_deg, sun.azimuth_deg));
+    let explicit = match (args.sun_elevation_deg, args.sun_azimuth_deg, current) {
+        (None, None, _) => None,
+        (Some(e), Some(a), _) => Some((e, a)),
+        (Some(e), None, Some((_, a))) => Some((e, a)),
+        (None, Some(a), Some((e, _))) => Some((e, a)),
+        (Some(_), None, None) | (None, Some(_), None) => {
+            return Err(Failure::Input(
+                "--sun-elevation-deg/--sun-azimuth-deg: the scene places the sun by [time]; \
+                 give both to replace it with an explicit sun"
+                    .into(),
+            ));
+        }
+    };
+    if let Some((elevation, azimuth)) = explicit {
+        file.sun = Some(render::scene::SunSection {
+            elevation_deg: elevation,
+            azimuth_deg: azimuth,
+        });
+        file.time = None;
+        file.sky_objects = None;
     }
     if let Some(rung) = &args.rung {
         file.atmosphere.rung = render::scene::Rung::from_name(rung).ok_or_else(|| {

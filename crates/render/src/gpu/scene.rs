@@ -120,6 +120,7 @@ pub struct SceneRenderer {
     luts: AtmosphereLuts,
     sky: SkyPass,
     terrain: Option<TerrainPass>,
+    sky_objects: Option<celestial::gpu::SkyObjectsPass>,
     hdr: wgpu::Texture,
     hdr_view: wgpu::TextureView,
     depth_view: wgpu::TextureView,
@@ -160,30 +161,54 @@ fn uniform_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGrou
 
 /// The passes a scene needs on the GPU, and those it skips, with the reason (what
 /// `skyscape explain` prints).
-pub fn planned_passes(scene: &PreparedScene) -> Vec<(&'static str, Result<&'static str, String>)> {
+pub fn planned_passes(scene: &PreparedScene) -> Vec<(&'static str, Result<String, String>)> {
     let mut plan = vec![
         (
             "atmosphere LUT bakes",
             Ok(
-                "transmittance and multiple scattering once; sky view and aerial perspective per frame",
+                "transmittance and multiple scattering once; sky view and aerial perspective per frame"
+                    .into(),
             ),
         ),
         (
             "sky",
-            Ok("atmos' sky pass, drawn first with depth writes off (seed 000)"),
+            Ok("atmos' sky pass, drawn first with depth writes off (seed 000)".into()),
         ),
     ];
     plan.push((
         "terrain",
         if scene.terrain.is_some() {
-            Ok("instanced quadtree tiles, seed 000's shading, aerial perspective per pixel")
+            Ok("instanced quadtree tiles, seed 000's shading, aerial perspective per pixel".into())
         } else {
             Err("the scene has no [terrain]: no terrain pipeline, no horizon maps".into())
         },
     ));
     plan.push((
+        "sky objects",
+        match (&scene.sky_objects, scene.sun_elevation_deg()) {
+            (Some(frame), elevation) => Ok(if elevation < -18.0 {
+                format!(
+                    "celestial's moon, planets and {} point sources (the sun {elevation:.1}° is below −18°: \
+                     astronomical night, no sun disc)",
+                    frame.points.len()
+                )
+            } else {
+                format!(
+                    "celestial's sun disc and aureole, moon, planets and {} point sources above \
+                     the eye's threshold against the sky, depth-tested behind terrain",
+                    frame.points.len()
+                )
+            }),
+            (None, _) => Err(
+                "no [time] in the scene (or [sky_objects] enabled = false): no sky-objects \
+                 pipeline; the sky pass draws the sun's disc"
+                    .into(),
+            ),
+        },
+    ));
+    plan.push((
         "display",
-        Ok("exposure, 1 − exp(−x), sRGB, dither to RGBA8"),
+        Ok("exposure, 1 − exp(−x), sRGB, dither to RGBA8".into()),
     ));
     plan
 }
@@ -328,10 +353,25 @@ impl SceneRenderer {
                 },
             ],
         });
+        // Only a scene with [time] and sky objects on builds the pass.
+        let sky_objects = match &scene.sky_objects {
+            Some(_) => {
+                let mut objects = celestial::gpu::SkyObjectsSettings::new(HDR);
+                objects.depth = Some(celestial::gpu::DepthTest {
+                    format: DEPTH,
+                    compare: wgpu::CompareFunction::GreaterEqual,
+                });
+                Some(celestial::gpu::SkyObjectsPass::new(device, &objects)?)
+            }
+            None => None,
+        };
         let times = if settings.timestamps {
             let mut labels = vec!["atmosphere LUT bakes", "sky"];
             if terrain.is_some() {
                 labels.push("terrain");
+            }
+            if scene.sky_objects.is_some() {
+                labels.push("sky objects");
             }
             labels.push("display");
             PassTimes::new(device, queue, labels)
@@ -346,6 +386,7 @@ impl SceneRenderer {
             luts,
             sky,
             terrain,
+            sky_objects,
             hdr,
             hdr_view,
             depth_view,
@@ -546,10 +587,21 @@ impl SceneRenderer {
                 reason: "differs from the size the renderer was built for",
             });
         }
+        match (&mut self.sky_objects, &scene.sky_objects) {
+            (Some(pass), Some(frame)) => pass.prepare(queue, frame)?,
+            (None, None) => {}
+            (built, _) => {
+                return Err(RenderError::InvalidParameter {
+                    field: "sky_objects",
+                    value: if built.is_some() { "off" } else { "on" }.into(),
+                    reason: "differs from the scene the renderer was built for",
+                });
+            }
+        }
         self.luts.prepare(queue, camera);
         self.sky.prepare(
             queue,
-            &SkyPassParameters::new(&scene.atmosphere, true, 1.0, 0.0)?,
+            &SkyPassParameters::new(&scene.atmosphere, scene.sky_objects.is_none(), 1.0, 0.0)?,
         );
         queue.write_buffer(
             &self.display_uniform,
@@ -694,6 +746,14 @@ impl SceneRenderer {
             pass.set_vertex_buffer(1, terrain.tiles.slice(..));
             pass.set_index_buffer(terrain.indices.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..terrain.index_count, 0, 0..terrain.tile_count);
+        }
+        if let Some(objects) = &self.sky_objects {
+            objects.encode(
+                encoder,
+                &self.hdr_view,
+                Some(&self.depth_view),
+                times.and_then(|t| t.render_writes("sky objects")),
+            )?;
         }
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {

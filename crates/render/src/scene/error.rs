@@ -104,6 +104,18 @@ pub enum SceneError {
         /// terrain's error.
         source: Box<terrain::TerrainError>,
     },
+    /// `celestial` rejected a value (the instant, the place, the sky objects).
+    #[error("{}`{field}` = {value}: rejected by celestial: {source}", At(*location))]
+    Celestial {
+        /// Where.
+        location: Option<Location>,
+        /// Dotted key.
+        field: String,
+        /// The value as typed.
+        value: String,
+        /// celestial's error.
+        source: Box<celestial::CelestialError>,
+    },
 }
 
 impl SceneError {
@@ -114,7 +126,8 @@ impl SceneError {
             Self::Parse { location, .. }
             | Self::Invalid { location, .. }
             | Self::Atmosphere { location, .. }
-            | Self::Terrain { location, .. } => *location,
+            | Self::Terrain { location, .. }
+            | Self::Celestial { location, .. } => *location,
         }
     }
 
@@ -125,7 +138,8 @@ impl SceneError {
             Self::Parse { field, .. } => field.as_deref(),
             Self::Invalid { field, .. }
             | Self::Atmosphere { field, .. }
-            | Self::Terrain { field, .. } => Some(field),
+            | Self::Terrain { field, .. }
+            | Self::Celestial { field, .. } => Some(field),
         }
     }
 

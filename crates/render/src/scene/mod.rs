@@ -125,6 +125,21 @@ impl Scene {
         }
     }
 
+    /// An error `celestial` raised about the field at `path`.
+    pub(crate) fn celestial_error(
+        &self,
+        path: &[&str],
+        value: String,
+        source: celestial::CelestialError,
+    ) -> SceneError {
+        SceneError::Celestial {
+            location: self.location(path),
+            field: path.join("."),
+            value,
+            source: Box::new(source),
+        }
+    }
+
     /// An error `terrain` raised about the field at `path`.
     pub(crate) fn terrain_error(
         &self,
@@ -147,8 +162,14 @@ impl Scene {
 pub struct SceneFile {
     /// The viewer.
     pub camera: CameraSection,
-    /// The sun's direction.
-    pub sun: SunSection,
+    /// The sun's direction, given explicitly; exactly one of this and `[time]`.
+    pub sun: Option<SunSection>,
+    /// A date, time and place: the sun (and, with `[sky_objects]`, the moon, planets
+    /// and stars) placed by `celestial`'s ephemeris; exactly one of this and `[sun]`.
+    pub time: Option<TimeSection>,
+    /// The sun's disc, the moon, planets and stars drawn over the sky (`celestial`).
+    /// Needs `[time]`; on by default when `[time]` is given.
+    pub sky_objects: Option<SkyObjectsSection>,
     /// Which model of the atmosphere, and its parameters.
     #[serde(default)]
     pub atmosphere: AtmosphereSection,
@@ -175,14 +196,22 @@ pub struct AnimationSection {
     /// The sun's azimuth change per frame, degrees.
     #[serde(default)]
     pub sun_azimuth_deg_per_frame: f64,
+    /// Seconds of `[time]` per frame (a time-lapse: sun, moon and stars move).
+    #[serde(default)]
+    pub seconds_per_frame: f64,
 }
 
 impl AnimationSection {
     /// The scene's values at `frame` (its sun moved `frame` steps).
     pub fn apply(&self, file: &mut SceneFile, frame: u32) {
         let k = f64::from(frame);
-        file.sun.elevation_deg += k * self.sun_elevation_deg_per_frame;
-        file.sun.azimuth_deg += k * self.sun_azimuth_deg_per_frame;
+        if let Some(sun) = &mut file.sun {
+            sun.elevation_deg += k * self.sun_elevation_deg_per_frame;
+            sun.azimuth_deg += k * self.sun_azimuth_deg_per_frame;
+        }
+        if let Some(time) = &mut file.time {
+            time.offset_s += k * self.seconds_per_frame;
+        }
     }
 }
 
@@ -225,6 +254,38 @@ pub struct SunSection {
     pub elevation_deg: f64,
     /// Azimuth clockwise from north (east 90, south 180, west 270), degrees.
     pub azimuth_deg: f64,
+}
+
+/// `[time]`: when and where, for `celestial`'s ephemeris. The viewer's altitude is the
+/// camera's height.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TimeSection {
+    /// The instant, ISO 8601 UTC (`2024-08-20T02:30:00Z`).
+    pub utc: String,
+    /// Geodetic latitude, degrees north (−90 to 90).
+    pub latitude_deg: f64,
+    /// Longitude, degrees east.
+    pub longitude_deg: f64,
+    /// Seconds added to `utc` (an animation's frames move it; 0 in a file).
+    #[serde(default)]
+    pub offset_s: f64,
+}
+
+/// `[sky_objects]`: what `celestial` draws over the sky.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SkyObjectsSection {
+    /// Draw the sun's limb-darkened disc, the moon, planets and stars (default true).
+    #[serde(default = "default_true")]
+    pub enabled: bool,
+    /// The faintest star drawn, visual magnitude (default: the eye's limit against the
+    /// sky behind each star).
+    pub star_limit_magnitude: Option<f64>,
+}
+
+fn default_true() -> bool {
+    true
 }
 
 /// Which rung of the `atmos` ladder renders the atmosphere (names as `skyscape --rung`).

@@ -92,6 +92,17 @@ pub struct PreparedScene {
     /// draws with the twins of the GPU's passes (`atmos::lut::drop_in`), so the two
     /// images agree pixel for pixel.
     pub precomputed: Option<std::sync::Arc<atmos::lut::PrecomputedSky>>,
+    /// The sun's disc, moon, planets and stars (`celestial`), when `[time]` places them
+    /// and `[sky_objects]` does not turn them off: drawn over the sky where no terrain
+    /// is in front (the sky pass then draws no disc of its own).
+    pub sky_objects: Option<celestial::objects::SkyObjectsFrame>,
+}
+
+impl PreparedScene {
+    /// The sun's elevation above the horizon plane, degrees.
+    pub fn sun_elevation_deg(&self) -> f64 {
+        self.sun.y.clamp(-1.0, 1.0).asin().to_degrees()
+    }
 }
 
 impl std::fmt::Debug for PreparedScene {
@@ -129,25 +140,7 @@ impl Scene {
         let atmosphere = self.atmosphere()?;
         let file = &self.file;
 
-        let sun_section = file.sun;
-        if sun_section.elevation_deg.is_nan() || sun_section.elevation_deg.abs() > 90.0 {
-            return Err(self.invalid(
-                &["sun", "elevation_deg"],
-                deg(sun_section.elevation_deg),
-                "must be in [−90°, 90°]".into(),
-            ));
-        }
-        if !sun_section.azimuth_deg.is_finite() {
-            return Err(self.invalid(
-                &["sun", "azimuth_deg"],
-                deg(sun_section.azimuth_deg),
-                "must be finite (degrees clockwise from north)".into(),
-            ));
-        }
-        let sun = world_direction(
-            sun_section.elevation_deg.to_radians(),
-            sun_section.azimuth_deg.to_radians(),
-        );
+        let (sun, mut sky) = self.sun()?;
 
         let out = &file.output;
         for (key, value) in [("width", out.width), ("height", out.height)] {
@@ -167,8 +160,8 @@ impl Scene {
                 format!("width × height must be ≤ {MAX_OUTPUT_PIXELS}"),
             ));
         }
-        let present =
-            PresentParameters::new(&atmosphere, out.exposure, out.dither_seed).map_err(|e| {
+        let mut present = PresentParameters::new(&atmosphere, out.exposure, out.dither_seed)
+            .map_err(|e| {
                 self.invalid(
                     &["output", "exposure"],
                     out.exposure.to_string(),
@@ -246,6 +239,14 @@ impl Scene {
         // The expensive parts last, once every cheap check has passed.
         let (sky_model, segment_model, precomputed) = self.models(&atmosphere)?;
         let terrain = self.terrain()?;
+        let sky_objects = match sky.as_mut() {
+            Some(sky) => Some(self.sky_objects(sky, &*sky_model, forward, cam, out)?),
+            None => None,
+        };
+        if sky_objects.is_some() {
+            // celestial draws the sun's limb-darkened disc: atmos' uniform one is off.
+            present.sun_disc_radiance = [0.0; 3];
+        }
         Ok(PreparedScene {
             atmosphere,
             rung: file.atmosphere.rung,
@@ -259,7 +260,156 @@ impl Scene {
             far: cam.far,
             terrain,
             precomputed,
+            sky_objects,
         })
+    }
+
+    /// The sun's world direction from `[sun]` or from `[time]` (then also the placed
+    /// `celestial` sky, when `[sky_objects]` draws it).
+    fn sun(&self) -> Result<(DVec3, Option<celestial::sky::Sky>), SceneError> {
+        let file = &self.file;
+        match (&file.sun, &file.time) {
+            (Some(section), None) => {
+                if section.elevation_deg.is_nan() || section.elevation_deg.abs() > 90.0 {
+                    return Err(self.invalid(
+                        &["sun", "elevation_deg"],
+                        deg(section.elevation_deg),
+                        "must be in [−90°, 90°]".into(),
+                    ));
+                }
+                if !section.azimuth_deg.is_finite() {
+                    return Err(self.invalid(
+                        &["sun", "azimuth_deg"],
+                        deg(section.azimuth_deg),
+                        "must be finite (degrees clockwise from north)".into(),
+                    ));
+                }
+                if file.sky_objects.is_some_and(|o| o.enabled) {
+                    return Err(self.invalid(
+                        &["sky_objects", "enabled"],
+                        "true".into(),
+                        "the sky objects are placed by [time] (a date, time and place), \
+                         not by an explicit [sun]"
+                            .into(),
+                    ));
+                }
+                let sun = world_direction(
+                    section.elevation_deg.to_radians(),
+                    section.azimuth_deg.to_radians(),
+                );
+                Ok((sun, None))
+            }
+            (None, Some(time)) => {
+                let celestial = |key: &'static str, value: String| {
+                    move |e| self.celestial_error(&["time", key], value, e)
+                };
+                let mut instant = celestial::Instant::parse(&time.utc)
+                    .map_err(celestial("utc", format!("\"{}\"", time.utc)))?;
+                if time.offset_s != 0.0 {
+                    let offset =
+                        chrono::Duration::try_milliseconds((time.offset_s * 1e3).round() as i64)
+                            .filter(|_| time.offset_s.is_finite())
+                            .ok_or_else(|| {
+                                self.invalid(
+                                    &["time", "offset_s"],
+                                    format!("{} s", time.offset_s),
+                                    "must be a finite number of seconds".into(),
+                                )
+                            })?;
+                    instant = celestial::Instant::from_utc(instant.utc() + offset)
+                        .map_err(celestial("offset_s", format!("{} s", time.offset_s)))?;
+                }
+                let observer = celestial::Observer::new(
+                    celestial::Angle::from_degrees(time.latitude_deg),
+                    celestial::Angle::from_degrees(time.longitude_deg),
+                    file.camera.position[1],
+                )
+                .map_err(|e| {
+                    let (key, value) = match e.to_string() {
+                        m if m.contains("latitude") => ("latitude_deg", deg(time.latitude_deg)),
+                        m if m.contains("longitude") => ("longitude_deg", deg(time.longitude_deg)),
+                        _ => ("utc", time.utc.clone()),
+                    };
+                    self.celestial_error(&["time", key], value, e)
+                })?;
+                let drawn = file.sky_objects.is_none_or(|o| o.enabled);
+                let options = celestial::sky::SkyOptions {
+                    star_limit_magnitude: file.sky_objects.and_then(|o| o.star_limit_magnitude),
+                    ..Default::default()
+                };
+                let atmosphere = self.atmosphere()?;
+                let mut sky = celestial::sky::Sky::build(atmosphere, options).map_err(|e| {
+                    let value = file
+                        .sky_objects
+                        .and_then(|o| o.star_limit_magnitude)
+                        .map_or_else(|| "(default)".to_owned(), |m| m.to_string());
+                    self.celestial_error(&["sky_objects", "star_limit_magnitude"], value, e)
+                })?;
+                let placement = sky
+                    .reposition(&observer, &instant)
+                    .map_err(celestial("utc", format!("\"{}\"", time.utc)))?;
+                let sun = world_direction(
+                    placement.sun.airless.elevation.radians(),
+                    placement.sun.airless.azimuth.radians(),
+                );
+                Ok((sun, drawn.then_some(sky)))
+            }
+            (Some(section), Some(time)) => Err(self.invalid(
+                &["time", "utc"],
+                format!("\"{}\"", time.utc),
+                format!(
+                    "give either [time] or [sun] (elevation {}°), not both",
+                    section.elevation_deg
+                ),
+            )),
+            (None, None) => Err(self.invalid(
+                &["sun"],
+                "(missing)".into(),
+                "the scene needs a sun: a [sun] section (elevation_deg, azimuth_deg) or a \
+                 [time] section (utc, latitude_deg, longitude_deg)"
+                    .into(),
+            )),
+        }
+    }
+
+    /// The sky objects of the placed `sky`, painted from `model`, seen by the scene's
+    /// camera (the same pixel rays in celestial's east/north/up frame), depth-tested
+    /// against reverse-z terrain.
+    fn sky_objects(
+        &self,
+        sky: &mut celestial::sky::Sky,
+        model: &(dyn atmos::SkyModel + Send + Sync),
+        forward: DVec3,
+        cam: &super::CameraSection,
+        out: &super::OutputSection,
+    ) -> Result<celestial::objects::SkyObjectsFrame, SceneError> {
+        let at_time = |e| {
+            self.celestial_error(
+                &["time", "utc"],
+                self.file
+                    .time
+                    .as_ref()
+                    .map_or_else(String::new, |t| format!("\"{}\"", t.utc)),
+                e,
+            )
+        };
+        sky.repaint(model).map_err(at_time)?;
+        // World x east, y up, z south → east, north, up: a rotation, so the pixel rays
+        // are the scene camera's.
+        let enu = |v: DVec3| [v.x, -v.z, v.y];
+        let camera = sky
+            .camera(
+                enu(forward),
+                [0.0, 0.0, 1.0],
+                celestial::Angle::from_degrees(cam.vertical_fov_deg),
+                out.width,
+                out.height,
+            )
+            .map_err(at_time)?;
+        let mut frame = sky.sky_objects_frame(&camera).map_err(at_time)?;
+        // Reverse z: the sky is at depth 0, terrain in front of it hides the objects.
+        frame.uniforms.far_depth = 0.0;
+        Ok(frame)
     }
 
     /// Earth's atmosphere with the scene's overrides, validated by atmos.

@@ -26,6 +26,11 @@ pub const SHIPPED: &[ShippedScene] = &[
         source: include_str!("../../scenes/sunset.toml"),
     },
     ShippedScene {
+        name: "night",
+        description: "a full-moon winter night in the Alps: moon, Jupiter and stars over dark ridges",
+        source: include_str!("../../scenes/night.toml"),
+    },
+    ShippedScene {
         name: "orbit",
         description: "the planet's limb from 400 km up, the sun just above it",
         source: include_str!("../../scenes/orbit.toml"),
