@@ -99,14 +99,17 @@ pub mod prelude {
 /// own, and the f64 reference of the aureole.
 ///
 /// The drawing composes them: [`draw::disc_object_radiance`] shades the sun's disc
-/// with [`sun_disc_limb_factor`] and the moon's with [`moon_disc_lommel_seeliger`],
-/// the sprites are splatted with [`point_sprite_weight`], and a cloud layer's
-/// [`clouds::cloud_layer_radiance`] is built from [`cloud_layer_distance`],
-/// [`cloud_density`] (over [`cloud_fbm`] and [`cloud_value_noise`]) and
-/// [`cloud_reflectance`]; a program draws through those, the `Sky` facade or the `gpu`
-/// pass. They stay defined in [`draw`] and [`clouds`], which mirror
-/// `shaders/celestial/draw.wgsl` and `clouds.wgsl` function for function, and are
-/// hidden there.
+/// with [`sun_disc_limb_factor`](twins::sun_disc_limb_factor) and the moon's with
+/// [`moon_disc_lommel_seeliger`](twins::moon_disc_lommel_seeliger), the sprites are
+/// splatted with [`point_sprite_weight`](twins::point_sprite_weight), and a cloud
+/// layer's [`clouds::cloud_layer_radiance`] is built from
+/// [`cloud_layer_distance`](twins::cloud_layer_distance),
+/// [`cloud_density`](twins::cloud_density) (over [`cloud_fbm`](twins::cloud_fbm) and
+/// [`cloud_value_noise`](twins::cloud_value_noise)) and
+/// [`cloud_reflectance`](twins::cloud_reflectance); a program draws through those,
+/// the `Sky` facade or the `gpu` pass. They stay defined in [`draw`] and [`clouds`],
+/// which mirror `shaders/celestial/draw.wgsl` and `clouds.wgsl` function for
+/// function, and are hidden there.
 pub mod twins {
     #[doc(inline)]
     pub use crate::clouds::{

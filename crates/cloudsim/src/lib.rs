@@ -75,9 +75,9 @@ pub mod prelude {
 /// re-derivation).
 ///
 /// The simulation composes them ([`rng::uniform16`] for the naive reference, a
-/// 16-word batch of [`below_lane_thresholds`] for the packed one), so a program does
-/// not need them. They stay defined in [`rng`], which mirrors `shaders/cloudsim/rng.wgsl`
-/// function for function, and are hidden there.
+/// 16-word batch of [`below_lane_thresholds`](twins::below_lane_thresholds) for the
+/// packed one), so a program does not need them. They stay defined in [`rng`], which
+/// mirrors `shaders/cloudsim/rng.wgsl` function for function, and are hidden there.
 pub mod twins {
     #[doc(inline)]
     pub use crate::rng::{below_lane_thresholds, plane_bits};
