@@ -118,11 +118,89 @@ fn closed_form_path_length(r_in: f32, mu: f32, max_distance: f32, params: Closed
     return closed_form_segment_path(r, mu, max(end, 0.0), params.planet_radius, scale_height);
 }
 
-// In-scattered radiance along the view ray (r, mu) with view–sun cosine nu, given the
-// sunlight from closed_form_sunlight.
-fn closed_form_sky_radiance(r: f32, mu: f32, nu: f32, max_distance: f32, sunlight: vec3<f32>, params: ClosedFormSkyParameters) -> vec3<f32> {
+// Views within this of the sun's axis (1 − ν² below it) run parallel to the planet's
+// shadow cylinder. Twin: atmos::closed_form_sky::CLOSED_FORM_SHADOW_PARALLEL.
+const CLOSED_FORM_SHADOW_PARALLEL: f32 = 1e-6;
+
+// The distances (t_in, t_out) (m, 0 ≤ t_in ≤ t_out) over which the view ray (r, mu)
+// with sun zenith cosine mu_s and view–sun cosine nu is in the planet's shadow: the
+// cylinder of radius planet_radius behind the planet (the sun's centre as a point at
+// infinity); t_in == t_out when it never enters it, t_out = F32_MAX_FINITE when it stays
+// in it. In τ = t/r the squared distance from the shadow's axis over r² is
+// a τ² + 2 b τ + c, and the ray is behind the planet where μ_s + τ ν < 0.
+fn closed_form_shadow_interval(r: f32, mu: f32, mu_s: f32, nu: f32, planet_radius: f32) -> vec2<f32> {
+    let far = F32_MAX_FINITE;
+    let k = planet_radius / r;
+    let sin_s = sqrt(max(1.0 - mu_s * mu_s, 0.0));
+    let a = max(1.0 - nu * nu, 0.0);
+    let b = mu - mu_s * nu;
+    let c = (sin_s - k) * (sin_s + k);
+    var lo = 0.0;
+    var hi = 0.0;
+    if a < CLOSED_FORM_SHADOW_PARALLEL {
+        if c < 0.0 {
+            hi = far;
+        }
+    } else {
+        let discriminant = b * b - a * c;
+        if discriminant > 0.0 {
+            // The root without cancellation first, the other from the product c/a.
+            let root = sqrt(discriminant);
+            var q = root - b;
+            if b > 0.0 {
+                q = -(b + root);
+            }
+            let x = q / a;
+            var y = 0.0;
+            if q != 0.0 {
+                y = c / q;
+            }
+            lo = min(x, y);
+            hi = max(x, y);
+        }
+    }
+    // Behind the planet: μ_s + τ ν < 0.
+    var behind_lo = 0.0;
+    var behind_hi = 0.0;
+    if nu > 0.0 {
+        behind_hi = -mu_s / nu;
+    } else if nu < 0.0 {
+        behind_lo = -mu_s / nu;
+        behind_hi = far;
+    } else if mu_s < 0.0 {
+        behind_hi = far;
+    }
+    let start = max(max(lo, behind_lo), 0.0);
+    let end = min(hi, behind_hi);
+    if end <= start {
+        return vec2<f32>(0.0);
+    }
+    var t = vec2<f32>(start * r, end * r);
+    if end >= far / r {
+        t.y = far;
+    }
+    return t;
+}
+
+// In-scattered radiance along the view ray (r, mu) with sun zenith cosine mu_s and
+// view–sun cosine nu, given the sunlight from closed_form_sunlight. Points in the
+// planet's shadow get no sunlight: I(p_in) + e^{−β p_out} I(p_end − p_out) over the
+// equivalent paths to the shadow's ends and the segment's end.
+fn closed_form_sky_radiance(r: f32, mu: f32, mu_s: f32, nu: f32, max_distance: f32, sunlight: vec3<f32>, params: ClosedFormSkyParameters) -> vec3<f32> {
     let path = closed_form_path_length(r, mu, max_distance, params);
-    return sunlight * closed_form_inscatter(params.beta_rayleigh, params.beta_mie, nu, params.mie_g, path);
+    let shadow = closed_form_shadow_interval(max(r, params.planet_radius), mu, mu_s, nu, params.planet_radius);
+    var lit: vec3<f32>;
+    if shadow.y > shadow.x {
+        let path_in = closed_form_path_length(r, mu, min(shadow.x, max_distance), params);
+        let path_out = closed_form_path_length(r, mu, min(shadow.y, max_distance), params);
+        let before = closed_form_inscatter(params.beta_rayleigh, params.beta_mie, nu, params.mie_g, path_in);
+        let after = closed_form_inscatter(params.beta_rayleigh, params.beta_mie, nu, params.mie_g, max(path - path_out, 0.0));
+        let through = closed_form_extinction(params.beta_rayleigh, params.beta_mie, path_out);
+        lit = before + through * after;
+    } else {
+        lit = closed_form_inscatter(params.beta_rayleigh, params.beta_mie, nu, params.mie_g, path);
+    }
+    return sunlight * lit;
 }
 
 // Transmittance of the same segment.

@@ -57,7 +57,7 @@ fn shade(view: vec3<f32>) -> array<vec3<f32>, 2> {
     let nu = dot(view, camera.sun);
     let sunlight = closed_form_sunlight(r, mu_s, params);
     return array<vec3<f32>, 2>(
-        closed_form_sky_radiance(r, mu, nu, camera.max_distance, sunlight, params),
+        closed_form_sky_radiance(r, mu, mu_s, nu, camera.max_distance, sunlight, params),
         closed_form_sky_transmittance(r, mu, camera.max_distance, params),
     );
 }

@@ -14,7 +14,12 @@
 //! sky). In-scatter along the view path is driven by sunlight attenuated by the
 //! transmittance *averaged* over the sun's path to space, `(1 − e^{−τ})/τ`: the closed
 //! form needs one value for the whole path, and most scattering happens above the
-//! viewer where the sun is less dimmed.
+//! viewer where the sun is less dimmed. The parts of the view path inside the planet's
+//! shadow (the cylinder of the planet's radius behind it,
+//! [`closed_form_shadow_interval`]) get no sunlight; the lit parts before and after it
+//! are still in closed form (issue 13: the whole path used to be lit with the sunlight
+//! at the camera, so a camera above the terminator saw the night side lit). A camera
+//! in the shadow has no sunlight at all, as before.
 
 use crate::closed_form::{closed_form_extinction, closed_form_inscatter};
 use crate::geometry::ray_sphere_intersect;
@@ -174,25 +179,111 @@ pub fn closed_form_path_length(
     closed_form_segment_path(r, mu, end.max(0.0), params.planet_radius, scale_height)
 }
 
-/// In-scattered radiance along the view ray `(r, mu)` with view–sun cosine `nu`,
-/// given the sunlight from [`closed_form_sunlight`].
+/// Views within this of the sun's axis (`1 − ν² <` it, ≈ 0.08°) run parallel to the
+/// planet's shadow cylinder: they are inside it along their whole length or nowhere.
+pub const CLOSED_FORM_SHADOW_PARALLEL: f32 = 1e-6;
+
+/// The distances `[t_in, t_out]` (m, `0 ≤ t_in ≤ t_out`) over which the view ray from
+/// radius `r` (zenith cosine `mu`, sun zenith cosine `mu_s`, view–sun cosine `nu`) is
+/// in the planet's shadow: the cylinder of radius `planet_radius` behind the planet
+/// (the sun's centre as a point at infinity, the convention of
+/// [`closed_form_sunlight`]); `t_in == t_out` when the ray never enters it, and
+/// `t_out` is `F::max_value()` for a ray that stays in it. With `p(t) = r·up + t·v`,
+/// the squared distance from the shadow's axis is `r²(a τ² + 2 b τ + c)` in `τ = t/r`
+/// (`a = 1 − ν²`, `b = μ − μ_s ν`, `c = (sin θ_s − R/r)(sin θ_s + R/r)`), and the ray is
+/// behind the planet where `μ_s + τ ν < 0`.
+pub fn closed_form_shadow_interval<F: Real>(
+    r: F,
+    mu: F,
+    mu_s: F,
+    nu: F,
+    planet_radius: F,
+) -> [F; 2] {
+    let (zero, one) = (F::zero(), F::one());
+    let far = F::max_value();
+    let k = planet_radius / r;
+    let sin_s = (one - mu_s * mu_s).max(zero).sqrt();
+    let a = (one - nu * nu).max(zero);
+    let b = mu - mu_s * nu;
+    let c = (sin_s - k) * (sin_s + k);
+    // Inside the cylinder: τ in (lo, hi).
+    let (lo, hi) = if a < F::of(f64::from(CLOSED_FORM_SHADOW_PARALLEL)) {
+        if c < zero { (zero, far) } else { (zero, zero) }
+    } else {
+        let discriminant = b * b - a * c;
+        if discriminant <= zero {
+            (zero, zero)
+        } else {
+            // The root without cancellation first, the other from the product c/a.
+            let root = discriminant.sqrt();
+            let q = if b > zero { -(b + root) } else { root - b };
+            let (x, y) = (q / a, if q != zero { c / q } else { zero });
+            (x.min(y), x.max(y))
+        }
+    };
+    // Behind the planet: μ_s + τ ν < 0.
+    let (behind_lo, behind_hi) = if nu > zero {
+        (zero, -mu_s / nu)
+    } else if nu < zero {
+        (-mu_s / nu, far)
+    } else if mu_s < zero {
+        (zero, far)
+    } else {
+        (zero, zero)
+    };
+    let start = lo.max(behind_lo).max(zero);
+    let end = hi.min(behind_hi);
+    if end <= start {
+        return [zero, zero];
+    }
+    let scale = |tau: F| if tau >= far / r { far } else { tau * r };
+    [scale(start), scale(end)]
+}
+
+/// In-scattered radiance along the view ray `(r, mu)` with sun zenith cosine `mu_s`
+/// and view–sun cosine `nu`, given the sunlight from [`closed_form_sunlight`]. Points
+/// in the planet's shadow ([`closed_form_shadow_interval`]) get no sunlight: with the
+/// equivalent paths `p_in`, `p_out`, `p_end` to the shadow's ends and the segment's,
+/// the lit in-scatter is `I(p_in) + e^{−β p_out} I(p_end − p_out)` (`I` the closed form
+/// over a path, [`closed_form_inscatter`]).
+#[allow(clippy::too_many_arguments)]
 pub fn closed_form_sky_radiance(
     r: f32,
     mu: f32,
+    mu_s: f32,
     nu: f32,
     max_distance: f32,
     sunlight: [f32; 3],
     params: &ClosedFormSkyParameters,
 ) -> [f32; 3] {
+    let inscatter = |path: f32| {
+        closed_form_inscatter(
+            params.beta_rayleigh,
+            params.beta_mie,
+            nu,
+            params.mie_g,
+            path,
+        )
+    };
     let path = closed_form_path_length(r, mu, max_distance, params);
-    let inscatter = closed_form_inscatter(
-        params.beta_rayleigh,
-        params.beta_mie,
+    let shadow = closed_form_shadow_interval(
+        r.max(params.planet_radius),
+        mu,
+        mu_s,
         nu,
-        params.mie_g,
-        path,
+        params.planet_radius,
     );
-    std::array::from_fn(|i| sunlight[i] * inscatter[i])
+    let lit = if shadow[1] > shadow[0] {
+        let path_in = closed_form_path_length(r, mu, shadow[0].min(max_distance), params);
+        let path_out = closed_form_path_length(r, mu, shadow[1].min(max_distance), params);
+        let before = inscatter(path_in);
+        let after = inscatter((path - path_out).max(0.0));
+        let through = closed_form_extinction(params.beta_rayleigh, params.beta_mie, path_out);
+        std::array::from_fn(|i| before[i] + through[i] * after[i])
+    } else {
+        inscatter(path)
+    };
+    std::array::from_fn(|i| sunlight[i] * lit[i])
 }
 
 /// Transmittance of the same segment.
@@ -236,7 +327,8 @@ impl SkyModel for ClosedFormSky {
         let (mu, mu_s, nu) = (query.mu() as f32, query.mu_s() as f32, query.nu() as f32);
         let max_distance = query.max_distance().min(f64::from(f32::MAX)) as f32;
         let sunlight = closed_form_sunlight(r, mu_s, &self.params);
-        let radiance = closed_form_sky_radiance(r, mu, nu, max_distance, sunlight, &self.params);
+        let radiance =
+            closed_form_sky_radiance(r, mu, mu_s, nu, max_distance, sunlight, &self.params);
         let transmittance = closed_form_sky_transmittance(r, mu, max_distance, &self.params);
         SkySample {
             radiance: radiance.map(f64::from),

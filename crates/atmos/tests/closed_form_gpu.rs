@@ -69,6 +69,7 @@ fn per_pixel_matches_the_cpu_twin() {
                 let cpu = closed_form_sky_radiance(
                     r,
                     dot(view, up),
+                    dot(cam.sun, up),
                     dot(view, cam.sun),
                     cam.max_distance,
                     sunlight,
@@ -92,6 +93,71 @@ fn per_pixel_matches_the_cpu_twin() {
             "altitude {altitude}: worst relative difference {worst}"
         );
     }
+}
+
+/// A 1,000 km camera above the terminator (sun on its horizon) looking down at the
+/// night side: the GPU applies the planet's shadow as the CPU twin does, and the frame
+/// is dark (issue 13: it was lit by the sunlight at the camera).
+#[test]
+fn night_side_from_orbit_is_dark_on_the_gpu() {
+    let Some(gpu) = skyscape_harness::gpu_or_skip("atmos::closed_form night side") else {
+        return;
+    };
+    let earth = Atmosphere::earth();
+    let params = ClosedFormSkyParameters::from_atmosphere(&earth).unwrap();
+    let position = DVec3::new(0.0, 0.0, earth.planet_radius + 1.0e6);
+    let (down, sun) = (50f64.to_radians(), DVec3::X);
+    let look = |toward: f64| {
+        FrameCamera::look_at(
+            position,
+            DVec3::new(toward * down.cos(), 0.0, -down.sin()),
+            DVec3::Z,
+            0.3,
+            WIDTH,
+            HEIGHT,
+            sun,
+            None,
+        )
+        .unwrap()
+    };
+    let mean = |pixels: &[[f32; 4]]| {
+        pixels
+            .iter()
+            .map(|p| 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2])
+            .sum::<f32>()
+            / pixels.len() as f32
+    };
+    let (night, _) = render(gpu, EvaluationFrequency::PerPixel, &look(-1.0));
+    let (day, _) = render(gpu, EvaluationFrequency::PerPixel, &look(1.0));
+    let cam = look(-1.0);
+    let r = position.length() as f32;
+    let mut worst = 0.0f32;
+    for y in 0..HEIGHT {
+        for x in 0..WIDTH {
+            let view = frame_view_direction([x, y], &cam);
+            let sunlight = closed_form_sunlight(r, 0.0, &params);
+            let cpu = closed_form_sky_radiance(
+                r,
+                view[2],
+                0.0,
+                view[0],
+                cam.max_distance,
+                sunlight,
+                &params,
+            );
+            let gpu_value = night[(x + WIDTH * y) as usize];
+            for c in 0..3 {
+                worst = worst.max((gpu_value[c] - cpu[c]).abs() / cpu[c].abs().max(1e-3));
+            }
+        }
+    }
+    let (night, day) = (mean(&night), mean(&day));
+    eprintln!("night side {night:.3e}, day side {day:.3e}, GPU vs CPU worst {worst:.2e}");
+    assert!(worst < 2e-3, "GPU vs CPU worst relative difference {worst}");
+    assert!(
+        night < 0.02 * day,
+        "night side {night:e} vs day side {day:e}"
+    );
 }
 
 #[test]

@@ -132,17 +132,135 @@ fn sunlight64(r: f64, mu_s: f64) -> [f64; 3] {
     })
 }
 
-fn radiance64(r: f64, mu: f64, nu: f64, max_distance: f64) -> Vec<f64> {
+/// The shadow interval in f64 by an independent construction: the ray and the shadow's
+/// axis projected on the plane normal to the sun, a 2D ray–circle intersection
+/// (`f64ref::ray_sphere_intersect` of the projected start radius, cosine and the planet
+/// radius), rescaled to the 3D distance and cut to the half-space behind the planet.
+/// The far end `f32::MAX` where the ray stays in the shadow, as the f32 side.
+fn shadow_interval64(r: f64, mu: f64, mu_s: f64, nu: f64) -> [f64; 2] {
+    let far = f64::from(f32::MAX);
+    let sin_s = (1.0 - mu_s * mu_s).max(0.0).sqrt();
+    let projected_start = r * sin_s;
+    let speed2 = (1.0 - nu * nu).max(0.0);
+    let (lo, hi) = if speed2 < f64::from(atmos::closed_form_sky::CLOSED_FORM_SHADOW_PARALLEL) {
+        if projected_start < R_GROUND {
+            (0.0, far)
+        } else {
+            (0.0, 0.0)
+        }
+    } else {
+        let speed = speed2.sqrt();
+        // p⊥·v⊥ = r (μ − μ_s ν); at a start on the axis every direction is radial.
+        let cosine = if projected_start > 0.0 {
+            (r * (mu - mu_s * nu) / (projected_start * speed)).clamp(-1.0, 1.0)
+        } else {
+            1.0
+        };
+        let hit = f64ref::ray_sphere_intersect(projected_start, cosine, R_GROUND);
+        if hit[1] <= hit[0] {
+            (0.0, 0.0)
+        } else {
+            (hit[0] / speed, hit[1] / speed)
+        }
+    };
+    let (behind_lo, behind_hi) = if nu > 0.0 {
+        (0.0, -r * mu_s / nu)
+    } else if nu < 0.0 {
+        (-r * mu_s / nu, far)
+    } else if mu_s < 0.0 {
+        (0.0, far)
+    } else {
+        (0.0, 0.0)
+    };
+    let start = lo.max(behind_lo).max(0.0);
+    let end = hi.min(behind_hi).min(far);
+    if end <= start {
+        [0.0, 0.0]
+    } else {
+        [start, end]
+    }
+}
+
+/// Absolute error bound (m) of each end of the f32 shadow interval: the roundings of
+/// a = 1 − ν², b = μ − μ_s ν, c = (sin θ_s − R/r)(sin θ_s + R/r) and of the
+/// discriminant, through the roots (the square root's error at most √δD), ×4.
+fn shadow_interval_bound(r: f64, mu: f64, mu_s: f64, nu: f64) -> f64 {
+    let u = U;
+    let k = R_GROUND / r;
+    let sin_s = (1.0 - mu_s * mu_s).max(0.0).sqrt();
+    let (a, b, c) = (1.0 - nu * nu, mu - mu_s * nu, (sin_s - k) * (sin_s + k));
+    let (da, db, dc) = (
+        3.0 * u,
+        3.0 * u * (mu.abs() + (mu_s * nu).abs()),
+        4.0 * u * (sin_s + k) * (1.0 + sin_s + k) + 2.0 * u * k,
+    );
+    let d = b * b - a * c;
+    let dd = 2.0 * b.abs() * db + c.abs() * da + a * dc + 3.0 * u * (b * b + (a * c).abs());
+    let d_root = if d > 0.0 {
+        (dd / (2.0 * d.sqrt())).min(dd.sqrt())
+    } else {
+        dd.sqrt()
+    };
+    let root = d.max(0.0).sqrt();
+    let q = b.abs() + root;
+    let mut tau_error = 0.0f64;
+    if a > 0.0 {
+        let x = q / a;
+        tau_error = tau_error.max((db + d_root) / a + x * (da / a + 2.0 * u));
+    }
+    if q > 0.0 {
+        let y = c.abs() / q;
+        tau_error = tau_error.max(dc / q + y * (db + d_root) / q + 2.0 * u * y);
+    }
+    if nu != 0.0 {
+        tau_error = tau_error.max(3.0 * u * (mu_s / nu).abs() + u * (mu_s / (nu * nu)).abs());
+    }
+    let [_, t_out] = shadow_interval64(r, mu, mu_s, nu);
+    let t_scale = if t_out < 1e37 { t_out } else { 0.0 };
+    4.0 * (r * tau_error + 2.0 * u * t_scale) + 1e-3
+}
+
+/// The shadow interval's ends are decidable in f32: the ray is not within the
+/// interval's error of touching the shadow's cylinder, of the terminator plane, or of
+/// the parallel threshold.
+fn shadow_decidable(r: f64, mu: f64, mu_s: f64, nu: f64) -> bool {
+    let k = R_GROUND / r;
+    let sin_s = (1.0 - mu_s * mu_s).max(0.0).sqrt();
+    let (a, b, c) = (1.0 - nu * nu, mu - mu_s * nu, (sin_s - k) * (sin_s + k));
+    let d = b * b - a * c;
+    let scale = b * b + (a * c).abs() + 1e-12;
+    let threshold = f64::from(atmos::closed_form_sky::CLOSED_FORM_SHADOW_PARALLEL);
+    let interval = shadow_interval64(r, mu, mu_s, nu);
+    let bound = shadow_interval_bound(r, mu, mu_s, nu);
+    let length = interval[1] - interval[0];
+    d.abs() > 1e-4 * scale
+        && c.abs() > 1e-5
+        && (a - threshold).abs() > 1e-3 * threshold
+        && (mu_s + nu).abs() > 1e-5
+        && (length == 0.0 || length > 4.0 * bound)
+}
+
+fn radiance64(r: f64, mu: f64, mu_s: f64, nu: f64, max_distance: f64) -> Vec<f64> {
     let p = params();
+    let inscatter = |path: f64| {
+        f64ref::closed_form_inscatter(
+            p.beta_rayleigh.map(f64::from),
+            p.beta_mie.map(f64::from),
+            nu,
+            0.8,
+            path,
+        )
+    };
     let path = path_length64(r, mu, max_distance);
-    f64ref::closed_form_inscatter(
-        p.beta_rayleigh.map(f64::from),
-        p.beta_mie.map(f64::from),
-        nu,
-        0.8,
-        path,
-    )
-    .to_vec()
+    let shadow = shadow_interval64(r.max(R_GROUND), mu, mu_s, nu);
+    if shadow[1] <= shadow[0] {
+        return inscatter(path).to_vec();
+    }
+    let path_in = path_length64(r, mu, shadow[0].min(max_distance));
+    let path_out = path_length64(r, mu, shadow[1].min(max_distance));
+    let (before, after) = (inscatter(path_in), inscatter((path - path_out).max(0.0)));
+    let through = extinction64().map(|beta| (-beta * path_out).exp());
+    (0..3).map(|i| before[i] + through[i] * after[i]).collect()
 }
 
 fn geometry_grid(with_distance: bool, cosine_count: usize) -> Vec<Vec<f64>> {
@@ -189,14 +307,36 @@ fn geometry_grid(with_distance: bool, cosine_count: usize) -> Vec<Vec<f64>> {
     grid
 }
 
+/// Rows (r, mu, mu_s, nu, max_distance): the sun overhead, on the horizon and 12°
+/// below it, and azimuths that send the view towards, across and away from the sun
+/// (through the planet's shadow); rows whose shadow ends are undecidable in f32 left
+/// out.
 fn radiance_grid() -> Vec<Vec<f64>> {
     let mut grid = Vec::new();
-    for row in geometry_grid(true, 241) {
-        for nu in [-1.0, -0.3, 0.2, 0.7, 0.95, 0.999, 1.0] {
-            grid.push(vec![row[0], row[1], nu, row[2]]);
+    for row in geometry_grid(true, 121) {
+        let (r, mu) = (row[0], row[1]);
+        for mu_s in [1.0f64, 0.0, -0.2] {
+            let sines = ((1.0 - mu * mu) * (1.0 - mu_s * mu_s)).max(0.0).sqrt();
+            for cos_azimuth in [-1.0, -0.3, 0.2, 0.7, 0.95, 0.999, 1.0] {
+                let nu = f64::from((mu * mu_s + sines * cos_azimuth).clamp(-1.0, 1.0) as f32);
+                if shadow_decidable(r.max(R_GROUND), mu, mu_s, nu) {
+                    grid.push(vec![r, mu, mu_s, nu, row[2]]);
+                }
+            }
         }
     }
     grid
+}
+
+/// Rows (r, mu, mu_s, nu) for the shadow interval: the radiance grid's geometry.
+fn shadow_grid() -> Vec<Vec<f64>> {
+    let mut rows: Vec<Vec<f64>> = radiance_grid()
+        .into_iter()
+        .filter(|row| row[4] > 1e29)
+        .map(|row| vec![row[0].max(R_GROUND), row[1], row[2], row[3]])
+        .collect();
+    rows.dedup();
+    rows
 }
 
 fn frame_camera_wgsl_and_rust() -> atmos::frame::FrameCamera {
@@ -281,11 +421,47 @@ pub fn cases() -> Vec<Case> {
             },
         },
         Case {
+            name: "atmos::closed_form_shadow_interval",
+            imports: &["atmos::closed_form_sky"],
+            arity: (4, 2),
+            wgsl: "let t = closed_form_shadow_interval(x0, x1, x2, x3, 6360000.0); \
+                   y0 = t.x; y1 = t.y;",
+            grid: shadow_grid,
+            cpu: |x| {
+                atmos::closed_form_sky::closed_form_shadow_interval(
+                    x[0],
+                    x[1],
+                    x[2],
+                    x[3],
+                    R_GROUND as f32,
+                )
+                .to_vec()
+            },
+            reference: |x| shadow_interval64(x[0], x[1], x[2], x[3]).to_vec(),
+            audit: Audit::INDEPENDENT.loose(
+                "a forward bound through the quadratic's roots, written for the worst \
+                 conditioning of the family (near-tangent rays); most rows are far better",
+            ),
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 8.0,
+                bound: Some(|x| {
+                    let b = shadow_interval_bound(x[0], x[1], x[2], x[3]);
+                    vec![b, b]
+                }),
+                why: "the roundings of a = 1 − ν², b = μ − μ_s ν, c = (sin θ_s − R/r)(sin θ_s + \
+                      R/r) and the discriminant through the stable roots (the square root's \
+                      error at most √δD), ×4, scaled by r; the reference is an independent \
+                      2D ray–circle intersection in the plane normal to the sun",
+            },
+        },
+        Case {
             name: "atmos::closed_form_sky_radiance",
             imports: &["atmos::closed_form_sky"],
-            arity: (4, 3),
+            arity: (5, 3),
             wgsl: concat!(
-                "let l = closed_form_sky_radiance(x0, x1, x2, x3, vec3<f32>(1.0), ",
+                "let l = closed_form_sky_radiance(x0, x1, x2, x3, x4, vec3<f32>(1.0), ",
                 params_wgsl!(),
                 "); y0 = l.x; y1 = l.y; y2 = l.z;"
             ),
@@ -296,36 +472,52 @@ pub fn cases() -> Vec<Case> {
                     x[1],
                     x[2],
                     x[3],
+                    x[4],
                     [1.0; 3],
                     &params(),
                 )
                 .to_vec()
             },
-            reference: |x| radiance64(x[0], x[1], x[2], x[3]),
+            reference: |x| radiance64(x[0], x[1], x[2], x[3], x[4]),
             audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
                 rel: 0.0,
                 ulp: 40.0,
                 bound: Some(|x| {
-                    // dL/ds = (βR·P_R + βM·P_HG)·e^{−βs} ≤ the angular coefficient.
+                    // dL/ds = (βR·P_R + βM·P_HG)·e^{−βs} ≤ the angular coefficient, and
+                    // ds/dt = e^{−h/H} ≤ 1 at the shadow's ends.
                     let p = params();
-                    let path_error = path_length_bound(x[0], x[1], x[3]);
-                    let p_r = f64ref::rayleigh_phase(x[2]);
-                    let p_m = f64ref::henyey_greenstein_phase(x[2], 0.8);
-                    let path = path_length64(x[0], x[1], x[3]);
+                    let (r, mu, mu_s, nu, max_distance) = (x[0], x[1], x[2], x[3], x[4]);
+                    let p_r = f64ref::rayleigh_phase(nu);
+                    let p_m = f64ref::henyey_greenstein_phase(nu, 0.8);
+                    let path = path_length64(r, mu, max_distance);
+                    let shadow = shadow_interval64(r.max(R_GROUND), mu, mu_s, nu);
+                    let mut path_error = path_length_bound(r, mu, max_distance);
+                    if shadow[1] > shadow[0] {
+                        let ends = shadow.map(|t| t.min(max_distance));
+                        path_error = 2.0 * path_error
+                            + ends
+                                .iter()
+                                .map(|&t| path_length_bound(r, mu, t))
+                                .sum::<f64>()
+                            + 2.0 * shadow_interval_bound(r.max(R_GROUND), mu, mu_s, nu);
+                    }
                     (0..3)
                         .map(|i| {
                             let angular = f64::from(p.beta_rayleigh[i]) * p_r
                                 + f64::from(p.beta_mie[i]) * p_m;
                             let tau = extinction64()[i] * path;
                             angular * path_error
-                                + angular * one_minus_exp_bound(tau) / extinction64()[i]
+                                + angular * (one_minus_exp_bound(tau) + exp_relative_error(tau))
+                                    / extinction64()[i]
                         })
                         .collect()
                 }),
-                why: "closed_form_inscatter (32 ULP + its exp bound) times the unit sunlight \
-                      (1 rounding), plus the path-length error times dL/ds ≤ βR·P_R + βM·P_HG",
+                why: "closed_form_inscatter (32 ULP + its exp bound) of each lit part, the \
+                      extinction to the shadow's far end (exp's bound), times the unit \
+                      sunlight, plus the path-length errors and the shadow ends' errors \
+                      (shadow_interval_bound) times dL/ds ≤ βR·P_R + βM·P_HG",
             },
         },
         Case {
