@@ -19,6 +19,7 @@
 //! assert!((light - 0.48).abs() < 1e-6);
 //! ```
 
+pub mod cone;
 pub mod jitter;
 pub mod propagate;
 pub mod reference;
@@ -39,6 +40,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {
         name: "cloudlight::jitter",
         source: include_str!("../shaders/jitter.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "cloudlight::cone",
+        source: include_str!("../shaders/cone.wgsl"),
     },
     skyscape_wgsl::Module {
         name: "cloudlight::slice_propagation",

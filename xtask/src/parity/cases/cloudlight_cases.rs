@@ -276,3 +276,282 @@ pub fn cases() -> Vec<Case> {
         },
     ]
 }
+
+/// Unit directions spread over the sphere (a Fibonacci lattice) plus the six axes.
+fn directions(n: u32) -> Vec<[f64; 3]> {
+    let mut v: Vec<[f64; 3]> = (0..n)
+        .map(|k| {
+            let z = 1.0 - 2.0 * (f64::from(k) + 0.5) / f64::from(n);
+            let r = (1.0 - z * z).sqrt();
+            let phi = f64::from(k) * 2.399_963_229_728_653;
+            [r * phi.cos(), r * phi.sin(), z]
+        })
+        .collect();
+    for a in 0..3 {
+        for s in [1.0, -1.0] {
+            let mut d = [0.0; 3];
+            d[a] = s;
+            v.push(d);
+        }
+    }
+    v
+}
+
+const BOX_LO: [f64; 3] = [0.0, 0.0, 1000.0];
+const BOX_HI: [f64; 3] = [1000.0, 800.0, 1600.0];
+
+/// Cone-sampling cases (seed 003): the sample layout, Beer–Lambert, powder, the dual
+/// lobe, the exit distance.
+pub fn cone_cases() -> Vec<Case> {
+    vec![
+        Case {
+            name: "cloudlight::cone_sample",
+            imports: &["cloudlight::cone"],
+            arity: (8, 4),
+            wgsl: "let s = cone_sample(u32(x0), vec3<f32>(x1, x2, x3), x4, x5, x6, x7 > 0.5); \
+                   y0 = s.x; y1 = s.y; y2 = s.z; y3 = s.w;",
+            grid: || {
+                let mut grid = Vec::new();
+                for (k, d) in directions(40).into_iter().enumerate() {
+                    for step in [1.0, 40.0, 333.3] {
+                        for exit in [0.0, 25.0, 280.0, 4000.0] {
+                            for i in 0..7 {
+                                let spread = [0.0, 0.2, 1.0][(k + i) % 3];
+                                for mode in [0.0, 1.0] {
+                                    grid.push(vec![
+                                        i as f64, d[0], d[1], d[2], step, exit, spread, mode,
+                                    ]);
+                                }
+                            }
+                        }
+                    }
+                }
+                grid
+            },
+            cpu: |x| {
+                let weights = if x[7] > 0.5 {
+                    cloudlight::cone::ConeWeights::Partitioned
+                } else {
+                    cloudlight::cone::ConeWeights::Raw
+                };
+                cloudlight::cone::cone_sample(
+                    x[0] as u32,
+                    [x[1], x[2], x[3]],
+                    x[4],
+                    x[5],
+                    x[6],
+                    weights,
+                )
+                .to_vec()
+            },
+            reference: |x| {
+                let weights = if x[7] > 0.5 {
+                    cloudlight::cone::ConeWeights::Partitioned
+                } else {
+                    cloudlight::cone::ConeWeights::Raw
+                };
+                cloudlight::cone::cone_sample(
+                    x[0] as u32,
+                    [x[1], x[2], x[3]],
+                    x[4],
+                    x[5],
+                    x[6],
+                    weights,
+                )
+                .to_vec()
+            },
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 0.0,
+                // Distances ≤ max(9·step, exit) from ≤ 3 roundings (WGSL's exit/7: 2.5 ULP);
+                // offsets l·d + spread·d·k: 3 more of terms ≤ (1 + spread)·d; the far weight
+                // exit − 6Δ cancels: ≤ u·exit + 6Δ·4u.
+                bound: Some(|x| {
+                    let d = (9.0 * x[4]).max(x[5]);
+                    let e = 10.0 * U * d * (1.0 + x[6]);
+                    vec![e, e, e, 10.0 * U * d]
+                }),
+                why: "distances ≤ max(9·step, exit) carry ≤ 3 roundings (WGSL's exit/7 2.5 ULP), \
+                      offsets l·d + spread·d·k 3 more of (1 + spread)·d, the far weight exit − 6Δ \
+                      cancels: 10u of the largest distance (reference: the generic function at f64)",
+            },
+        },
+        Case {
+            name: "cloudlight::beer_lambert",
+            imports: &["cloudlight::cone"],
+            arity: (1, 1),
+            wgsl: "y0 = beer_lambert(x0);",
+            grid: || {
+                let mut g: Vec<Vec<f64>> = logspace(1e-7, 80.0, 4001).map(|t| vec![t]).collect();
+                g.push(vec![0.0]);
+                g
+            },
+            cpu: |x| vec![cloudlight::cone::beer_lambert(x[0])],
+            reference: |x| vec![(-x[0]).exp()],
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 0.0,
+                bound: Some(|x| {
+                    let t = (-x[0]).exp();
+                    vec![(4.0 + 2.0 * x[0]) * super::super::compare::ulp_f32(t)]
+                }),
+                why: "WGSL exp: 3 + 2|x| ULP (the spec's bound), + 1 for Rust's libm",
+            },
+        },
+        Case {
+            name: "cloudlight::powder",
+            imports: &["cloudlight::cone"],
+            arity: (1, 1),
+            wgsl: "y0 = powder(x0);",
+            grid: || {
+                let mut g: Vec<Vec<f64>> = logspace(1e-5, 40.0, 4001).map(|t| vec![t]).collect();
+                g.push(vec![0.0]);
+                g
+            },
+            cpu: |x| vec![cloudlight::cone::powder(x[0])],
+            reference: |x| vec![-(-2.0 * x[0]).exp_m1()],
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 1.0,
+                // 1 − e: e = exp(−2τ) carries (4 + 4τ) ULP of itself (WGSL exp), which the
+                // subtraction keeps as an absolute error (cancels for small τ).
+                bound: Some(|x| {
+                    let e = (-2.0 * x[0]).exp();
+                    vec![(4.0 + 4.0 * x[0]) * super::super::compare::ulp_f32(e)]
+                }),
+                why: "1 − exp(−2τ): WGSL exp's 3 + 2·2τ ULP of exp(−2τ) (+1 for libm) kept as an \
+                      absolute error by the cancelling subtraction, + 1 ULP of the result \
+                      (reference: −expm1(−2τ))",
+            },
+        },
+        Case {
+            name: "cloudlight::dual_lobe_henyey_greenstein",
+            imports: &["cloudlight::cone"],
+            arity: (4, 1),
+            wgsl: "y0 = dual_lobe_henyey_greenstein(x0, x1, x2, x3);",
+            grid: || {
+                let mut grid = Vec::new();
+                for mu in linspace(-1.0, 1.0, 101) {
+                    for g in [0.0, 0.3, 0.6, 0.85, 0.95, 0.99] {
+                        for b in [-0.5, -0.2, 0.0] {
+                            for w in [0.0, 0.1, 0.5, 1.0] {
+                                grid.push(vec![mu, g, b, w]);
+                            }
+                        }
+                    }
+                }
+                grid
+            },
+            cpu: |x| {
+                vec![cloudlight::cone::dual_lobe_henyey_greenstein(
+                    x[0], x[1], x[2], x[3],
+                )]
+            },
+            reference: |x| {
+                let hg = |g: f64| {
+                    (1.0 - g * g)
+                        / (4.0 * std::f64::consts::PI * (1.0 + g * g - 2.0 * g * x[0]).powf(1.5))
+                };
+                vec![(1.0 - x[3]) * hg(x[1]) + x[3] * hg(x[2])]
+            },
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 0.0,
+                // Each lobe within atmos' 16 ULP (its parity case), the weights and sum 3u.
+                bound: Some(|x| {
+                    let hg = |g: f64| {
+                        (1.0 - g * g)
+                            / (4.0
+                                * std::f64::consts::PI
+                                * (1.0 + g * g - 2.0 * g * x[0]).powf(1.5))
+                    };
+                    let (f, b) = ((1.0 - x[3]) * hg(x[1]), x[3] * hg(x[2]));
+                    vec![
+                        16.0 * (super::super::compare::ulp_f32(f)
+                            + super::super::compare::ulp_f32(b))
+                            + 3.0 * U * (f + b),
+                    ]
+                }),
+                why: "two of atmos' Henyey–Greenstein lobes (16 ULP each, its parity case) mixed \
+                      by non-negative weights (3u); reference: the textbook formula in f64",
+            },
+        },
+        Case {
+            name: "cloudlight::box_exit_distance",
+            imports: &["cloudlight::cone"],
+            arity: (6, 1),
+            wgsl: "y0 = box_exit_distance(vec3<f32>(x0, x1, x2), vec3<f32>(x3, x4, x5), \
+                   vec3<f32>(0.0, 0.0, 1000.0), vec3<f32>(1000.0, 800.0, 1600.0));",
+            grid: || {
+                let mut grid = Vec::new();
+                let points = [
+                    [500.0, 400.0, 1300.0],
+                    [1.0, 799.0, 1000.5],
+                    [0.0, 0.0, 1000.0],
+                    [999.9, 3.0, 1599.0],
+                    [-200.0, 400.0, 1300.0],
+                    [500.0, 400.0, 2000.0],
+                    [137.5, 612.25, 1111.0],
+                ];
+                for p in points {
+                    for d in directions(300) {
+                        grid.push(vec![p[0], p[1], p[2], d[0], d[1], d[2]]);
+                    }
+                }
+                grid
+            },
+            cpu: |x| {
+                vec![cloudlight::cone::box_exit_distance(
+                    [x[0], x[1], x[2]],
+                    [x[3], x[4], x[5]],
+                    to_f32(BOX_LO),
+                    to_f32(BOX_HI),
+                )]
+            },
+            reference: |x| {
+                // Independent form: the slab method's far intersections.
+                let mut far = f64::INFINITY;
+                for a in 0..3 {
+                    if x[3 + a] != 0.0 {
+                        let t0 = (BOX_LO[a] - x[a]) / x[3 + a];
+                        let t1 = (BOX_HI[a] - x[a]) / x[3 + a];
+                        far = far.min(t0.max(t1));
+                    }
+                }
+                vec![far.max(0.0)]
+            },
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 0.0,
+                // (face − p)/d: the subtraction is exact or u of the larger of the two
+                // (≤ 1600 m), WGSL's division 2.5 ULP; min/max are exact.
+                bound: Some(|x| {
+                    let mut e = 0.0f64;
+                    for a in 0..3 {
+                        if x[3 + a] != 0.0 {
+                            let t = (BOX_HI[a] - x[a]).abs().max((BOX_LO[a] - x[a]).abs())
+                                / x[3 + a].abs();
+                            e = e.max(
+                                U * 3200.0 / x[3 + a].abs()
+                                    + 3.0 * super::super::compare::ulp_f32(t),
+                            );
+                        }
+                    }
+                    vec![e]
+                }),
+                why: "(face − p)/d per axis: u of operands ≤ 1600 m over |d|, WGSL division \
+                      2.5 ULP; min and max exact (reference: the slab method in f64)",
+            },
+        },
+    ]
+}

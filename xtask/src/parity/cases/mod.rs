@@ -365,6 +365,7 @@ pub fn all() -> Vec<Case> {
         vec![render_cases::present_case()],
         terrain_cases::cases(),
         cloudlight_cases::cases(),
+        cloudlight_cases::cone_cases(),
         cloudsim_cases::cases(),
         celestial_cases::cases(),
         common_cases::cases(),

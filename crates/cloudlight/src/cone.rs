@@ -1,0 +1,227 @@
+//! Seed 003's light sampling toward the sun (Schneider's 6 cone samples + 1 far sample),
+//! Beer–Lambert, the powder term and dual-lobe Henyey–Greenstein scattering, written once
+//! over the float type: the f32 instantiations mirror `shaders/cloudlight/cone.wgsl`
+//! operation for operation, the f64 ones are the parity references.
+//!
+//! A light estimate at a point is an optical depth `τ = σ_t Σ wᵢ ρ(p + offsetᵢ)` over seven
+//! samples ([`cone_sample`] gives each offset and weight), turned into light by
+//! [`beer_lambert`]. Two weightings ([`ConeWeights`]):
+//!
+//! * [`ConeWeights::Raw`]: seed 003 / Schneider as published: six samples at `(i + 1)·Δ`
+//!   spreading sideways in a cone, one far sample at `9Δ`, every weight `Δ`. The samples
+//!   cover `7Δ` of the path whatever its length, so the light is biased bright wherever
+//!   the cloud extends past the cone.
+//! * [`ConeWeights::Partitioned`]: the same 6 + 1 layout made a quadrature of the whole
+//!   path to the volume's exit `L`: `Δ = min(step, L/7)`, six samples at the midpoints
+//!   `(i + ½)Δ` with weight `Δ`, the far sample at the midpoint of `[6Δ, L]` with weight
+//!   `L − 6Δ` (a corrected far sample: it stands for the rest of the path).
+//!
+//! [`march_optical_depth`] is the accurate option: `n` midpoint steps over `[0, L]`.
+//! All three are measured against the exact transmittance ([`crate::reference`]) in the
+//! crate README.
+
+use atmos::real::Real;
+
+/// Seed 003's six cone directions (Schneider's noise kernel, here fixed unit vectors in
+/// all directions), scaled by the cone's spread and the sample's distance.
+pub const CONE_KERNEL: [[f64; 3]; 6] = [
+    [0.38051305, 0.92453450, -0.02111345],
+    [-0.50625799, -0.03590792, -0.86163418],
+    [-0.32509218, -0.94557439, 0.01428793],
+    [0.09026238, -0.27376545, 0.95755166],
+    [0.28128598, 0.42443639, -0.86065786],
+    [-0.16852403, 0.14748697, 0.97460107],
+];
+
+/// How the seven light samples are placed and weighted (module documentation).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ConeWeights {
+    /// Schneider's published layout: weights `Δ`, far sample at `9Δ`.
+    Raw,
+    /// A quadrature of the whole path to the exit (corrected far sample).
+    Partitioned,
+}
+
+/// Sample `i` (0–5 cone, 6 far) of a light estimate: `[offset x, y, z, weight]` in metres,
+/// the offset from the shaded point. `to_sun` is a unit vector, `step` the cone's step Δ
+/// (metres), `exit_distance` the path length to the volume's exit `L` (metres; used by
+/// the partitioned weighting), `spread` the cone's half-width per metre of distance
+/// (0 = a straight line). WGSL twin `cone_sample`.
+pub fn cone_sample<F: Real>(
+    i: u32,
+    to_sun: [F; 3],
+    step: F,
+    exit_distance: F,
+    spread: F,
+    weights: ConeWeights,
+) -> [F; 4] {
+    let half = F::of(0.5);
+    let seven = F::of(7.0);
+    let six = F::of(6.0);
+    let (distance, weight, lateral) = match weights {
+        ConeWeights::Raw => {
+            if i < 6 {
+                (atmos::real::count::<F>(i + 1) * step, step, spread)
+            } else {
+                (F::of(9.0) * step, step, F::zero())
+            }
+        }
+        ConeWeights::Partitioned => {
+            let delta = step.min(exit_distance / seven);
+            if i < 6 {
+                ((atmos::real::count::<F>(i) + half) * delta, delta, spread)
+            } else {
+                let near = six * delta;
+                (
+                    half * (near + exit_distance),
+                    (exit_distance - near).max(F::zero()),
+                    F::zero(),
+                )
+            }
+        }
+    };
+    let k = CONE_KERNEL[(i.min(5)) as usize].map(F::of);
+    let side = lateral * distance;
+    [
+        to_sun[0] * distance + side * k[0],
+        to_sun[1] * distance + side * k[1],
+        to_sun[2] * distance + side * k[2],
+        weight,
+    ]
+}
+
+/// Beer–Lambert: the transmittance `exp(−τ)` of optical depth `τ`. WGSL twin
+/// `beer_lambert`.
+pub fn beer_lambert<F: Real>(optical_depth: F) -> F {
+    (-optical_depth).exp()
+}
+
+/// Schneider's "powder" darkening `1 − exp(−2τ)` (GPU Pro 7): dark edges where the light
+/// has not yet been in-scattered. Not physical (no radiative-transfer law gives it); an
+/// art-directed option, off by default. WGSL twin `powder`.
+pub fn powder<F: Real>(optical_depth: F) -> F {
+    F::one() - (F::of(-2.0) * optical_depth).exp()
+}
+
+/// Dual-lobe Henyey–Greenstein: `(1 − w)·HG(g_forward) + w·HG(g_back)` (1/sr), with
+/// `atmos`' Henyey–Greenstein (imported, not copied: `#import atmos::phase` in WGSL).
+/// WGSL twin `dual_lobe_henyey_greenstein`.
+pub fn dual_lobe_henyey_greenstein<F: Real>(
+    cos_theta: F,
+    g_forward: F,
+    g_back: F,
+    back_weight: F,
+) -> F {
+    let forward = atmos::phase::henyey_greenstein_phase(cos_theta, g_forward);
+    let back = atmos::phase::henyey_greenstein_phase(cos_theta, g_back);
+    (F::one() - back_weight) * forward + back_weight * back
+}
+
+/// Distance (metres) from `p` along unit `dir` to where the ray leaves the axis-aligned
+/// box `[lo, hi]` (0 when `p` is outside and moving away; the largest finite float for a
+/// zero direction). WGSL twin `box_exit_distance`.
+pub fn box_exit_distance<F: Real>(p: [F; 3], dir: [F; 3], lo: [F; 3], hi: [F; 3]) -> F {
+    let mut exit = F::max_value();
+    for a in 0..3 {
+        if dir[a] > F::zero() {
+            exit = exit.min((hi[a] - p[a]) / dir[a]);
+        } else if dir[a] < F::zero() {
+            exit = exit.min((lo[a] - p[a]) / dir[a]);
+        }
+    }
+    exit.max(F::zero())
+}
+
+/// The 6 + 1 optical depth at `p` toward unit `to_sun`: `σ_t Σ wᵢ ρ(p + offsetᵢ)` with
+/// `density` any density field (metres → density) and `exit_distance` the path to the
+/// volume's exit.
+#[allow(clippy::too_many_arguments)]
+pub fn cone_optical_depth<F: Real>(
+    density: impl Fn([F; 3]) -> F,
+    sigma_t: F,
+    p: [F; 3],
+    to_sun: [F; 3],
+    step: F,
+    exit_distance: F,
+    spread: F,
+    weights: ConeWeights,
+) -> F {
+    let mut sum = F::zero();
+    for i in 0..7 {
+        let s = cone_sample(i, to_sun, step, exit_distance, spread, weights);
+        sum = sum + s[3] * density([p[0] + s[0], p[1] + s[1], p[2] + s[2]]);
+    }
+    sigma_t * sum
+}
+
+/// The full light march: `σ_t Σ ρ(p + (j + ½)h·l)·h` with `h = exit_distance / steps`.
+pub fn march_optical_depth<F: Real>(
+    density: impl Fn([F; 3]) -> F,
+    sigma_t: F,
+    p: [F; 3],
+    to_sun: [F; 3],
+    exit_distance: F,
+    steps: u32,
+) -> F {
+    let h = exit_distance / atmos::real::count::<F>(steps.max(1));
+    let mut sum = F::zero();
+    for j in 0..steps.max(1) {
+        let t = (atmos::real::count::<F>(j) + F::of(0.5)) * h;
+        sum = sum + density([p[0] + t * to_sun[0], p[1] + t * to_sun[1], p[2] + t * to_sun[2]]);
+    }
+    sigma_t * sum * h
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::CloudVolume;
+    use crate::reference::transmittance;
+
+    #[test]
+    fn kernel_is_unit_vectors() {
+        for k in CONE_KERNEL {
+            let n = k.iter().map(|c| c * c).sum::<f64>().sqrt();
+            assert!((n - 1.0).abs() < 1e-6, "{n}");
+        }
+    }
+
+    #[test]
+    fn partitioned_weights_cover_the_path() {
+        for exit in [10.0, 70.0, 700.0, 5000.0] {
+            let total: f64 = (0..7)
+                .map(|i| cone_sample(i, [0.0, 0.0, 1.0], 50.0, exit, 0.0, ConeWeights::Partitioned)[3])
+                .sum();
+            assert!((total - exit).abs() < 1e-9 * exit, "{exit}: {total}");
+        }
+        let raw: f64 = (0..7)
+            .map(|i| cone_sample(i, [0.0, 0.0, 1.0], 50.0, 5000.0, 0.3, ConeWeights::Raw)[3])
+            .sum();
+        assert_eq!(raw, 350.0);
+    }
+
+    #[test]
+    fn homogeneous_slab_partitioned_is_exact() {
+        // A constant density: the partition integrates it exactly; raw covers 7Δ only.
+        let v = CloudVolume::new([4, 4, 4], [0.0; 3], 100.0, 0.004, vec![1.0; 64]).unwrap();
+        let p = [200.0, 200.0, 50.0];
+        let l = [0.0, 0.0, 1.0];
+        let exit = box_exit_distance(p, l, [0.0; 3], [400.0; 3]);
+        assert_eq!(exit, 350.0);
+        let d = |q: [f64; 3]| v.density_at(q);
+        let tau = cone_optical_depth(d, 0.004, p, l, 40.0, exit, 0.0, ConeWeights::Partitioned);
+        let exact = -transmittance(&v, p, l, f64::INFINITY).unwrap().ln();
+        assert!((tau - exact).abs() < 1e-12, "{tau} vs {exact}");
+        let raw = cone_optical_depth(d, 0.004, p, l, 40.0, exit, 0.0, ConeWeights::Raw);
+        assert!(raw < exact, "raw {raw} is biased bright against {exact}");
+    }
+
+    #[test]
+    fn powder_and_beer_limits() {
+        assert_eq!(beer_lambert(0.0f64), 1.0);
+        assert_eq!(powder(0.0f64), 0.0);
+        assert!((powder(50.0f64) - 1.0).abs() < 1e-15);
+        let p = dual_lobe_henyey_greenstein(0.3f64, 0.8, -0.3, 0.0);
+        assert_eq!(p, atmos::phase::henyey_greenstein_phase(0.3, 0.8));
+    }
+}
