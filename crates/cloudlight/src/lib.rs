@@ -1,22 +1,45 @@
-//! `cloudlight`: lighting of cloud volumes, once in Rust and once in WGSL.
+//! `cloudlight`: the light that reaches the inside of a cloud volume from the sun, once in
+//! Rust and once in WGSL. What exists (the crate README has the measured trade and a
+//! short guide to choosing):
 //!
-//! Implemented so far (each function has a same-named WGSL twin under
-//! `shaders/cloudlight/`, embedded as [`WGSL_MODULES`], and a case in
-//! `cargo xtask parity`):
+//! * [`CloudVolume`]: an f32 density grid placed in metres (cloudsim's axis order, x
+//!   fastest) with its extinction per unit density σ_t (1/m); typed errors name the field.
+//! * [`reference`](mod@reference): the exact f64 optical depth and transmittance of the
+//!   volume's trilinear density along a ray (Simpson on each cubic piece: no
+//!   discretisation error). Everything else is measured against it.
+//! * [`propagate`](mod@propagate): seed 002's slice propagation, light at every cell in one
+//!   sweep of slices toward the sun — physical mode (Beer–Lambert over the true spacing,
+//!   the optical depth resampled by a clamped Catmull–Rom or bilinearly) and faithful mode
+//!   (seed 002's `1 − (1 − r)·ρ̄`, 5-tap smoothing, whole-texel shifts). Written once over
+//!   the float type: `propagate::<f64>` is the reference, `propagate::<f32>` the twin of the
+//!   WGSL pass [`gpu::SlicePropagation`] (feature `gpu`, on by default; bring your own
+//!   device).
+//! * [`cone`]: seed 003's light samples toward the sun (6 cone + 1 far, raw or as a
+//!   partitioned quadrature of the path), the full light march, Beer–Lambert, the powder
+//!   term, dual-lobe Henyey–Greenstein on `atmos`' lobe. The per-sample functions have
+//!   WGSL twins (`shaders/cloudlight/cone.wgsl`); no GPU pass samples a volume with them
+//!   yet.
+//! * [`slice::slice_attenuation`] (seed 002's per-texel attenuation) and
+//!   [`jitter::bayer_jitter_4x4`] (seed 003's ordered march jitter).
 //!
-//! * [`slice::slice_attenuation`]: seed 002's slice-by-slice light attenuation step;
-//! * [`jitter::bayer_jitter_4x4`]: seed 003's ordered (Bayer) ray-march jitter.
+//! Every WGSL function with a Rust twin is a case of `cargo xtask parity`; the WGSL is
+//! embedded as [`WGSL_MODULES`] (`#import cloudlight::<name>`) and validated with naga at
+//! build time.
 //!
-//! [`CloudVolume`] holds a density grid placed in metres (cloudsim's axis order) with its
-//! extinction per unit density; [`reference`](mod@reference) integrates its trilinear density exactly along
-//! a ray (f64 optical depth and transmittance); [`propagate`](mod@propagate) is seed 002's
-//! slice propagation (physical and faithful modes) written once over the float type, with
-//! its WGSL pass [`gpu::SlicePropagation`] (feature `gpu`).
+//! Not here yet (issue 14): billboards, the ray-marched cloud shell and its noise, cloud
+//! shadow maps, multiple scattering, the Monte Carlo reference, `xtask tradeoff cloudlight`.
 //!
 //! ```
-//! // A fully dense slice passing 60 % of the light, after one that passed 80 %.
-//! let light = cloudlight::slice::slice_attenuation(0.8, 1.0, 0.6);
-//! assert!((light - 0.48).abs() < 1e-6);
+//! use cloudlight::CloudVolume;
+//! use cloudlight::propagate::{SliceMode, SlicePlan, propagate};
+//!
+//! // A 4×4×4 cube of 50 m cells, density 1, σ_t 0.01 /m, lit from straight above.
+//! let volume = CloudVolume::new([4, 4, 4], [0.0, 0.0, 1000.0], 50.0, 0.01, vec![1.0; 64])?;
+//! let plan = SlicePlan::new(&volume, [0.0, 0.0, 1.0], SliceMode::Physical)?;
+//! let light = propagate::<f32>(&volume, &plan);
+//! // The bottom centres are 175 m deep: exp(−0.01 · 175).
+//! assert!((light[0] - (-1.75f32).exp()).abs() < 1e-6);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
 pub mod cone;
