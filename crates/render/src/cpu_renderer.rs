@@ -191,6 +191,25 @@ pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, Rend
             }
         }
     }
+    if !scene.cloud_layers.is_empty() {
+        // The twin of the GPU's cloud pass: the layers nearer than the terrain.
+        let r = scene.viewer_radius as f32;
+        out.par_chunks_mut(width)
+            .enumerate()
+            .for_each(|(row, pixels)| {
+                for (column, pixel) in pixels.iter_mut().enumerate() {
+                    let view =
+                        atmos::frame::frame_view_direction([column as u32, row as u32], camera);
+                    pixel.radiance = crate::clouds::composite_cloud_layers(
+                        view,
+                        r,
+                        pixel.terrain_distance.unwrap_or(f32::INFINITY),
+                        &scene.cloud_layers,
+                        pixel.radiance,
+                    );
+                }
+            });
+    }
     Ok(out)
 }
 

@@ -15,6 +15,7 @@
 //! # }
 //! ```
 
+pub mod clouds;
 pub mod cpu_renderer;
 pub mod error;
 #[cfg(feature = "gpu")]
@@ -44,6 +45,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {
         name: "render::terrain",
         source: include_str!("../shaders/terrain.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::clouds",
+        source: include_str!("../shaders/clouds.wgsl"),
     },
     skyscape_wgsl::Module {
         name: "render::display",
@@ -133,6 +138,22 @@ mod wgsl_tests {
                 wgsl("render::present", "PresentParameters"),
             ),
         ];
+        #[cfg(feature = "gpu")]
+        let twins = {
+            use crate::gpu::scene::CloudComposite;
+            let mut twins = twins.to_vec();
+            twins.push((
+                skyscape_wgsl::rust_layout!(CloudComposite {
+                    camera,
+                    viewer_radius,
+                    near,
+                    layer_count,
+                    padding,
+                }),
+                wgsl("render::clouds", "CloudComposite"),
+            ));
+            twins
+        };
         for (rust, wgsl) in twins {
             rust.check_twin_of(&wgsl).unwrap_or_else(|e| panic!("{e}"));
         }

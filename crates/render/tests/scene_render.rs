@@ -442,3 +442,72 @@ fn time_and_place_errors_name_the_key() {
     let e = parse_error(&format!("{VALID}[sky_objects]\nenabled = true\n"));
     assert_eq!(e.field(), Some("sky_objects.enabled"), "{e}");
 }
+
+const ABOVE_CLOUDS_SCENE: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../scenes/above_clouds.toml"
+);
+
+#[test]
+fn a_cloud_deck_covers_the_valleys_and_not_the_peaks_above_it() {
+    let mut scene = Scene::open(ABOVE_CLOUDS_SCENE).unwrap();
+    scene.file.output.width = 96;
+    scene.file.output.height = 54;
+    let cloudy = scene.prepare().unwrap();
+    assert_eq!(cloudy.cloud_layers.len(), 2);
+    let clouded = render_radiance(&cloudy).unwrap();
+    scene.file.clouds = None;
+    let clear = render_radiance(&scene.prepare().unwrap()).unwrap();
+    let (mut peaks, mut peaks_changed, mut valleys, mut valleys_changed) = (0, 0, 0, 0);
+    for (pixel, (with, without)) in clouded.iter().zip(&clear).enumerate() {
+        let Some(distance) = without.terrain_distance else {
+            continue;
+        };
+        let pixel = [(pixel % 96) as u32, (pixel / 96) as u32];
+        let elevation = cloudy.camera_position.y - cloudy.atmosphere.planet_radius
+            + hit_offset(&cloudy, pixel, distance).y;
+        let changed = with.radiance != without.radiance;
+        // The stratus deck is 2,000–2,300 m; the cirrus at 9 km is above the camera,
+        // which looks down at the terrain.
+        if elevation > 2300.0 {
+            peaks += 1;
+            peaks_changed += usize::from(changed);
+        } else if elevation < 2000.0 {
+            valleys += 1;
+            valleys_changed += usize::from(changed);
+        }
+    }
+    assert!(
+        peaks > 20 && valleys > 20,
+        "{peaks} peak and {valleys} valley pixels"
+    );
+    assert_eq!(peaks_changed, 0, "terrain above the deck is in front of it");
+    assert!(
+        valleys_changed * 2 > valleys,
+        "{valleys_changed} of {valleys} valley pixels under the deck"
+    );
+}
+
+#[test]
+fn cloud_layers_need_time_and_name_bad_values() {
+    let layer = "[[clouds.layers]]\nkind = \"cumulus\"\nbase_m = 1500.0\nthickness_m = 300.0\n";
+    let e = parse_error(&format!("{VALID}{layer}"));
+    assert_eq!(e.field(), Some("clouds.layers"), "{e}");
+    let timed = VALID.replace(
+        "[sun]\nelevation_deg = 30.0\nazimuth_deg = 180.0\n",
+        "[time]\nutc = \"2024-06-21T12:00:00Z\"\nlatitude_deg = 46.5\nlongitude_deg = 8.0\n",
+    );
+    let prepared = Scene::parse(&format!("{timed}{layer}"), ".")
+        .unwrap()
+        .prepare()
+        .unwrap();
+    assert_eq!(prepared.cloud_layers.len(), 1);
+    let e = parse_error(&format!("{timed}{}", layer.replace("300.0", "-300.0")));
+    assert_eq!(e.field(), Some("clouds.layers.0.thickness_m"), "{e}");
+    assert!(e.to_string().contains("-300"), "{e}");
+    let e = parse_error(&format!(
+        "{timed}{}",
+        layer.replace("cumulus", "cumulonimbus")
+    ));
+    assert!(e.to_string().contains("cumulonimbus"), "{e}");
+}

@@ -121,6 +121,7 @@ pub struct SceneRenderer {
     sky: SkyPass,
     terrain: Option<TerrainPass>,
     sky_objects: Option<celestial::gpu::SkyObjectsPass>,
+    clouds: Option<CloudPass>,
     hdr: wgpu::Texture,
     hdr_view: wgpu::TextureView,
     depth_view: wgpu::TextureView,
@@ -207,10 +208,179 @@ pub fn planned_passes(scene: &PreparedScene) -> Vec<(&'static str, Result<String
         },
     ));
     plan.push((
+        "clouds",
+        if scene.cloud_layers.is_empty() {
+            Err("no [[clouds.layers]] in front of the viewer: no cloud pipeline".into())
+        } else {
+            Ok(format!(
+                "{} celestial layer(s) farthest first over the opaque scene, each hidden \
+                 where the terrain's depth is nearer",
+                scene.cloud_layers.len()
+            ))
+        },
+    ));
+    plan.push((
         "display",
         Ok("exposure, 1 − exp(−x), sRGB, dither to RGBA8".into()),
     ));
     plan
+}
+
+/// The cloud pass's uniform (WGSL `CloudComposite`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct CloudComposite {
+    /// The scene's camera.
+    pub camera: atmos::frame::FrameCamera,
+    /// The viewer's distance from the planet's centre (m).
+    pub viewer_radius: f32,
+    /// The reverse-z projection's near plane (m).
+    pub near: f32,
+    /// Layers in the storage buffer.
+    pub layer_count: u32,
+    /// Alignment.
+    pub padding: u32,
+}
+
+/// The cloud layers' compositing pass (`render::clouds`).
+#[derive(Debug)]
+struct CloudPass {
+    pipeline: wgpu::RenderPipeline,
+    uniform: wgpu::Buffer,
+    layers: wgpu::Buffer,
+    capacity: usize,
+    bind_group: wgpu::BindGroup,
+}
+
+impl CloudPass {
+    fn new(
+        device: &wgpu::Device,
+        capacity: usize,
+        depth_view: &wgpu::TextureView,
+    ) -> Result<Self, RenderError> {
+        let source = crate::composer().compose_module("render::clouds")?;
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("render clouds"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("render clouds"),
+            entries: &[
+                uniform_entry(0, wgpu::ShaderStages::FRAGMENT),
+                storage_read(1, wgpu::ShaderStages::FRAGMENT),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Depth,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render clouds uniform"),
+            size: std::mem::size_of::<CloudComposite>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let layers = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render cloud layers"),
+            size: (capacity.max(1) * std::mem::size_of::<celestial::clouds::CloudLayerUniforms>())
+                as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("render clouds"),
+            layout: &layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: uniform.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: layers.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(depth_view),
+                },
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("render clouds"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        // Premultiplied: the fragment's colour is the layers' own light, its alpha the
+        // fraction of the scene they hide.
+        let blend = wgpu::BlendState {
+            color: wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::One,
+                dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+                operation: wgpu::BlendOperation::Add,
+            },
+            alpha: wgpu::BlendComponent::OVER,
+        };
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("render clouds"),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("clouds_vertex"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("clouds_fragment"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format: HDR,
+                    blend: Some(blend),
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        Ok(Self {
+            pipeline,
+            uniform,
+            layers,
+            capacity,
+            bind_group,
+        })
+    }
+
+    fn prepare(&self, queue: &wgpu::Queue, scene: &PreparedScene) -> Result<(), RenderError> {
+        if scene.cloud_layers.len() > self.capacity {
+            return Err(RenderError::InvalidParameter {
+                field: "clouds.layers",
+                value: format!("{} layers", scene.cloud_layers.len()),
+                reason: "more than the renderer was built for",
+            });
+        }
+        let uniform = CloudComposite {
+            camera: scene.camera,
+            viewer_radius: scene.viewer_radius as f32,
+            near: scene.near.max(0.01) as f32,
+            layer_count: scene.cloud_layers.len() as u32,
+            padding: 0,
+        };
+        queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
+        if !scene.cloud_layers.is_empty() {
+            queue.write_buffer(&self.layers, 0, bytemuck::cast_slice(&scene.cloud_layers));
+        }
+        Ok(())
+    }
 }
 
 impl SceneRenderer {
@@ -270,12 +440,26 @@ impl SceneRenderer {
                 | wgpu::TextureUsages::TEXTURE_BINDING
                 | wgpu::TextureUsages::COPY_SRC,
         );
-        let depth = target(DEPTH, wgpu::TextureUsages::RENDER_ATTACHMENT);
+        // The cloud pass reads the terrain's depth.
+        let depth = target(
+            DEPTH,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+        );
         let hdr_view = hdr.create_view(&Default::default());
         let depth_view = depth.create_view(&Default::default());
         let terrain = match &scene.terrain {
             Some(terrain) => Some(Self::terrain_pass(device, &luts, terrain)?),
             None => None,
+        };
+        // Only a scene with cloud layers builds the cloud pipeline.
+        let clouds = if scene.cloud_layers.is_empty() {
+            None
+        } else {
+            Some(CloudPass::new(
+                device,
+                scene.cloud_layers.len(),
+                &depth_view,
+            )?)
         };
 
         // Display: HDR texture → packed RGBA8.
@@ -373,6 +557,9 @@ impl SceneRenderer {
             if scene.sky_objects.is_some() {
                 labels.push("sky objects");
             }
+            if !scene.cloud_layers.is_empty() {
+                labels.push("clouds");
+            }
             labels.push("display");
             PassTimes::new(device, queue, labels)
         } else {
@@ -387,6 +574,7 @@ impl SceneRenderer {
             sky,
             terrain,
             sky_objects,
+            clouds,
             hdr,
             hdr_view,
             depth_view,
@@ -598,6 +786,17 @@ impl SceneRenderer {
                 });
             }
         }
+        match &self.clouds {
+            Some(clouds) => clouds.prepare(queue, scene)?,
+            None if scene.cloud_layers.is_empty() => {}
+            None => {
+                return Err(RenderError::InvalidParameter {
+                    field: "clouds.layers",
+                    value: format!("{} layers", scene.cloud_layers.len()),
+                    reason: "the renderer was built for a scene without cloud layers",
+                });
+            }
+        }
         self.luts.prepare(queue, camera);
         self.sky.prepare(
             queue,
@@ -754,6 +953,26 @@ impl SceneRenderer {
                 Some(&self.depth_view),
                 times.and_then(|t| t.render_writes("sky objects")),
             )?;
+        }
+        if let Some(clouds) = &self.clouds {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("render clouds"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &self.hdr_view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: times.and_then(|t| t.render_writes("clouds")),
+                ..Default::default()
+            });
+            pass.set_pipeline(&clouds.pipeline);
+            pass.set_bind_group(0, &clouds.bind_group, &[]);
+            pass.draw(0..3, 0..1);
         }
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {

@@ -96,6 +96,12 @@ pub struct PreparedScene {
     /// and `[sky_objects]` does not turn them off: drawn over the sky where no terrain
     /// is in front (the sky pass then draws no disc of its own).
     pub sky_objects: Option<celestial::objects::SkyObjectsFrame>,
+    /// The scene's cloud layers lit for this frame, farthest first (a layer the viewer
+    /// is inside is left out: celestial models it as closed-in visibility).
+    pub cloud_layers: Vec<celestial::clouds::CloudLayerUniforms>,
+    /// The viewer's distance from the planet's centre (m): celestial's frame puts the
+    /// viewer on its +z axis.
+    pub viewer_radius: f64,
 }
 
 impl PreparedScene {
@@ -239,9 +245,20 @@ impl Scene {
         // The expensive parts last, once every cheap check has passed.
         let (sky_model, segment_model, precomputed) = self.models(&atmosphere)?;
         let terrain = self.terrain()?;
-        let sky_objects = match sky.as_mut() {
-            Some(sky) => Some(self.sky_objects(sky, &*sky_model, forward, cam, out)?),
-            None => None,
+        let (sky_objects, cloud_layers) = match sky.as_mut() {
+            Some(sky) => self.sky_objects_and_clouds(sky, &*sky_model, forward, cam, out)?,
+            None => {
+                if let Some(clouds) = file.clouds.as_ref().filter(|c| !c.layers.is_empty()) {
+                    return Err(self.invalid(
+                        &["clouds", "layers"],
+                        format!("{} layers", clouds.layers.len()),
+                        "cloud layers are lit by celestial's sky, placed by [time] (a date, \
+                         time and place): give [time] instead of [sun]"
+                            .into(),
+                    ));
+                }
+                (None, Vec::new())
+            }
         };
         if sky_objects.is_some() {
             // celestial draws the sun's limb-darkened disc: atmos' uniform one is off.
@@ -261,6 +278,8 @@ impl Scene {
             terrain,
             precomputed,
             sky_objects,
+            cloud_layers,
+            viewer_radius: planet + cam.position[1],
         })
     }
 
@@ -332,7 +351,6 @@ impl Scene {
                     };
                     self.celestial_error(&["time", key], value, e)
                 })?;
-                let drawn = file.sky_objects.is_none_or(|o| o.enabled);
                 let options = celestial::sky::SkyOptions {
                     star_limit_magnitude: file.sky_objects.and_then(|o| o.star_limit_magnitude),
                     ..Default::default()
@@ -352,7 +370,7 @@ impl Scene {
                     placement.sun.airless.elevation.radians(),
                     placement.sun.airless.azimuth.radians(),
                 );
-                Ok((sun, drawn.then_some(sky)))
+                Ok((sun, Some(sky)))
             }
             (Some(section), Some(time)) => Err(self.invalid(
                 &["time", "utc"],
@@ -372,17 +390,24 @@ impl Scene {
         }
     }
 
-    /// The sky objects of the placed `sky`, painted from `model`, seen by the scene's
-    /// camera (the same pixel rays in celestial's east/north/up frame), depth-tested
-    /// against reverse-z terrain.
-    fn sky_objects(
+    /// The sky objects of the placed `sky` (when drawn) and its cloud layers, painted
+    /// from `model`, seen by the scene's camera (the same pixel rays in celestial's
+    /// east/north/up frame), the objects depth-tested against reverse-z terrain.
+    #[allow(clippy::type_complexity)]
+    fn sky_objects_and_clouds(
         &self,
         sky: &mut celestial::sky::Sky,
         model: &(dyn atmos::SkyModel + Send + Sync),
         forward: DVec3,
         cam: &super::CameraSection,
         out: &super::OutputSection,
-    ) -> Result<celestial::objects::SkyObjectsFrame, SceneError> {
+    ) -> Result<
+        (
+            Option<celestial::objects::SkyObjectsFrame>,
+            Vec<celestial::clouds::CloudLayerUniforms>,
+        ),
+        SceneError,
+    > {
         let at_time = |e| {
             self.celestial_error(
                 &["time", "utc"],
@@ -393,7 +418,55 @@ impl Scene {
                 e,
             )
         };
+        if let Some(clouds) = &self.file.clouds {
+            for (index, layer) in clouds.layers.iter().enumerate() {
+                let field = |e: celestial::CelestialError| {
+                    let message = e.to_string();
+                    let key = [
+                        "base_m",
+                        "thickness_m",
+                        "transition_m",
+                        "span_m",
+                        "coverage",
+                    ]
+                    .into_iter()
+                    .find(|k| message.contains(k.trim_end_matches("_m")))
+                    .unwrap_or("kind");
+                    self.celestial_error(
+                        &["clouds", "layers", &format!("{index}"), key],
+                        format!("{layer:?}"),
+                        e,
+                    )
+                };
+                let mut built = celestial::clouds::CloudLayer::new(
+                    layer.base_m,
+                    layer.thickness_m,
+                    layer.transition_m,
+                    layer.span_m,
+                    layer.kind.into(),
+                )
+                .map_err(field)?;
+                if let Some(coverage) = layer.coverage {
+                    built.coverage = coverage;
+                }
+                built.seed = layer.seed;
+                if layer.flat {
+                    built.shape = celestial::clouds::LayerShape::Flat;
+                }
+                built.validate().map_err(field)?;
+                sky.add_cloud_layer(built).map_err(field)?;
+            }
+        }
         sky.repaint(model).map_err(at_time)?;
+        let cloud_layers = sky
+            .cloud_layers_in_draw_order(cam.position[1])
+            .map_err(at_time)?
+            .into_iter()
+            .map(|(_, uniforms)| uniforms)
+            .collect();
+        if !self.file.sky_objects.is_none_or(|o| o.enabled) {
+            return Ok((None, cloud_layers));
+        }
         // World x east, y up, z south → east, north, up: a rotation, so the pixel rays
         // are the scene camera's.
         let enu = |v: DVec3| [v.x, -v.z, v.y];
@@ -409,7 +482,7 @@ impl Scene {
         let mut frame = sky.sky_objects_frame(&camera).map_err(at_time)?;
         // Reverse z: the sky is at depth 0, terrain in front of it hides the objects.
         frame.uniforms.far_depth = 0.0;
-        Ok(frame)
+        Ok((Some(frame), cloud_layers))
     }
 
     /// Earth's atmosphere with the scene's overrides, validated by atmos.

@@ -26,6 +26,11 @@ pub const SHIPPED: &[ShippedScene] = &[
         source: include_str!("../../scenes/sunset.toml"),
     },
     ShippedScene {
+        name: "above_clouds",
+        description: "flying at 4,200 m over a stratus deck with the peaks standing out of it, cirrus above",
+        source: include_str!("../../scenes/above_clouds.toml"),
+    },
+    ShippedScene {
         name: "night",
         description: "a full-moon winter night in the Alps: moon, Jupiter and stars over dark ridges",
         source: include_str!("../../scenes/night.toml"),
