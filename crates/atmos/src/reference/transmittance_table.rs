@@ -8,8 +8,10 @@
 use super::{extinction_from_densities, optical_lengths};
 use crate::Atmosphere;
 
-/// Transmittance to the top sampled on a regular grid in (x_r, x_mu), interpolated
-/// bilinearly. The caller handles the planet's shadow (rays meeting the ground).
+/// Transmittance to the top sampled on a regular grid in (x_r, x_mu): the optical depth
+/// is stored and interpolated bilinearly, then exponentiated (interpolating the
+/// transmittance itself overestimated it where it falls steeply, on the grazing sun
+/// paths of twilight). The caller handles the planet's shadow (rays meeting the ground).
 #[derive(Debug, Clone)]
 pub struct TransmittanceTable {
     radius_size: usize,
@@ -37,7 +39,7 @@ impl TransmittanceTable {
                 let (r, mu, length) = table.ray(x_r, x_mu);
                 let lengths = optical_lengths(atmosphere, r, mu, length, samples);
                 let depth = extinction_from_densities(atmosphere, lengths);
-                values.push(depth.map(|tau| (-tau).exp()));
+                values.push(depth);
             }
         }
         table.values = values;
@@ -94,7 +96,9 @@ impl TransmittanceTable {
             at(i0 + 1, j0 + 1),
         );
         std::array::from_fn(|k| {
-            (1.0 - a) * ((1.0 - b) * v00[k] + b * v01[k]) + a * ((1.0 - b) * v10[k] + b * v11[k])
+            let depth = (1.0 - a) * ((1.0 - b) * v00[k] + b * v01[k])
+                + a * ((1.0 - b) * v10[k] + b * v11[k]);
+            (-depth).exp()
         })
     }
 }
@@ -125,5 +129,33 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The grazing sun paths of twilight, where the transmittance falls by orders of
+    /// magnitude over a few texels: interpolating the optical depth keeps the relative
+    /// error at 2.5 % (interpolating the transmittance itself: 24 %, measured by this
+    /// test on the former lookup; `cargo test -p atmos --lib grazing_rays_keep --
+    /// --nocapture`).
+    #[test]
+    fn grazing_rays_keep_a_small_relative_error() {
+        let earth = Atmosphere::earth();
+        let table = TransmittanceTable::new(&earth, 128, 256, 500);
+        let mut worst: f64 = 0.0;
+        for altitude in [2_000.0, 10_000.0, 20_000.0, 40_000.0] {
+            let r = earth.planet_radius + altitude;
+            let horizon = -(1.0 - (earth.planet_radius / r).powi(2)).sqrt();
+            for offset in [3e-5, 1e-4, 3e-4, 1e-3, 3e-3] {
+                let mu = horizon + offset;
+                let direct = light_path_transmittance(&earth, altitude, mu, 20_000);
+                let got = table.lookup(r, mu);
+                for k in 0..3 {
+                    if direct[k] > 1e-30 {
+                        worst = worst.max((got[k] / direct[k] - 1.0).abs());
+                    }
+                }
+            }
+        }
+        eprintln!("grazing rays: worst relative error {worst:.2e}");
+        assert!(worst < 0.04, "worst relative error {worst}");
     }
 }
