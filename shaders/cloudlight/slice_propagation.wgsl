@@ -6,7 +6,10 @@
 // the previous slice and this centre's density, a trapezoid over one spacing along the
 // light; sigma_ds = σ_t·Δs (1/m per unit density times metres).
 fn slice_optical_depth(tau_prev: f32, rho_prev: f32, rho: f32, sigma_ds: f32) -> f32 {
-    return tau_prev + 0.5 * sigma_ds * (rho_prev + rho);
+    // Each density times ½σΔs before the sum: σ_t = 0 gives 0 even for huge densities.
+    let half_step = 0.5 * sigma_ds;
+    // Saturated at 1e30 (exp(−τ) is 0 long before): no ∞ meets a zero weight later.
+    return min(tau_prev + (half_step * rho_prev + half_step * rho), 1e30);
 }
 
 // Seed 002's 5-tap cross smoothing of the density.

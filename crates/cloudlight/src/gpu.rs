@@ -3,7 +3,7 @@
 //! [`SlicePropagation`] runs seed 002's slice propagation
 //! (`shaders/cloudlight/slice_propagation_pass.wgsl`): [`SlicePropagation::new`] builds
 //! the pipeline; [`SlicePropagation::prepare`] uploads a volume and a
-//! [`SlicePlan`](crate::propagate::SlicePlan) and creates the buffers and bind groups;
+//! [`SlicePlan`] and creates the buffers and bind groups;
 //! [`SlicePropagation::encode`] only records one compute pass of one dispatch per slice
 //! into the caller's encoder. Nothing here creates a device or submits.
 //!

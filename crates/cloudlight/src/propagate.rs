@@ -73,7 +73,7 @@ pub enum SliceMode {
     Physical,
     /// Seed 002: `1 − (1 − attenuation_ratio)·ρ̄`, 5-tap smoothing, whole-texel shifts.
     /// `attenuation_ratio` ∈ [0, 1] is the light a fully dense slice lets through; densities
-    /// are expected in [0, 1] (cloudsim's).
+    /// must lie in [0, 1] (cloudsim's do; [`SlicePlan::new`] refuses others by name).
     Faithful {
         /// Light passed by a slice of density 1.
         attenuation_ratio: f64,
@@ -133,6 +133,16 @@ impl SlicePlan {
                 attenuation_ratio,
                 "must be in [0, 1] (light passed by a fully dense slice)",
             ));
+        }
+        if matches!(mode, SliceMode::Faithful { .. }) {
+            let max = volume.density().iter().copied().fold(0.0f32, f32::max);
+            if max > 1.0 {
+                return Err(bad(
+                    "max density",
+                    f64::from(max),
+                    "must be ≤ 1 in faithful mode: seed 002's 1 − (1 − r)·ρ̄ needs ρ in [0, 1]",
+                ));
+            }
         }
         let l = to_sun.map(|c| c / norm);
         // Ties go to the later axis (z before y before x), so a zenith sun slices along z.
@@ -208,11 +218,20 @@ impl SlicePlan {
 
 /// Physical mode's step: the optical depth at a centre from the depth `tau_prev` and
 /// density `rho_prev` resampled on the previous slice and this centre's density `rho`,
-/// `tau_prev + (½·σ_tΔs)·(ρ_prev + ρ)` (trapezoid over one spacing). WGSL twin
+/// `tau_prev + (½σ_tΔs·ρ_prev + ½σ_tΔs·ρ)` (trapezoid over one spacing), saturated at
+/// [`TAU_SATURATION`]. WGSL twin
 /// `slice_optical_depth`.
 pub fn slice_optical_depth<F: Real>(tau_prev: F, rho_prev: F, rho: F, sigma_ds: F) -> F {
-    tau_prev + F::of(0.5) * sigma_ds * (rho_prev + rho)
+    // Each density times ½σΔs before the sum: σ_t = 0 gives 0 even for densities whose
+    // sum overflows.
+    let half_step = F::of(0.5) * sigma_ds;
+    (tau_prev + (half_step * rho_prev + half_step * rho)).min(F::of(TAU_SATURATION))
 }
+
+/// Optical depths saturate here (1e30): `exp(−τ)` is already 0 beyond 746 in f64 (104 in
+/// f32), so no light changes, and an infinite depth never meets a zero weight in the
+/// resampling (`0·∞` = NaN).
+pub const TAU_SATURATION: f64 = 1e30;
 
 /// Seed 002's 5-tap cross smoothing: `(centre + left + right + down + up) / 5`. WGSL twin
 /// `cross_smooth`.
@@ -471,6 +490,56 @@ mod tests {
                     // Measured: 0.0060/0.0083 (σ 0.02), 0.0030/0.0033 (σ 0.005).
                     assert!(rmse <= 0.01, "{to_sun:?}: rmse {rmse} max {max}");
                     assert!(rmse < rmse_bilinear, "{rmse} vs bilinear {rmse_bilinear}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn extremes_give_light_in_0_1_without_nan() {
+        // Grids from 1×1×1 up, densities 0 and huge, σ_t 0…1 /m, the sun at the zenith,
+        // the horizon and below it.
+        let suns = [
+            [0.0, 0.0, 1.0],
+            [1.0, 0.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [0.6, 0.3, 1e-9],
+            [0.3, 0.2, -0.9],
+        ];
+        for dims in [[1, 1, 1], [1, 1, 5], [5, 1, 1], [3, 4, 2]] {
+            let cells = (dims[0] * dims[1] * dims[2]) as usize;
+            for density in [0.0f32, 1.0, 1e6, f32::MAX] {
+                for sigma in [0.0, 1e-3, 1.0] {
+                    let v = CloudVolume::new(dims, [0.0; 3], 25.0, sigma, vec![density; cells])
+                        .unwrap();
+                    for to_sun in suns {
+                        let modes = [
+                            SliceMode::Physical,
+                            SliceMode::Faithful {
+                                attenuation_ratio: 0.0,
+                            },
+                        ];
+                        for mode in modes {
+                            for resampling in [Resampling::CatmullRom, Resampling::Bilinear] {
+                                let plan = match SlicePlan::new(&v, to_sun, mode) {
+                                    Ok(plan) => plan.with_resampling(resampling),
+                                    Err(e) => {
+                                        // Faithful mode refuses densities above 1, by name.
+                                        assert!(density > 1.0, "{e}");
+                                        assert!(e.to_string().starts_with("max density"), "{e}");
+                                        continue;
+                                    }
+                                };
+                                let a = propagate::<f32>(&v, &plan);
+                                let b = propagate::<f64>(&v, &plan);
+                                assert!(
+                                    a.iter().all(|l| (0.0..=1.0).contains(l)),
+                                    "{dims:?} {density} {sigma} {to_sun:?} {mode:?}: {a:?}"
+                                );
+                                assert!(b.iter().all(|l| (0.0..=1.0).contains(l)));
+                            }
+                        }
+                    }
                 }
             }
         }

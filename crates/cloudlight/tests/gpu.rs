@@ -17,7 +17,7 @@ fn volume() -> CloudVolume {
                 let c = [6.0, 4.5, 3.0];
                 let r2: f64 = (0..3).map(|a| ((p[a] - c[a]) / c[a]).powi(2)).sum();
                 let wobble = 0.2 * ((x * 7 + y * 3 + z * 5) % 4) as f64 / 3.0;
-                density.push(((1.0 - r2).max(0.0) + wobble * (1.0 - r2).max(0.0)) as f32);
+                density.push((0.8 * (1.0 + wobble) * (1.0 - r2).max(0.0)) as f32);
             }
         }
     }

@@ -68,7 +68,7 @@ const FAITHFUL: Tolerance = Tolerance {
           cloudlight::slice_attenuation) plus the 5-tap mean's 6.5u: ≤ (k+1)·10u",
 };
 
-/// A lumpy cloud: two overlapping ellipsoids with a hashed wobble, densities in [0, 1.2].
+/// A lumpy cloud: two overlapping ellipsoids with a hashed wobble, densities in [0, 1].
 fn volume() -> Result<cloudlight::CloudVolume, String> {
     let dims = [40u32, 32, 20];
     let mut density = Vec::new();
@@ -82,7 +82,7 @@ fn volume() -> Result<cloudlight::CloudVolume, String> {
                 let base = lump([15.0, 15.0, 9.0], [13.0, 12.0, 8.0])
                     .max(lump([27.0, 17.0, 11.0], [11.0, 13.0, 8.0]));
                 let hash = skyscape_wgsl::common::hash_u32(x + 64 * (y + 64 * z)) & 0xff;
-                density.push((base * (0.8 + 0.4 * f64::from(hash) / 255.0)) as f32);
+                density.push((base * (0.6 + 0.4 * f64::from(hash) / 255.0)) as f32);
             }
         }
     }
