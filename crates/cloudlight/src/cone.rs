@@ -167,7 +167,12 @@ pub fn march_optical_depth<F: Real>(
     let mut sum = F::zero();
     for j in 0..steps.max(1) {
         let t = (atmos::real::count::<F>(j) + F::of(0.5)) * h;
-        sum = sum + density([p[0] + t * to_sun[0], p[1] + t * to_sun[1], p[2] + t * to_sun[2]]);
+        sum = sum
+            + density([
+                p[0] + t * to_sun[0],
+                p[1] + t * to_sun[1],
+                p[2] + t * to_sun[2],
+            ]);
     }
     sigma_t * sum * h
 }
@@ -190,7 +195,16 @@ mod tests {
     fn partitioned_weights_cover_the_path() {
         for exit in [10.0, 70.0, 700.0, 5000.0] {
             let total: f64 = (0..7)
-                .map(|i| cone_sample(i, [0.0, 0.0, 1.0], 50.0, exit, 0.0, ConeWeights::Partitioned)[3])
+                .map(|i| {
+                    cone_sample(
+                        i,
+                        [0.0, 0.0, 1.0],
+                        50.0,
+                        exit,
+                        0.0,
+                        ConeWeights::Partitioned,
+                    )[3]
+                })
                 .sum();
             assert!((total - exit).abs() < 1e-9 * exit, "{exit}: {total}");
         }
