@@ -138,7 +138,7 @@ fn cost_at_128() {
                 .map(|cell| {
                     let p = point(cell);
                     let exit = box_exit_distance(p, l, [0.0; 3], hi);
-                    march_optical_depth(density, 0.01, p, l, exit, steps)
+                    march_optical_depth(density, 0.01, p, l, exit, steps.try_into().unwrap())
                 })
                 .sum()
         });
@@ -264,7 +264,15 @@ fn main() {
                     .map(|c| {
                         let p = point(c);
                         let exit = box_exit_distance(p, l, o, hi);
-                        (-march_optical_depth(density, sigma, p, l, exit, steps)).exp()
+                        (-march_optical_depth(
+                            density,
+                            sigma,
+                            p,
+                            l,
+                            exit,
+                            steps.try_into().unwrap(),
+                        ))
+                        .exp()
                     })
                     .collect();
                 let ms = start.elapsed().as_secs_f64() * 1e3;

@@ -154,18 +154,19 @@ pub fn cone_optical_depth<F: Real>(
     sigma_t * sum
 }
 
-/// The full light march: `σ_t Σ ρ(p + (j + ½)h·l)·h` with `h = exit_distance / steps`.
+/// The full light march: `σ_t Σ ρ(p + (j + ½)h·l)·h` with `h = exit_distance / steps`
+/// (`steps` ≥ 1 by its type: no silent clamp of a zero).
 pub fn march_optical_depth<F: Real>(
     density: impl Fn([F; 3]) -> F,
     sigma_t: F,
     p: [F; 3],
     to_sun: [F; 3],
     exit_distance: F,
-    steps: u32,
+    steps: std::num::NonZeroU32,
 ) -> F {
-    let h = exit_distance / atmos::real::count::<F>(steps.max(1));
+    let h = exit_distance / atmos::real::count::<F>(steps.get());
     let mut sum = F::zero();
-    for j in 0..steps.max(1) {
+    for j in 0..steps.get() {
         let t = (atmos::real::count::<F>(j) + F::of(0.5)) * h;
         sum = sum
             + density([
@@ -226,6 +227,9 @@ mod tests {
         let tau = cone_optical_depth(d, 0.004, p, l, 40.0, exit, 0.0, ConeWeights::Partitioned);
         let exact = -transmittance(&v, p, l, f64::INFINITY).unwrap().ln();
         assert!((tau - exact).abs() < 1e-12, "{tau} vs {exact}");
+        let steps = std::num::NonZeroU32::new(5).unwrap();
+        let marched = march_optical_depth(d, 0.004, p, l, exit, steps);
+        assert!((marched - exact).abs() < 1e-12, "{marched} vs {exact}");
         let raw = cone_optical_depth(d, 0.004, p, l, 40.0, exit, 0.0, ConeWeights::Raw);
         assert!(raw < exact, "raw {raw} is biased bright against {exact}");
     }
