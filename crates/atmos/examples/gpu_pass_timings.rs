@@ -62,7 +62,7 @@ fn main() -> std::process::ExitCode {
         time("transmittance 256x64", &|e, t| {
             baker.encode_transmittance(e, t)
         });
-        time("multiple scattering 32x32, orders 2-5", &|e, t| {
+        time("multiple scattering 128x32, orders 2-5", &|e, t| {
             baker.encode_multiple_scattering(e, t)
         });
         time("sky view 192x108", &|e, t| baker.encode_sky_view(e, t));
