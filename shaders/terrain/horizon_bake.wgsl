@@ -8,8 +8,10 @@
 //   hull stack lives in `hull` (width u32 per row).
 // * horizon_window: one invocation per texel, brute force over at most max_steps samples
 //   (used when a maximum distance is set).
-// * horizon_sweep_lines / horizon_window_lines: the same for any azimuth, one invocation
-//   per digital line (end of file).
+// * horizon_sweep_lines / horizon_window_lines: the same for the axes and diagonals, one
+//   invocation per digital line; horizon_off_axis_lines: any other azimuth, the
+//   sampling of terrain::horizon off the grid (texel's own ray for near_steps, then the
+//   line's samples interpolated across it), every sample of each window (end of file).
 
 struct HorizonBakeParams {
     width: u32,
@@ -125,8 +127,10 @@ struct HorizonLineParams {
     // Line id of invocation 0.
     first_line: i32,
     line_count: u32,
-    _pad0: u32,
-    _pad1: u32,
+    // Off the axes and diagonals: march * t * step / (1 + t^2), metres per texel of
+    // minor offset (where a texel's foot lies along its line), and NEAR_STEPS.
+    foot: f32,
+    near_steps: u32,
 }
 
 @group(0) @binding(4) var<uniform> lines: HorizonLineParams;
@@ -231,5 +235,109 @@ fn horizon_window_lines(@builtin(global_invocation_id) gid: vec3<u32>) {
             found = true;
         }
         angles[line_texel(c, range, k)] = select(NO_HORIZON, atan(best), found);
+    }
+}
+
+// ---------------------------------------------------------------- off the axes
+// Off the axes and diagonals (terrain::horizon's module docs): the exact line c runs
+// through minor position c + u * t = c + offsets[u] + fracs[u] (fracs in [-0.5, 0.5],
+// from the CPU in f64). Its sample at u is linear between the two texels around it;
+// texel (u, c + offsets[u]) looks along its own ray for near_steps steps, then at the
+// line's samples, each at its distance along the azimuth from the texel's foot.
+
+@group(0) @binding(6) var<storage, read> fracs: array<f32>;
+
+fn dominant_texel(u: i32, m: i32) -> u32 {
+    if lines.dominant_is_x != 0u {
+        return u32(m) * params.width + u32(u);
+    }
+    return u32(u) * params.width + u32(m);
+}
+
+// The height at dominant coordinate u, minor position m + f (f in [-1, 1]), linear
+// across the grid line; x = -1 marks a position outside [0, n_minor - 1].
+fn height_across(u: i32, m: i32, f: f32) -> vec2<f32> {
+    var lo = m;
+    var w = f;
+    if f < 0.0 {
+        lo = m - 1;
+        w = 1.0 + f;
+    }
+    let n = i32(lines.n_minor);
+    if lo < 0 || lo > n - 1 || (lo == n - 1 && w > 0.0) {
+        return vec2<f32>(-1.0, 0.0);
+    }
+    let a = heights[dominant_texel(u, lo)];
+    if w == 0.0 {
+        return vec2<f32>(1.0, a);
+    }
+    let b = heights[dominant_texel(u, lo + 1)];
+    return vec2<f32>(1.0, a + (b - a) * w);
+}
+
+fn dominant_of(range: vec2<i32>, p: u32) -> i32 {
+    if lines.march_forward == 0u {
+        return range.y - i32(p);
+    }
+    return range.x + i32(p);
+}
+
+// One invocation per line; each texel scans its window (near field on its own ray,
+// then the line's samples), the CPU brute force of the same sampling in f32.
+@compute @workgroup_size(64)
+fn horizon_off_axis_lines(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let line = gid.x;
+    if line >= lines.line_count {
+        return;
+    }
+    let c = lines.first_line + i32(line);
+    let range = line_range(c);
+    if range.x > range.y {
+        return;
+    }
+    let n = u32(range.y - range.x + 1);
+    for (var k = 0u; k < n; k++) {
+        let u0 = dominant_of(range, k);
+        let m0 = c + offsets[u0];
+        let h_p = heights[dominant_texel(u0, m0)];
+        let e = lines.foot * (-fracs[u0]);
+        var found = false;
+        var best = 0.0;
+        let window = min(n - 1u - k, params.max_steps);
+        let near = min(window, lines.near_steps);
+        for (var s = 1u; s <= near; s++) {
+            let u = dominant_of(range, k + s);
+            // m0 + march * s * t = m0 + (offsets[u] - offsets[u0]) + (fracs[u] - fracs[u0]).
+            let f = fracs[u] - fracs[u0];
+            var m = m0 + (offsets[u] - offsets[u0]);
+            var ff = f;
+            if ff >= 1.0 {
+                m += 1;
+                ff -= 1.0;
+            } else if ff <= -1.0 {
+                m -= 1;
+                ff += 1.0;
+            }
+            let sample = height_across(u, m, ff);
+            if sample.x < 0.0 {
+                break;
+            }
+            let d = f32(s) * params.step;
+            let t = (sample.y - h_p - d * d * params.inv_two_r) / d;
+            best = select(t, max(best, t), found);
+            found = true;
+        }
+        for (var j = k + lines.near_steps + 1u; j <= k + window; j++) {
+            let u = dominant_of(range, j);
+            let sample = height_across(u, c + offsets[u], fracs[u]);
+            if sample.x < 0.0 {
+                continue;
+            }
+            let d = f32(j - k) * params.step - e;
+            let t = (sample.y - h_p - d * d * params.inv_two_r) / d;
+            best = select(t, max(best, t), found);
+            found = true;
+        }
+        angles[dominant_texel(u0, m0)] = select(NO_HORIZON, atan(best), found);
     }
 }

@@ -13,7 +13,7 @@
 //! with the CPU within the tolerance measured in the tests (`f32` arithmetic and the
 //! GPU's `atan`).
 
-use crate::horizon::{HorizonOptions, Lines, check_azimuth, max_steps_for};
+use crate::horizon::{HorizonOptions, Lines, NEAR_STEPS, check_azimuth, max_steps_for};
 use crate::{Heightfield, TerrainError};
 
 const WORKGROUP: u32 = 64;
@@ -41,7 +41,8 @@ struct LineParams {
     n_minor: u32,
     first_line: i32,
     line_count: u32,
-    _pad: [u32; 2],
+    foot: f32,
+    near_steps: u32,
 }
 
 /// Compiled pipelines for the GPU horizon bake.
@@ -51,6 +52,7 @@ pub struct GpuHorizonBaker {
     window: wgpu::ComputePipeline,
     sweep_lines: wgpu::ComputePipeline,
     window_lines: wgpu::ComputePipeline,
+    off_axis_lines: wgpu::ComputePipeline,
 }
 
 /// Output of [`GpuHorizonBaker::record_azimuth`]: a storage buffer of `f32` angles
@@ -111,6 +113,7 @@ impl GpuHorizonBaker {
             window: pipeline("horizon_window"),
             sweep_lines: pipeline("horizon_sweep_lines"),
             window_lines: pipeline("horizon_window_lines"),
+            off_axis_lines: pipeline("horizon_off_axis_lines"),
         }
     }
 
@@ -213,10 +216,27 @@ impl GpuHorizonBaker {
                 n_minor: lines.n_minor as u32,
                 first_line: *ids.start() as i32,
                 line_count: line_count as u32,
-                _pad: [0; 2],
+                foot: (lines.march as f64 * lines.slope * lines.step
+                    / (1.0 + lines.slope * lines.slope)) as f32,
+                near_steps: NEAR_STEPS as u32,
             }),
         );
-        let pipeline = if windowed {
+        // Off the axes and diagonals: u·t − round(u·t) per dominant coordinate.
+        let fracs: Vec<f32> = lines
+            .offsets
+            .iter()
+            .enumerate()
+            .map(|(u, &o)| (u as f64 * lines.slope - o as f64) as f32)
+            .collect();
+        let fracs_buffer = storage(
+            "terrain line fractions",
+            (fracs.len() * 4) as u64,
+            wgpu::BufferUsages::COPY_DST,
+        );
+        queue.write_buffer(&fracs_buffer, 0, bytemuck::cast_slice(&fracs));
+        let pipeline = if !lines.exact {
+            &self.off_axis_lines
+        } else if windowed {
             &self.window_lines
         } else {
             &self.sweep_lines
@@ -243,7 +263,12 @@ impl GpuHorizonBaker {
                 resource: offsets_buffer.as_entire_binding(),
             },
         ];
-        if !windowed {
+        if !lines.exact {
+            entries.push(wgpu::BindGroupEntry {
+                binding: 6,
+                resource: fracs_buffer.as_entire_binding(),
+            });
+        } else if !windowed {
             entries.push(wgpu::BindGroupEntry {
                 binding: 2,
                 resource: hull.as_entire_binding(),
@@ -418,7 +443,8 @@ mod tests {
             n_minor,
             first_line,
             line_count,
-            _pad,
+            foot,
+            near_steps,
         })
         .check_twin_of(&wgsl("HorizonLineParams"))
         .unwrap();

@@ -15,20 +15,32 @@
 //! The term `d²/(2R)` is the drop of the surface below the tangent plane of `P` on a
 //! sphere of radius `R`; it is left out when curvature is off.
 //!
-//! **Which samples** ("digital lines"): write the horizontal direction of `φ` in
-//! texel axes as `(sin φ, −cos φ)` (columns east, rows south). The *dominant* axis is
-//! the one with the larger absolute component; `t` is the minor component divided by
-//! the dominant one (`|t| ≤ 1`). With `u` the dominant and `m` the minor coordinate,
-//! the texels of the map are partitioned into lines `{(u, c + round(u·t))}` for
-//! integer `c` (`round` is half away from zero). The samples of `P = (u₀, m₀)` are the
-//! texels of its own line with `u = u₀ ± 1, u₀ ± 2, …` (the sign of the dominant
-//! component), `Q_k` being `k` steps away, until the line leaves the map.
-//! The distance `d_k = k · L` uses `L = spacing · sqrt(1 + t²)`: the distance along
-//! `φ` of one dominant step. The samples are texel heights (no interpolation); their
-//! lateral offset from the exact ray is at most one texel.
+//! **Which samples**: write the horizontal direction of `φ` in texel axes as
+//! `(sin φ, −cos φ)` (columns east, rows south). The *dominant* axis is the one with
+//! the larger absolute component; `t` is the minor component divided by the dominant
+//! one (`|t| ≤ 1`). With `u` the dominant and `m` the minor coordinate, the texels of
+//! the map are partitioned into lines `{(u, c + round(u·t))}` for integer `c`
+//! (`round` is half away from zero). One step is one dominant texel; its distance
+//! along `φ` is `L = spacing · sqrt(1 + t²)`, and the samples lie on the grid lines
+//! `u = u₀ ± 1, u₀ ± 2, …` (the sign of the dominant component), where the bilinear
+//! surface is linear in `m`: a sample at minor position `x` is the linear
+//! interpolation of the two texels around it.
 //!
-//! For east and west `t = 0`: the samples are exactly the texels of the same row,
-//! `d_k = k · spacing`. For north and south, the same column.
+//! * **Axes and diagonals** (`t ∈ {0, ±1}`): every `u·t` is an integer, the line of
+//!   `P = (u₀, m₀)` is its exact ray, and `Q_k` is the texel `k` steps along it,
+//!   `d_k = k · L`.
+//! * **Any other azimuth**: the exact line `c` runs through `m = c + u·t`; texel `P`
+//!   lies `δ = round(u₀·t) − u₀·t` (`|δ| ≤ ½`) beside it. For `k ≤ NEAR_STEPS`
+//!   ([`NEAR_STEPS`]) `Q_k` lies on `P`'s own ray, `m = m₀ ± k·t`, at `d_k = k · L`
+//!   (the near field, where half a texel matters most). Beyond, `Q_k` is the line's
+//!   sample at `u₀ ± k`, at its distance along `φ` from `P`'s foot on the line,
+//!   `d_k = k · L − δ·t·L/(1 + t²)` (the sample is `|δ|/sqrt(1 + t²)` texels beside
+//!   the ray, at most 0.36). A ray stops where its line's texels end.
+//!
+//! Before this sampling (up to 2026-11) every azimuth read the texels of its digital
+//! line at `k · L`: up to one texel beside the ray, at the distance along the line.
+//! At odd multiples of 22.5° that gave several times the diagonals' error and a bias
+//! towards shadow (`docs/tradeoffs/terrain.md`, per-azimuth table).
 //!
 //! With a maximum distance `D`, only `k ≤ K` count, `K` the largest integer with
 //! `K · L ≤ D`.
@@ -36,7 +48,8 @@
 //! # Algorithms
 //!
 //! [`Algorithm::BruteForce`] evaluates the formula for every `k` (O(n²) per line).
-//! [`Algorithm::HullSweep`] is the exact sweep of Timonen & Westerholm (2010): walking
+//! [`Algorithm::HullSweep`] is exact (the same samples, the same maximum). On the axes
+//! and diagonals it is the sweep of Timonen & Westerholm (2010): walking
 //! each line from its far end, it keeps the upper convex hull of the samples ahead
 //! and finds the horizon point as the tangent from `P`, popping hull points that `P`
 //! cannot see (amortised O(1) per texel).
@@ -52,6 +65,15 @@
 //! of its own block (a fresh sweep per block) plus a prefix of the next block, whose
 //! upper hull is built incrementally and undone point by point as `P` moves back, the
 //! tangent found by binary search (O(n log K) per line).
+//!
+//! Off the axes and diagonals the viewpoints are texels beside the line, not its
+//! samples, so no sample can be discarded for good: walking back along the line, each
+//! line sample `NEAR_STEPS + 1` steps behind the current texel enters an upper hull
+//! (monotone chain, amortised O(1)), and the texel's horizon point is its tangent point
+//! on that hull, found by binary search (the positions along the line are linear, so
+//! the hull in `(s, g)` is exact with `s_P` the foot's position). A maximum distance
+//! uses the same blocks as above. When the highest sample that can be in a window
+//! cannot rise above the near field's horizon, the searches are skipped.
 //!
 //! Lines are distributed over threads (`std::thread::scope`); every line is computed
 //! the same way whatever the thread count, so the result does not depend on it.
@@ -253,6 +275,11 @@ pub(crate) struct Lines {
     width: usize,
     /// Distance of one step, metres.
     pub(crate) step: f64,
+    /// `t`: the minor component over the dominant one (`|t| ≤ 1`).
+    pub(crate) slope: f64,
+    /// `true` when every `u · t` is an integer (the axes and the diagonals): the
+    /// exact line through each texel runs through texels only.
+    pub(crate) exact: bool,
 }
 
 impl Lines {
@@ -264,10 +291,19 @@ impl Lines {
         } else {
             (south, east, height, width)
         };
-        let t = minor / dominant;
-        let offsets = (0..n_dominant)
+        // The axes and diagonals exactly (`cos(π/2)` is 6e−17, not 0).
+        let t = match minor / dominant {
+            t if t.abs() < 1e-12 => 0.0,
+            t if (t.abs() - 1.0).abs() < 1e-12 => t.signum(),
+            t => t,
+        };
+        let offsets: Vec<i64> = (0..n_dominant)
             .map(|u| (u as f64 * t).round() as i64)
             .collect();
+        let exact = offsets
+            .iter()
+            .enumerate()
+            .all(|(u, &o)| o as f64 == u as f64 * t);
         Self {
             dominant_is_x,
             march: if dominant > 0.0 { 1 } else { -1 },
@@ -276,7 +312,63 @@ impl Lines {
             n_minor,
             width,
             step: spacing * (1.0 + t * t).sqrt(),
+            slope: t,
+            exact,
         }
+    }
+
+    /// Dominant coordinate of marching position `i` (0 = the first in marching order).
+    #[inline]
+    fn dominant_at(&self, i: usize) -> usize {
+        if self.march > 0 {
+            i
+        } else {
+            self.n_dominant - 1 - i
+        }
+    }
+
+    /// Texel index of dominant coordinate `u` and minor coordinate `m`.
+    #[inline]
+    fn texel(&self, u: usize, m: usize) -> usize {
+        if self.dominant_is_x {
+            m * self.width + u
+        } else {
+            u * self.width + m
+        }
+    }
+
+    /// The heights in metres laid out dominant-major (`grid[u · n_minor + m]`), so
+    /// that walking a line reads memory almost in order.
+    fn dominant_major(&self, hf: &Heightfield) -> Vec<f64> {
+        let scale = hf.vertical_scale();
+        let samples = hf.samples();
+        let mut grid = Vec::with_capacity(samples.len());
+        for u in 0..self.n_dominant {
+            grid.extend((0..self.n_minor).map(|m| f64::from(samples[self.texel(u, m)]) * scale));
+        }
+        grid
+    }
+
+    /// The height at dominant coordinate `u` and minor position `x` (texel units),
+    /// linear between the two texels around `x` (the bilinear surface on the grid
+    /// line `u`); `None` outside `[0, n_minor − 1]`. `grid` from
+    /// [`Lines::dominant_major`].
+    #[inline]
+    fn height_between(&self, grid: &[f64], u: usize, x: f64) -> Option<f64> {
+        // `x ≥ 0` truncates to its floor (`f64::floor` is a libm call on baseline
+        // x86-64); NaN and negative positions are outside.
+        if x.is_nan() || x < 0.0 || x > (self.n_minor - 1) as f64 {
+            return None;
+        }
+        let m = x as usize;
+        let f = x - m as f64;
+        let row = &grid[u * self.n_minor..][..self.n_minor];
+        let a = row[m];
+        if f == 0.0 {
+            return Some(a);
+        }
+        let b = *row.get(m + 1)?;
+        Some(a + (b - a) * f)
     }
 
     /// Line ids `c` covering the map, in order.
@@ -481,6 +573,336 @@ fn sweep_line(p: &Profile<'_>, max_steps: usize, g: &mut Vec<f64>, out: &mut [f3
     }
 }
 
+/// Steps along each texel's own exact ray before the shared line takes over (off the
+/// axes and diagonals): the near field, where a lateral offset of half a texel matters
+/// most, is sampled exactly; beyond it every texel of a line reads the line's samples.
+pub const NEAR_STEPS: usize = 4;
+
+/// One texel (viewpoint) of a line off the axes and diagonals.
+#[derive(Debug, Clone, Copy)]
+struct View {
+    /// Marching position of the texel's dominant coordinate.
+    i: usize,
+    /// Row-major texel index.
+    texel: usize,
+    /// Height, metres.
+    h: f64,
+    /// Minor coordinate of the texel.
+    m: f64,
+    /// Where the texel's foot lies along the line, relative to the line's sample at the
+    /// same marching position, metres (`s_P = i · L + e`).
+    e: f64,
+    /// Curvature-corrected height of the viewpoint, `h − s_P² / (2R)`.
+    g: f64,
+}
+
+/// Scratch buffers of one worker for the lines off the axes and diagonals.
+#[derive(Debug, Default)]
+struct LineScratch {
+    /// Line samples in marching order (NaN where the line is outside the map).
+    h: Vec<f64>,
+    /// `h − s² / (2R)`, `s = i · L`.
+    g: Vec<f64>,
+    views: Vec<View>,
+    hull: Vec<usize>,
+    prefix: Vec<usize>,
+    /// (sample, added, popped count) per sample offered to the prefix hull.
+    undo_log: Vec<(usize, bool, usize)>,
+    popped: Vec<usize>,
+    out: Vec<f32>,
+}
+
+/// One azimuth's sampling off the axes and diagonals (module docs, "Which samples").
+struct Sampler<'a> {
+    lines: &'a Lines,
+    /// [`Lines::dominant_major`].
+    grid: &'a [f64],
+    inv_two_r: f64,
+    max_steps: usize,
+}
+
+impl Sampler<'_> {
+    /// Fills `sc.h`, `sc.g` and `sc.views` for line `c`.
+    fn build(&self, c: i64, sc: &mut LineScratch) {
+        let l = self.lines;
+        let (t, step) = (l.slope, l.step);
+        // Projection of a minor offset of one texel on the direction, metres.
+        let foot = l.march as f64 * t * step / (1.0 + t * t);
+        sc.h.clear();
+        sc.g.clear();
+        sc.views.clear();
+        for i in 0..l.n_dominant {
+            let u = l.dominant_at(i);
+            let exact = u as f64 * t;
+            let h = l
+                .height_between(self.grid, u, c as f64 + exact)
+                .unwrap_or(f64::NAN);
+            let s = i as f64 * step;
+            sc.h.push(h);
+            sc.g.push(h - s * s * self.inv_two_r);
+            let m = c + l.offsets[u];
+            if m >= 0 && (m as usize) < l.n_minor {
+                let texel = l.texel(u, m as usize);
+                let hp = self.grid[u * l.n_minor + m as usize];
+                let e = foot * (l.offsets[u] as f64 - exact);
+                let sp = s + e;
+                sc.views.push(View {
+                    i,
+                    texel,
+                    h: hp,
+                    m: m as f64,
+                    e,
+                    g: hp - sp * sp * self.inv_two_r,
+                });
+            }
+        }
+    }
+
+    /// The largest tangent over the first `min(NEAR_STEPS, K)` steps of the texel's own
+    /// ray (heights linear across the grid line, distance `k · L`).
+    ///
+    /// The ray stops where the line's texels end (`last`, the last view's position),
+    /// as the GPU twin's does.
+    fn near_best(&self, v: &View, last: usize) -> f64 {
+        let l = self.lines;
+        let mut best = f64::NEG_INFINITY;
+        for k in 1..=NEAR_STEPS.min(self.max_steps) {
+            let i = v.i + k;
+            if i > last {
+                break;
+            }
+            let x = v.m + (l.march * k as i64) as f64 * l.slope;
+            let Some(h) = l.height_between(self.grid, l.dominant_at(i), x) else {
+                break;
+            };
+            let d = k as f64 * l.step;
+            best = best.max((h - v.h - d * d * self.inv_two_r) / d);
+        }
+        best
+    }
+
+    /// Distance along the azimuth from the texel's foot to line sample `j`, metres.
+    #[inline]
+    fn distance(&self, v: &View, j: usize) -> f64 {
+        (j - v.i) as f64 * self.lines.step - v.e
+    }
+
+    /// Tangent of the elevation of line sample `j` seen from `v`: the formula both
+    /// algorithms evaluate.
+    #[inline]
+    fn tangent(&self, sc: &LineScratch, v: &View, j: usize) -> f64 {
+        let d = self.distance(v, j);
+        (sc.h[j] - v.h - d * d * self.inv_two_r) / d
+    }
+
+    /// `true` when, seen from `v`, sample `b` is not above sample `a` (curvature-
+    /// corrected frame; both ahead of `v`).
+    #[inline]
+    fn not_above(&self, g: &[f64], v: &View, a: usize, b: usize) -> bool {
+        (g[b] - v.g) * self.distance(v, a) <= (g[a] - v.g) * self.distance(v, b)
+    }
+
+    /// The tangent point from `v` on an upper hull given left to right by `at(k)`,
+    /// `k < len` (unimodal: binary search).
+    fn tangent_point(&self, g: &[f64], v: &View, len: usize, at: impl Fn(usize) -> usize) -> usize {
+        let (mut lo, mut hi) = (0usize, len - 1);
+        while lo < hi {
+            let mid = (lo + hi) / 2;
+            if self.not_above(g, v, at(mid), at(mid + 1)) {
+                hi = mid;
+            } else {
+                lo = mid + 1;
+            }
+        }
+        at(lo)
+    }
+
+    /// Brute force over line `c` (after [`Sampler::build`]): every sample of each window.
+    fn brute(&self, sc: &mut LineScratch) {
+        let n = self.lines.n_dominant;
+        sc.out.clear();
+        let last_view = sc.views.last().map_or(0, |v| v.i);
+        for v in &sc.views {
+            let mut best = self.near_best(v, last_view);
+            let last = v.i.saturating_add(self.max_steps).min(n - 1);
+            for j in v.i + NEAR_STEPS + 1..=last {
+                if !sc.h[j].is_nan() {
+                    best = best.max(self.tangent(sc, v, j));
+                }
+            }
+            sc.out.push(angle_from_tangent(best));
+        }
+    }
+
+    /// The hull sweep over line `c` (after [`Sampler::build`]): the same samples as
+    /// [`Sampler::brute`]; the far samples of each window enter upper convex hulls as
+    /// the sweep walks back along the line, and each texel's horizon point is its
+    /// tangent point on them.
+    fn sweep(&self, sc: &mut LineScratch) {
+        let n = self.lines.n_dominant;
+        let far = self.max_steps.saturating_sub(NEAR_STEPS);
+        sc.out.clear();
+        sc.out.resize(sc.views.len(), NO_HORIZON);
+        let LineScratch {
+            h,
+            g,
+            views,
+            hull,
+            prefix,
+            undo_log,
+            popped,
+            out,
+        } = sc;
+        let g = &g[..];
+        // Adds `p`, left of every point, to the upper hull `hull` (leftmost last).
+        let push_left = |hull: &mut Vec<usize>, p: usize| {
+            while hull.len() >= 2 {
+                let t = hull[hull.len() - 1];
+                let s = hull[hull.len() - 2];
+                if (g[t] - g[p]) * (s - p) as f64 <= (g[s] - g[p]) * (t - p) as f64 {
+                    hull.pop();
+                } else {
+                    break;
+                }
+            }
+            hull.push(p);
+        };
+        // Windows reaching the end of the line: one hull of everything ahead.
+        let unlimited = far == 0 || self.max_steps >= n;
+        hull.clear();
+        let mut next = n; // the next sample to add is next − 1
+        let mut block = usize::MAX;
+        let mut prefix_end = 0usize; // samples < prefix_end were offered to `prefix`
+        // The highest curvature-corrected sample that can be in the window: of all
+        // samples added (unlimited) or of the window's two blocks.
+        let mut g_max = f64::NEG_INFINITY;
+        let last_view = views.last().map_or(0, |v| v.i);
+        for (slot, v) in views.iter().enumerate().rev() {
+            let mut best = self.near_best(v, last_view);
+            let a = v.i + NEAR_STEPS + 1;
+            if far > 0 && a < n {
+                let b = if unlimited {
+                    n - 1
+                } else {
+                    (a + far - 1).min(n - 1)
+                };
+                if unlimited {
+                    while next > a {
+                        next -= 1;
+                        if !h[next].is_nan() {
+                            push_left(hull, next);
+                            g_max = g_max.max(g[next]);
+                        }
+                    }
+                } else {
+                    if a / far != block {
+                        // A new block: part A restarts, part B is the whole next block.
+                        block = a / far;
+                        hull.clear();
+                        next = ((block + 1) * far).min(n);
+                        prefix.clear();
+                        undo_log.clear();
+                        popped.clear();
+                        let start = (block + 1) * far;
+                        prefix_end = (start + far).min(n);
+                        g_max = g[block * far..prefix_end]
+                            .iter()
+                            .copied()
+                            .filter(|x| !x.is_nan())
+                            .fold(f64::NEG_INFINITY, f64::max);
+                        for j in start..prefix_end {
+                            if h[j].is_nan() {
+                                undo_log.push((j, false, 0));
+                                continue;
+                            }
+                            let mut count = 0;
+                            while prefix.len() >= 2 {
+                                let t = prefix[prefix.len() - 1];
+                                let s = prefix[prefix.len() - 2];
+                                if (g[t] - g[s]) * (j - s) as f64 <= (g[j] - g[s]) * (t - s) as f64
+                                {
+                                    popped.push(t);
+                                    prefix.pop();
+                                    count += 1;
+                                } else {
+                                    break;
+                                }
+                            }
+                            prefix.push(j);
+                            undo_log.push((j, true, count));
+                        }
+                    }
+                    while next > a {
+                        next -= 1;
+                        if !h[next].is_nan() {
+                            push_left(hull, next);
+                        }
+                    }
+                }
+                // No sample of the window can rise above the near field's horizon:
+                // skip the tangent searches (the hulls are kept up to date regardless).
+                let s_p = v.i as f64 * self.lines.step + v.e;
+                let lift = 2.0 * s_p * self.inv_two_r;
+                let rise = g_max - v.g;
+                let reach = if rise >= 0.0 {
+                    rise / self.distance(v, a)
+                } else {
+                    rise / self.distance(v, b)
+                };
+                if reach + lift < best {
+                    out[slot] = angle_from_tangent(best);
+                    if !unlimited {
+                        self.shrink_prefix(prefix, undo_log, popped, &mut prefix_end, b);
+                    }
+                    continue;
+                }
+                if !unlimited {
+                    // Part B: the next block's samples up to b.
+                    self.shrink_prefix(prefix, undo_log, popped, &mut prefix_end, b);
+                    if !prefix.is_empty() {
+                        let j = self.tangent_point(g, v, prefix.len(), |k| prefix[k]);
+                        best = best.max(self.tangent_h(h, v, j));
+                    }
+                }
+                if !hull.is_empty() {
+                    let len = hull.len();
+                    let j = self.tangent_point(g, v, len, |k| hull[len - 1 - k]);
+                    best = best.max(self.tangent_h(h, v, j));
+                }
+            }
+            out[slot] = angle_from_tangent(best);
+        }
+    }
+
+    /// Undoes the prefix hull's additions beyond sample `b`.
+    fn shrink_prefix(
+        &self,
+        prefix: &mut Vec<usize>,
+        undo_log: &mut Vec<(usize, bool, usize)>,
+        popped: &mut Vec<usize>,
+        prefix_end: &mut usize,
+        b: usize,
+    ) {
+        while *prefix_end > b + 1 {
+            let (j, added, count) = undo_log.pop().expect("undo log matches prefix");
+            debug_assert_eq!(j + 1, *prefix_end);
+            if added {
+                prefix.pop();
+                for _ in 0..count {
+                    prefix.push(popped.pop().expect("popped log matches"));
+                }
+            }
+            *prefix_end -= 1;
+        }
+    }
+
+    #[inline]
+    fn tangent_h(&self, h: &[f64], v: &View, j: usize) -> f64 {
+        let d = self.distance(v, j);
+        (h[j] - v.h - d * d * self.inv_two_r) / d
+    }
+}
+
 pub(crate) fn check_azimuth(azimuth: f64) -> Result<f64, TerrainError> {
     if !azimuth.is_finite() {
         return Err(TerrainError::param("azimuth", azimuth, "must be finite"));
@@ -506,6 +928,25 @@ pub fn horizon_angle(
     }
     let lines = Lines::new(hf.width(), hf.height(), hf.spacing(), azimuth);
     let (c, _) = lines.locate(x, y);
+    let target = y * hf.width() + x;
+    if !lines.exact {
+        let grid = lines.dominant_major(hf);
+        let sampler = Sampler {
+            lines: &lines,
+            grid: &grid,
+            inv_two_r: options.inv_two_r(),
+            max_steps: lines.max_steps(options.max_distance),
+        };
+        let mut sc = LineScratch::default();
+        sampler.build(c, &mut sc);
+        sampler.brute(&mut sc);
+        let k = sc
+            .views
+            .iter()
+            .position(|v| v.texel == target)
+            .expect("every texel lies on its own line");
+        return Ok(sc.out[k]);
+    }
     let mut texels = Vec::new();
     lines.texels(c, &mut texels);
     let target = y * hf.width() + x;
@@ -642,8 +1083,31 @@ pub fn bake_horizon(
         }
         chunks.push(&ids[start..]);
     }
+    let grid = if lines.exact {
+        Vec::new()
+    } else {
+        lines.dominant_major(hf)
+    };
+    let sampler = Sampler {
+        lines: &lines,
+        grid: &grid,
+        inv_two_r,
+        max_steps,
+    };
     let run_chunk = |chunk: &[i64]| -> Vec<f32> {
         let mut results = Vec::new();
+        if !lines.exact {
+            let mut sc = LineScratch::default();
+            for &c in chunk {
+                sampler.build(c, &mut sc);
+                match algorithm {
+                    Algorithm::BruteForce => sampler.brute(&mut sc),
+                    Algorithm::HullSweep => sampler.sweep(&mut sc),
+                }
+                results.extend_from_slice(&sc.out);
+            }
+            return results;
+        }
         let (mut texels, mut h, mut g, mut out) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for &c in chunk {
             lines.texels(c, &mut texels);
