@@ -96,6 +96,27 @@ fn cloud_reflectance(optical_thickness: f32, asymmetry: f32, mu_sun: f32) -> f32
     return clamp((scaled + (2.0 / 3.0 - mu_sun) * direct) / (4.0 / 3.0 + scaled), 0.0, 1.0);
 }
 
+// Fraction of the direct sun reaching `point` (east/north/up metres from the viewer at
+// radius r) under the layer: exp(−τρ/μ☉) with ρ the texture where the sun's ray from the
+// point crosses the base (taken flat over the point); 1 at or above the top, outside
+// the patch, or with the sun at or below the horizon.
+fn cloud_shadow(point: vec3<f32>, r: f32, layer: CloudLayerUniforms) -> f32 {
+    let sun = layer.sun_direction;
+    let mu_sun = sun.z;
+    let point_radius = r + point.z;
+    if mu_sun <= 0.0 || point_radius >= layer.top_radius {
+        return 1.0;
+    }
+    let distance = max(layer.base_radius - point_radius, 0.0) / mu_sun;
+    let x = point.x + sun.x * distance;
+    let y = point.y + sun.y * distance;
+    if sqrt(x * x + y * y) >= layer.half_span {
+        return 1.0;
+    }
+    let density = cloud_density(x + layer.offset.x, y + layer.offset.y, layer);
+    return exp(-layer.optical_thickness * density / mu_sun);
+}
+
 // Distance along (r, mu) to the layer surface (sphere when curved, else the plane at
 // that altitude); −1 when it is not reached.
 fn cloud_layer_distance(r: f32, mu: f32, layer_radius: f32, curved: u32) -> f32 {

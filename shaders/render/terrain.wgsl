@@ -11,6 +11,7 @@
 #import atmos::aerial_perspective
 #import terrain::shadow
 #import render::terrain_shading
+#import celestial::clouds
 
 struct TerrainUniform {
     view_projection: mat4x4<f32>,
@@ -30,7 +31,9 @@ struct TerrainUniform {
     sun_azimuth: f32,
     // 0: seed 000's east/west pair (horizons holds east then west); N: N azimuth layers.
     horizon_layers: u32,
-    padding: vec2<f32>,
+    // The viewer's distance from the planet's centre (m): celestial's cloud frame.
+    viewer_radius: f32,
+    cloud_layer_count: u32,
     albedo: AlbedoRamp,
 }
 
@@ -40,6 +43,8 @@ struct TerrainUniform {
 @group(2) @binding(2) var<storage, read> normals: array<vec4<f32>>;
 // Horizon angles (rad): layer k of texel i at i + k·width·height.
 @group(2) @binding(3) var<storage, read> horizons: array<f32>;
+// The scene's cloud layers (celestial::clouds), casting shadows on the terrain.
+@group(2) @binding(4) var<storage, read> cloud_layers: array<CloudLayerUniforms>;
 
 struct TerrainVarying {
     @builtin(position) clip: vec4<f32>,
@@ -99,6 +104,17 @@ fn azimuth_horizon(texel: u32, layers: AzimuthLayers) -> f32 {
     return a + (b - a) * layers.weight;
 }
 
+// The direct sun's fraction through every cloud layer at `offset` (world axes, metres
+// from the camera): celestial's cloud_shadow per layer. Twin: render::clouds::cloud_shadow_at.
+fn cloud_shadow_at(offset: vec3<f32>) -> f32 {
+    let point = vec3<f32>(offset.x, -offset.z, offset.y);
+    var shadow = 1.0;
+    for (var i = 0u; i < terrain.cloud_layer_count; i++) {
+        shadow *= cloud_shadow(point, terrain.viewer_radius, cloud_layers[i]);
+    }
+    return shadow;
+}
+
 // Radiance of the terrain at world position `world`, seen from the camera.
 fn terrain_radiance(world: vec3<f32>) -> vec3<f32> {
     let map = vec2<f32>(world.x, world.z) + terrain.map_offset;
@@ -120,7 +136,7 @@ fn terrain_radiance(world: vec3<f32>) -> vec3<f32> {
     }
     let albedo = terrain_albedo(terrain.albedo, world.y, normal.z);
     let offset = world - terrain.camera;
-    let surface = surface_radiance(normal, normal.z, terrain.sun_enu, albedo, self_shadow, 1.0, sunlight_at(offset), terrain.sky_irradiance);
+    let surface = surface_radiance(normal, normal.z, terrain.sun_enu, albedo, self_shadow, cloud_shadow_at(offset), sunlight_at(offset), terrain.sky_irradiance);
     return apply_aerial_perspective(surface, offset);
 }
 

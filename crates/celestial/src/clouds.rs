@@ -357,6 +357,32 @@ pub fn cloud_density(u: f32, v: f32, layer: &CloudLayerUniforms) -> f32 {
     t * t * (3.0 - 2.0 * t)
 }
 
+/// Fraction of the direct sun that reaches a point under the layer: the sun's ray from
+/// the point crosses the layer's base where the texture has density ρ, and the
+/// element's vertical optical thickness τ along the slant leaves exp(−τρ/μ☉) — the
+/// `direct` term `cloud_layer_radiance` lights the layer with. `point` is east/north/up
+/// metres from the viewer (on the +z axis at radius `r`), the sun the layer's
+/// `sun_direction`. 1 for a point at or above the layer's top, outside its patch, or
+/// with the sun at or below the horizon (no direct sun for the layer to block). The
+/// base is taken flat over the point (the layer's curvature over a shadow's reach is
+/// left out: 0.2 m at 1.6 km).
+pub fn cloud_shadow(point: [f32; 3], r: f32, layer: &CloudLayerUniforms) -> f32 {
+    let sun = layer.sun_direction;
+    let mu_sun = sun[2];
+    let point_radius = r + point[2];
+    if mu_sun <= 0.0 || point_radius >= layer.top_radius {
+        return 1.0;
+    }
+    let distance = (layer.base_radius - point_radius).max(0.0) / mu_sun;
+    let x = point[0] + sun[0] * distance;
+    let y = point[1] + sun[1] * distance;
+    if (x * x + y * y).sqrt() >= layer.half_span {
+        return 1.0;
+    }
+    let density = cloud_density(x + layer.offset[0], y + layer.offset[1], layer);
+    (-layer.optical_thickness * density / mu_sun).exp()
+}
+
 /// Eddington two-stream reflectance of a conservative layer of optical thickness
 /// `optical_thickness` and asymmetry `asymmetry`, lit at cosine `mu_sun` (Lacis &
 /// Hansen 1974); the sun below the layer's horizon (μ₀ ≤ 0) reflects nothing.
@@ -582,6 +608,51 @@ pub(crate) fn no_layer(index: usize, count: usize) -> CelestialError {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn a_cloud_shadow_is_the_direct_term_where_the_sun_crosses_the_base() {
+        let layer = CloudLayer {
+            coverage: 0.5,
+            seed: 3,
+            ..CloudLayer::new(2000.0, 400.0, 100.0, 40_000.0, CloudKind::Cumulus).unwrap()
+        };
+        let frame = |sun: [f64; 3]| CloudLayerFrame {
+            planet_radius_m: 6_360_000.0,
+            offset_m: [0.0, 0.0],
+            fog_extinction_per_m: 0.0,
+            exp2_fog: false,
+            sun_direction: sun,
+            sunlight: [1.0; 3],
+            skylight: [0.1; 3],
+            fog_colour: [0.0; 3],
+        };
+        let (s, c) = (0.6f64, 0.8f64);
+        let u = layer.uniforms(&frame([0.0, s, c]));
+        let r = 6_360_000.0 + 500.0;
+        let (mut shaded, mut clear) = (0, 0);
+        for k in 0..400 {
+            let point = [
+                (k % 20) as f32 * 700.0 - 7000.0,
+                (k / 20) as f32 * 700.0 - 7000.0,
+                -200.0,
+            ];
+            let shadow = cloud_shadow(point, r, &u);
+            // The sun's ray from 300 m up climbs 1,700 m to the base: 1,275 m north.
+            let crossing = [point[0], point[1] + 1700.0 * 0.75];
+            let density = cloud_density(crossing[0], crossing[1], &u);
+            let expected = (-u.optical_thickness * density / 0.8).exp();
+            assert!((shadow - expected).abs() < 1e-4, "{shadow} {expected}");
+            shaded += usize::from(shadow < 0.5);
+            clear += usize::from(shadow == 1.0);
+            // Above the top, or with the sun down: no shadow.
+            assert_eq!(cloud_shadow([point[0], point[1], 2000.0], r, &u), 1.0);
+            let night = layer.uniforms(&frame([0.0, 0.6, -0.8]));
+            assert_eq!(cloud_shadow(point, r, &night), 1.0);
+        }
+        // Half coverage: both shadowed and sunlit ground.
+        assert!(shaded > 50 && clear > 50, "{shaded} {clear}");
+    }
+
     use super::*;
 
     fn frame() -> CloudLayerFrame {

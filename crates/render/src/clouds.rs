@@ -44,6 +44,17 @@ pub fn composite_cloud_layers(
     out
 }
 
+/// The direct sun's fraction through every layer at `offset` (world axes, metres from
+/// the camera at radius `r`): the product of `celestial::clouds::cloud_shadow`. Twin:
+/// `cloud_shadow_at` in `shaders/render/terrain.wgsl`.
+pub fn cloud_shadow_at(offset: [f32; 3], r: f32, layers: &[CloudLayerUniforms]) -> f32 {
+    let point = world_to_enu(offset);
+    layers
+        .iter()
+        .map(|layer| celestial::clouds::cloud_shadow(point, r, layer))
+        .product()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

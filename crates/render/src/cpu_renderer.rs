@@ -452,13 +452,15 @@ fn shade_terrain(
         let eye = DVec3::new(c.x, c.y - planet, c.z);
         let offset = (world.as_vec3() - eye.as_vec3()).to_array();
         let sun = atmos::lut::drop_in::sunlight_at(p.luts, &scene.camera, offset);
+        let cloud_shadow =
+            crate::clouds::cloud_shadow_at(offset, scene.viewer_radius as f32, &scene.cloud_layers);
         let surface = surface_radiance(
             n,
             n.z,
             light.sun_enu,
             albedo,
             self_shadow,
-            1.0,
+            cloud_shadow,
             Vec3::from_array(sun),
             light.sky_irradiance,
         );
@@ -471,13 +473,16 @@ fn shade_terrain(
     }
     let sun_at_point = light.sun_at_elevation(elevation);
     let planet = scene.atmosphere.planet_radius;
+    let offset = (view * hit.distance).as_vec3().to_array();
+    let cloud_shadow =
+        crate::clouds::cloud_shadow_at(offset, scene.viewer_radius as f32, &scene.cloud_layers);
     let surface = surface_radiance(
         n,
         n.z,
         light.sun_enu,
         albedo,
         self_shadow,
-        1.0,
+        cloud_shadow,
         sun_at_point,
         light.sky_irradiance,
     );
@@ -553,7 +558,14 @@ mod tests {
     fn the_sun_table_matches_a_query_per_point() {
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/default.toml");
         let mut scene = crate::scene::Scene::open(path).unwrap();
-        scene.file.sun.as_mut().unwrap().elevation_deg = 4.0; // low sun: transmittance changes fastest
+        // A low sun: the transmittance changes fastest.
+        scene.file.time = None;
+        scene.file.sky_objects = None;
+        scene.file.clouds = None;
+        scene.file.sun = Some(crate::scene::SunSection {
+            elevation_deg: 4.0,
+            azimuth_deg: 235.0,
+        });
         let prepared = scene.prepare().unwrap();
         let terrain = prepared.terrain.as_ref().unwrap();
         let light = terrain_light(&prepared, terrain).unwrap();

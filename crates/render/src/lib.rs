@@ -140,8 +140,36 @@ mod wgsl_tests {
         ];
         #[cfg(feature = "gpu")]
         let twins = {
-            use crate::gpu::scene::CloudComposite;
+            use crate::gpu::scene::{CloudComposite, DisplayParameters, TerrainUniform};
             let mut twins = twins.to_vec();
+            twins.push((
+                skyscape_wgsl::rust_layout!(TerrainUniform {
+                    view_projection,
+                    camera,
+                    spacing,
+                    map_offset,
+                    map_size,
+                    sun_enu,
+                    sun_angular_radius,
+                    sky_irradiance,
+                    sun_elevation,
+                    sun_azimuth,
+                    horizon_layers,
+                    viewer_radius,
+                    cloud_layer_count,
+                    albedo,
+                }),
+                wgsl("render::terrain", "TerrainUniform"),
+            ));
+            twins.push((
+                skyscape_wgsl::rust_layout!(DisplayParameters {
+                    width,
+                    height,
+                    exposure,
+                    dither_seed,
+                }),
+                wgsl("render::display", "DisplayParameters"),
+            ));
             twins.push((
                 skyscape_wgsl::rust_layout!(CloudComposite {
                     camera,

@@ -59,6 +59,7 @@ fn the_default_scenes_zenith_is_blue() {
     let mut scene = default_scene(8, 8);
     scene.file.camera.look_at = None;
     scene.file.camera.look_direction = Some([0.0, 1.0, -0.01]);
+    scene.file.clouds = None; // the clear sky between the cumulus
     let prepared = scene.prepare().unwrap();
     let radiance = render_radiance(&prepared).unwrap();
     let [r, g, b] = radiance[4 * 8 + 4].radiance;
@@ -510,4 +511,42 @@ fn cloud_layers_need_time_and_name_bad_values() {
         layer.replace("cumulus", "cumulonimbus")
     ));
     assert!(e.to_string().contains("cumulonimbus"), "{e}");
+}
+
+#[test]
+fn cloud_shadows_darken_the_ground_beneath_and_nowhere_else() {
+    let mut scene = default_scene(96, 54);
+    let cloudy = scene.prepare().unwrap();
+    assert!(!cloudy.cloud_layers.is_empty());
+    let with = render_radiance(&cloudy).unwrap();
+    scene.file.clouds = None;
+    let without = render_radiance(&scene.prepare().unwrap()).unwrap();
+    let (mut shadowed, mut darker, mut sunlit, mut unchanged) = (0, 0, 0, 0);
+    let mut brighter = 0;
+    for (pixel, (a, b)) in with.iter().zip(&without).enumerate() {
+        let Some(distance) = b.terrain_distance else {
+            continue;
+        };
+        let pixel = [(pixel % 96) as u32, (pixel / 96) as u32];
+        let offset = hit_offset(&cloudy, pixel, distance).as_vec3().to_array();
+        let shadow = render::clouds::cloud_shadow_at(
+            offset,
+            cloudy.viewer_radius as f32,
+            &cloudy.cloud_layers,
+        );
+        if shadow < 0.3 {
+            shadowed += 1;
+            darker += usize::from(luminance(a.radiance) < 0.8 * luminance(b.radiance));
+            brighter += usize::from(luminance(a.radiance) > luminance(b.radiance));
+        } else if shadow == 1.0 {
+            sunlit += 1;
+            unchanged += usize::from(a.radiance == b.radiance);
+        }
+    }
+    assert!(shadowed > 50 && sunlit > 50, "{shadowed} shadowed, {sunlit} sunlit pixels");
+    // Faces already in the terrain's own shadow (or turned from the sun) have no direct
+    // sun to lose; every other shadowed pixel is darker by over a fifth.
+    assert_eq!(brighter, 0, "a pixel under a cloud's shadow got brighter");
+    assert!(darker * 4 >= shadowed * 3, "{darker} of {shadowed} shadowed pixels darker");
+    assert_eq!(unchanged, sunlit, "a pixel outside every shadow changed");
 }

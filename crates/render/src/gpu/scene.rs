@@ -75,8 +75,10 @@ pub struct TerrainUniform {
     pub sun_azimuth: f32,
     /// 0: east/west pair; N: N azimuth layers.
     pub horizon_layers: u32,
-    /// Alignment.
-    pub padding: [f32; 2],
+    /// The viewer's distance from the planet's centre (m): celestial's cloud frame.
+    pub viewer_radius: f32,
+    /// Cloud layers casting shadows (the first `cloud_layer_count` of the buffer).
+    pub cloud_layer_count: u32,
     /// The albedo ramp.
     pub albedo: AlbedoRampUniform,
 }
@@ -108,6 +110,8 @@ struct TerrainPass {
     tile_capacity: usize,
     tile_count: u32,
     lod: TerrainLod,
+    cloud_layers: wgpu::Buffer,
+    cloud_layer_capacity: usize,
 }
 
 /// Every pass of a scene on the GPU.
@@ -448,7 +452,12 @@ impl SceneRenderer {
         let hdr_view = hdr.create_view(&Default::default());
         let depth_view = depth.create_view(&Default::default());
         let terrain = match &scene.terrain {
-            Some(terrain) => Some(Self::terrain_pass(device, &luts, terrain)?),
+            Some(terrain) => Some(Self::terrain_pass(
+                device,
+                &luts,
+                terrain,
+                scene.cloud_layers.len(),
+            )?),
             None => None,
         };
         // Only a scene with cloud layers builds the cloud pipeline.
@@ -592,7 +601,18 @@ impl SceneRenderer {
         device: &wgpu::Device,
         luts: &AtmosphereLuts,
         terrain: &PreparedTerrain,
+        cloud_layer_capacity: usize,
     ) -> Result<TerrainPass, RenderError> {
+        // The cloud layers whose shadows fall on the terrain (one unused element when
+        // the scene has none: a binding may not be empty).
+        let cloud_layers = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render terrain cloud layers"),
+            size: (cloud_layer_capacity.max(1)
+                * std::mem::size_of::<celestial::clouds::CloudLayerUniforms>())
+                as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         let hf = &terrain.heightfield;
         let texels = hf.width() * hf.height();
         let heights: Vec<f32> = hf.elevations().iter().map(|&e| e as f32).collect();
@@ -649,6 +669,7 @@ impl SceneRenderer {
                 storage_read(1, wgpu::ShaderStages::VERTEX),
                 storage_read(2, wgpu::ShaderStages::FRAGMENT),
                 storage_read(3, wgpu::ShaderStages::FRAGMENT),
+                storage_read(4, wgpu::ShaderStages::FRAGMENT),
             ],
         });
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -670,6 +691,10 @@ impl SceneRenderer {
                 wgpu::BindGroupEntry {
                     binding: 3,
                     resource: horizons.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: cloud_layers.as_entire_binding(),
                 },
             ],
         });
@@ -757,6 +782,8 @@ impl SceneRenderer {
             tile_capacity,
             tile_count: 0,
             lod,
+            cloud_layers,
+            cloud_layer_capacity,
         })
     }
 
@@ -846,10 +873,25 @@ impl SceneRenderer {
                     HorizonMaps::EastWest(_) => 0,
                     HorizonMaps::Azimuths(maps) => maps.count() as u32,
                 },
-                padding: [0.0; 2],
+                viewer_radius: scene.viewer_radius as f32,
+                cloud_layer_count: scene.cloud_layers.len() as u32,
                 albedo: terrain.albedo.uniform(),
             };
             queue.write_buffer(&pass.uniform, 0, bytemuck::bytes_of(&uniform));
+            if scene.cloud_layers.len() > pass.cloud_layer_capacity {
+                return Err(RenderError::InvalidParameter {
+                    field: "clouds.layers",
+                    value: format!("{} layers", scene.cloud_layers.len()),
+                    reason: "more than the renderer was built for",
+                });
+            }
+            if !scene.cloud_layers.is_empty() {
+                queue.write_buffer(
+                    &pass.cloud_layers,
+                    0,
+                    bytemuck::cast_slice(&scene.cloud_layers),
+                );
+            }
             let pixels_per_radian =
                 f64::from(camera.height) / (2.0 * f64::from(camera.tan_half_fov_y));
             let camera_map = [eye.x + offset[0], eye.z + offset[1], eye.y];

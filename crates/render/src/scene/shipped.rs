@@ -17,7 +17,7 @@ pub struct ShippedScene {
 pub const SHIPPED: &[ShippedScene] = &[
     ShippedScene {
         name: "default",
-        description: "a clear afternoon over procedural mountains",
+        description: "an autumn afternoon over procedural mountains with fair-weather cumulus",
         source: include_str!("../../scenes/default.toml"),
     },
     ShippedScene {
