@@ -543,10 +543,41 @@ fn cloud_shadows_darken_the_ground_beneath_and_nowhere_else() {
             unchanged += usize::from(a.radiance == b.radiance);
         }
     }
-    assert!(shadowed > 50 && sunlit > 50, "{shadowed} shadowed, {sunlit} sunlit pixels");
+    assert!(
+        shadowed > 50 && sunlit > 50,
+        "{shadowed} shadowed, {sunlit} sunlit pixels"
+    );
     // Faces already in the terrain's own shadow (or turned from the sun) have no direct
     // sun to lose; every other shadowed pixel is darker by over a fifth.
     assert_eq!(brighter, 0, "a pixel under a cloud's shadow got brighter");
-    assert!(darker * 4 >= shadowed * 3, "{darker} of {shadowed} shadowed pixels darker");
+    assert!(
+        darker * 4 >= shadowed * 3,
+        "{darker} of {shadowed} shadowed pixels darker"
+    );
     assert_eq!(unchanged, sunlit, "a pixel outside every shadow changed");
+}
+
+#[test]
+fn the_camera_looks_straight_up_and_straight_down() {
+    for (direction, expect_terrain) in [([0.0, 1.0, 0.0], false), ([0.0, -1.0, 0.0], true)] {
+        let mut scene = default_scene(16, 9);
+        scene.file.camera.look_at = None;
+        scene.file.camera.look_direction = Some(direction);
+        let prepared = scene.prepare().unwrap();
+        let radiance = render_radiance(&prepared).unwrap();
+        let terrain = radiance
+            .iter()
+            .filter(|p| p.terrain_distance.is_some())
+            .count();
+        assert_eq!(
+            terrain == radiance.len(),
+            expect_terrain,
+            "{direction:?}: {terrain}"
+        );
+        assert!(
+            radiance
+                .iter()
+                .all(|p| p.radiance.iter().all(|v| v.is_finite()))
+        );
+    }
 }

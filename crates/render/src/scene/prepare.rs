@@ -132,6 +132,17 @@ fn triple(v: [f64; 3]) -> String {
     format!("[{}, {}, {}]", v[0], v[1], v[2])
 }
 
+/// The image's up for a camera looking along `forward`: the zenith, except when
+/// looking straight up or down (within 0.06°), where north is the top of the image.
+pub fn up_hint(forward: DVec3) -> DVec3 {
+    let length = forward.length();
+    if length > 0.0 && (forward.y / length).abs() > 1.0 - 5e-7 {
+        DVec3::NEG_Z
+    } else {
+        DVec3::Y
+    }
+}
+
 /// The world direction of an elevation and an azimuth clockwise from north (radians):
 /// x east, y up, z south.
 pub fn world_direction(elevation: f64, azimuth: f64) -> DVec3 {
@@ -203,7 +214,7 @@ impl Scene {
         let camera = atmos::frame::FrameCamera::look_at(
             camera_position,
             forward,
-            DVec3::Y,
+            up_hint(forward),
             cam.vertical_fov_deg.to_radians(),
             out.width,
             out.height,
@@ -473,7 +484,7 @@ impl Scene {
         let camera = sky
             .camera(
                 enu(forward),
-                [0.0, 0.0, 1.0],
+                enu(up_hint(forward)),
                 celestial::Angle::from_degrees(cam.vertical_fov_deg),
                 out.width,
                 out.height,
