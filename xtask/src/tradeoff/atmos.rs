@@ -1,7 +1,8 @@
 //! `cargo xtask tradeoff atmos`: every rung of the scattering ladder and its quality
 //! settings against the f64 Reference (rung 4) on a fixed set of viewers, suns and
 //! directions: relative luminance error, CPU cost, and GPU cost per 1280×720 frame on
-//! the adapter in use (labelled with its type).
+//! the adapter in use (labelled with its type); then every rung and the Reference
+//! against the Monte Carlo path tracer, with standard errors.
 
 use std::fmt::Write as _;
 use std::time::Instant;
@@ -14,7 +15,9 @@ use atmos::gpu::precomputed::PrecomputedRenderer;
 use atmos::gpu::{ClosedFormRenderer, EvaluationFrequency, FrameOutput};
 use atmos::ladder::{SkyModel, SkyQuery, SkySample, luminance};
 use atmos::lut::{LutSettings, PrecomputedSky};
-use atmos::reference::{ReferenceSettings, ReferenceSky, SpectralReferenceSky};
+use atmos::reference::{
+    PathTracedSky, PathTracerSettings, ReferenceSettings, ReferenceSky, SpectralReferenceSky,
+};
 use atmos::single_scattering::{SingleScatteringSettings, SingleScatteringSky};
 use glam::DVec3;
 
@@ -37,6 +40,127 @@ struct Viewpoint {
     sun_elevation_deg: f64,
     altitude: f64,
     queries: Vec<SkyQuery>,
+}
+
+/// The path-traced truth (issue 13.2): a smaller set (`PT_DIRECTIONS` directions per
+/// viewpoint of the fixed set's suns and altitudes), each view path traced with
+/// `PT_SAMPLES` samples, luminance and its standard error.
+const PT_DIRECTIONS: usize = 24;
+const PT_SAMPLES: u32 = 1024;
+
+struct PathTracedSet {
+    /// (is day, query, traced luminance, its standard error).
+    views: Vec<(bool, SkyQuery, f64, f64)>,
+    seconds: f64,
+    samples: u32,
+}
+
+fn path_traced_set(atmosphere: &Atmosphere, quick: bool) -> Result<PathTracedSet, String> {
+    let samples = if quick { 128 } else { PT_SAMPLES };
+    let tracer = PathTracedSky::new(
+        atmosphere,
+        PathTracerSettings {
+            samples,
+            ..PathTracerSettings::default()
+        },
+    )
+    .map_err(|e| e.to_string())?;
+    let set = fixed_set(atmosphere, PT_DIRECTIONS)?;
+    let started = Instant::now();
+    let mut views = Vec::new();
+    for viewpoint in &set {
+        let is_day = viewpoint.sun_elevation_deg >= DAY_THRESHOLD_DEG;
+        for (q, pt) in viewpoint
+            .queries
+            .iter()
+            .zip(tracer.estimate_batch(&viewpoint.queries))
+        {
+            if pt.total.luminance >= DARK_LUMINANCE {
+                views.push((
+                    is_day,
+                    *q,
+                    pt.total.luminance,
+                    pt.total.luminance_standard_error,
+                ));
+            }
+        }
+    }
+    Ok(PathTracedSet {
+        views,
+        seconds: started.elapsed().as_secs_f64(),
+        samples,
+    })
+}
+
+/// One model against the path-traced set: per day / twilight, (mean |e|, mean e, its
+/// standard error, max |e|, the standard error of that view, mean σ), e relative.
+fn against_path_tracer(model: &dyn SkyModel, traced: &PathTracedSet) -> [[f64; 6]; 2] {
+    let mut out = [[0.0; 6]; 2];
+    for (k, day) in [true, false].into_iter().enumerate() {
+        let errors: Vec<(f64, f64)> = traced
+            .views
+            .iter()
+            .filter(|v| v.0 == day)
+            .map(|(_, q, want, sigma)| {
+                let got = luminance(model.evaluate(q).radiance);
+                ((got - want) / want, sigma * got / (want * want))
+            })
+            .collect();
+        let n = errors.len().max(1) as f64;
+        let (max, max_sigma) = errors.iter().fold((0.0f64, 0.0), |m, e| {
+            if e.0.abs() > m.0 { (e.0.abs(), e.1) } else { m }
+        });
+        out[k] = [
+            errors.iter().map(|e| e.0.abs()).sum::<f64>() / n,
+            errors.iter().map(|e| e.0).sum::<f64>() / n,
+            errors.iter().map(|e| e.1 * e.1).sum::<f64>().sqrt() / n,
+            max,
+            max_sigma,
+            errors.iter().map(|e| e.1).sum::<f64>() / n,
+        ];
+    }
+    out
+}
+
+fn path_tracer_markdown(traced: &PathTracedSet, rows: &[(String, [[f64; 6]; 2])]) -> String {
+    let mut md = String::new();
+    let _ = writeln!(
+        md,
+        "\n## Against the path tracer\n\nThe truth above is the iterated-orders Reference; \
+         here every rung and the Reference itself are measured against the unbiased Monte \
+         Carlo path tracer (`atmos::reference::PathTracedSky`, issue 13.2): the fixed set's \
+         suns and altitudes with {PT_DIRECTIONS} directions each, {} samples per view \
+         ({} views brighter than {DARK_LUMINANCE:e}, {:.0} s). e = (model − path tracer) / \
+         path tracer in luminance; ± is the Monte Carlo standard error of the mean, σ the \
+         standard error of one view.\n",
+        traced.samples,
+        traced.views.len(),
+        traced.seconds
+    );
+    let _ = writeln!(
+        md,
+        "| model | day mean abs | day mean signed | day max abs (σ of that view) | twilight mean abs | twilight mean signed | twilight max abs (σ) | mean σ day / twilight |"
+    );
+    let _ = writeln!(md, "|---|---:|---:|---:|---:|---:|---:|---:|");
+    for (label, [d, t]) in rows {
+        let _ = writeln!(
+            md,
+            "| {label} | {:.2} % | {:+.2} ± {:.2} % | {:.1} % ({:.1} %) | {:.2} % | {:+.2} ± {:.2} % | {:.1} % ({:.1} %) | {:.2} / {:.2} % |",
+            100.0 * d[0],
+            100.0 * d[1],
+            100.0 * d[2],
+            100.0 * d[3],
+            100.0 * d[4],
+            100.0 * t[0],
+            100.0 * t[1],
+            100.0 * t[2],
+            100.0 * t[3],
+            100.0 * t[4],
+            100.0 * d[5],
+            100.0 * t[5],
+        );
+    }
+    md
 }
 
 /// Directions covering the sphere evenly (a Fibonacci lattice).
@@ -505,6 +629,18 @@ pub fn run(options: &super::Options) -> Result<(), String> {
 
     let spectral = spectral_comparison(&atmosphere, &set, &truth, options.quick)?;
 
+    let traced = path_traced_set(&atmosphere, options.quick)?;
+    eprintln!(
+        "path tracer: {} views, {} samples each, {:.1} s",
+        traced.views.len(),
+        traced.samples,
+        traced.seconds
+    );
+    let mut traced_rows = vec![(
+        reference_label.clone(),
+        against_path_tracer(reference.as_ref(), &traced),
+    )];
+
     let gpu = match skyscape_harness::context() {
         Ok(ctx) => Some(ctx),
         Err(e) if skyscape_harness::gpu_required() => return Err(e.to_string()),
@@ -517,6 +653,10 @@ pub fn run(options: &super::Options) -> Result<(), String> {
     let mut rows = Vec::new();
     for rung in rungs(&atmosphere, options.quick)? {
         let label = rung.model.label();
+        traced_rows.push((
+            label.clone(),
+            against_path_tracer(rung.model.as_ref(), &traced),
+        ));
         let (samples, cpu_setup, _) = evaluate_all(rung.model.as_ref(), &set);
         let timed = set
             .iter()
@@ -604,6 +744,7 @@ pub fn run(options: &super::Options) -> Result<(), String> {
         &spectral,
         options.quick,
     );
+    let report = report + &path_tracer_markdown(&traced, &traced_rows);
     let json = json(&rows, &reference_label);
     let plot = error_plot(&rows, adapter.is_some());
     let prefix = if options.quick {
