@@ -27,6 +27,7 @@ use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
 use crate::RenderError;
+use crate::present::PresentParameters;
 use crate::scene::prepare::{HorizonMaps, PreparedScene, PreparedTerrain};
 use crate::terrain_shading::surface_radiance;
 use crate::tonemap::{pack_rgba8, quantize_srgb8, tonemap_exposure};
@@ -215,24 +216,29 @@ pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, Rend
 
 /// The scene on the CPU, tone-mapped and dithered to RGBA8.
 pub fn render_cpu(scene: &PreparedScene) -> Result<Frame, RenderError> {
-    let radiance = render_radiance(scene)?;
+    let radiance: Vec<[f32; 3]> = render_radiance(scene)?.iter().map(|p| p.radiance).collect();
     let camera = &scene.camera;
-    let present = &scene.present;
-    let width = camera.width as usize;
-    let pixels = radiance
-        .par_iter()
-        .enumerate()
-        .map(|(i, p)| {
-            let pixel = [(i % width) as u32, (i / width) as u32];
-            let display = tonemap_exposure(p.radiance, present.exposure);
-            pack_rgba8(quantize_srgb8(display, pixel, present.dither_seed))
-        })
-        .collect();
     Ok(Frame {
         width: camera.width,
         height: camera.height,
-        pixels,
+        pixels: display_pixels(&radiance, camera.width, &scene.present),
     })
+}
+
+/// Row-major radiance `width` pixels wide to display pixels: the exposure, the tone
+/// map, sRGB and the triangular dither of `present` (the display pass's twin), packed
+/// RGBA8.
+pub fn display_pixels(radiance: &[[f32; 3]], width: u32, present: &PresentParameters) -> Vec<u32> {
+    let width = width.max(1) as usize;
+    radiance
+        .par_iter()
+        .enumerate()
+        .map(|(i, radiance)| {
+            let pixel = [(i % width) as u32, (i / width) as u32];
+            let display = tonemap_exposure(*radiance, present.exposure);
+            pack_rgba8(quantize_srgb8(display, pixel, present.dither_seed))
+        })
+        .collect()
 }
 
 /// What lights a scene's terrain, per frame, shared by the CPU renderer and the GPU's

@@ -21,6 +21,7 @@ pub mod error;
 #[cfg(feature = "gpu")]
 pub mod gpu;
 pub mod present;
+pub mod projection;
 pub mod scene;
 pub mod terrain_mesh;
 pub mod terrain_shading;

@@ -581,3 +581,69 @@ fn the_camera_looks_straight_up_and_straight_down() {
         );
     }
 }
+
+#[test]
+fn a_panorama_from_cube_faces_sees_what_the_camera_sees() {
+    use render::projection::{CUBE_FACES, Face, Projection, assemble, face_scene};
+    // The default sky without terrain, clouds or the ephemeris, in the closed form
+    // (cheap to prepare eight times in a debug build).
+    let mut scene = default_scene(64, 32);
+    scene.file.terrain = None;
+    scene.file.clouds = None;
+    scene.file.time = None;
+    scene.file.sun = Some(render::scene::SunSection {
+        elevation_deg: 34.0,
+        azimuth_deg: 228.0,
+    });
+    scene.file.atmosphere.rung = render::scene::Rung::ClosedForm;
+    scene.file.output.projection = Projection::Equirectangular;
+    let view = scene.prepare().unwrap();
+    let faces: Vec<Face> = CUBE_FACES
+        .iter()
+        .map(|&forward| {
+            let prepared = face_scene(&scene, forward, 16).prepare().unwrap();
+            let radiance = render_radiance(&prepared)
+                .unwrap()
+                .iter()
+                .map(|p| p.radiance)
+                .collect();
+            Face {
+                camera: prepared.camera,
+                radiance,
+            }
+        })
+        .collect();
+    let pano = assemble(
+        Projection::Equirectangular,
+        &faces,
+        64,
+        32,
+        &view.camera,
+        0.0,
+    )
+    .unwrap();
+    // A direct camera looking where panorama pixel (48, 12) looks (azimuth 272.8°,
+    // elevation 22.5°: west, above the horizon) sees the same radiance.
+    let (x, y) = (48usize, 12usize);
+    let azimuth = (x as f64 + 0.5) / 64.0 * std::f64::consts::TAU;
+    let elevation = std::f64::consts::FRAC_PI_2 - (y as f64 + 0.5) / 32.0 * std::f64::consts::PI;
+    let direction = render::scene::prepare::world_direction(elevation, azimuth);
+    let mut direct = scene.clone();
+    direct.file.output.projection = Projection::Rectilinear;
+    direct.file.output.width = 1;
+    direct.file.output.height = 1;
+    direct.file.camera.look_at = None;
+    direct.file.camera.look_direction = Some(direction.to_array());
+    let truth = render_radiance(&direct.prepare().unwrap()).unwrap()[0].radiance;
+    let got = pano[y * 64 + x];
+    for k in 0..3 {
+        assert!(
+            (got[k] - truth[k]).abs() <= 0.02 * truth[k],
+            "{got:?} vs {truth:?}"
+        );
+    }
+    // A cubemap strip is six faces wide, or an error naming output.width.
+    scene.file.output.projection = Projection::Cubemap;
+    let e = scene.prepare().unwrap_err();
+    assert_eq!(e.field(), Some("output.width"), "{e}");
+}

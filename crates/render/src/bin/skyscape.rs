@@ -57,6 +57,14 @@ enum Format {
     Exr,
 }
 
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum ProjectionArg {
+    Rectilinear,
+    Cubemap,
+    Equirectangular,
+    Fisheye,
+}
+
 #[derive(Debug, Args, Default)]
 struct RenderArgs {
     /// The scene: a .toml file or a shipped scene's name (`skyscape scenes`).
@@ -73,6 +81,10 @@ struct RenderArgs {
     /// Output format [from the output's extension, else png].
     #[arg(long, value_enum)]
     format: Option<Format>,
+    /// The output's projection (overrides the scene's): rectilinear, cubemap (a 6:1
+    /// strip; width = 6 × height), equirectangular, fisheye.
+    #[arg(long, value_enum)]
+    projection: Option<ProjectionArg>,
     /// Render on the CPU reference renderer even if a GPU adapter exists.
     #[arg(long)]
     cpu: bool,
@@ -299,6 +311,15 @@ fn apply_overrides(scene: &mut Scene, args: &RenderArgs) -> Result<(), Failure> 
     }
     if let Some(height) = args.height {
         file.output.height = height;
+    }
+    if let Some(projection) = args.projection {
+        use render::projection::Projection;
+        file.output.projection = match projection {
+            ProjectionArg::Rectilinear => Projection::Rectilinear,
+            ProjectionArg::Cubemap => Projection::Cubemap,
+            ProjectionArg::Equirectangular => Projection::Equirectangular,
+            ProjectionArg::Fisheye => Projection::Fisheye,
+        };
     }
     if let Some(exposure) = args.exposure {
         file.output.exposure = exposure;
@@ -533,11 +554,10 @@ fn render_cpu(scene: &PreparedScene) -> Result<Rendered, String> {
 
 fn write(
     path: &Path,
-    scene: &PreparedScene,
+    (width, height): (u32, u32),
     format: Format,
     rendered: &Rendered,
 ) -> Result<(), Failure> {
-    let (width, height) = (scene.camera.width, scene.camera.height);
     let result = match format {
         Format::Png => render::cpu_renderer::write_png(
             path,
@@ -553,6 +573,61 @@ fn write(
         }
     };
     result.map_err(|e| Failure::Input(format!("writing {}: {e}", path.display())))
+}
+
+/// A cubemap, panorama or fisheye: the six 90° faces of the scene drawn (GPU or CPU),
+/// then placed or resampled (`render::projection`).
+fn render_projected(
+    scene: &Scene,
+    view: &PreparedScene,
+    label: &str,
+    backends: wgpu::Backends,
+    cpu: bool,
+) -> Result<Rendered, Failure> {
+    use render::projection::{CUBE_FACES, Face, assemble, face_size};
+    let output = &scene.file.output;
+    let side = face_size(output.projection, output.width, output.height);
+    let mut faces = Vec::with_capacity(6);
+    let mut device = String::new();
+    for forward in CUBE_FACES {
+        let face_scene = render::projection::face_scene(scene, forward, side);
+        let prepared = prepare(&face_scene, label)?;
+        let rendered = if cpu {
+            None
+        } else {
+            match render_gpu(&prepared, backends, true, false) {
+                Ok(rendered) => Some(rendered),
+                Err(reason) => {
+                    eprintln!("skyscape: {reason}; rendering on the CPU reference renderer");
+                    None
+                }
+            }
+        };
+        let rendered = match rendered {
+            Some(rendered) => rendered,
+            None => render_cpu(&prepared).map_err(Failure::Runtime)?,
+        };
+        device = rendered.device;
+        faces.push(Face {
+            camera: prepared.camera,
+            radiance: rendered.radiance.unwrap_or_default(),
+        });
+    }
+    let radiance = assemble(
+        output.projection,
+        &faces,
+        output.width,
+        output.height,
+        &view.camera,
+        output.fisheye_fov_deg.to_radians(),
+    )
+    .map_err(|e| Failure::Runtime(e.to_string()))?;
+    Ok(Rendered {
+        pixels: render::cpu_renderer::display_pixels(&radiance, output.width, &view.present),
+        radiance: Some(radiance),
+        device: format!("{device} (six {side}×{side} faces)"),
+        pass_seconds: Vec::new(),
+    })
 }
 
 fn print_passes(scene: &PreparedScene, rendered: &Rendered) {
@@ -625,7 +700,9 @@ fn render_command(args: RenderArgs) -> Result<(), Failure> {
         }
         let start = std::time::Instant::now();
         let prepared = prepare(&frame_scene, &name)?;
-        let gpu = if args.cpu {
+        let projected =
+            frame_scene.file.output.projection != render::projection::Projection::Rectilinear;
+        let gpu = if args.cpu || projected {
             None
         } else {
             match render_gpu(&prepared, backends, format == Format::Exr, args.explain) {
@@ -648,19 +725,27 @@ fn render_command(args: RenderArgs) -> Result<(), Failure> {
         };
         let rendered = match gpu {
             Some(rendered) => rendered,
+            None if projected => {
+                render_projected(&frame_scene, &prepared, &name, backends, args.cpu)?
+            }
             None => render_cpu(&prepared).map_err(Failure::Runtime)?,
         };
         let numbered = (frames > 1).then_some(frame);
         let path = output_path(&args, &frame_scene, &name, format, numbered)?;
-        write(&path, &prepared, format, &rendered)?;
+        let size = (
+            frame_scene.file.output.width,
+            frame_scene.file.output.height,
+        );
+        write(&path, size, format, &rendered)?;
         if let Some(bar) = &bar {
             bar.inc(1);
         }
         println!(
-            "rendered {name}{} ({}×{}, {}) on {} in {:.2} s\nwrote {}",
+            "rendered {name}{} ({}×{} {:?}, {}) on {} in {:.2} s\nwrote {}",
             numbered.map_or_else(String::new, |f| format!(" frame {f}")),
-            prepared.camera.width,
-            prepared.camera.height,
+            frame_scene.file.output.width,
+            frame_scene.file.output.height,
+            frame_scene.file.output.projection,
             prepared.sky_model.label(),
             rendered.device,
             start.elapsed().as_secs_f64(),

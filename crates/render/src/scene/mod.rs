@@ -581,6 +581,17 @@ pub struct OutputSection {
     pub dither_seed: u32,
     /// Where the PNG goes (relative to the current folder); `-o` overrides it.
     pub path: Option<PathBuf>,
+    /// `rectilinear` (the camera), `cubemap` (a 6:1 strip: width = 6 × height),
+    /// `equirectangular` or `fisheye` (environment maps, from 90° cube faces).
+    #[serde(default)]
+    pub projection: crate::projection::Projection,
+    /// The fisheye's field across the image's height, degrees (0 to 360].
+    #[serde(default = "default_fisheye_fov_deg")]
+    pub fisheye_fov_deg: f64,
+}
+
+fn default_fisheye_fov_deg() -> f64 {
+    180.0
 }
 
 fn default_width() -> u32 {
@@ -601,6 +612,8 @@ impl Default for OutputSection {
             exposure: default_exposure(),
             dither_seed: 0,
             path: None,
+            projection: Default::default(),
+            fisheye_fov_deg: default_fisheye_fov_deg(),
         }
     }
 }

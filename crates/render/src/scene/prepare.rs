@@ -169,6 +169,28 @@ impl Scene {
                 ));
             }
         }
+        match out.projection {
+            crate::projection::Projection::Cubemap if out.width != 6 * out.height => {
+                return Err(self.invalid(
+                    &["output", "width"],
+                    format!("{} pixels", out.width),
+                    format!(
+                        "a cubemap strip is six square faces: width must be 6 × height = {}",
+                        6 * u64::from(out.height)
+                    ),
+                ));
+            }
+            crate::projection::Projection::Fisheye
+                if !(out.fisheye_fov_deg > 0.0 && out.fisheye_fov_deg <= 360.0) =>
+            {
+                return Err(self.invalid(
+                    &["output", "fisheye_fov_deg"],
+                    deg(out.fisheye_fov_deg),
+                    "must be in (0°, 360°]".into(),
+                ));
+            }
+            _ => {}
+        }
         let pixels = u64::from(out.width) * u64::from(out.height);
         if pixels > MAX_OUTPUT_PIXELS {
             return Err(self.invalid(
