@@ -89,7 +89,7 @@ pub fn fraction_within_lsb_of_neighbourhood(
     if a.is_empty() {
         return Ok(1.0);
     }
-    if width == 0 || a.len() % width != 0 {
+    if width == 0 || !a.len().is_multiple_of(width) {
         return Err(RenderError::InvalidParameter {
             field: "width",
             value: width.to_string(),
