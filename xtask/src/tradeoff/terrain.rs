@@ -8,9 +8,10 @@
 //! [`terrain::raycast::ray_cast_horizon_angle`] along the sun's exact azimuth over the
 //! bilinear surface, with the same curvature and **no** distance limit. Reported: the
 //! fraction of (texel, sun) pairs whose hard shadow is wrong, the horizon-angle error,
-//! the measured bake time and the bytes per texel. The full run also measures the
-//! 4096² east/west bake, hull sweep against brute force (once each, wall clock, output
-//! compared) and the sweep's two-thread scaling.
+//! the measured bake time and the bytes per texel. Then every azimuth `k · 22.5°` on
+//! its own against the ray cast (mean, max, bias, wrong shadows at a 20° sun; before
+//! and after issue 13 §4's sampling), and the 16-direction bake of a 1024² map with and
+//! without a maximum distance against GRASS `r.horizon`'s march (full run only).
 
 use std::fmt::Write as _;
 use std::num::NonZeroUsize;
@@ -47,8 +48,6 @@ struct Setup {
     suns: usize,
     texels_per_sun: usize,
     min_timing_s: f64,
-    /// Side of the sweep-vs-brute comparison map.
-    large_side: usize,
 }
 
 impl Setup {
@@ -59,7 +58,6 @@ impl Setup {
                 suns: 64,
                 texels_per_sun: 1024,
                 min_timing_s: 0.05,
-                large_side: 512,
             }
         } else {
             Self {
@@ -67,7 +65,6 @@ impl Setup {
                 suns: 128,
                 texels_per_sun: 8192,
                 min_timing_s: 1.0,
-                large_side: 4096,
             }
         }
     }
@@ -202,11 +199,17 @@ fn threads() -> usize {
 }
 
 fn heightfield(side: usize) -> Result<Heightfield, String> {
+    heightfield_at(side, SPACING)
+}
+
+/// The same texel heights at another spacing (the per-azimuth study's steep map uses
+/// [`STEEP_SPACING`]: the same relief three times steeper).
+fn heightfield_at(side: usize, spacing: f64) -> Result<Heightfield, String> {
     generate(&GeneratorParams {
         amplitude: RELIEF,
-        wavelength: WAVELENGTH,
+        wavelength: WAVELENGTH * spacing / SPACING,
         octaves: OCTAVES,
-        ..GeneratorParams::new(side, side, SPACING, SEED)
+        ..GeneratorParams::new(side, side, spacing, SEED)
     })
     .map_err(|e| e.to_string())
 }
@@ -309,69 +312,28 @@ fn evaluate(baked: &Baked, encoding: HorizonEncoding, samples: &[Sample]) -> Row
     }
 }
 
-/// The 4096² (quick: 512²) east/west bake, sweep against brute force.
-struct LargeBake {
-    side: usize,
-    sweep_1_thread: f64,
-    sweep_2_threads: f64,
-    brute_2_threads: f64,
-    max_difference: f32,
-    load_before: String,
-    load_after: String,
-}
-
-fn large_bake(setup: &Setup) -> Result<LargeBake, String> {
-    let hf = heightfield(setup.large_side)?;
-    let with_threads = |n: usize| HorizonOptions {
-        threads: NonZeroUsize::new(n),
-        ..HorizonOptions::default()
-    };
-    let load_before = load_average();
-    let mut sweep = None;
-    let mut time_sweep = |n: usize| -> Result<f64, String> {
-        let options = with_threads(n);
-        let mut error = None;
-        let seconds = super::time_per_call(3.0 * setup.min_timing_s, || {
-            match bake_east_west(&hf, &options, Algorithm::HullSweep) {
-                Ok(maps) => sweep = Some(maps),
-                Err(e) => error = Some(e.to_string()),
-            }
-        });
-        error.map_or(Ok(seconds), Err)
-    };
-    let sweep_1_thread = time_sweep(1)?;
-    let sweep_2_threads = time_sweep(2)?;
-    let sweep = sweep.ok_or("the sweep produced no maps")?;
-    eprintln!(
-        "tradeoff terrain: {0}² sweep {sweep_1_thread:.3} s (1 thread), {sweep_2_threads:.3} s (2 threads); brute force (once)…",
-        setup.large_side
-    );
-    let started = Instant::now();
-    let brute =
-        bake_east_west(&hf, &with_threads(2), Algorithm::BruteForce).map_err(|e| e.to_string())?;
-    let brute_2_threads = started.elapsed().as_secs_f64();
-    let max_difference = sweep
-        .east
-        .angles()
-        .iter()
-        .chain(sweep.west.angles())
-        .zip(brute.east.angles().iter().chain(brute.west.angles()))
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0f32, f32::max);
-    Ok(LargeBake {
-        side: setup.large_side,
-        sweep_1_thread,
-        sweep_2_threads,
-        brute_2_threads,
-        max_difference,
-        load_before,
-        load_after: load_average(),
-    })
+/// The per-azimuth and speed studies of a run.
+struct Studies {
+    azimuths: Vec<AzimuthRow>,
+    speed: Vec<SpeedRow>,
+    load_before_speed: String,
 }
 
 /// Entry point.
 pub fn run(options: &super::Options) -> Result<(), String> {
     let setup = Setup::new(options.quick);
+    if std::env::var("SKYSCAPE_TERRAIN_STUDY").as_deref() == Ok("azimuths") {
+        // Only the per-azimuth and speed studies (the "before" file is made this way
+        // on the commit before a change): rows to target/tradeoff/terrain-azimuths.json.
+        let rows = azimuth_studies(&setup)?;
+        let speed = speed_study(setup.min_timing_s, !options.quick)?;
+        let path = super::write_output(
+            "target/tradeoff/terrain-azimuths.json",
+            &azimuth_json(&rows, &speed),
+        )?;
+        eprintln!("wrote {}", path.display());
+        return Ok(());
+    }
     let load_at_start = load_average();
     let hf = heightfield(setup.side)?;
     eprintln!(
@@ -419,8 +381,17 @@ pub fn run(options: &super::Options) -> Result<(), String> {
             }
         }
     }
-    let large = large_bake(&setup)?;
+    eprintln!("tradeoff terrain: per-azimuth study (20° sun)…");
+    let azimuth_rows = azimuth_studies(&setup)?;
+    let load_before_speed = load_average();
+    eprintln!("tradeoff terrain: {SPEED_SIDE}² speed study (the march runs once each)…");
+    let speed = speed_study(setup.min_timing_s, !options.quick)?;
     let load_at_end = load_average();
+    let studies = Studies {
+        azimuths: azimuth_rows,
+        speed,
+        load_before_speed,
+    };
 
     let context = Context {
         setup: &setup,
@@ -430,7 +401,7 @@ pub fn run(options: &super::Options) -> Result<(), String> {
         load_at_end,
         quick: options.quick,
     };
-    let report = markdown(&rows, &large, &context);
+    let report = markdown(&rows, &studies, &context);
     let prefix = if options.quick {
         "target/tradeoff/terrain-quick"
     } else {
@@ -438,9 +409,10 @@ pub fn run(options: &super::Options) -> Result<(), String> {
     };
     let md_path = super::write_output(&format!("{prefix}.md"), &report)?;
     super::write_output(&format!("{prefix}.svg"), &plot(&rows).to_svg())?;
+    super::write_output("target/tradeoff/terrain.json", &json(&rows, &context))?;
     super::write_output(
-        "target/tradeoff/terrain.json",
-        &json(&rows, &large, &context),
+        "target/tradeoff/terrain-azimuths.json",
+        &azimuth_json(&studies.azimuths, &studies.speed),
     )?;
     println!("{report}");
     eprintln!("wrote {}", md_path.display());
@@ -464,7 +436,7 @@ fn seconds(s: f64) -> String {
     }
 }
 
-fn markdown(rows: &[Row], large: &LargeBake, c: &Context<'_>) -> String {
+fn markdown(rows: &[Row], studies: &Studies, c: &Context<'_>) -> String {
     let s = c.setup;
     let mut md = String::new();
     let _ = writeln!(
@@ -513,7 +485,8 @@ fn markdown(rows: &[Row], large: &LargeBake, c: &Context<'_>) -> String {
     let _ = writeln!(
         md,
         "**Maps.** Hull-sweep bakes (`Algorithm::HullSweep`, identical to brute force) on the \
-         digital-line sampling of `terrain::horizon`. *E/W*: seed 000's pair; a sun azimuth \
+         sampling of `terrain::horizon` (the axes and diagonals read texels; other azimuths \
+         interpolate across the grid lines, see the per-azimuth section). *E/W*: seed 000's pair; a sun azimuth \
          with `sin(azimuth) ≥ 0` reads the east map, otherwise the west map (as \
          `shadow::self_shadow_east_west`). *N*: layers at `k·2π/N`, linear interpolation \
          between the two neighbours (`shadow::azimuth_layers`). Encodings (`HorizonEncoding`): \
@@ -557,39 +530,7 @@ fn markdown(rows: &[Row], large: &LargeBake, c: &Context<'_>) -> String {
          hard-shadow fraction against the bake time, one series per encoding and maximum \
          distance, points labelled by azimuth count.\n"
     );
-    let _ = writeln!(md, "## Sweep against brute force, {0}×{0}\n", large.side);
-    let _ = writeln!(
-        md,
-        "East + west bake of a {0}×{0} map of the same generator ({SPACING} m, {RELIEF} m \
-         relief, curvature on). Hull sweep: `time_per_call` over at least {1:.2} s; brute force: \
-         **one** wall-clock run on 2 threads (criterion's 10 samples would take tens of \
-         minutes). Load average {2} before, {3} after.\n",
-        large.side,
-        3.0 * s.min_timing_s,
-        large.load_before,
-        large.load_after
-    );
-    let _ = writeln!(md, "| bake | threads | time |\n|---|---:|---:|");
-    let _ = writeln!(md, "| hull sweep | 1 | {} |", seconds(large.sweep_1_thread));
-    let _ = writeln!(
-        md,
-        "| hull sweep | 2 | {} |",
-        seconds(large.sweep_2_threads)
-    );
-    let _ = writeln!(
-        md,
-        "| brute force | 2 | {} |",
-        seconds(large.brute_2_threads)
-    );
-    let _ = writeln!(
-        md,
-        "\nRatio brute / sweep (2 threads each): **{:.0}×**; two-thread scaling of the sweep: \
-         {:.2}× (1 thread / 2 threads); largest |sweep − brute| over all {} angles: {:e} rad.",
-        large.brute_2_threads / large.sweep_2_threads,
-        large.sweep_1_thread / large.sweep_2_threads,
-        2 * large.side * large.side,
-        large.max_difference
-    );
+    study_markdown(&mut md, studies, c);
     md
 }
 
@@ -620,7 +561,7 @@ fn plot(rows: &[Row]) -> Plot {
     }
 }
 
-fn json(rows: &[Row], large: &LargeBake, c: &Context<'_>) -> String {
+fn json(rows: &[Row], c: &Context<'_>) -> String {
     let mut out = format!(
         "{{\"quick\":{},\"side\":{},\"spacing_m\":{SPACING},\"relief_m\":{RELIEF},\"suns\":{},\"samples\":{},\"truth_s\":{:e},\"rows\":[",
         c.quick, c.setup.side, c.setup.suns, c.samples, c.truth_seconds
@@ -646,15 +587,421 @@ fn json(rows: &[Row], large: &LargeBake, c: &Context<'_>) -> String {
             r.max_error_seen
         );
     }
+    out.push_str("]}\n");
+    out
+}
+
+// ---------------------------------------------------------------------------
+// Per-azimuth accuracy (issue 13 §4) and the 1024² speed study.
+
+/// Azimuths of the per-azimuth study: `k · 22.5°`, `k = 0..16` (the axes, the
+/// diagonals and the odd multiples of 22.5° in between).
+const STUDY_AZIMUTHS: usize = 16;
+/// The sun elevation of the per-azimuth hard-shadow rate, degrees.
+const STUDY_SUN_DEG: f64 = 20.0;
+/// Spacing of the per-azimuth study's steep map, metres (same texel heights as the
+/// main map: slopes three times steeper, where a 20° sun casts many shadows).
+const STEEP_SPACING: f64 = 10.0;
+/// Side of the speed study's map.
+const SPEED_SIDE: usize = 1024;
+/// Maximum distances of the speed study.
+const SPEED_DISTANCES: [Option<f64>; 3] = [None, Some(6_000.0), Some(2_000.0)];
+
+/// One azimuth's accuracy: the map baked at exactly this azimuth against the ray cast.
+pub(super) struct AzimuthRow {
+    terrain: &'static str,
+    azimuth_deg: f64,
+    mean_error_deg: f64,
+    /// Largest error where both the map and the truth see terrain (as the main table's
+    /// last column).
+    max_error_deg: f64,
+    /// Mean of `stored − truth`, degrees (positive: more shadow).
+    bias_deg: f64,
+    /// Wrong hard shadows at a 20° sun on this azimuth.
+    wrong: f64,
+}
+
+/// The speed study on the 1024² map.
+pub(super) struct SpeedRow {
+    max_distance: Option<f64>,
+    sweep_seconds: f64,
+    /// r.horizon-style march, 16 directions, all texels, once.
+    march_seconds: Option<f64>,
+}
+
+/// The bilinear height at texel position `(x, y)` (clamped to the map).
+fn bilinear(hf: &Heightfield, e: &[f64], x: f64, y: f64) -> f64 {
+    let (w, h) = (hf.width(), hf.height());
+    let i = (x.floor().max(0.0) as usize).min(w - 2);
+    let j = (y.floor().max(0.0) as usize).min(h - 2);
+    let (fx, fy) = (x - i as f64, y - j as f64);
+    let at = |i: usize, j: usize| e[j * w + i];
+    let top = at(i, j) + (at(i + 1, j) - at(i, j)) * fx;
+    let bottom = at(i, j + 1) + (at(i + 1, j + 1) - at(i, j + 1)) * fx;
+    top + (bottom - top) * fy
+}
+
+/// GRASS `r.horizon`'s method for one texel and azimuth: march along the exact ray
+/// one texel spacing at a time, bilinear heights, curvature, stop at the map edge, at
+/// the maximum distance, or when even the map's highest point could not rise above
+/// the horizon found so far (r.horizon's `zmax` exit). Returns the tangent.
+#[allow(clippy::too_many_arguments)]
+fn march_tangent(
+    hf: &Heightfield,
+    e: &[f64],
+    zmax: f64,
+    x: usize,
+    y: usize,
+    azimuth: f64,
+    inv_two_r: f64,
+    max_distance: f64,
+) -> f64 {
+    let (dx, dy) = (azimuth.sin(), -azimuth.cos());
+    let (wmax, hmax) = ((hf.width() - 1) as f64, (hf.height() - 1) as f64);
+    let hp = e[y * hf.width() + x];
+    let mut best = f64::NEG_INFINITY;
+    let mut k = 1.0f64;
+    loop {
+        let (px, py) = (x as f64 + k * dx, y as f64 + k * dy);
+        let d = k * hf.spacing();
+        if px < -1e-9 || py < -1e-9 || px > wmax + 1e-9 || py > hmax + 1e-9 || d > max_distance {
+            break;
+        }
+        if (zmax - hp) / d <= best {
+            break;
+        }
+        let t =
+            (bilinear(hf, e, px.clamp(0.0, wmax), py.clamp(0.0, hmax)) - hp - d * d * inv_two_r)
+                / d;
+        best = best.max(t);
+        k += 1.0;
+    }
+    best
+}
+
+/// The r.horizon-style march over every texel for `count` azimuths, on all threads.
+fn march_bake(hf: &Heightfield, count: usize, options: &HorizonOptions) -> f64 {
+    let e = hf.elevations();
+    let zmax = e.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let inv_two_r = options.effective_radius.map_or(0.0, |r| 0.5 / r);
+    let max_distance = options.max_distance.unwrap_or(f64::INFINITY);
+    let rows = std::sync::atomic::AtomicUsize::new(0);
+    let checksum = std::sync::Mutex::new(0.0f64);
+    std::thread::scope(|scope| {
+        for _ in 0..threads() {
+            scope.spawn(|| {
+                let mut sum = 0.0;
+                loop {
+                    let y = rows.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                    if y >= hf.height() {
+                        break;
+                    }
+                    for k in 0..count {
+                        let azimuth = k as f64 * std::f64::consts::TAU / count as f64;
+                        for x in 0..hf.width() {
+                            let t =
+                                march_tangent(hf, &e, zmax, x, y, azimuth, inv_two_r, max_distance);
+                            if t.is_finite() {
+                                sum += t.atan();
+                            }
+                        }
+                    }
+                }
+                if let Ok(mut c) = checksum.lock() {
+                    *c += sum;
+                }
+            });
+        }
+    });
+    checksum.into_inner().unwrap_or(0.0)
+}
+
+/// Per-azimuth accuracy on the study map: each azimuth `k · 22.5°` baked on its own
+/// (no interpolation between layers), against the ray cast at the same azimuth.
+fn azimuth_study(
+    terrain: &'static str,
+    hf: &Heightfield,
+    texels: usize,
+) -> Result<Vec<AzimuthRow>, String> {
+    let mut rng = Rng(SEED ^ 0xa21);
+    let points: Vec<(usize, usize)> = (0..texels)
+        .map(|_| (rng.below(hf.width()), rng.below(hf.height())))
+        .collect();
+    let options = HorizonOptions::default();
+    let sun = STUDY_SUN_DEG.to_radians();
+    let mut rows = Vec::new();
+    for k in 0..STUDY_AZIMUTHS {
+        let azimuth = k as f64 * std::f64::consts::TAU / STUDY_AZIMUTHS as f64;
+        let map = terrain::bake_horizon(hf, azimuth, &options, Algorithm::HullSweep)
+            .map_err(|e| e.to_string())?;
+        let chunk = points.len().div_ceil(threads());
+        let truths: Vec<f64> = std::thread::scope(|scope| {
+            let handles: Vec<_> = points
+                .chunks(chunk)
+                .map(|part| {
+                    scope.spawn(move || {
+                        part.iter()
+                            .map(|&(x, y)| {
+                                ray_cast_horizon_angle(hf, x, y, azimuth, &options)
+                                    .map_err(|e| e.to_string())
+                            })
+                            .collect::<Result<Vec<f64>, String>>()
+                    })
+                })
+                .collect();
+            handles
+                .into_iter()
+                .map(|h| {
+                    h.join()
+                        .map_err(|_| "ray-cast worker panicked".to_string())?
+                })
+                .collect::<Result<Vec<Vec<f64>>, String>>()
+        })?
+        .concat();
+        let (mut sum, mut signed, mut max, mut wrong) = (0.0f64, 0.0f64, 0.0f64, 0usize);
+        for (&(x, y), &truth) in points.iter().zip(&truths) {
+            let stored = f64::from(map.angle(x, y).map_err(|e| e.to_string())?);
+            let error = stored - truth;
+            sum += error.abs();
+            signed += error;
+            let nothing = -std::f64::consts::FRAC_PI_2 + 1e-6;
+            if stored > nothing && truth > nothing {
+                max = max.max(error.abs());
+            }
+            if (sun > stored) != (sun > truth) {
+                wrong += 1;
+            }
+        }
+        let n = points.len() as f64;
+        let row = AzimuthRow {
+            terrain,
+            azimuth_deg: azimuth.to_degrees(),
+            mean_error_deg: (sum / n).to_degrees(),
+            max_error_deg: max.to_degrees(),
+            bias_deg: (signed / n).to_degrees(),
+            wrong: wrong as f64 / n,
+        };
+        eprintln!(
+            "  {terrain} azimuth {:>6.2}°: mean {:.3}°  max {:.2}°  bias {:+.3}°  wrong {:.3} %",
+            row.azimuth_deg,
+            row.mean_error_deg,
+            row.max_error_deg,
+            row.bias_deg,
+            100.0 * row.wrong
+        );
+        rows.push(row);
+    }
+    Ok(rows)
+}
+
+/// One row of [`BEFORE_AZIMUTHS`].
+type BeforeRow = (&'static str, f64, f64, f64, f64, f64);
+
+/// The per-azimuth study on the sampling before issue 13 §4 (commit bf74ace, the same
+/// study run there; raw rows in `docs/tradeoffs/terrain_before.json`): map, azimuth (°),
+/// mean error (°), max error where both see terrain (°), bias (°), wrong hard shadows at
+/// a 20° sun (fraction).
+const BEFORE_AZIMUTHS: [BeforeRow; 32] = [
+    ("30 m", 0.0, 0.0000, 0.000, -0.0000, 0.000000),
+    #[allow(clippy::approx_constant)] // a measured error, not π/6
+    ("30 m", 22.5, 0.5236, 7.134, 0.2798, 0.000000),
+    ("30 m", 45.0, 0.1116, 2.749, -0.1116, 0.000000),
+    ("30 m", 67.5, 0.5961, 8.679, 0.3542, 0.000244),
+    ("30 m", 90.0, 0.0000, 0.000, -0.0000, 0.000000),
+    ("30 m", 112.5, 0.5991, 8.836, 0.3550, 0.000000),
+    ("30 m", 135.0, 0.1044, 2.623, -0.1044, 0.000000),
+    ("30 m", 157.5, 0.5291, 6.754, 0.3191, 0.000122),
+    ("30 m", 180.0, 0.0000, 0.000, -0.0000, 0.000000),
+    ("30 m", 202.5, 0.4971, 9.365, 0.2734, 0.000488),
+    ("30 m", 225.0, 0.1067, 2.923, -0.1067, 0.000000),
+    ("30 m", 247.5, 0.6033, 9.305, 0.3613, 0.000732),
+    ("30 m", 270.0, 0.0000, 0.000, -0.0000, 0.000000),
+    ("30 m", 292.5, 0.5500, 7.650, 0.3040, 0.000122),
+    ("30 m", 315.0, 0.1064, 3.404, -0.1064, 0.000000),
+    ("30 m", 337.5, 0.5138, 7.728, 0.3037, 0.000000),
+    ("10 m", 0.0, 0.0000, 0.000, -0.0000, 0.000000),
+    ("10 m", 22.5, 1.2552, 18.376, 0.5808, 0.035278),
+    ("10 m", 45.0, 0.3097, 7.720, -0.3097, 0.010010),
+    ("10 m", 67.5, 1.4746, 19.862, 0.8018, 0.044800),
+    ("10 m", 90.0, 0.0000, 0.000, -0.0000, 0.000000),
+    ("10 m", 112.5, 1.5209, 22.053, 0.8405, 0.048706),
+    ("10 m", 135.0, 0.2882, 7.474, -0.2882, 0.008423),
+    ("10 m", 157.5, 1.2671, 17.979, 0.6898, 0.031616),
+    ("10 m", 180.0, 0.0000, 0.000, -0.0000, 0.000000),
+    ("10 m", 202.5, 1.2324, 20.581, 0.6139, 0.035889),
+    ("10 m", 225.0, 0.2958, 8.674, -0.2958, 0.010010),
+    ("10 m", 247.5, 1.4699, 22.302, 0.7949, 0.045166),
+    ("10 m", 270.0, 0.0000, 0.000, -0.0000, 0.000000),
+    ("10 m", 292.5, 1.4403, 17.694, 0.7493, 0.038818),
+    ("10 m", 315.0, 0.2976, 9.358, -0.2976, 0.007324),
+    ("10 m", 337.5, 1.2881, 22.151, 0.7038, 0.041016),
+];
+/// The speed study on commit bf74ace: maximum distance, 16-direction hull sweep (s),
+/// r.horizon-style march (s), on this machine under other work.
+const BEFORE_SPEED: [(Option<f64>, f64, f64); 3] = [
+    (None, 1.566, 219.65),
+    (Some(6000.0), 3.639, 136.05),
+    (Some(2000.0), 4.110, 52.48),
+];
+
+/// The per-azimuth study on the main map and on the steep one.
+fn azimuth_studies(setup: &Setup) -> Result<Vec<AzimuthRow>, String> {
+    let mut rows = azimuth_study("30 m", &heightfield(setup.side)?, setup.texels_per_sun)?;
+    rows.extend(azimuth_study(
+        "10 m",
+        &heightfield_at(setup.side, STEEP_SPACING)?,
+        setup.texels_per_sun,
+    )?);
+    Ok(rows)
+}
+
+/// 16 directions on the 1024² map: the hull sweep with and without a maximum distance,
+/// and (once each, `with_march`) the r.horizon-style march.
+fn speed_study(min_seconds: f64, with_march: bool) -> Result<Vec<SpeedRow>, String> {
+    let hf = heightfield(SPEED_SIDE)?;
+    let mut rows = Vec::new();
+    for max_distance in SPEED_DISTANCES {
+        let options = HorizonOptions {
+            max_distance,
+            ..HorizonOptions::default()
+        };
+        let mut error = None;
+        let sweep_seconds = super::time_per_call(min_seconds, || {
+            if let Err(e) = bake_azimuths(&hf, STUDY_AZIMUTHS, &options, Algorithm::HullSweep) {
+                error = Some(e.to_string());
+            }
+        });
+        if let Some(e) = error {
+            return Err(e);
+        }
+        let march_seconds = with_march.then(|| {
+            let started = Instant::now();
+            std::hint::black_box(march_bake(&hf, STUDY_AZIMUTHS, &options));
+            started.elapsed().as_secs_f64()
+        });
+        eprintln!(
+            "  {SPEED_SIDE}², 16 directions, {}: sweep {} march {}",
+            distance_label(max_distance),
+            seconds(sweep_seconds),
+            march_seconds.map_or("-".into(), seconds)
+        );
+        rows.push(SpeedRow {
+            max_distance,
+            sweep_seconds,
+            march_seconds,
+        });
+    }
+    Ok(rows)
+}
+
+fn study_markdown(md: &mut String, studies: &Studies, c: &Context<'_>) {
+    let s = c.setup;
     let _ = writeln!(
-        out,
-        "],\"large\":{{\"side\":{},\"sweep_1_thread_s\":{:e},\"sweep_2_threads_s\":{:e},\"brute_2_threads_s\":{:e},\"max_difference_rad\":{:e}}}}}",
-        large.side,
-        large.sweep_1_thread,
-        large.sweep_2_threads,
-        large.brute_2_threads,
-        large.max_difference
+        md,
+        "## Every azimuth against the ray cast (issue 13 §4)\n\n\
+         Each azimuth `k · 22.5°` baked on its own (`bake_horizon`, hull sweep, default \
+         options: curvature on, no maximum distance) and read at {0} texels drawn uniformly \
+         (the same texels for every azimuth), against `ray_cast_horizon_angle` along the same \
+         azimuth. Two {1}×{1} maps of the generator above: *30 m* (the main table's map) and \
+         *10 m* (the same texel heights at {STEEP_SPACING} m: three times steeper, where a 20° \
+         sun casts many shadows). *mean*, *max* (over pairs where both see terrain) and *bias* \
+         (mean of stored − truth; positive: more shadow) in degrees; *wrong*: the hard shadow \
+         of a sun at {STUDY_SUN_DEG}° on that azimuth differs. **Before**: the digital-line \
+         sampling up to commit bf74ace (texels up to one texel beside the ray, at the distance \
+         along the line), measured by the same study there (`docs/tradeoffs/terrain_before.json`). \
+         **After**: `terrain::horizon`'s sampling now (the texel's own ray for `NEAR_STEPS` = \
+         {2} steps, then its line's samples interpolated across the grid line at their distance \
+         along the azimuth). The axes sample the grid lines exactly (error only from the ray \
+         cast's in-cell extrema: none here); the diagonals are unchanged.\n",
+        s.texels_per_sun,
+        s.side,
+        terrain::horizon::NEAR_STEPS
     );
+    let _ = writeln!(
+        md,
+        "| map | azimuth | mean before | mean after | max before | max after | bias before | bias after | wrong before | wrong after |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    );
+    for r in &studies.azimuths {
+        let before = BEFORE_AZIMUTHS
+            .iter()
+            .find(|b| b.0 == r.terrain && (b.1 - r.azimuth_deg).abs() < 1e-6);
+        let cell = |f: fn(&BeforeRow) -> String| before.map_or("–".into(), f);
+        let _ = writeln!(
+            md,
+            "| {} | {:.1}° | {} | {:.3}° | {} | {:.2}° | {} | {:+.3}° | {} | {:.2} % |",
+            r.terrain,
+            r.azimuth_deg,
+            cell(|b| format!("{:.3}°", b.2)),
+            r.mean_error_deg,
+            cell(|b| format!("{:.2}°", b.3)),
+            r.max_error_deg,
+            cell(|b| format!("{:+.3}°", b.4)),
+            r.bias_deg,
+            cell(|b| format!("{:.2} %", 100.0 * b.5)),
+            100.0 * r.wrong
+        );
+    }
+    let _ = writeln!(
+        md,
+        "\n## Bake speed: 16 directions on {SPEED_SIDE}²\n\n\
+         `bake_azimuths(…, 16, …, HullSweep)` on a {SPEED_SIDE}×{SPEED_SIDE} map of the 30 m \
+         generator, {} threads, `time_per_call` over at least {} s. **March**: GRASS \
+         `r.horizon`'s method written here (this machine has no GRASS): per texel and \
+         direction, steps of one texel along the exact ray, bilinear heights, curvature, stop \
+         at the map edge, the maximum distance, or when the map's highest point can no longer \
+         rise above the horizon found (r.horizon's `zmax` exit); one wall-clock run on all \
+         threads. Load average {} before, {} after (other work was running: times are noisy). \
+         **Before**: the same study on commit bf74ace.\n",
+        threads(),
+        s.min_timing_s,
+        studies.load_before_speed,
+        c.load_at_end
+    );
+    let _ = writeln!(
+        md,
+        "| max distance | sweep before | sweep after | march | march / sweep after |\n|---|---:|---:|---:|---:|"
+    );
+    for r in &studies.speed {
+        let before = BEFORE_SPEED.iter().find(|b| b.0 == r.max_distance);
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {} | {} |",
+            distance_label(r.max_distance),
+            before.map_or("–".into(), |b| seconds(b.1)),
+            seconds(r.sweep_seconds),
+            r.march_seconds.map_or("not run (--quick)".into(), seconds),
+            r.march_seconds
+                .map_or("–".into(), |m| format!("{:.0}×", m / r.sweep_seconds))
+        );
+    }
+}
+
+fn azimuth_json(rows: &[AzimuthRow], speed: &[SpeedRow]) -> String {
+    let mut out = String::from("{\"azimuths\":[");
+    for (i, r) in rows.iter().enumerate() {
+        if i > 0 {
+            out.push(',');
+        }
+        let _ = write!(
+            out,
+            "{{\"terrain\":\"{}\",\"azimuth_deg\":{},\"mean_error_deg\":{:e},\"max_error_deg\":{:e},\"bias_deg\":{:e},\"wrong\":{:e}}}",
+            r.terrain, r.azimuth_deg, r.mean_error_deg, r.max_error_deg, r.bias_deg, r.wrong
+        );
+    }
+    out.push_str("],\"speed\":[");
+    for (i, r) in speed.iter().enumerate() {
+        if i > 0 {
+            out.push(',');
+        }
+        let _ = write!(
+            out,
+            "{{\"max_distance_m\":{},\"sweep_s\":{:e},\"march_s\":{}}}",
+            r.max_distance.map_or("null".into(), |d| format!("{d}")),
+            r.sweep_seconds,
+            r.march_seconds.map_or("null".into(), |s| format!("{s:e}"))
+        );
+    }
+    out.push_str("]}\n");
     out
 }
 
