@@ -1,5 +1,5 @@
 //! GPU horizon bakes (WGSL compute, `shaders/terrain/horizon_bake.wgsl`): seed 000's
-//! east/west pair, and any azimuth on the digital lines of [`crate::horizon`].
+//! east/west pair, and any azimuth with the sampling of [`crate::horizon`].
 //!
 //! Bring your own device: [`GpuHorizonBaker::new`] takes a `&wgpu::Device`,
 //! [`GpuHorizonBaker::record_east_west`] uploads through the caller's `&wgpu::Queue`
@@ -118,9 +118,11 @@ impl GpuHorizonBaker {
     }
 
     /// Uploads `hf` and records the bake of one azimuth (radians clockwise from north)
-    /// into `encoder`: the digital lines of [`crate::horizon`] (their offsets computed
-    /// here in `f64` and uploaded, so the GPU walks exactly the CPU's texels), one
-    /// invocation per line (hull sweep; per-texel windows with a maximum distance).
+    /// into `encoder`: the sampling of [`crate::horizon`] (line offsets and their
+    /// fractions computed here in `f64` and uploaded, so the GPU reads exactly the CPU's
+    /// samples), one invocation per line. On the axes and diagonals: the hull sweep
+    /// (per-texel windows with a maximum distance); off them, every texel scans its
+    /// window (near field on its own ray, then the line's samples; O(n²) per line).
     ///
     /// Errors like [`GpuHorizonBaker::record_east_west`], and on a non-finite azimuth.
     pub fn record_azimuth(

@@ -20,7 +20,7 @@
 //! * [`raycast`]: the exact ray-cast horizon over the bilinear surface (`f64`), the
 //!   reference the trade-off (`cargo xtask tradeoff terrain`) measures maps against;
 //! * `gpu` (default feature): horizon bakes in WGSL compute (east/west, or any azimuth
-//!   on the same digital lines) that record into the caller's encoder;
+//!   with the CPU's sampling) that record into the caller's encoder;
 //! * [`prelude`]: the types and bakes a typical program needs, in one `use`;
 //! * [`twins`]: the shader helpers only `cargo xtask parity` calls on their own.
 //!
