@@ -278,7 +278,7 @@ fn rungs(atmosphere: &Atmosphere, quick: bool) -> Result<Vec<Rung>, String> {
                 "large",
                 LutSettings {
                     transmittance_size: [512, 128],
-                    multiple_scattering_size: [64, 64],
+                    multiple_scattering_size: [256, 64],
                     sky_view_size: [384, 216],
                     sky_view_samples: 60,
                     ..default
