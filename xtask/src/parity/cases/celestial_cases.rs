@@ -46,7 +46,9 @@ fn transform_bound(x: &[f64]) -> Vec<f64> {
         // celestial pole seen from the pole (components ~4e-8): error 4.5 rad.
         azimuth_bound = TAU64 + 512.0 * ulp_f32(TAU64);
     } else if east.abs() <= COMPONENT_ERROR && north >= 0.0 {
-        azimuth_bound += TAU64;
+        // The wrapped value is a + TAU in f32: TAU's own rounding (1.7e-7) and the
+        // sum's (½ ULP of 2π) come on top of the 2π.
+        azimuth_bound += TAU64 + ulp_f32(TAU64);
     }
     vec![
         azimuth_bound,
@@ -1425,11 +1427,7 @@ fn shadow64(p: [f64; 3], r: f64, l: &celestial::clouds::CloudLayerUniforms) -> (
     if x.hypot(y) >= f64::from(l.half_span) {
         return (1.0, [x, y]);
     }
-    let density = density64(
-        x + f64::from(l.offset[0]),
-        y + f64::from(l.offset[1]),
-        l,
-    );
+    let density = density64(x + f64::from(l.offset[0]), y + f64::from(l.offset[1]), l);
     (
         (-f64::from(l.optical_thickness) * density / sun[2]).exp(),
         [x, y],
@@ -1469,7 +1467,11 @@ fn cloud_cases() -> Vec<Case> {
             grid: cloud_shadow_grid,
             cpu: |x| {
                 let l = layer_from(&x.iter().map(|&v| f64::from(v)).collect::<Vec<_>>(), 4);
-                vec![celestial::clouds::cloud_shadow([x[0], x[1], x[2]], x[3], &l)]
+                vec![celestial::clouds::cloud_shadow(
+                    [x[0], x[1], x[2]],
+                    x[3],
+                    &l,
+                )]
             },
             reference: |x| vec![shadow64([x[0], x[1], x[2]], x[3], &layer_from(x, 4)).0],
             audit: Audit::INDEPENDENT,
