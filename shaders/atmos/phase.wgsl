@@ -11,13 +11,20 @@ fn rayleigh_phase(cos_theta: f32) -> f32 {
 // relative accuracy as |g| → 1 (the naive form cancels when g cosθ ≈ 1).
 //   g ≥ 0: (1 − g)² + 2 g (1 − cosθ)
 //   g < 0: (1 + g)² − 2 g (1 + cosθ)
+// The max with the first term is a no-op where + and × round correctly (the second
+// term is ≥ 0); it keeps the base off 0 where a compiler rewrites the sum so that
+// (1 − g)² is lost (e.g. as 2g + (1 − g)² − 2g·cosθ). On an NVIDIA H100 (Vulkan)
+// single scattering with g = 0.9999 gave inf at cosθ = 1 (NaN where the sun was
+// extinguished), as a base of 0 would; the base there is 1e-8.
 fn phase_denominator_base(cos_theta: f32, g: f32) -> f32 {
     if g >= 0.0 {
         let one_minus_g = 1.0 - g;
-        return one_minus_g * one_minus_g + 2.0 * g * (1.0 - cos_theta);
+        let floor = one_minus_g * one_minus_g;
+        return max(floor + 2.0 * g * (1.0 - cos_theta), floor);
     }
     let one_plus_g = 1.0 + g;
-    return one_plus_g * one_plus_g - 2.0 * g * (1.0 + cos_theta);
+    let floor = one_plus_g * one_plus_g;
+    return max(floor - 2.0 * g * (1.0 + cos_theta), floor);
 }
 
 // Henyey–Greenstein: (1 − g²) / (4π (1 + g² − 2 g cosθ)^{3/2}).

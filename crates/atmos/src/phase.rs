@@ -16,15 +16,21 @@ pub fn rayleigh_phase<F: Real>(cos_theta: F) -> F {
     F::of(3.0) / (F::of(16.0) * pi::<F>()) * (F::one() + cos_theta * cos_theta)
 }
 
-/// 1 + g² − 2g·cosθ as a sum of non-negative terms (accurate as |g| → 1).
+/// 1 + g² − 2g·cosθ as a sum of non-negative terms (accurate as |g| → 1), never
+/// below its first term (1 ∓ g)²: a no-op in correctly rounded arithmetic, kept
+/// op for op with the WGSL, where it stops a compiler's rewrite of the sum from
+/// cancelling the base to 0 (single scattering with g = 0.9999 gave inf at cosθ = 1
+/// on an NVIDIA H100, as a base of 0 would).
 pub fn phase_denominator_base<F: Real>(cos_theta: F, g: F) -> F {
     let two = F::of(2.0);
     if g >= F::zero() {
         let one_minus_g = F::one() - g;
-        one_minus_g * one_minus_g + two * g * (F::one() - cos_theta)
+        let floor = one_minus_g * one_minus_g;
+        (floor + two * g * (F::one() - cos_theta)).max(floor)
     } else {
         let one_plus_g = F::one() + g;
-        one_plus_g * one_plus_g - two * g * (F::one() + cos_theta)
+        let floor = one_plus_g * one_plus_g;
+        (floor - two * g * (F::one() + cos_theta)).max(floor)
     }
 }
 
