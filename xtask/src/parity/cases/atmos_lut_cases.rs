@@ -85,12 +85,20 @@ fn transmittance_uv_bound(x: &[f64]) -> Vec<f64> {
 }
 
 fn transmittance_r_mu_bound(x: &[f64]) -> Vec<f64> {
-    let [r, mu] = lut64::transmittance_lut_r_mu([x[0], x[1]], R_GROUND, R_TOP, W_T, H_T);
+    transmittance_r_mu_error([x[0], x[1]], W_T, H_T).to_vec()
+}
+
+/// Forward error (δr, δμ) of `transmittance_lut_r_mu` at texture coordinate `uv` of a
+/// `width`×`height` transmittance LUT on the Earth's radii (also the transmittance
+/// bake's texel coordinates, `passes::atmos_passes`).
+pub(crate) fn transmittance_r_mu_error(uv: [f64; 2], width: u32, height: u32) -> [f64; 2] {
+    let x = uv;
+    let [r, mu] = lut64::transmittance_lut_r_mu(uv, R_GROUND, R_TOP, width, height);
     let top_horizon = lut64::horizon_distance(R_TOP, R_GROUND);
     let rho = lut64::horizon_distance(r, R_GROUND);
     let d_min = R_TOP - r;
     let d_max = rho + top_horizon;
-    let x_mu = lut64::texel_uv_to_unit_range(x[0], W_T).clamp(0.0, 1.0);
+    let x_mu = lut64::texel_uv_to_unit_range(x[0], width).clamp(0.0, 1.0);
     let d = d_min + x_mu * (d_max - d_min);
     // r = √(ρ² + R²): 8u relative; d inherits r's absolute error through d_min.
     let dr = 8.0 * U * r;
@@ -102,7 +110,7 @@ fn transmittance_r_mu_bound(x: &[f64]) -> Vec<f64> {
     } else {
         0.0
     };
-    vec![dr, dmu.min(2.0)]
+    [dr, dmu.min(2.0)]
 }
 
 /// The sky-view row coordinate's error from zenith-angle errors δθ (θ and the

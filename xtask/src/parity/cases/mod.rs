@@ -9,6 +9,7 @@ mod atmos_cases;
 mod atmos_closed_form_sky_cases;
 mod atmos_dome_cases;
 mod atmos_lut_cases;
+pub(crate) use atmos_lut_cases::transmittance_r_mu_error;
 mod atmos_moments_cases;
 mod atmos_single_scattering_cases;
 mod celestial_cases;

@@ -200,7 +200,11 @@ pub fn cases() -> Vec<PassCase> {
     vec![
         PassCase {
             name: "atmos::lut transmittance bake (64x16)",
-            cpu: || Ok(as_pass(&cpu_luts()?.0.transmittance.texels)),
+            cpu: || {
+                let mut pass = as_pass(&cpu_luts()?.0.transmittance.texels);
+                pass.bounds = Some(transmittance_texel_bounds(&settings()));
+                Ok(pass)
+            },
             gpu: |gpu| gpu_bake(gpu, Which::Transmittance),
             audit: Audit::CPU_IS_REFERENCE,
             tolerance: Tolerance {
@@ -210,7 +214,11 @@ pub fn cases() -> Vec<PassCase> {
                 bound: None,
                 why: "40 log-linear steps (3 exp each, 16 ULP) summed, then exp of an \
                       optical depth ≤ ~40 (3 + 2τ ULP → ≤ 1e-5 relative); 2e-5 relative, \
-                      1e-6 absolute where the grazing texels underflow towards 0",
+                      1e-6 absolute where the grazing texels underflow towards 0; plus the \
+                      texel's (r, μ) moved by twice transmittance_lut_r_mu's forward bound \
+                      (either side may err by it: WGSL's sqrt, division and fused \
+                      multiply-adds round differently), through the f64 column's slope, \
+                      steep at the grazing texels (H100: 9.0e-4 relative there)",
             },
         },
         PassCase {
@@ -234,7 +242,12 @@ pub fn cases() -> Vec<PassCase> {
         },
         PassCase {
             name: "atmos::lut sky-view bake (48x28)",
-            cpu: || Ok(as_pass(&cpu_luts()?.1.sky_view.texels)),
+            cpu: || {
+                let (luts, frame) = cpu_luts()?;
+                let mut pass = as_pass(&frame.sky_view.texels);
+                pass.bounds = Some(sky_view_transmittance_bounds(&luts, &frame));
+                Ok(pass)
+            },
             gpu: |gpu| gpu_bake(gpu, Which::SkyView),
             audit: Audit::CPU_IS_REFERENCE,
             tolerance: Tolerance {
@@ -244,9 +257,12 @@ pub fn cases() -> Vec<PassCase> {
                 bound: None,
                 why: "texel directions through cos/atan2 (sky_view_lut_direction case), 30 \
                       steps each reading two LUTs and the phase functions; near the horizon \
-                      the path length changes fast with μ: 5e-4 relative. The texels' \
-                      transmittance entries (transmittance_to_boundary: one or two \
-                      transmittance lookups and their ratio) sit well inside it",
+                      the path length changes fast with μ: 5e-4 relative. The transmittance \
+                      layer (transmittance_to_boundary: one lookup, or for ground rays the \
+                      ratio of two at the ground point d(μ) away) also moves with the \
+                      texel's μ, whose slope is unbounded at the ground's tangent: plus the \
+                      CPU twin's spread over μ ± 2× the sky_view_lut_direction bound and \
+                      the viewer's r ± 1 ULP (H100 without it: 3.6e-2 relative)",
             },
         },
         PassCase {
@@ -312,4 +328,142 @@ pub fn cases() -> Vec<PassCase> {
             },
         },
     ]
+}
+
+/// exp(−τ) per channel of the f64 column from (r, μ) to the top: the bake's scheme
+/// (`transmittance_samples` uniform steps, log-linear exponentials, trapezoid ozone)
+/// in f64, for the bake's sensitivity to its texel coordinates.
+fn transmittance_column_f64(atmosphere: &Atmosphere, samples: u32, r: f64, mu: f64) -> [f64; 3] {
+    use atmos::geometry::{altitude_along_ray, ray_sphere_intersect};
+    use atmos::lut::reference::exponential_step_integral;
+    use atmos::twins::tent_density;
+    let a = atmosphere;
+    let length = ray_sphere_intersect(r, mu, a.top_radius)[1].max(0.0);
+    let dt = length / f64::from(samples);
+    let (mut rayleigh, mut mie, mut ozone) = (0.0, 0.0, 0.0);
+    let mut previous = altitude_along_ray(r, mu, 0.0, a.planet_radius);
+    for i in 0..samples {
+        let altitude = altitude_along_ray(r, mu, f64::from(i + 1) * dt, a.planet_radius);
+        rayleigh += exponential_step_integral(
+            previous / a.rayleigh_scale_height,
+            altitude / a.rayleigh_scale_height,
+            dt,
+        );
+        mie += exponential_step_integral(
+            previous / a.mie_scale_height,
+            altitude / a.mie_scale_height,
+            dt,
+        );
+        ozone += 0.5
+            * dt
+            * (tent_density(previous, a.ozone_center_altitude, a.ozone_half_width)
+                + tent_density(altitude, a.ozone_center_altitude, a.ozone_half_width));
+        previous = altitude;
+    }
+    std::array::from_fn(|c| {
+        (-(a.rayleigh_scattering[c] * rayleigh
+            + a.mie_extinction[c] * mie
+            + a.ozone_absorption[c] * ozone))
+            .exp()
+    })
+}
+
+/// Per texel and channel: how far the transmittance moves when the texel's (r, μ)
+/// move by twice `transmittance_lut_r_mu`'s forward bound (the CPU twin and the GPU
+/// may each err by it, in opposite directions). Alpha (1) gets 0.
+fn transmittance_texel_bounds(settings: &LutSettings) -> Vec<f64> {
+    let [width, height] = settings.transmittance_size;
+    let earth = Atmosphere::earth();
+    let samples = settings.transmittance_samples;
+    let mut bounds = Vec::with_capacity((width * height * 4) as usize);
+    for y in 0..height {
+        for x in 0..width {
+            let uv = [
+                (f64::from(x) + 0.5) / f64::from(width),
+                (f64::from(y) + 0.5) / f64::from(height),
+            ];
+            let [r, mu] = atmos::lut::reference::transmittance_lut_r_mu(
+                uv,
+                earth.planet_radius,
+                earth.top_radius,
+                width,
+                height,
+            );
+            let [dr, dmu] = crate::parity::cases::transmittance_r_mu_error(uv, width, height);
+            let centre = transmittance_column_f64(&earth, samples, r, mu);
+            let mut spread = [0.0f64; 3];
+            for (sr, smu) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
+                let moved = transmittance_column_f64(
+                    &earth,
+                    samples,
+                    r + sr * 2.0 * dr,
+                    (mu + smu * 2.0 * dmu).clamp(-1.0, 1.0),
+                );
+                for c in 0..3 {
+                    spread[c] = spread[c].max((moved[c] - centre[c]).abs());
+                }
+            }
+            bounds.extend([spread[0], spread[1], spread[2], 0.0]);
+        }
+    }
+    bounds
+}
+
+/// Per element of the sky-view bake: 0 on the radiance layer (its 5e-4 budget), and on
+/// the transmittance layer the CPU twin's spread of `transmittance_to_boundary` when
+/// the texel's direction moves by twice the `sky_view_lut_direction` case's bound
+/// (512 ULP of the horizon angle and 64 ULP of π through the mapping, whose slope is
+/// ≤ 1) and the viewer's radius by one ULP (its √ rounds either way). Near the ground's
+/// tangent the ground distance d(μ) has an unbounded slope: a shift within rounding
+/// moves the ground point by kilometres (or switches sky ↔ ground), which the ratio of
+/// two lookups turns into a relative change of percent.
+fn sky_view_transmittance_bounds(luts: &StaticLuts, frame: &FrameLuts) -> Vec<f64> {
+    use atmos::lut::parameterization::sky_view_lut_direction;
+    use atmos::lut::reference::horizon_zenith_angle;
+    use atmos::lut::transmittance_lut::transmittance_to_boundary;
+    let bindings = luts.bindings();
+    let settings = &luts.settings;
+    let (width, height) = (settings.sky_view_width, settings.sky_view_height);
+    let planet_radius = luts.atmosphere.planet_radius;
+    let [r, _] = frame.sky_view_r_mu_s;
+    let layer = (width * height) as usize;
+    let mut bounds = vec![0.0; frame.sky_view.texels.len() * 4];
+    if frame.sky_view.texels.len() < 2 * layer {
+        return bounds;
+    }
+    let horizon = horizon_zenith_angle(f64::from(r), f64::from(planet_radius));
+    let ulp = crate::parity::compare::ulp_f32;
+    let d_theta = 512.0 * ulp(horizon) + 64.0 * ulp(std::f64::consts::PI);
+    let radii = [
+        f32::from_bits(r.to_bits() - 1),
+        r,
+        f32::from_bits(r.to_bits() + 1),
+    ];
+    for y in 0..height {
+        for x in 0..width {
+            let i = (y * width + x) as usize;
+            let centre = frame.sky_view.texels[layer + i];
+            let uv = [
+                (x as f32 + 0.5) / width as f32,
+                (y as f32 + 0.5) / height as f32,
+            ];
+            let mut spread = [0.0f64; 3];
+            for radius in radii {
+                let [mu, _] = sky_view_lut_direction(uv, radius, planet_radius, width, height);
+                // sin θ·δθ moves μ by at most δθ.
+                for k in -8..=8 {
+                    let moved = (f64::from(mu) + 2.0 * d_theta * f64::from(k) / 8.0)
+                        .clamp(-1.0, 1.0) as f32;
+                    let t = transmittance_to_boundary(&bindings, radius, moved);
+                    for c in 0..3 {
+                        spread[c] = spread[c].max((f64::from(t[c]) - f64::from(centre[c])).abs());
+                    }
+                }
+            }
+            for c in 0..3 {
+                bounds[(layer + i) * 4 + c] = spread[c];
+            }
+        }
+    }
+    bounds
 }
