@@ -377,6 +377,13 @@ pub fn run(options: &Options) -> Result<Findings, String> {
         let gpu = gpu_values
             .as_ref()
             .map(|values| compare(values, &evaluated.reference, bounds, tolerance));
+        if std::env::var_os("SKYSCAPE_PARITY_FAILURES").is_some() {
+            for (side, values) in [("cpu", Some(&cpu_values)), ("gpu", gpu_values.as_ref())] {
+                if let Some(values) = values {
+                    dump_failures(case.name(), side, values, &evaluated, tolerance);
+                }
+            }
+        }
         reports.push(CaseReport {
             name: case.name(),
             inputs: evaluated.inputs,
@@ -455,6 +462,57 @@ pub fn run(options: &Options) -> Result<Findings, String> {
     }
     println!("{}", findings.summary.line());
     Ok(findings)
+}
+
+/// With `SKYSCAPE_PARITY_FAILURES` set: the first 16 failing elements of a side
+/// (row inputs as f32, value, reference, allowed error) appended to
+/// `target/parity/failures.txt`, to find what a device run disagreed on.
+fn dump_failures(
+    name: &str,
+    side: &str,
+    values: &[f32],
+    evaluated: &Evaluated,
+    tolerance: &Tolerance,
+) {
+    let outputs_per_row = evaluated.reference.len() / evaluated.inputs.max(1);
+    let inputs_per_row = evaluated.inputs32.len() / evaluated.inputs.max(1);
+    let mut text = String::new();
+    let mut shown = 0;
+    for (i, (&value, &expected)) in values.iter().zip(&evaluated.reference).enumerate() {
+        let bound = evaluated.bounds.as_ref().map(|b| b[i]);
+        let allowed = tolerance.allowed(expected, bound);
+        let error = (f64::from(value) - expected).abs();
+        if error <= allowed && !value.is_nan() {
+            continue;
+        }
+        if shown == 16 {
+            break;
+        }
+        shown += 1;
+        let row = i / outputs_per_row.max(1);
+        let inputs = evaluated
+            .inputs32
+            .get(row * inputs_per_row..(row + 1) * inputs_per_row)
+            .unwrap_or(&[]);
+        let _ = writeln!(
+            text,
+            "{name} {side} element {i} (row {row}, output {}): inputs {inputs:?} value {value:e} \
+             reference {expected:e} allowed {allowed:e}",
+            i % outputs_per_row.max(1)
+        );
+    }
+    if text.is_empty() {
+        return;
+    }
+    let path = std::path::Path::new("target/parity/failures.txt");
+    let _ = std::fs::create_dir_all("target/parity");
+    if let Ok(mut file) = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(path)
+    {
+        let _ = std::io::Write::write_all(&mut file, text.as_bytes());
+    }
 }
 
 #[cfg(test)]
