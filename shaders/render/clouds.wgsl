@@ -7,7 +7,8 @@
 // The fragment writes the composite as c + a·background with c = F(0) and
 // a = F(1) − F(0) (F is affine in the background: each layer mixes it with its own
 // colour by its opacity), so fixed-function blending (One, OneMinusSrcAlpha) applies it
-// over the scene already in the colour target.
+// over the scene already in the colour target (which holds radiance × exposure: c is
+// scaled by it, the background's weight a is not).
 #import atmos::frame
 #import celestial::clouds
 
@@ -18,7 +19,8 @@ struct CloudComposite {
     // The near plane of the scene's reverse-z projection (m).
     near: f32,
     layer_count: u32,
-    padding: u32,
+    // Multiplies the layers' own light (the HDR target holds radiance × exposure).
+    radiance_scale: f32,
 }
 
 @group(0) @binding(0) var<uniform> composite: CloudComposite;
@@ -78,5 +80,5 @@ fn clouds_fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<
     let r = composite.viewer_radius;
     let c = composite_cloud_layers(view, r, distance, vec3<f32>(0.0));
     let a = composite_cloud_layers(view, r, distance, vec3<f32>(1.0)) - c;
-    return vec4<f32>(c, 1.0 - a.g);
+    return vec4<f32>(c * composite.radiance_scale, 1.0 - a.g);
 }

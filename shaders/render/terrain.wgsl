@@ -35,6 +35,11 @@ struct TerrainUniform {
     viewer_radius: f32,
     cloud_layer_count: u32,
     albedo: AlbedoRamp,
+    // Multiplies the radiance written (the HDR target holds radiance × exposure).
+    radiance_scale: f32,
+    padding0: f32,
+    padding1: f32,
+    padding2: f32,
 }
 
 @group(2) @binding(0) var<uniform> terrain: TerrainUniform;
@@ -142,5 +147,5 @@ fn terrain_radiance(world: vec3<f32>) -> vec3<f32> {
 
 @fragment
 fn terrain_fragment(in: TerrainVarying) -> @location(0) vec4<f32> {
-    return vec4<f32>(terrain_radiance(in.world), 1.0);
+    return vec4<f32>(terrain_radiance(in.world) * terrain.radiance_scale, 1.0);
 }

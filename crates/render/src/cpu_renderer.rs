@@ -179,6 +179,52 @@ pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, Rend
             }
             Ok::<(), RenderError>(())
         })?;
+    if let Some(moon) = &scene.moonlit {
+        // The twin of the GPU's second sky pass: the moonlit sky added where the sky
+        // shows (no disc: celestial draws the moon).
+        let moon_camera = moon.camera(camera);
+        let tables = match &moon.precomputed {
+            Some(sky) => Some((
+                sky.static_luts(),
+                atmos::lut::FrameLuts::bake(sky.static_luts(), &moon_camera),
+                atmos::lut::drop_in::SkyPassParameters::new(&moon.atmosphere, false, 1.0, 0.0)
+                    .map_err(atmos_error)?,
+            )),
+            None => None,
+        };
+        let planet = scene.atmosphere.planet_radius;
+        out.par_chunks_mut(width)
+            .enumerate()
+            .try_for_each(|(row, pixels)| {
+                for (column, pixel) in pixels.iter_mut().enumerate() {
+                    if pixel.terrain_distance.is_some() {
+                        continue;
+                    }
+                    let xy = [column as u32, row as u32];
+                    let added = match &tables {
+                        Some((luts, frame, parameters)) => {
+                            atmos::lut::drop_in::sky_pass_radiance(luts, frame, xy, parameters)
+                        }
+                        None => {
+                            let view = atmos::frame::frame_view_direction(xy, camera);
+                            let view = DVec3::from_array(view.map(f64::from)).normalize();
+                            let query = atmos::SkyQuery::new(
+                                planet,
+                                scene.camera_position,
+                                view,
+                                moon.direction,
+                            )
+                            .map_err(atmos_error)?;
+                            moon.sky_model.evaluate(&query).radiance.map(|v| v as f32)
+                        }
+                    };
+                    for (value, a) in pixel.radiance.iter_mut().zip(added) {
+                        *value += a;
+                    }
+                }
+                Ok::<(), RenderError>(())
+            })?;
+    }
     if let Some(frame) = &scene.sky_objects {
         // The twin of the GPU's sky-objects pass: added where the sky shows (the GPU
         // pass's depth test hides them behind terrain).

@@ -159,6 +159,10 @@ mod wgsl_tests {
                     viewer_radius,
                     cloud_layer_count,
                     albedo,
+                    radiance_scale,
+                    padding0,
+                    padding1,
+                    padding2,
                 }),
                 wgsl("render::terrain", "TerrainUniform"),
             ));
@@ -177,7 +181,7 @@ mod wgsl_tests {
                     viewer_radius,
                     near,
                     layer_count,
-                    padding,
+                    radiance_scale,
                 }),
                 wgsl("render::clouds", "CloudComposite"),
             ));

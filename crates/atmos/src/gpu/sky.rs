@@ -55,6 +55,10 @@ pub struct SkyPassDescriptor {
     pub depth_compare: wgpu::CompareFunction,
     /// The render pass's sample count.
     pub sample_count: u32,
+    /// How the sky meets what the target holds: `None` replaces it (the sky drawn
+    /// first); additive blending adds a second light's sky (a moonlit sky over the
+    /// sunlit one: radiance is linear in the source).
+    pub blend: Option<wgpu::BlendState>,
 }
 
 impl SkyPassDescriptor {
@@ -65,6 +69,7 @@ impl SkyPassDescriptor {
             depth_format: None,
             depth_compare: wgpu::CompareFunction::Always,
             sample_count: 1,
+            blend: None,
         }
     }
 }
@@ -155,7 +160,7 @@ impl SkyPass {
                 compilation_options: Default::default(),
                 targets: &[Some(wgpu::ColorTargetState {
                     format: descriptor.color_format,
-                    blend: None,
+                    blend: descriptor.blend,
                     write_mask: wgpu::ColorWrites::ALL,
                 })],
             }),

@@ -525,7 +525,10 @@ fn render_gpu(
     let pixels =
         bytemuck::cast_slice(&read_buffer(&device, &queue, renderer.pixel_buffer())?).to_vec();
     let radiance = if want_radiance {
-        Some(read_radiance(&device, &queue, renderer.radiance_texture())?)
+        // The target holds radiance × exposure.
+        let exposure = scene.present.exposure;
+        let exposed = read_radiance(&device, &queue, renderer.radiance_texture())?;
+        Some(exposed.iter().map(|p| p.map(|v| v / exposure)).collect())
     } else {
         None
     };

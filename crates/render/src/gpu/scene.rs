@@ -81,6 +81,14 @@ pub struct TerrainUniform {
     pub cloud_layer_count: u32,
     /// The albedo ramp.
     pub albedo: AlbedoRampUniform,
+    /// Multiplies the radiance written (the HDR target holds radiance × exposure).
+    pub radiance_scale: f32,
+    /// Alignment.
+    pub padding0: f32,
+    /// Alignment.
+    pub padding1: f32,
+    /// Alignment.
+    pub padding2: f32,
 }
 
 /// The display pass's uniform (WGSL `DisplayParameters`).
@@ -123,6 +131,7 @@ pub struct SceneRenderer {
     settings: SceneRendererSettings,
     luts: AtmosphereLuts,
     sky: SkyPass,
+    moonlit: Option<(AtmosphereLuts, SkyPass)>,
     terrain: Option<TerrainPass>,
     sky_objects: Option<celestial::gpu::SkyObjectsPass>,
     clouds: Option<CloudPass>,
@@ -180,6 +189,18 @@ pub fn planned_passes(scene: &PreparedScene) -> Vec<(&'static str, Result<String
             Ok("atmos' sky pass, drawn first with depth writes off (seed 000)".into()),
         ),
     ];
+    plan.push((
+        "moonlit sky LUT bakes",
+        if scene.moonlit.is_some() {
+            Ok(
+                "the tables lit by the moon (celestial's MoonLight) per frame; its sky pass adds \
+                to the sunlit sky's (timed with \"sky\")"
+                    .into(),
+            )
+        } else {
+            Err("no [time], or the sun is up or the moon below −2°: no moonlit tables".into())
+        },
+    ));
     plan.push((
         "terrain",
         if scene.terrain.is_some() {
@@ -242,8 +263,8 @@ pub struct CloudComposite {
     pub near: f32,
     /// Layers in the storage buffer.
     pub layer_count: u32,
-    /// Alignment.
-    pub padding: u32,
+    /// Multiplies the layers' own light (the HDR target holds radiance × exposure).
+    pub radiance_scale: f32,
 }
 
 /// The cloud layers' compositing pass (`render::clouds`).
@@ -377,7 +398,7 @@ impl CloudPass {
             viewer_radius: scene.viewer_radius as f32,
             near: scene.near.max(0.01) as f32,
             layer_count: scene.cloud_layers.len() as u32,
-            padding: 0,
+            radiance_scale: scene.present.exposure,
         };
         queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
         if !scene.cloud_layers.is_empty() {
@@ -422,6 +443,31 @@ impl SceneRenderer {
                 ..SkyPassDescriptor::new(HDR)
             },
         )?;
+        // The moonlit sky: a second table set lit by the moon, its sky pass added.
+        let moonlit = match &scene.moonlit {
+            Some(moon) => {
+                let luts = AtmosphereLuts::new(device, &moon.atmosphere, &Default::default())?;
+                let additive = wgpu::BlendComponent {
+                    src_factor: wgpu::BlendFactor::One,
+                    dst_factor: wgpu::BlendFactor::One,
+                    operation: wgpu::BlendOperation::Add,
+                };
+                let pass = SkyPass::new(
+                    device,
+                    &luts,
+                    &SkyPassDescriptor {
+                        depth_format: Some(DEPTH),
+                        blend: Some(wgpu::BlendState {
+                            color: additive,
+                            alpha: additive,
+                        }),
+                        ..SkyPassDescriptor::new(HDR)
+                    },
+                )?;
+                Some((luts, pass))
+            }
+            None => None,
+        };
         let target = |format, usage| {
             device.create_texture(&wgpu::TextureDescriptor {
                 label: Some("render scene target"),
@@ -560,6 +606,9 @@ impl SceneRenderer {
         };
         let times = if settings.timestamps {
             let mut labels = vec!["atmosphere LUT bakes", "sky"];
+            if scene.moonlit.is_some() {
+                labels.push("moonlit sky LUT bakes");
+            }
             if terrain.is_some() {
                 labels.push("terrain");
             }
@@ -581,6 +630,7 @@ impl SceneRenderer {
             settings,
             luts,
             sky,
+            moonlit,
             terrain,
             sky_objects,
             clouds,
@@ -803,7 +853,15 @@ impl SceneRenderer {
             });
         }
         match (&mut self.sky_objects, &scene.sky_objects) {
-            (Some(pass), Some(frame)) => pass.prepare(queue, frame)?,
+            (Some(pass), Some(frame)) => {
+                let exposure = scene.present.exposure;
+                let mut frame = frame.clone();
+                for disc in &mut frame.discs {
+                    disc.radiance = disc.radiance.map(|r| r * exposure);
+                }
+                frame.uniforms.lux_per_unit /= exposure;
+                pass.prepare(queue, &frame)?;
+            }
             (None, None) => {}
             (built, _) => {
                 return Err(RenderError::InvalidParameter {
@@ -824,10 +882,36 @@ impl SceneRenderer {
                 });
             }
         }
+        // Every pass writes radiance × the exposure into the half-float target: a night
+        // sky's ~1e-7 (the sun's irradiance as unit) would sink into f16's subnormals
+        // (below 6.1e-5) and flush; exposed, the image's values are near 1.
+        let radiance_scale = scene.present.exposure;
+        match (&mut self.moonlit, &scene.moonlit) {
+            (Some((luts, pass)), Some(moon)) => {
+                luts.prepare(queue, &moon.camera(camera));
+                pass.prepare(
+                    queue,
+                    &SkyPassParameters::new(&moon.atmosphere, false, radiance_scale, 0.0)?,
+                );
+            }
+            (None, None) => {}
+            (built, _) => {
+                return Err(RenderError::InvalidParameter {
+                    field: "moonlit sky",
+                    value: if built.is_some() { "off" } else { "on" }.into(),
+                    reason: "differs from the scene the renderer was built for",
+                });
+            }
+        }
         self.luts.prepare(queue, camera);
         self.sky.prepare(
             queue,
-            &SkyPassParameters::new(&scene.atmosphere, scene.sky_objects.is_none(), 1.0, 0.0)?,
+            &SkyPassParameters::new(
+                &scene.atmosphere,
+                scene.sky_objects.is_none(),
+                radiance_scale,
+                0.0,
+            )?,
         );
         queue.write_buffer(
             &self.display_uniform,
@@ -835,7 +919,8 @@ impl SceneRenderer {
             bytemuck::bytes_of(&DisplayParameters {
                 width: self.width,
                 height: self.height,
-                exposure: scene.present.exposure,
+                // The HDR target already holds radiance × exposure.
+                exposure: 1.0,
                 dither_seed: scene.present.dither_seed,
             }),
         );
@@ -876,6 +961,10 @@ impl SceneRenderer {
                 viewer_radius: scene.viewer_radius as f32,
                 cloud_layer_count: scene.cloud_layers.len() as u32,
                 albedo: terrain.albedo.uniform(),
+                radiance_scale: scene.present.exposure,
+                padding0: 0.0,
+                padding1: 0.0,
+                padding2: 0.0,
             };
             queue.write_buffer(&pass.uniform, 0, bytemuck::bytes_of(&uniform));
             if scene.cloud_layers.len() > pass.cloud_layer_capacity {
@@ -925,12 +1014,21 @@ impl SceneRenderer {
         // The static bakes once (untimed: per atmosphere, not per frame).
         if self.static_luts_pending {
             self.luts.encode_static_luts(encoder, None);
+            if let Some((luts, _)) = &self.moonlit {
+                luts.encode_static_luts(encoder, None);
+            }
             self.static_luts_pending = false;
         }
         self.luts.encode_frame_luts(
             encoder,
             times.and_then(|t| t.compute_writes("atmosphere LUT bakes")),
         );
+        if let Some((luts, _)) = &self.moonlit {
+            luts.encode_frame_luts(
+                encoder,
+                times.and_then(|t| t.compute_writes("moonlit sky LUT bakes")),
+            );
+        }
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("render scene"),
@@ -955,6 +1053,9 @@ impl SceneRenderer {
                 ..Default::default()
             });
             self.sky.draw(&mut pass, &self.luts)?;
+            if let Some((luts, moon_sky)) = &self.moonlit {
+                moon_sky.draw(&mut pass, luts)?;
+            }
         }
         if let Some(terrain) = &self.terrain {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -1036,7 +1137,9 @@ impl SceneRenderer {
         &self.pixels
     }
 
-    /// The frame's HDR radiance (`rgba16float`, before the exposure).
+    /// The frame's HDR radiance × the scene's exposure (`rgba16float`: exposed, so a
+    /// night's radiance stays inside f16's normal range; divide by
+    /// `PreparedScene::present.exposure` for radiance).
     pub fn radiance_texture(&self) -> &wgpu::Texture {
         &self.hdr
     }

@@ -102,6 +102,42 @@ pub struct PreparedScene {
     /// The viewer's distance from the planet's centre (m): celestial's frame puts the
     /// viewer on its +z axis.
     pub viewer_radius: f64,
+    /// The moonlit sky, added to the sunlit one where the sky shows (scenes with
+    /// `[time]`, the sun down and the moon up).
+    pub moonlit: Option<MoonlitSky>,
+}
+
+/// The sky lit by the moon: the scene's atmosphere with the moon's irradiance
+/// (`celestial::MoonLight::atmosphere`), seen from the moon's direction.
+pub struct MoonlitSky {
+    /// The atmosphere lit by the moon.
+    pub atmosphere: atmos::Atmosphere,
+    /// Unit world direction toward the moon (airless).
+    pub direction: DVec3,
+    /// The scene's rung built from the moonlit atmosphere.
+    pub sky_model: SharedSkyModel,
+    /// Its tables, for the precomputed rung.
+    pub precomputed: Option<std::sync::Arc<atmos::lut::PrecomputedSky>>,
+}
+
+impl std::fmt::Debug for MoonlitSky {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("MoonlitSky")
+            .field("direction", &self.direction)
+            .field("sky_model", &self.sky_model.label())
+            .finish_non_exhaustive()
+    }
+}
+
+impl MoonlitSky {
+    /// The scene camera with the moon as its light (what the moonlit tables are baked
+    /// and looked up for).
+    pub fn camera(&self, camera: &atmos::frame::FrameCamera) -> atmos::frame::FrameCamera {
+        atmos::frame::FrameCamera {
+            sun: self.direction.as_vec3().to_array(),
+            ..*camera
+        }
+    }
 }
 
 impl PreparedScene {
@@ -293,6 +329,10 @@ impl Scene {
                 (None, Vec::new())
             }
         };
+        let moonlit = match &sky {
+            Some(sky) => self.moonlit_sky(sky, &atmosphere, sun)?,
+            None => None,
+        };
         if sky_objects.is_some() {
             // celestial draws the sun's limb-darkened disc: atmos' uniform one is off.
             present.sun_disc_radiance = [0.0; 3];
@@ -313,7 +353,35 @@ impl Scene {
             sky_objects,
             cloud_layers,
             viewer_radius: planet + cam.position[1],
+            moonlit,
         })
+    }
+
+    /// The moonlit sky (celestial's `MoonLight`: the same atmosphere lit by the moon's
+    /// irradiance from the moon's direction, any rung), when it can matter: the sun
+    /// below the horizon and the moon above −2° (in daylight it is ~10⁻⁶ of the sky).
+    fn moonlit_sky(
+        &self,
+        sky: &celestial::sky::Sky,
+        atmosphere: &atmos::Atmosphere,
+        sun: DVec3,
+    ) -> Result<Option<MoonlitSky>, SceneError> {
+        let Some(placement) = sky.placement() else {
+            return Ok(None);
+        };
+        let light = &placement.moon_light;
+        let [east, north, up] = light.direction;
+        if sun.y >= 0.0 || up < (-2f64).to_radians().sin() {
+            return Ok(None);
+        }
+        let moon_atmosphere = light.atmosphere(atmosphere);
+        let (sky_model, _, precomputed) = self.models(&moon_atmosphere)?;
+        Ok(Some(MoonlitSky {
+            atmosphere: moon_atmosphere,
+            direction: DVec3::new(east, up, -north),
+            sky_model,
+            precomputed,
+        }))
     }
 
     /// The sun's world direction from `[sun]` or from `[time]` (then also the placed
