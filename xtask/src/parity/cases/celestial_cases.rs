@@ -1489,26 +1489,40 @@ fn cloud_cases() -> Vec<Case> {
                     let base = f64::from(l.base_radius);
                     let point_radius = x[3] + x[2];
                     let distance = (base - point_radius) / mu;
-                    // The crossing point carries the radii's rounding (u of each, the
-                    // difference of two ~6.36e6 m numbers), the quotient's and the
-                    // products' and sums' roundings.
-                    let duv = (2.0 * U * (base + point_radius) + 4.0 * U * distance) / mu
+                    // The crossing point moves by the f32 rounding of the point's radius
+                    // r + z (half an ULP: 0.25 m at 6.4e6 m; the difference with the base
+                    // is then exact, Sterbenz) over μ☉, plus the quotient's, products'
+                    // and sums' roundings; the density moves by that times its local
+                    // slope (a central difference over ±duv, doubled for curvature), plus
+                    // its own rounding (the cloud_density case's bound at exact inputs).
+                    let radius_rounding = 0.5 * ulp_f32(point_radius);
+                    let duv = (radius_rounding + 4.0 * U * distance) / mu
                         + 3.0 * U * (cx.abs() + cy.abs() + 500.0);
+                    let (u0, v0) = (cx + 300.0, cy - 200.0);
+                    let slope_change = [(duv, 0.0), (0.0, duv)]
+                        .iter()
+                        .map(|&(du, dv)| {
+                            (density64(u0 + du, v0 + dv, &l) - density64(u0 - du, v0 - dv, &l))
+                                .abs()
+                                * 0.5
+                        })
+                        .fold(0.0, f64::max);
+                    let density_shift = 2.0 * 2.0 * slope_change + density_error(u0, v0, 0.0, &l);
                     let tau_over_mu = f64::from(l.optical_thickness) / mu;
-                    let density = density64(cx + 300.0, cy - 200.0, &l);
+                    let density = density64(u0, v0, &l);
                     let arg = tau_over_mu * density;
                     vec![
                         shadow
-                            * (tau_over_mu * density_error(cx + 300.0, cy - 200.0, duv, &l)
+                            * (tau_over_mu * density_shift
                                 + 3.0 * U * arg
                                 + exp_relative_error(arg)),
                     ]
                 }),
-                why: "the sun's crossing of the base moves with the radii's rounding (a \
-                      difference of two ~6.36e6 m values over μ☉: ~1 m) and the sums', \
-                      through the density's slope (the cloud_density case's bound), times \
-                      τ/μ☉ in the exponent; the exponent's two roundings and WGSL exp's \
-                      3 + 2|x| ULP",
+                why: "the sun's crossing of the base moves with the f32 rounding of the \
+                      point's radius (0.25 m at 6.4e6 m) over μ☉ and the sums', through the \
+                      density's local slope there (a central difference, ×2 for curvature, \
+                      both axes) plus the cloud_density case's own rounding bound, times τ/μ☉ \
+                      in the exponent; the exponent's two roundings and WGSL exp's 3 + 2|x| ULP",
             },
         },
         Case {
