@@ -54,6 +54,29 @@ pub mod gpu;
 
 pub use volume::{CloudVolume, VolumeError};
 
+/// What a typical user needs: the volume, the slice propagation (reference and twin)
+/// and its settings, the cone and march helpers.
+///
+/// ```
+/// use cloudlight::prelude::*;
+/// // A 4³ block of unit density, 25 m cells, lit from straight above.
+/// let volume = CloudVolume::new([4, 4, 4], [0.0; 3], 25.0, 0.02, vec![1.0; 64]).unwrap();
+/// let light = propagate_f64(&volume, [0.0, 0.0, 1.0], SliceMode::Physical).unwrap();
+/// assert_eq!(light.len(), 64);
+/// ```
+pub mod prelude {
+    pub use crate::cone::{
+        ConeWeights, beer_lambert, box_exit_distance, cone_optical_depth, cone_sample,
+        dual_lobe_henyey_greenstein, march_optical_depth, powder,
+    };
+    #[cfg(feature = "gpu")]
+    pub use crate::gpu::SlicePropagation;
+    pub use crate::propagate::{
+        Resampling, SliceError, SliceMode, SlicePlan, propagate, propagate_f32, propagate_f64,
+    };
+    pub use crate::volume::{CloudVolume, VolumeError};
+}
+
 /// The WGSL modules of this crate, importable as `#import cloudlight::<name>`.
 pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {

@@ -29,6 +29,27 @@ pub mod tonemap;
 
 pub use error::RenderError;
 
+/// What a typical user needs: scene files, the CPU reference renderer, the GPU scene
+/// renderer (feature `gpu`) and the projections.
+///
+/// ```
+/// use render::prelude::*;
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/sunset.toml");
+/// let mut scene = Scene::open(path).unwrap();
+/// scene.file.output.width = 8;
+/// scene.file.output.height = 4;
+/// let frame = render_cpu(&scene.prepare().unwrap()).unwrap();
+/// assert_eq!(frame.pixels.len(), 32);
+/// ```
+pub mod prelude {
+    pub use crate::RenderError;
+    pub use crate::cpu_renderer::{Frame, render_cpu, render_radiance};
+    #[cfg(feature = "gpu")]
+    pub use crate::gpu::{SceneRenderer, SceneRendererSettings};
+    pub use crate::projection::Projection;
+    pub use crate::scene::{PreparedScene, Scene, SceneError};
+}
+
 /// The WGSL modules of this crate, importable as `#import render::<name>`.
 pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {
