@@ -279,7 +279,7 @@ fn limb_bound(x: &[f64]) -> Vec<f64> {
 fn aureole_grid() -> Vec<Vec<f64>> {
     let mut grid = Vec::new();
     for g in [0.0, 0.3, 0.7, 0.76, 0.8, 0.9, 0.99] {
-        for theta in logspace(1e-4, 0.6, 300) {
+        for theta in logspace(1e-4, 0.6, 360) {
             for (irradiance, transmittance, depth) in [
                 (1.0, 0.8, 0.05),
                 (1.3e5, 0.02, 1.2),
@@ -1236,7 +1236,7 @@ fn layer_distance_grid() -> Vec<Vec<f64>> {
         for layer_altitude in [1_000.0, 2_100.0, 6_000.0] {
             let radius = R_GROUND + layer_altitude;
             for curved in [0.0, 1.0] {
-                for mu in cosines(301) {
+                for mu in cosines(341) {
                     let mu32 = f64::from(mu as f32);
                     let (r32, radius32) = (f64::from(r as f32), f64::from(radius as f32));
                     if curved == 1.0 {

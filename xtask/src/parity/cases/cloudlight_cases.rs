@@ -46,7 +46,7 @@ pub fn cases() -> Vec<Case> {
                 let mut grid = Vec::new();
                 for tau in [0.0, 1e-3, 0.37, 2.5, 40.0] {
                     for sigma_ds in [0.0, 1e-4, 0.05, 0.9, 7.0] {
-                        for a in linspace(0.0, 1.5, 16) {
+                        for a in linspace(0.0, 1.5, 37) {
                             for b in linspace(0.0, 1.0, 11) {
                                 grid.push(vec![tau, a, b, sigma_ds]);
                             }
@@ -89,7 +89,7 @@ pub fn cases() -> Vec<Case> {
             wgsl: "y0 = catmull_rom(x0, x1, x2, x3, x4);",
             grid: || {
                 let mut grid = Vec::new();
-                for i in 0..6000u32 {
+                for i in 0..10000u32 {
                     let h = |salt: u32| {
                         f64::from(
                             skyscape_wgsl::common::hash_u32(i.wrapping_mul(0x9e37_79b9) ^ salt)
@@ -149,7 +149,7 @@ pub fn cases() -> Vec<Case> {
             wgsl: "y0 = cross_smooth(x0, x1, x2, x3, x4);",
             grid: || {
                 let mut grid = Vec::new();
-                for i in 0..6000u32 {
+                for i in 0..10000u32 {
                     let h = |salt: u32| {
                         f64::from(
                             skyscape_wgsl::common::hash_u32(i.wrapping_mul(0x9e37_79b9) ^ salt)
@@ -190,7 +190,7 @@ pub fn cases() -> Vec<Case> {
             wgsl: "y0 = bilinear(x0, x1, x2, x3, x4, x5);",
             grid: || {
                 let mut grid = Vec::new();
-                for i in 0..6000u32 {
+                for i in 0..10000u32 {
                     let h = |salt: u32| {
                         f64::from(
                             skyscape_wgsl::common::hash_u32(i.wrapping_mul(0x9e37_79b9) ^ salt)
@@ -314,7 +314,7 @@ pub fn cone_cases() -> Vec<Case> {
                    y0 = s.x; y1 = s.y; y2 = s.z; y3 = s.w;",
             grid: || {
                 let mut grid = Vec::new();
-                for (k, d) in directions(40).into_iter().enumerate() {
+                for (k, d) in directions(60).into_iter().enumerate() {
                     for step in [1.0, 40.0, 333.3] {
                         for exit in [0.0, 25.0, 280.0, 4000.0] {
                             for i in 0..7 {
@@ -386,7 +386,7 @@ pub fn cone_cases() -> Vec<Case> {
             arity: (1, 1),
             wgsl: "y0 = beer_lambert(x0);",
             grid: || {
-                let mut g: Vec<Vec<f64>> = logspace(1e-7, 80.0, 4001).map(|t| vec![t]).collect();
+                let mut g: Vec<Vec<f64>> = logspace(1e-7, 80.0, 10001).map(|t| vec![t]).collect();
                 g.push(vec![0.0]);
                 g
             },
@@ -410,7 +410,7 @@ pub fn cone_cases() -> Vec<Case> {
             arity: (1, 1),
             wgsl: "y0 = powder(x0);",
             grid: || {
-                let mut g: Vec<Vec<f64>> = logspace(1e-5, 40.0, 4001).map(|t| vec![t]).collect();
+                let mut g: Vec<Vec<f64>> = logspace(1e-5, 40.0, 10001).map(|t| vec![t]).collect();
                 g.push(vec![0.0]);
                 g
             },
@@ -439,7 +439,7 @@ pub fn cone_cases() -> Vec<Case> {
             wgsl: "y0 = dual_lobe_henyey_greenstein(x0, x1, x2, x3);",
             grid: || {
                 let mut grid = Vec::new();
-                for mu in linspace(-1.0, 1.0, 101) {
+                for mu in linspace(-1.0, 1.0, 141) {
                     for g in [0.0, 0.3, 0.6, 0.85, 0.95, 0.99] {
                         for b in [-0.5, -0.2, 0.0] {
                             for w in [0.0, 0.1, 0.5, 1.0] {
@@ -504,7 +504,7 @@ pub fn cone_cases() -> Vec<Case> {
                     [137.5, 612.25, 1111.0],
                 ];
                 for p in points {
-                    for d in directions(300) {
+                    for d in directions(1500) {
                         grid.push(vec![p[0], p[1], p[2], d[0], d[1], d[2]]);
                     }
                 }
