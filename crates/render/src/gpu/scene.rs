@@ -1,17 +1,22 @@
-//! A scene on the GPU: `atmos`' tables and sky pass, the terrain's tiles, the display
-//! pass. Bring your own device; [`SceneRenderer::new`] builds only the passes the
-//! scene needs (no terrain: no terrain pipeline, no buffers), [`SceneRenderer::prepare`]
-//! writes the frame's uniforms and tile list, [`SceneRenderer::encode`] records:
+//! A scene on the GPU: `atmos`' tables and sky pass, the terrain's tiles, `celestial`'s
+//! sky objects, the cloud layers, the display pass. Bring your own device;
+//! [`SceneRenderer::new`] builds only the passes the scene needs (no terrain: no terrain
+//! pipeline, no buffers; no `[time]`: no sky objects, no moonlit tables; no cloud
+//! layers: no cloud pipeline), [`SceneRenderer::prepare`] writes the frame's uniforms
+//! and tile list, [`SceneRenderer::encode`] records:
 //!
 //! 1. compute: the LUT bakes (the static ones once, the sky view and aerial
-//!    perspective per frame);
-//! 2. render: the sky (drawn first, depth writes off, seed 000), then the terrain
-//!    (reverse-z depth);
-//! 3. compute: the display pass (exposure, tone map, sRGB, dither) into RGBA8 pixels.
+//!    perspective per frame), and the moonlit sky's when the moon lights the night;
+//! 2. render: the sky (drawn first, depth writes off, seed 000), the moonlit sky added
+//!    to it, then the terrain (reverse-z depth, cloud shadows);
+//! 3. render: the sun, moon, planets and stars, additive, depth-tested behind terrain;
+//! 4. render: the cloud layers, farthest first, hidden where the terrain is nearer;
+//! 5. compute: the display pass (tone map, sRGB, dither) into RGBA8 pixels.
 //!
-//! The CPU twin is `render::cpu_renderer` (the same shading functions, ray cast
-//! instead of rasterised). Only the precomputed rung has GPU passes here; the others
-//! render on the CPU.
+//! The half-float HDR target holds radiance × the scene's exposure (a night's radiance
+//! would flush in f16's subnormals otherwise). The CPU twin is `render::cpu_renderer`
+//! (the same shading functions, ray cast instead of rasterised). Only the precomputed
+//! rung has GPU passes here; the others render on the CPU.
 
 use atmos::gpu::AtmosphereLuts;
 use atmos::gpu::sky::{SkyPass, SkyPassDescriptor};
