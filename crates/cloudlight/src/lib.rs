@@ -43,6 +43,7 @@
 //! ```
 
 pub mod cone;
+pub mod density;
 pub mod jitter;
 pub mod propagate;
 pub mod reference;
@@ -52,6 +53,7 @@ pub mod volume;
 #[cfg(feature = "gpu")]
 pub mod gpu;
 
+pub use density::{DensityField, RaySpans};
 pub use volume::{CloudVolume, VolumeError};
 
 /// What a typical user needs: the volume, the slice propagation (reference and twin)
