@@ -178,6 +178,206 @@ pub fn march_optical_depth<F: Real>(
     sigma_t * sum * h
 }
 
+/// Bad input to the light-estimate API ([`ConeSettings`], [`MarchSettings`],
+/// [`LightRay`]), naming the field and its value. The per-sample functions above mirror
+/// WGSL and stay infallible; these constructors validate at the API edge.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ConeError {
+    /// A field is out of its domain.
+    #[error("{field} = {value}: {requirement}")]
+    BadParameter {
+        /// The field name.
+        field: &'static str,
+        /// The value.
+        value: f64,
+        /// What the field must satisfy.
+        requirement: &'static str,
+    },
+}
+
+fn bad(field: &'static str, value: f64, requirement: &'static str) -> ConeError {
+    ConeError::BadParameter {
+        field,
+        value,
+        requirement,
+    }
+}
+
+/// Validated settings of a 6 + 1 light estimate: the cone's step Δ (metres, > 0), its
+/// spread (half-width per metre of distance, ≥ 0) and the weighting.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ConeSettings {
+    step: f64,
+    spread: f64,
+    weights: ConeWeights,
+}
+
+impl ConeSettings {
+    /// Refuses a step that is not finite and > 0 and a spread that is not finite and ≥ 0.
+    pub fn new(step: f64, spread: f64, weights: ConeWeights) -> Result<Self, ConeError> {
+        if !(step.is_finite() && step > 0.0) {
+            return Err(bad("step", step, "must be finite and > 0 (metres)"));
+        }
+        if !(spread.is_finite() && spread >= 0.0) {
+            return Err(bad(
+                "spread",
+                spread,
+                "must be finite and ≥ 0 (half-width per metre)",
+            ));
+        }
+        Ok(Self {
+            step,
+            spread,
+            weights,
+        })
+    }
+
+    /// The step Δ, metres.
+    pub fn step(&self) -> f64 {
+        self.step
+    }
+
+    /// The spread, half-width per metre of distance.
+    pub fn spread(&self) -> f64 {
+        self.spread
+    }
+
+    /// The weighting.
+    pub fn weights(&self) -> ConeWeights {
+        self.weights
+    }
+}
+
+/// Validated settings of the full light march: its midpoint steps (1 to 65 536).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MarchSettings {
+    steps: std::num::NonZeroU32,
+}
+
+impl MarchSettings {
+    /// Refuses 0 steps and more than 65 536.
+    pub fn new(steps: u32) -> Result<Self, ConeError> {
+        match std::num::NonZeroU32::new(steps) {
+            Some(n) if steps <= 65_536 => Ok(Self { steps: n }),
+            _ => Err(bad(
+                "steps",
+                f64::from(steps),
+                "must be in 1..=65536 (midpoint steps)",
+            )),
+        }
+    }
+
+    /// The steps.
+    pub fn steps(&self) -> std::num::NonZeroU32 {
+        self.steps
+    }
+}
+
+/// A validated light ray: a finite point, the unit direction toward the sun (normalised
+/// from any finite non-zero vector) and the path length to the cloud's exit (finite,
+/// ≥ 0, metres).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LightRay {
+    point: [f64; 3],
+    to_sun: [f64; 3],
+    exit_distance: f64,
+}
+
+impl LightRay {
+    /// Errors name the field: a non-finite point or direction component, a zero
+    /// direction, a negative or non-finite exit distance.
+    pub fn new(point: [f64; 3], to_sun: [f64; 3], exit_distance: f64) -> Result<Self, ConeError> {
+        for (field, value) in ["point.x", "point.y", "point.z"].into_iter().zip(point) {
+            if !value.is_finite() {
+                return Err(bad(field, value, "must be finite (metres)"));
+            }
+        }
+        for (field, value) in ["to_sun.x", "to_sun.y", "to_sun.z"].into_iter().zip(to_sun) {
+            if !value.is_finite() {
+                return Err(bad(field, value, "must be finite"));
+            }
+        }
+        let norm = to_sun.iter().map(|c| c * c).sum::<f64>().sqrt();
+        if !(norm > 0.0 && norm.is_finite()) {
+            return Err(bad("|to_sun|", norm, "must be non-zero and finite"));
+        }
+        if !(exit_distance.is_finite() && exit_distance >= 0.0) {
+            return Err(bad(
+                "exit_distance",
+                exit_distance,
+                "must be finite and ≥ 0 (metres)",
+            ));
+        }
+        Ok(Self {
+            point,
+            to_sun: to_sun.map(|c| c / norm),
+            exit_distance,
+        })
+    }
+
+    /// The ray from `point` toward the sun to where it last leaves `field` (its last
+    /// span's exit; 0 when it misses): the path the light estimates integrate.
+    pub fn through<D: crate::DensityField<f64> + ?Sized>(
+        field: &D,
+        point: [f64; 3],
+        to_sun: [f64; 3],
+    ) -> Result<Self, ConeError> {
+        let checked = Self::new(point, to_sun, 0.0)?;
+        let spans = field.ray_spans(checked.point, checked.to_sun);
+        let exit = spans.as_slice().last().map_or(0.0, |&(_, exit)| exit);
+        Self::new(point, to_sun, exit)
+    }
+
+    /// The point, metres.
+    pub fn point(&self) -> [f64; 3] {
+        self.point
+    }
+
+    /// The unit direction toward the sun.
+    pub fn to_sun(&self) -> [f64; 3] {
+        self.to_sun
+    }
+
+    /// The path length to the exit, metres.
+    pub fn exit_distance(&self) -> f64 {
+        self.exit_distance
+    }
+
+    /// The 6 + 1 optical depth ([`cone_optical_depth`]) through `field` in precision `F`.
+    pub fn cone_optical_depth<F: Real, D: crate::DensityField<F> + ?Sized>(
+        &self,
+        field: &D,
+        settings: &ConeSettings,
+    ) -> F {
+        cone_optical_depth(
+            |q| field.density(q),
+            field.extinction_per_density(),
+            self.point.map(F::of),
+            self.to_sun.map(F::of),
+            F::of(settings.step),
+            F::of(self.exit_distance),
+            F::of(settings.spread),
+            settings.weights,
+        )
+    }
+
+    /// The full light march's optical depth ([`march_optical_depth`]) through `field`.
+    pub fn march_optical_depth<F: Real, D: crate::DensityField<F> + ?Sized>(
+        &self,
+        field: &D,
+        settings: &MarchSettings,
+    ) -> F {
+        march_optical_depth(
+            |q| field.density(q),
+            field.extinction_per_density(),
+            self.point.map(F::of),
+            self.to_sun.map(F::of),
+            F::of(self.exit_distance),
+            settings.steps,
+        )
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -232,6 +432,39 @@ mod tests {
         assert!((marched - exact).abs() < 1e-12, "{marched} vs {exact}");
         let raw = cone_optical_depth(d, 0.004, p, l, 40.0, exit, 0.0, ConeWeights::Raw);
         assert!(raw < exact, "raw {raw} is biased bright against {exact}");
+    }
+
+    #[test]
+    fn bad_light_inputs_are_named() {
+        let err = ConeSettings::new(0.0, 0.2, ConeWeights::Raw).unwrap_err();
+        assert!(err.to_string().starts_with("step = 0"), "{err}");
+        let err = ConeSettings::new(-3.0, 0.2, ConeWeights::Raw).unwrap_err();
+        assert!(err.to_string().starts_with("step = -3"), "{err}");
+        let err = ConeSettings::new(10.0, f64::NAN, ConeWeights::Raw).unwrap_err();
+        assert!(err.to_string().starts_with("spread = NaN"), "{err}");
+        let err = MarchSettings::new(0).unwrap_err();
+        assert!(err.to_string().starts_with("steps = 0"), "{err}");
+        let err = LightRay::new([0.0; 3], [f64::NAN, 0.0, 1.0], 1.0).unwrap_err();
+        assert!(err.to_string().starts_with("to_sun.x = NaN"), "{err}");
+        let err = LightRay::new([0.0; 3], [0.0; 3], 1.0).unwrap_err();
+        assert!(err.to_string().starts_with("|to_sun| = 0"), "{err}");
+        let err = LightRay::new([0.0; 3], [0.0, 0.0, 1.0], -1.0).unwrap_err();
+        assert!(err.to_string().starts_with("exit_distance = -1"), "{err}");
+        let err = LightRay::new([0.0, f64::INFINITY, 0.0], [0.0, 0.0, 1.0], 1.0).unwrap_err();
+        assert!(err.to_string().starts_with("point.y = inf"), "{err}");
+    }
+
+    #[test]
+    fn a_light_ray_through_a_field_matches_the_free_functions() {
+        let v = CloudVolume::new([4, 4, 4], [0.0; 3], 100.0, 0.004, vec![1.0; 64]).unwrap();
+        let ray = LightRay::through(&v, [200.0, 200.0, 50.0], [0.0, 0.0, 2.0]).unwrap();
+        assert_eq!(ray.exit_distance(), 350.0);
+        let march = MarchSettings::new(5).unwrap();
+        let tau: f64 = ray.march_optical_depth(&v, &march);
+        assert!((tau - 0.004 * 350.0).abs() < 1e-12, "{tau}");
+        let cone = ConeSettings::new(40.0, 0.0, ConeWeights::Partitioned).unwrap();
+        let tau32: f32 = ray.cone_optical_depth(&v, &cone);
+        assert!((f64::from(tau32) - 1.4).abs() < 1e-6, "{tau32}");
     }
 
     #[test]

@@ -47,6 +47,7 @@ pub mod density;
 pub mod jitter;
 pub mod propagate;
 pub mod reference;
+pub mod shadow_map;
 pub mod slice;
 pub mod volume;
 
@@ -100,6 +101,14 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {
         name: "cloudlight::slice_propagation_pass",
         source: include_str!("../shaders/slice_propagation_pass.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "cloudlight::shadow_map",
+        source: include_str!("../shaders/shadow_map.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "cloudlight::shadow_map_pass",
+        source: include_str!("../shaders/shadow_map_pass.wgsl"),
     },
 ];
 

@@ -13,6 +13,9 @@
 use crate::CloudVolume;
 use crate::propagate::{Resampling, SliceMode, SlicePlan};
 
+mod shadow_map;
+pub use shadow_map::{ShadowMapGpuError, ShadowMapPass, compose_shadow_map_shader};
+
 /// Workgroup size of the slice kernel along each in-slice axis.
 pub const WORKGROUP_SIZE: u32 = 8;
 

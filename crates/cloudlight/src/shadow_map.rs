@@ -1,0 +1,442 @@
+//! The ground's cloud shadow map (seed 000's `clouds_shadow` term): the transmittance of
+//! the sunlight through a cloud, toward the sun, from every texel centre of a 2-D grid on
+//! flat ground. `render` multiplies terrain shading by it.
+//!
+//! * [`ShadowGrid`] states the extent: the minimum corner `(x, y)` of the grid (metres, the
+//!   terrain's frame), the texel edge, the resolution and the ground height. Texel
+//!   `(i, j)` (`i` fastest in every output) is the ground point
+//!   `(x₀ + (i + ½)·cell, y₀ + (j + ½)·cell, ground_height)`.
+//! * [`ShadowMapPlan`] adds the direction toward the sun and the march's step count.
+//! * [`shadow_map`] is the march, written once over the float type for any
+//!   [`DensityField`]: for each span of the sun ray where the field may be non-zero,
+//!   `steps` midpoint samples, `τ = Σ σ_t·h·Σρ`, light `exp(−τ)`. `shadow_map::<f32>` on a
+//!   [`CloudVolume`] is the twin of the GPU pass (`gpu::ShadowMapPass`,
+//!   `shaders/cloudlight/shadow_map_pass.wgsl`); the per-texel pieces
+//!   ([`shadow_texel_centre`], [`shadow_box_span`], [`shadow_march_point`],
+//!   [`shadow_span_optical_depth`]) are WGSL twins in `shaders/cloudlight/shadow_map.wgsl`.
+//! * [`shadow_map_reference`] is the exact f64 transmittance of a [`CloudVolume`]
+//!   ([`crate::reference::transmittance`]: no discretisation error), which the march is
+//!   measured against (`tests` here, the crate README, `examples/shadow_map.rs`).
+//!
+//! Any sun elevation is accepted. A low sun gives long oblique paths (the span's `steps`
+//! samples stretch over them). A sun at or below the horizon still gives the cloud's own
+//! transmittance along the ray toward the sun: a cloud wholly above the ground then casts
+//! nothing (1), one reaching below `ground_height` still does. The planet's shadow, and
+//! the atmosphere's transmittance, are `atmos`' and `render`'s business, not this map's.
+//! The ground is flat (no curvature): right for a terrain tile, not for a continent.
+
+use std::num::NonZeroU32;
+
+use atmos::real::Real;
+
+use crate::density::DensityField;
+use crate::reference::ReferenceError;
+use crate::{CloudVolume, cone};
+
+/// The shadow map's default march: midpoint steps per span. The f32 twin's error against
+/// the exact reference at this setting is in the crate README (measured by
+/// `examples/shadow_map.rs`).
+pub const DEFAULT_STEPS: u32 = 64;
+
+/// The largest step count a plan accepts (the GPU loops this many times per texel).
+pub const MAX_STEPS: u32 = 4096;
+
+/// Bad input to the shadow map, naming the field and its value.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ShadowMapError {
+    /// A field is out of its domain.
+    #[error("{field} = {value}: {requirement}")]
+    BadParameter {
+        /// The field name.
+        field: &'static str,
+        /// The value.
+        value: f64,
+        /// What the field must satisfy.
+        requirement: &'static str,
+    },
+    /// The exact reference refused a ray (cannot happen for a valid plan; kept typed).
+    #[error(transparent)]
+    Reference(#[from] ReferenceError),
+}
+
+fn bad(field: &'static str, value: f64, requirement: &'static str) -> ShadowMapError {
+    ShadowMapError::BadParameter {
+        field,
+        value,
+        requirement,
+    }
+}
+
+/// The ground grid a shadow map covers (see the module documentation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShadowGrid {
+    origin: [f64; 2],
+    cell_size: f64,
+    resolution: [u32; 2],
+    ground_height: f64,
+}
+
+impl ShadowGrid {
+    /// A grid of `resolution = [nx, ny]` texels of edge `cell_size` metres whose minimum
+    /// corner is `origin = [x, y]` (metres), on flat ground at `ground_height` (metres, z).
+    pub fn new(
+        origin: [f64; 2],
+        cell_size: f64,
+        resolution: [u32; 2],
+        ground_height: f64,
+    ) -> Result<Self, ShadowMapError> {
+        for (field, value) in ["origin.x", "origin.y"].into_iter().zip(origin) {
+            if !value.is_finite() {
+                return Err(bad(field, value, "must be finite (metres)"));
+            }
+        }
+        if !(cell_size.is_finite() && cell_size > 0.0) {
+            return Err(bad(
+                "cell_size",
+                cell_size,
+                "must be finite and > 0 (metres)",
+            ));
+        }
+        for (field, n) in ["resolution.x", "resolution.y"].into_iter().zip(resolution) {
+            if n == 0 {
+                return Err(bad(field, 0.0, "must be ≥ 1 texel"));
+            }
+        }
+        if !ground_height.is_finite() {
+            return Err(bad(
+                "ground_height",
+                ground_height,
+                "must be finite (metres)",
+            ));
+        }
+        Ok(Self {
+            origin,
+            cell_size,
+            resolution,
+            ground_height,
+        })
+    }
+
+    /// Minimum corner `[x, y]`, metres.
+    pub fn origin(&self) -> [f64; 2] {
+        self.origin
+    }
+
+    /// Texel edge, metres.
+    pub fn cell_size(&self) -> f64 {
+        self.cell_size
+    }
+
+    /// `[nx, ny]` texels.
+    pub fn resolution(&self) -> [u32; 2] {
+        self.resolution
+    }
+
+    /// The ground's height (z), metres.
+    pub fn ground_height(&self) -> f64 {
+        self.ground_height
+    }
+
+    /// Texels in the map.
+    pub fn texels(&self) -> usize {
+        self.resolution[0] as usize * self.resolution[1] as usize
+    }
+
+    /// Ground point of texel `(i, j)` in f64.
+    pub fn texel_centre(&self, i: u32, j: u32) -> [f64; 3] {
+        shadow_texel_centre([i, j], self.origin, self.cell_size, self.ground_height)
+    }
+}
+
+/// A shadow map's settings: the grid, the unit direction toward the sun and the march's
+/// midpoint steps per span.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShadowMapPlan {
+    /// The ground grid.
+    pub grid: ShadowGrid,
+    to_sun: [f64; 3],
+    steps: NonZeroU32,
+}
+
+impl ShadowMapPlan {
+    /// `to_sun`: toward the sun, any finite non-zero length (normalised here), any
+    /// elevation; `steps` in `1..=MAX_STEPS` ([`DEFAULT_STEPS`] is the measured default).
+    pub fn new(grid: ShadowGrid, to_sun: [f64; 3], steps: u32) -> Result<Self, ShadowMapError> {
+        for (field, value) in ["to_sun.x", "to_sun.y", "to_sun.z"].into_iter().zip(to_sun) {
+            if !value.is_finite() {
+                return Err(bad(field, value, "must be finite"));
+            }
+        }
+        let norm = to_sun.iter().map(|c| c * c).sum::<f64>().sqrt();
+        if !(norm > 0.0 && norm.is_finite()) {
+            return Err(bad("|to_sun|", norm, "must be non-zero and finite"));
+        }
+        if !(1..=MAX_STEPS).contains(&steps) {
+            return Err(bad(
+                "steps",
+                f64::from(steps),
+                "must be in 1..=4096 (midpoint steps per span)",
+            ));
+        }
+        Ok(Self {
+            grid,
+            to_sun: to_sun.map(|c| c / norm),
+            steps: NonZeroU32::new(steps).expect("checked ≥ 1"),
+        })
+    }
+
+    /// The unit direction toward the sun.
+    pub fn to_sun(&self) -> [f64; 3] {
+        self.to_sun
+    }
+
+    /// Midpoint steps per span.
+    pub fn steps(&self) -> u32 {
+        self.steps.get()
+    }
+}
+
+/// Ground point of texel `texel = (i, j)`: `(x₀ + (i + ½)·cell, y₀ + (j + ½)·cell,
+/// ground_height)`. WGSL twin `shadow_texel_centre`.
+pub fn shadow_texel_centre<F: Real>(
+    texel: [u32; 2],
+    origin: [F; 2],
+    cell_size: F,
+    ground_height: F,
+) -> [F; 3] {
+    let half = F::of(0.5);
+    [
+        origin[0] + (atmos::real::count::<F>(texel[0]) + half) * cell_size,
+        origin[1] + (atmos::real::count::<F>(texel[1]) + half) * cell_size,
+        ground_height,
+    ]
+}
+
+/// `[t_enter, t_exit]` of the ray `p + t·l` (`t ≥ 0`) through the box `[lo, hi]` (the
+/// slab method, in the operation order of [`CloudVolume`]'s
+/// [`DensityField::ray_spans`]); `t_enter > t_exit` when it misses. WGSL twin
+/// `shadow_box_span` (its "no exit yet" is the largest finite float, as here).
+pub fn shadow_box_span<F: Real>(p: [F; 3], l: [F; 3], lo: [F; 3], hi: [F; 3]) -> [F; 2] {
+    let mut enter = F::zero();
+    let mut exit = F::max_value();
+    for a in 0..3 {
+        if l[a] == F::zero() {
+            if p[a] < lo[a] || p[a] > hi[a] {
+                return [F::one(), F::zero()];
+            }
+        } else {
+            let t0 = (lo[a] - p[a]) / l[a];
+            let t1 = (hi[a] - p[a]) / l[a];
+            enter = enter.max(t0.min(t1));
+            exit = exit.min(t0.max(t1));
+        }
+    }
+    [enter, exit]
+}
+
+/// Sample `k` of `n` midpoint steps over `span = [t_enter, t_exit]`:
+/// `p + (t_enter + (k + ½)·h)·l` with `h = (t_exit − t_enter)/n`. WGSL twin
+/// `shadow_march_point`.
+pub fn shadow_march_point<F: Real>(p: [F; 3], l: [F; 3], span: [F; 2], k: u32, n: u32) -> [F; 3] {
+    let h = (span[1] - span[0]) / atmos::real::count::<F>(n);
+    let t = span[0] + (atmos::real::count::<F>(k) + F::of(0.5)) * h;
+    [p[0] + t * l[0], p[1] + t * l[1], p[2] + t * l[2]]
+}
+
+/// A span's optical depth from the sum of its `n` midpoint densities:
+/// `σ_t·(Σρ·h)`, `h = (t_exit − t_enter)/n`. WGSL twin `shadow_span_optical_depth`.
+pub fn shadow_span_optical_depth<F: Real>(density_sum: F, span: [F; 2], n: u32, sigma_t: F) -> F {
+    let h = (span[1] - span[0]) / atmos::real::count::<F>(n);
+    sigma_t * (density_sum * h)
+}
+
+/// The marched transmittance toward the sun from `ground` (unit `to_sun`) through
+/// `field`: `steps` midpoint samples on each of the field's spans, `exp(−Σ τ)`. Infallible
+/// (per-texel math; [`ShadowMapPlan::new`] validates). The f32 instantiation on a
+/// [`CloudVolume`] is the GPU pass's twin (the pass's trilinear lookup runs in f32, this
+/// one in f64 rounded once: they differ by rounding only, bounded in
+/// `tests/shadow_map_gpu.rs`).
+pub fn shadow_texel<F: Real, D: DensityField<F> + ?Sized>(
+    field: &D,
+    ground: [F; 3],
+    to_sun: [F; 3],
+    steps: u32,
+) -> F {
+    let spans = field.ray_spans(ground, to_sun);
+    let sigma_t = field.extinction_per_density();
+    let mut tau = F::zero();
+    for &(enter, exit) in spans.as_slice() {
+        let span = [enter, exit];
+        let mut sum = F::zero();
+        for k in 0..steps {
+            sum = sum + field.density(shadow_march_point(ground, to_sun, span, k, steps));
+        }
+        tau = tau + shadow_span_optical_depth(sum, span, steps, sigma_t);
+    }
+    cone::beer_lambert(tau)
+}
+
+/// The marched shadow map of `field` for `plan`: one transmittance per texel, `i`
+/// fastest. The f32 instantiation is the twin of `gpu::ShadowMapPass`.
+pub fn shadow_map<F: Real, D: DensityField<F> + ?Sized>(field: &D, plan: &ShadowMapPlan) -> Vec<F> {
+    let grid = &plan.grid;
+    let [nx, ny] = grid.resolution;
+    let origin = grid.origin.map(F::of);
+    let (cell, ground) = (F::of(grid.cell_size), F::of(grid.ground_height));
+    let to_sun = plan.to_sun.map(F::of);
+    let mut out = Vec::with_capacity(grid.texels());
+    for j in 0..ny {
+        for i in 0..nx {
+            let p = shadow_texel_centre([i, j], origin, cell, ground);
+            out.push(shadow_texel(field, p, to_sun, plan.steps()));
+        }
+    }
+    out
+}
+
+/// The exact shadow map of a [`CloudVolume`] (f64, `i` fastest): at every texel
+/// [`crate::reference::transmittance`] toward the sun, integrated to the volume's exit.
+pub fn shadow_map_reference(
+    volume: &CloudVolume,
+    plan: &ShadowMapPlan,
+) -> Result<Vec<f64>, ShadowMapError> {
+    let [nx, ny] = plan.grid.resolution;
+    let mut out = Vec::with_capacity(plan.grid.texels());
+    for j in 0..ny {
+        for i in 0..nx {
+            let p = plan.grid.texel_centre(i, j);
+            out.push(crate::reference::transmittance(
+                volume,
+                p,
+                plan.to_sun,
+                f64::INFINITY,
+            )?);
+        }
+    }
+    Ok(out)
+}
+
+/// Root-mean-square and largest absolute difference between a map and a reference of
+/// the same length (`None` when the lengths differ or both are empty).
+pub fn map_error<F: Real>(map: &[F], reference: &[f64]) -> Option<(f64, f64)> {
+    if map.len() != reference.len() || map.is_empty() {
+        return None;
+    }
+    let (mut sum, mut max) = (0.0, 0.0f64);
+    for (m, r) in map.iter().zip(reference) {
+        let e = m.to_f64().unwrap_or(f64::NAN) - r;
+        sum += e * e;
+        max = max.max(e.abs());
+    }
+    Some(((sum / map.len() as f64).sqrt(), max))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn blob(n: u32) -> CloudVolume {
+        let c = f64::from(n) / 2.0;
+        let mut density = Vec::new();
+        for z in 0..n {
+            for y in 0..n {
+                for x in 0..n {
+                    let p = [x, y, z].map(|v| f64::from(v) + 0.5 - c);
+                    let r2: f64 = p.iter().map(|v| v * v).sum();
+                    let wobble = 1.0 + 0.3 * (((x * 5 + y * 3 + z) % 4) as f64 / 3.0);
+                    density.push((wobble * (1.0 - r2 / (c * c))).max(0.0) as f32);
+                }
+            }
+        }
+        CloudVolume::new([n; 3], [0.0, 0.0, 1000.0], 40.0, 0.01, density).unwrap()
+    }
+
+    fn sun(elevation_deg: f64) -> [f64; 3] {
+        let (e, a) = (elevation_deg.to_radians(), 30f64.to_radians());
+        [e.cos() * a.cos(), e.cos() * a.sin(), e.sin()]
+    }
+
+    #[test]
+    fn homogeneous_slab_is_beer_lambert_at_any_elevation() {
+        // One cell 100 km wide, density 0.5 everywhere (one cell: the lookup clamps).
+        let thin = CloudVolume::new([1, 1, 1], [-5e4, -5e4, 500.0], 1e5, 1e-5, vec![0.5]).unwrap();
+        // z ∈ [500, 100500]: a zenith sun crosses 100 km, τ = 1e-5 · 0.5 · 1e5 = 0.5; lower
+        // suns leave through a side.
+        let grid = ShadowGrid::new([-100.0, -100.0], 50.0, [4, 4], 0.0).unwrap();
+        for e in [90.0, 60.0, 20.0] {
+            let plan = ShadowMapPlan::new(grid, sun(e), 8).unwrap();
+            let exact = shadow_map_reference(&thin, &plan).unwrap();
+            let marched = shadow_map::<f64, _>(&thin, &plan);
+            let twin = shadow_map::<f32, _>(&thin, &plan);
+            if e == 90.0 {
+                assert!((exact[0] - (-0.5f64).exp()).abs() < 1e-12, "{}", exact[0]);
+            }
+            for ((x, m), t) in exact.iter().zip(&marched).zip(&twin) {
+                // Constant density: the midpoint rule is exact; the f32 twin within rounding.
+                assert!((x - m).abs() < 1e-12, "{e}: {x} vs {m}");
+                assert!((x - f64::from(*t)).abs() < 1e-5, "{e}: {x} vs {t}");
+            }
+        }
+    }
+
+    #[test]
+    fn below_the_horizon_a_cloud_above_casts_nothing() {
+        let v = blob(8);
+        let grid = ShadowGrid::new([0.0, 0.0], 40.0, [8, 8], 0.0).unwrap();
+        for e in [0.0, -5.0, -90.0] {
+            let plan = ShadowMapPlan::new(grid, sun(e), 16).unwrap();
+            assert!(shadow_map::<f32, _>(&v, &plan).iter().all(|&t| t == 1.0));
+            assert!(
+                shadow_map_reference(&v, &plan)
+                    .unwrap()
+                    .iter()
+                    .all(|&t| t == 1.0)
+            );
+        }
+        // Ground inside the cloud (ground height 1100 m): a sun below the horizon still
+        // crosses the cloud's lower part.
+        let inside = ShadowGrid::new([0.0, 0.0], 40.0, [8, 8], 1100.0).unwrap();
+        let plan = ShadowMapPlan::new(inside, sun(-20.0), 64).unwrap();
+        let exact = shadow_map_reference(&v, &plan).unwrap();
+        assert!(exact.iter().any(|&t| t < 0.9), "{exact:?}");
+        let (rmse, max) = map_error(&shadow_map::<f32, _>(&v, &plan), &exact).unwrap();
+        assert!(rmse < 0.01 && max < 0.05, "{rmse} {max}");
+    }
+
+    #[test]
+    fn the_march_converges_to_the_exact_map() {
+        let v = blob(12);
+        for e in [60.0, 10.0] {
+            // Centred on the shadow of the blob's centre (240, 240, 1240).
+            let l = sun(e);
+            let centre = [0, 1].map(|a| 240.0 - 1240.0 * l[a] / l[2] - 600.0);
+            let grid = ShadowGrid::new(centre, 30.0, [40, 40], 0.0).unwrap();
+            let plan = ShadowMapPlan::new(grid, sun(e), DEFAULT_STEPS).unwrap();
+            let exact = shadow_map_reference(&v, &plan).unwrap();
+            assert!(exact.iter().any(|&t| t < 0.5), "the blob shades the grid");
+            let (rmse, max) = map_error(&shadow_map::<f32, _>(&v, &plan), &exact).unwrap();
+            assert!(rmse < 2e-3 && max < 2e-2, "sun {e}: rmse {rmse}, max {max}");
+        }
+    }
+
+    #[test]
+    fn bad_settings_are_named() {
+        let err = ShadowGrid::new([0.0, f64::NAN], 1.0, [1, 1], 0.0).unwrap_err();
+        assert!(err.to_string().starts_with("origin.y = NaN"), "{err}");
+        let err = ShadowGrid::new([0.0, 0.0], 0.0, [1, 1], 0.0).unwrap_err();
+        assert!(err.to_string().starts_with("cell_size = 0"), "{err}");
+        let err = ShadowGrid::new([0.0, 0.0], 1.0, [1, 0], 0.0).unwrap_err();
+        assert!(err.to_string().starts_with("resolution.y = 0"), "{err}");
+        let err = ShadowGrid::new([0.0, 0.0], 1.0, [1, 1], f64::INFINITY).unwrap_err();
+        assert!(err.to_string().starts_with("ground_height = inf"), "{err}");
+        let grid = ShadowGrid::new([0.0, 0.0], 1.0, [1, 1], 0.0).unwrap();
+        let err = ShadowMapPlan::new(grid, [0.0; 3], 8).unwrap_err();
+        assert!(err.to_string().starts_with("|to_sun| = 0"), "{err}");
+        let err = ShadowMapPlan::new(grid, [f64::NAN, 0.0, 1.0], 8).unwrap_err();
+        assert!(err.to_string().starts_with("to_sun.x = NaN"), "{err}");
+        let err = ShadowMapPlan::new(grid, [0.0, 0.0, 1.0], 0).unwrap_err();
+        assert!(err.to_string().starts_with("steps = 0"), "{err}");
+        let err = ShadowMapPlan::new(grid, [0.0, 0.0, 1.0], 5000).unwrap_err();
+        assert!(err.to_string().starts_with("steps = 5000"), "{err}");
+    }
+}

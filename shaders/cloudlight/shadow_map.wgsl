@@ -1,0 +1,47 @@
+// The ground's cloud shadow map, per texel: the texel's ground point, the sun ray's span
+// through the volume's box, the march's sample points and a span's optical depth.
+// Twin: cloudlight::shadow_map (Rust, generic over the float type: the f32 instantiation
+// mirrors these operations).
+
+// Ground point of texel (i, j): (x0 + (i + ½)·cell, y0 + (j + ½)·cell, ground_height).
+fn shadow_texel_centre(texel: vec2<u32>, origin: vec2<f32>, cell_size: f32, ground_height: f32) -> vec3<f32> {
+    return vec3<f32>(
+        origin.x + (f32(texel.x) + 0.5) * cell_size,
+        origin.y + (f32(texel.y) + 0.5) * cell_size,
+        ground_height,
+    );
+}
+
+// (t_enter, t_exit) of the ray p + t·l (t ≥ 0) through the box [lo, hi] (slab method);
+// t_enter > t_exit when it misses.
+fn shadow_box_span(p: vec3<f32>, l: vec3<f32>, lo: vec3<f32>, hi: vec3<f32>) -> vec2<f32> {
+    var enter = 0.0;
+    var exit = 3.40282347e+38;
+    for (var a = 0; a < 3; a++) {
+        if l[a] == 0.0 {
+            if p[a] < lo[a] || p[a] > hi[a] {
+                return vec2<f32>(1.0, 0.0);
+            }
+        } else {
+            let t0 = (lo[a] - p[a]) / l[a];
+            let t1 = (hi[a] - p[a]) / l[a];
+            enter = max(enter, min(t0, t1));
+            exit = min(exit, max(t0, t1));
+        }
+    }
+    return vec2<f32>(enter, exit);
+}
+
+// Sample k of n midpoint steps over span = (t_enter, t_exit): p + (t_enter + (k + ½)·h)·l,
+// h = (t_exit − t_enter)/n.
+fn shadow_march_point(p: vec3<f32>, l: vec3<f32>, span: vec2<f32>, k: u32, n: u32) -> vec3<f32> {
+    let h = (span.y - span.x) / f32(n);
+    let t = span.x + (f32(k) + 0.5) * h;
+    return vec3<f32>(p.x + t * l.x, p.y + t * l.y, p.z + t * l.z);
+}
+
+// A span's optical depth from its n midpoint densities' sum: σ_t·(Σρ·h).
+fn shadow_span_optical_depth(density_sum: f32, span: vec2<f32>, n: u32, sigma_t: f32) -> f32 {
+    let h = (span.y - span.x) / f32(n);
+    return sigma_t * (density_sum * h);
+}
