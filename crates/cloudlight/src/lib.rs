@@ -45,8 +45,10 @@
 pub mod cone;
 pub mod density;
 pub mod jitter;
+pub mod noise;
 pub mod propagate;
 pub mod reference;
+pub mod shell;
 pub mod shadow_map;
 pub mod slice;
 pub mod volume;
@@ -55,6 +57,7 @@ pub mod volume;
 pub mod gpu;
 
 pub use density::{DensityField, RaySpans};
+pub use shell::{CloudShell, ShellError, ShellSettings};
 pub use volume::{CloudVolume, VolumeError};
 
 /// What a typical user needs: the volume, the slice propagation (reference and twin)
@@ -76,6 +79,9 @@ pub mod prelude {
     pub use crate::gpu::SlicePropagation;
     pub use crate::propagate::{
         Resampling, SliceError, SliceMode, SlicePlan, propagate, propagate_f32, propagate_f64,
+    };
+    pub use crate::shell::{
+        CloudShell, ProceduralWeather, ShellError, ShellSettings, WeatherGrid, WeatherMap,
     };
     pub use crate::volume::{CloudVolume, VolumeError};
 }
