@@ -6,7 +6,12 @@
 //!   fastest) with its extinction per unit density σ_t (1/m); typed errors name the field.
 //! * [`reference`](mod@reference): the exact f64 optical depth and transmittance of the
 //!   volume's trilinear density along a ray (Simpson on each cubic piece: no
-//!   discretisation error). Everything else is measured against it.
+//!   discretisation error); single scattering of a directional sun with the exact light
+//!   path at every point of an adaptive view quadrature
+//!   ([`reference::single_scattering`]); every order by an unbiased Monte Carlo path
+//!   tracer (delta tracking, phase sampling, next-event estimation, standard errors:
+//!   [`reference::path_tracer`]), all validated on closed forms
+//!   (`tests/reference_closed_forms.rs`). Everything else is measured against it.
 //! * [`propagate`](mod@propagate): seed 002's slice propagation, light at every cell in one
 //!   sweep of slices toward the sun — physical mode (Beer–Lambert over the true spacing,
 //!   the optical depth resampled by a clamped Catmull–Rom or bilinearly) and faithful mode
@@ -27,7 +32,7 @@
 //! build time.
 //!
 //! Not here yet (issue 14): billboards, the ray-marched cloud shell and its noise, cloud
-//! shadow maps, multiple scattering, the Monte Carlo reference, `xtask tradeoff cloudlight`.
+//! shadow maps, multiple scattering, `xtask tradeoff cloudlight`.
 //!
 //! ```
 //! use cloudlight::CloudVolume;
