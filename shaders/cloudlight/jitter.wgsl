@@ -9,3 +9,12 @@ fn bayer_jitter_4x4(pixel: vec2<u32>) -> f32 {
     let index = ((a & 1u) << 3u) | ((y & 1u) << 2u) | (((a >> 1u) & 1u) << 1u) | ((y >> 1u) & 1u);
     return f32(index) * (1.0 / 16.0);
 }
+
+// Jimenez's interleaved gradient noise (2014) of a pixel, in [0, 1):
+// fract(52.9829189 · fract(0.06711056·x + 0.00583715·y)). Twin:
+// cloudlight::jitter::interleaved_gradient_noise.
+fn interleaved_gradient_noise(pixel: vec2<u32>) -> f32 {
+    let p = vec2<f32>(pixel);
+    let inner = fract(0.06711056 * p.x + 0.00583715 * p.y);
+    return fract(52.9829189 * inner);
+}

@@ -8,6 +8,15 @@ pub fn bayer_jitter_4x4(pixel: [u32; 2]) -> f32 {
     index as f32 * (1.0 / 16.0)
 }
 
+/// Jimenez's interleaved gradient noise (2014) of a pixel, in `[0, 1)`:
+/// `fract(52.9829189 · fract(0.06711056·x + 0.00583715·y))`, a blue-ish start offset with
+/// no tile. f32 operation for operation like the WGSL twin `interleaved_gradient_noise`.
+pub fn interleaved_gradient_noise(pixel: [u32; 2]) -> f32 {
+    let fract = |v: f32| v - v.floor();
+    let inner = fract(0.067_110_56 * pixel[0] as f32 + 0.005_837_15 * pixel[1] as f32);
+    fract(52.982_918 * inner)
+}
+
 #[cfg(test)]
 mod tests {
     use super::bayer_jitter_4x4;

@@ -50,6 +50,7 @@
 pub mod cone;
 pub mod density;
 pub mod jitter;
+pub mod march;
 pub mod noise;
 pub mod propagate;
 pub mod reference;

@@ -1,0 +1,443 @@
+//! The view march against closed forms and at its extremes.
+#![allow(clippy::needless_range_loop)] // channel loops read three arrays
+
+use std::num::NonZeroU32;
+
+use cloudlight::CloudVolume;
+use cloudlight::cone::{ConeWeights, dual_lobe_henyey_greenstein};
+use cloudlight::march::{
+    Jitter, LightMarch, Lighting, MarchConfig, MarchError, MarchSettings, Octaves, march_view,
+    march_view_at_pixel, octave_scattering, step_integral,
+};
+
+fn settings(config: MarchConfig) -> MarchSettings {
+    MarchSettings::new(config).unwrap()
+}
+
+fn full(steps: u32) -> LightMarch {
+    LightMarch::Full {
+        steps: NonZeroU32::new(steps).unwrap(),
+    }
+}
+
+/// A flat homogeneous slab: a 100×100×1 grid of 200 m cells, 1000–1200 m up.
+fn flat_slab(sigma: f64) -> CloudVolume {
+    CloudVolume::new(
+        [100, 100, 1],
+        [-10_000.0, -10_000.0, 1000.0],
+        200.0,
+        sigma,
+        vec![1.0; 10_000],
+    )
+    .unwrap()
+}
+
+/// Single scattering of a homogeneous slab of thickness D seen straight up from below,
+/// sun at zenith cosine μ: σ_s·E·p·∫₀^D e^{−σt}·e^{−σ(D−t)/μ} dt.
+fn slab_single_scattering(sigma: f64, depth: f64, mu: f64, phase: f64) -> f64 {
+    let k = sigma * (1.0 - 1.0 / mu);
+    let integral = if k.abs() < 1e-12 {
+        depth
+    } else {
+        ((-k * depth).exp() - 1.0) / -k
+    };
+    sigma * phase * (-sigma * depth / mu).exp() * integral
+}
+
+#[test]
+fn single_scattering_of_a_slab_converges_to_the_closed_form() {
+    let sigma = 0.01;
+    let volume = flat_slab(sigma);
+    let mu: f64 = 0.6;
+    let sun = [(1.0 - mu * mu).sqrt(), 0.0, mu];
+    let lighting = Lighting::<f64>::white_sun(sun).unwrap();
+    let config = MarchConfig {
+        transmittance_epsilon: 0.0,
+        light: full(64),
+        ..MarchConfig::default()
+    };
+    let phase =
+        dual_lobe_henyey_greenstein(mu, config.g_forward, config.g_back, config.back_weight);
+    let exact = slab_single_scattering(sigma, 200.0, mu, phase);
+    let mut errors = Vec::new();
+    for steps in [2, 8, 32, 128] {
+        let s = settings(MarchConfig {
+            view_steps: steps,
+            ..config
+        });
+        let r = march_view(&volume, [0.0, 0.0, 0.0], [0.0, 0.0, 1.0], &s, &lighting);
+        assert!((r.transmittance - (-2.0f64).exp()).abs() < 1e-12);
+        let rel = (r.radiance[0] - exact).abs() / exact;
+        println!(
+            "view steps {steps}: radiance {:.6e} vs {exact:.6e}, rel {rel:.2e}",
+            r.radiance[0]
+        );
+        errors.push(rel);
+    }
+    for w in errors.windows(2) {
+        assert!(w[1] < w[0], "not converging: {errors:?}");
+    }
+    assert!(errors[3] < 1e-4, "{errors:?}");
+}
+
+#[test]
+fn sun_at_zenith_looking_up_is_sigma_e_p_d_exp() {
+    // Sun and view along +z: every sample sees e^{−σD} in total, L = σ p D e^{−σD}.
+    let sigma = 0.004;
+    let volume = flat_slab(sigma);
+    let lighting = Lighting::<f64>::white_sun([0.0, 0.0, 1.0]).unwrap();
+    let config = MarchConfig {
+        view_steps: 5,
+        light: full(3),
+        transmittance_epsilon: 0.0,
+        ..MarchConfig::default()
+    };
+    let phase =
+        dual_lobe_henyey_greenstein(1.0, config.g_forward, config.g_back, config.back_weight);
+    let exact = sigma * phase * 200.0 * (-sigma * 200.0f64).exp();
+    let r = march_view(
+        &volume,
+        [5.0, 5.0, 0.0],
+        [0.0, 0.0, 1.0],
+        &settings(config),
+        &lighting,
+    );
+    // Not exact with 5 steps: the step integral weights the light of the step's centre.
+    assert!(
+        (r.radiance[1] - exact).abs() < 2e-3 * exact,
+        "{} vs {exact}",
+        r.radiance[1]
+    );
+}
+
+#[test]
+fn one_octave_is_single_scattering_and_powder_is_off_by_default() {
+    assert!(!MarchConfig::default().powder);
+    assert_eq!(MarchConfig::default().octaves.count, 1);
+    for tau in [0.0f64, 0.3, 5.0] {
+        for cos in [-1.0, 0.0, 0.7, 1.0] {
+            let one = octave_scattering(tau, cos, 0.8, -0.3, 0.2, 1, 0.3, 0.9, 0.1);
+            let single = (-tau).exp() * dual_lobe_henyey_greenstein(cos, 0.8, -0.3, 0.2);
+            assert_eq!(one, single);
+        }
+    }
+    let volume = flat_slab(0.01);
+    let lighting = Lighting::<f64>::white_sun([0.6, 0.0, 0.8]).unwrap();
+    let a = march_view(
+        &volume,
+        [0.0; 3],
+        [0.0, 0.0, 1.0],
+        &settings(MarchConfig::default()),
+        &lighting,
+    );
+    let b = march_view(
+        &volume,
+        [0.0; 3],
+        [0.0, 0.0, 1.0],
+        &settings(MarchConfig {
+            octaves: Octaves {
+                count: 1,
+                a: 0.1,
+                b: 0.9,
+                c: 0.2,
+            },
+            ..MarchConfig::default()
+        }),
+        &lighting,
+    );
+    assert_eq!(a, b);
+    // More octaves add light.
+    let c = march_view(
+        &volume,
+        [0.0; 3],
+        [0.0, 0.0, 1.0],
+        &settings(MarchConfig {
+            octaves: Octaves {
+                count: 4,
+                a: 0.5,
+                b: 0.5,
+                c: 0.5,
+            },
+            ..MarchConfig::default()
+        }),
+        &lighting,
+    );
+    assert!(c.radiance[0] > a.radiance[0]);
+}
+
+#[test]
+fn step_integral_is_stable_at_zero_extinction() {
+    assert_eq!(step_integral(0.0f64, 3.0), 3.0);
+    assert_eq!(step_integral(0.0f32, 3.0), 3.0);
+    let tiny = step_integral(1e-30f64, 10.0);
+    assert!((tiny - 10.0).abs() < 1e-12);
+    let f32_tiny = step_integral(1e-20f32, 10.0);
+    assert!((f32_tiny - 10.0).abs() < 1e-5);
+    let big = step_integral(1.0f64, 1e6);
+    assert!((big - 1.0).abs() < 1e-12);
+}
+
+fn check(r: cloudlight::march::MarchResult<f64>, what: &str) {
+    assert!(
+        r.transmittance.is_finite() && (0.0..=1.0).contains(&r.transmittance),
+        "{what}: T {}",
+        r.transmittance
+    );
+    for c in r.radiance {
+        assert!(c.is_finite() && c >= 0.0, "{what}: L {c}");
+    }
+    assert!(
+        r.depth.is_finite() && r.depth >= 0.0,
+        "{what}: depth {}",
+        r.depth
+    );
+}
+
+fn check32(r: cloudlight::march::MarchResult<f32>, what: &str) {
+    assert!(
+        r.transmittance.is_finite() && (0.0..=1.0).contains(&r.transmittance),
+        "{what}: T {}",
+        r.transmittance
+    );
+    for c in r.radiance {
+        assert!(c.is_finite() && c >= 0.0, "{what}: L {c}");
+    }
+}
+
+#[test]
+fn extremes_give_no_nan_and_transmittance_in_unit_range() {
+    let suns = [
+        [0.0, 0.0, 1.0],
+        [1.0, 0.0, 0.0],  // horizon
+        [0.6, 0.0, -0.8], // below
+        [0.0, 0.0, -1.0], // nadir
+        [0.577_350_3, 0.577_350_3, 0.577_350_3],
+    ];
+    let views = [
+        ([16.0, 16.0, -50.0], [0.0, 0.0, 1.0]), // below, looking up
+        ([16.0, 16.0, 16.0], [0.6, 0.0, 0.8]),  // inside the cloud
+        ([16.0, 16.0, 16.0], [0.0, 0.0, -1.0]),
+        ([-100.0, 16.0, 16.0], [1.0, 0.0, 0.0]), // grazing through
+        ([-100.0, -100.0, -100.0], [-1.0, 0.0, 0.0]), // missing
+    ];
+    let lights = [
+        full(1),
+        full(32),
+        LightMarch::Cone {
+            step: 3.0,
+            spread: 0.2,
+            weights: ConeWeights::Raw,
+        },
+        LightMarch::Cone {
+            step: 50.0,
+            spread: 0.0,
+            weights: ConeWeights::Partitioned,
+        },
+    ];
+    for density in [0.0f32, 1e-6, 1.0, 1e6] {
+        for sigma in [0.0, 1e-4, 0.1, 1.0] {
+            let volume =
+                CloudVolume::new([4, 4, 4], [0.0; 3], 8.0, sigma, vec![density; 64]).unwrap();
+            for sun in suns {
+                let lighting =
+                    Lighting::<f64>::new(sun, [1.0, 0.9, 0.8], [0.1, 0.2, 0.3], [0.0, 0.0, 1.0])
+                        .unwrap();
+                let lighting32 =
+                    Lighting::<f32>::new(sun, [1.0, 0.9, 0.8], [0.1, 0.2, 0.3], [0.0, 0.0, 1.0])
+                        .unwrap();
+                for (origin, dir) in views {
+                    for light in lights {
+                        for (octaves, powder) in [(1, false), (8, true)] {
+                            let s = settings(MarchConfig {
+                                view_steps: 16,
+                                light,
+                                powder,
+                                octaves: Octaves {
+                                    count: octaves,
+                                    a: 0.5,
+                                    b: 0.7,
+                                    c: 0.5,
+                                },
+                                jitter: Jitter::InterleavedGradient,
+                                ..MarchConfig::default()
+                            });
+                            let what = format!(
+                                "ρ {density} σ {sigma} sun {sun:?} from {origin:?} {light:?} octaves {octaves}"
+                            );
+                            check(march_view(&volume, origin, dir, &s, &lighting), &what);
+                            let o32 = origin.map(|c| c as f32);
+                            let d32 = dir.map(|c| c as f32);
+                            check32(
+                                march_view_at_pixel(&volume, o32, d32, &s, &lighting32, [7, 3]),
+                                &what,
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn bad_settings_name_the_field_and_value() {
+    let bad = |config: MarchConfig, field: &str| match MarchSettings::new(config) {
+        Err(MarchError::Invalid { field: f, .. }) => assert_eq!(f, field),
+        other => panic!("{field}: {other:?}"),
+    };
+    let d = MarchConfig::default();
+    bad(MarchConfig { view_steps: 0, ..d }, "view_steps");
+    bad(
+        MarchConfig {
+            transmittance_epsilon: -0.1,
+            ..d
+        },
+        "transmittance_epsilon",
+    );
+    bad(
+        MarchConfig {
+            transmittance_epsilon: f64::NAN,
+            ..d
+        },
+        "transmittance_epsilon",
+    );
+    bad(
+        MarchConfig {
+            octaves: Octaves {
+                count: 0,
+                ..d.octaves
+            },
+            ..d
+        },
+        "octaves.count",
+    );
+    bad(
+        MarchConfig {
+            octaves: Octaves {
+                a: f64::NAN,
+                ..d.octaves
+            },
+            ..d
+        },
+        "octaves.a",
+    );
+    bad(MarchConfig { albedo: 1.5, ..d }, "albedo");
+    bad(
+        MarchConfig {
+            g_forward: 1.0,
+            ..d
+        },
+        "g_forward",
+    );
+    bad(
+        MarchConfig {
+            light: LightMarch::Cone {
+                step: 0.0,
+                spread: 0.1,
+                weights: ConeWeights::Raw,
+            },
+            ..d
+        },
+        "light.step",
+    );
+    let err = MarchSettings::new(MarchConfig { view_steps: 0, ..d }).unwrap_err();
+    assert!(err.to_string().contains("view_steps = 0"), "{err}");
+    assert!(matches!(
+        Lighting::<f64>::new([0.0, 0.0, 2.0], [1.0; 3], [0.0; 3], [0.0, 0.0, 1.0]),
+        Err(MarchError::Invalid {
+            field: "sun_direction",
+            ..
+        })
+    ));
+    assert!(matches!(
+        Lighting::<f64>::new([0.0, 0.0, 1.0], [1.0, -1.0, 1.0], [0.0; 3], [0.0, 0.0, 1.0]),
+        Err(MarchError::Invalid {
+            field: "sun_irradiance",
+            ..
+        })
+    ));
+}
+
+#[test]
+fn early_exit_stops_below_epsilon() {
+    let volume = flat_slab(0.1); // τ = 20 through the slab
+    let lighting = Lighting::<f64>::white_sun([0.0, 0.0, 1.0]).unwrap();
+    let s = settings(MarchConfig {
+        view_steps: 100,
+        transmittance_epsilon: 1e-3,
+        ..MarchConfig::default()
+    });
+    let r = march_view(&volume, [0.0; 3], [0.0, 0.0, 1.0], &s, &lighting);
+    assert!(
+        r.transmittance < 1e-3 && r.transmittance > 1e-5,
+        "{}",
+        r.transmittance
+    );
+    // The cloud's front face at 1000 m: the weighted depth is just behind it.
+    assert!(r.depth > 1000.0 && r.depth < 1020.0, "{}", r.depth);
+}
+
+#[test]
+fn the_f32_twin_follows_the_f64_march() {
+    let volume = flat_slab(0.01);
+    let s = settings(MarchConfig {
+        view_steps: 32,
+        octaves: Octaves {
+            count: 3,
+            a: 0.5,
+            b: 0.5,
+            c: 0.5,
+        },
+        ..MarchConfig::default()
+    });
+    let l64 = Lighting::<f64>::new([0.6, 0.0, 0.8], [1.0; 3], [0.05; 3], [0.0, 0.0, 1.0]).unwrap();
+    let l32 = Lighting::<f32>::new([0.6, 0.0, 0.8], [1.0; 3], [0.05; 3], [0.0, 0.0, 1.0]).unwrap();
+    let a = march_view(&volume, [0.0, 0.0, 0.0], [0.0, 0.6, 0.8], &s, &l64);
+    let b = march_view(&volume, [0.0f32; 3], [0.0, 0.6, 0.8], &s, &l32);
+    for k in 0..3 {
+        let rel = (a.radiance[k] - f64::from(b.radiance[k])).abs() / a.radiance[k];
+        assert!(rel < 1e-4, "{rel}");
+    }
+    assert!((a.transmittance - f64::from(b.transmittance)).abs() < 1e-5);
+}
+
+#[test]
+fn atmos_lighting_and_aerial_perspective() {
+    use atmos::SkyModel;
+    use atmos::single_scattering::{SingleScatteringSettings, SingleScatteringSky};
+    use cloudlight::march::{apply_aerial_perspective, atmos_light};
+    use glam::DVec3;
+    let earth = atmos::Atmosphere::earth();
+    let sky = SingleScatteringSky::new(&earth, SingleScatteringSettings::default()).unwrap();
+    let point = DVec3::new(0.0, 0.0, earth.planet_radius + 2000.0);
+    let high = DVec3::new(0.5, 0.0, 0.75f64.sqrt());
+    let low = DVec3::new(0.995f64.sqrt(), 0.0, 0.005f64.sqrt());
+    let quadrature = atmos::ground_irradiance::HemisphereQuadrature::default();
+    let noon = atmos_light(&sky, &earth, point, high, quadrature).unwrap();
+    let dusk = atmos_light(&sky, &earth, point, low, quadrature).unwrap();
+    // Transmittance < 1, redder at a low sun; a blue sky.
+    for k in 0..3 {
+        assert!(noon.sun_irradiance[k] < 1.0 && noon.sun_irradiance[k] > dusk.sun_irradiance[k]);
+    }
+    assert!(dusk.sun_irradiance[0] > dusk.sun_irradiance[2]);
+    assert!(noon.ambient_radiance[2] > noon.ambient_radiance[0]);
+    let behind = atmos_light(&sky, &earth, point, DVec3::new(0.0, 0.0, -1.0), quadrature).unwrap();
+    assert_eq!(behind.sun_irradiance, [0.0; 3]);
+    // An opaque cloud 5 km away keeps its radiance times the air's transmittance plus air light.
+    let camera = DVec3::new(0.0, 0.0, earth.planet_radius + 2.0);
+    let view = DVec3::new(0.0, 0.6, 0.8);
+    let cloud = cloudlight::march::MarchResult {
+        radiance: [0.3; 3],
+        transmittance: 0.0,
+        depth: 5000.0,
+    };
+    let seen = apply_aerial_perspective(&sky, &earth, camera, view, high, &cloud).unwrap();
+    let air = sky.evaluate(
+        &atmos::SkyQuery::with_max_distance(earth.planet_radius, camera, view, high, 5000.0)
+            .unwrap(),
+    );
+    for k in 0..3 {
+        assert!((seen[k] - (0.3 * air.transmittance[k] + air.radiance[k])).abs() < 1e-15);
+        assert!(seen[k] < 0.3 + air.radiance[k]);
+    }
+}
