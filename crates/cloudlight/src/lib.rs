@@ -47,6 +47,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod billboard;
 pub mod cone;
 pub mod density;
 pub mod jitter;
@@ -113,6 +114,14 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {
         name: "cloudlight::slice_propagation_pass",
         source: include_str!("../shaders/slice_propagation_pass.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "cloudlight::billboard",
+        source: include_str!("../shaders/billboard.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "cloudlight::billboard_pass",
+        source: include_str!("../shaders/billboard_pass.wgsl"),
     },
     skyscape_wgsl::Module {
         name: "cloudlight::shadow_map",

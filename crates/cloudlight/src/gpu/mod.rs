@@ -13,6 +13,8 @@
 use crate::CloudVolume;
 use crate::propagate::{Resampling, SliceMode, SlicePlan};
 
+pub mod billboard;
+
 mod shadow_map;
 pub use shadow_map::{ShadowMapGpuError, ShadowMapPass, compose_shadow_map_shader};
 
