@@ -13,6 +13,7 @@ pub(crate) use atmos_lut_cases::transmittance_r_mu_error;
 mod atmos_moments_cases;
 mod atmos_single_scattering_cases;
 mod celestial_cases;
+mod cloudlight_billboard_cases;
 mod cloudlight_cases;
 mod cloudsim_cases;
 mod common_cases;
@@ -367,6 +368,7 @@ pub fn all() -> Vec<Case> {
         terrain_cases::cases(),
         cloudlight_cases::cases(),
         cloudlight_cases::cone_cases(),
+        cloudlight_billboard_cases::cases(),
         cloudsim_cases::cases(),
         celestial_cases::cases(),
         common_cases::cases(),
