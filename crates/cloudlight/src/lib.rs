@@ -108,6 +108,14 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/cone.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "cloudlight::noise",
+        source: include_str!("../shaders/noise.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "cloudlight::shell",
+        source: include_str!("../shaders/shell.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "cloudlight::slice_propagation",
         source: include_str!("../shaders/slice_propagation.wgsl"),
     },

@@ -24,7 +24,7 @@
 //! * [`worley_fbm`]: three octaves of inverted Worley `max(1 − F1, 0)` at frequencies 1,
 //!   2, 4 with weights 0.625, 0.25, 0.125 (Schneider's low-frequency fBm), in [0, 1].
 //! * [`perlin_fbm`]: three octaves of Perlin at frequencies 1, 2, 4, weights 1, ½, ¼,
-//!   divided by 1.75 and mapped to [0, 1] by `clamp(½ + ½n, 0, 1)`.
+//!   times 1/1.75, mapped to [0, 1] by `clamp(½ + ½n, 0, 1)`.
 //! * [`perlin_worley`]: Perlin fBm remapped with the Worley fBm as its floor,
 //!   `remap(perlin, 0, 1, worley, 1) = worley + perlin·(1 − worley)`, in [0, 1].
 //! * [`cloud_shape_noise`] (the 128³ base texture's texel function) and
@@ -174,7 +174,7 @@ pub fn worley_fbm<F: Real>(p: [F; 3], period: u32, seed: u32) -> F {
 }
 
 /// Three octaves of Perlin noise at frequencies 1, 2, 4 (weights 1, ½, ¼, seeds
-/// `noise_octave_seed(seed, k)`), divided by 1.75 and mapped to [0, 1] by
+/// `noise_octave_seed(seed, k)`), times 1/1.75 (rounded once), mapped to [0, 1] by
 /// `clamp(½ + ½n, 0, 1)`; tileable with period `period`. WGSL twin `perlin_fbm`.
 pub fn perlin_fbm<F: Real>(p: [F; 3], period: u32, seed: u32) -> F {
     let mut sum = F::zero();
@@ -187,7 +187,7 @@ pub fn perlin_fbm<F: Real>(p: [F; 3], period: u32, seed: u32) -> F {
         amplitude = amplitude * F::of(0.5);
     }
     let half = F::of(0.5);
-    (half + half * (sum / F::of(1.75)))
+    (half + half * (sum * F::of(1.0 / 1.75)))
         .max(F::zero())
         .min(F::one())
 }

@@ -1,0 +1,180 @@
+// Tileable 3-D noise for seed 003's cloud shell: Perlin gradient noise and Worley F1
+// with an integer period, their fBm sums, Schneider's Perlin–Worley, and the shape
+// (4-channel) and detail (3-channel) noise the shell samples and the bake pass writes.
+// Twin: cloudlight::noise (Rust, generic over the float type: the f32 instantiation
+// mirrors these operations; same names, argument order and units). Coordinates are in
+// lattice cells; a function with period P wraps its lattice indices modulo P.
+#import common::hash
+
+// Lattice cells per tile of the shape noise's lowest octave, and of the detail noise's.
+const SHAPE_CELLS: u32 = 4u;
+const DETAIL_CELLS: u32 = 2u;
+
+// The hash of a (wrapped) lattice cell under a seed.
+fn noise_cell_hash(cell: vec3<u32>, seed: u32) -> u32 {
+    return hash_combine(hash_combine(hash_combine(seed, cell.x), cell.y), cell.z);
+}
+
+// The seed of octave or channel k derived from seed.
+fn noise_octave_seed(seed: u32, k: u32) -> u32 {
+    return hash_combine(seed, k);
+}
+
+// Lattice index i wrapped into [0, period).
+fn noise_wrap(i: i32, period: u32) -> u32 {
+    let p = i32(period);
+    return u32(((i % p) + p) % p);
+}
+
+// The top 24 bits of a hash in [0, 1), exact.
+fn noise_unit_from_bits(bits: u32) -> f32 {
+    return f32(bits >> 8u) * (1.0 / 16777216.0);
+}
+
+// Perlin's quintic fade t³(t(6t − 15) + 10).
+fn perlin_fade(t: f32) -> f32 {
+    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+}
+
+// Dot product of gradient hash >> 28 (Perlin's 16-entry edge table) with (x, y, z).
+fn perlin_gradient_dot(hash: u32, x: f32, y: f32, z: f32) -> f32 {
+    let h = hash >> 28u;
+    let u = select(y, x, h < 8u);
+    let v = select(select(z, x, h == 12u || h == 14u), y, h < 4u);
+    let a = select(-u, u, (h & 1u) == 0u);
+    let b = select(-v, v, (h & 2u) == 0u);
+    return a + b;
+}
+
+fn noise_lerp(a: f32, b: f32, t: f32) -> f32 {
+    return a + t * (b - a);
+}
+
+// Perlin's improved gradient noise at p (lattice cells) with an integer period.
+fn perlin_noise(p: vec3<f32>, period: u32, seed: u32) -> f32 {
+    let floor_p = floor(p);
+    let i = vec3<i32>(floor_p);
+    let f = p - floor_p;
+    let x0 = noise_wrap(i.x, period);
+    let x1 = noise_wrap(i.x + 1, period);
+    let y0 = noise_wrap(i.y, period);
+    let y1 = noise_wrap(i.y + 1, period);
+    let z0 = noise_wrap(i.z, period);
+    let z1 = noise_wrap(i.z + 1, period);
+    let g = f - vec3<f32>(1.0);
+    let n000 = perlin_gradient_dot(noise_cell_hash(vec3<u32>(x0, y0, z0), seed), f.x, f.y, f.z);
+    let n100 = perlin_gradient_dot(noise_cell_hash(vec3<u32>(x1, y0, z0), seed), g.x, f.y, f.z);
+    let n010 = perlin_gradient_dot(noise_cell_hash(vec3<u32>(x0, y1, z0), seed), f.x, g.y, f.z);
+    let n110 = perlin_gradient_dot(noise_cell_hash(vec3<u32>(x1, y1, z0), seed), g.x, g.y, f.z);
+    let n001 = perlin_gradient_dot(noise_cell_hash(vec3<u32>(x0, y0, z1), seed), f.x, f.y, g.z);
+    let n101 = perlin_gradient_dot(noise_cell_hash(vec3<u32>(x1, y0, z1), seed), g.x, f.y, g.z);
+    let n011 = perlin_gradient_dot(noise_cell_hash(vec3<u32>(x0, y1, z1), seed), f.x, g.y, g.z);
+    let n111 = perlin_gradient_dot(noise_cell_hash(vec3<u32>(x1, y1, z1), seed), g.x, g.y, g.z);
+    let u = perlin_fade(f.x);
+    let v = perlin_fade(f.y);
+    let w = perlin_fade(f.z);
+    let nx00 = noise_lerp(n000, n100, u);
+    let nx10 = noise_lerp(n010, n110, u);
+    let nx01 = noise_lerp(n001, n101, u);
+    let nx11 = noise_lerp(n011, n111, u);
+    let nxy0 = noise_lerp(nx00, nx10, v);
+    let nxy1 = noise_lerp(nx01, nx11, v);
+    return noise_lerp(nxy0, nxy1, w);
+}
+
+// Worley F1 at p (lattice cells) with an integer period: the distance in cells to the
+// nearest feature point of the 3×3×3 cells around p's cell.
+fn worley_noise(p: vec3<f32>, period: u32, seed: u32) -> f32 {
+    let floor_p = floor(p);
+    let i = vec3<i32>(floor_p);
+    let f = p - floor_p;
+    var best = 16.0;
+    for (var dz = -1; dz <= 1; dz++) {
+        for (var dy = -1; dy <= 1; dy++) {
+            for (var dx = -1; dx <= 1; dx++) {
+                let cell = vec3<u32>(
+                    noise_wrap(i.x + dx, period),
+                    noise_wrap(i.y + dy, period),
+                    noise_wrap(i.z + dz, period),
+                );
+                let h0 = noise_cell_hash(cell, seed);
+                let h1 = hash_u32(h0);
+                let h2 = hash_u32(h1);
+                let ox = f32(dx) + noise_unit_from_bits(h0) - f.x;
+                let oy = f32(dy) + noise_unit_from_bits(h1) - f.y;
+                let oz = f32(dz) + noise_unit_from_bits(h2) - f.z;
+                best = min(best, ox * ox + oy * oy + oz * oz);
+            }
+        }
+    }
+    return sqrt(best);
+}
+
+// Three octaves of inverted Worley max(1 − F1, 0), weights 0.625, 0.25, 0.125.
+fn worley_fbm(p: vec3<f32>, period: u32, seed: u32) -> f32 {
+    let weights = vec3<f32>(0.625, 0.25, 0.125);
+    var sum = 0.0;
+    var frequency = 1.0;
+    for (var k = 0u; k < 3u; k++) {
+        let q = p * frequency;
+        let f1 = worley_noise(q, period << k, noise_octave_seed(seed, k));
+        sum = sum + weights[k] * max(1.0 - f1, 0.0);
+        frequency = frequency * 2.0;
+    }
+    return sum;
+}
+
+// Three octaves of Perlin (weights 1, ½, ¼) times 1/1.75, mapped to [0, 1].
+fn perlin_fbm(p: vec3<f32>, period: u32, seed: u32) -> f32 {
+    var sum = 0.0;
+    var frequency = 1.0;
+    var amplitude = 1.0;
+    for (var k = 0u; k < 3u; k++) {
+        let q = p * frequency;
+        sum = sum + amplitude * perlin_noise(q, period << k, noise_octave_seed(seed, k));
+        frequency = frequency * 2.0;
+        amplitude = amplitude * 0.5;
+    }
+    return min(max(0.5 + 0.5 * (sum * (1.0 / 1.75)), 0.0), 1.0);
+}
+
+// Schneider's Perlin–Worley: remap(perlin, 0, 1, worley, 1) = worley + perlin·(1 − worley).
+fn perlin_worley(p: vec3<f32>, period: u32, seed: u32) -> f32 {
+    let perlin = perlin_fbm(p, period, noise_octave_seed(seed, 0u));
+    let worley = worley_fbm(p, period, noise_octave_seed(seed, 1u));
+    return worley + perlin * (1.0 - worley);
+}
+
+// The shape noise at u (tiles, period 1): Perlin–Worley with 4 cells per tile, then
+// inverted Worley with 4, 8 and 16 cells per tile. Each channel in [0, 1].
+fn cloud_shape_noise(u: vec3<f32>, seed: u32) -> vec4<f32> {
+    let p = u * f32(SHAPE_CELLS);
+    var out = vec4<f32>(perlin_worley(p, SHAPE_CELLS, noise_octave_seed(seed, 0u)), 0.0, 0.0, 0.0);
+    var frequency = 1.0;
+    for (var k = 0u; k < 3u; k++) {
+        let q = p * frequency;
+        let f1 = worley_noise(q, SHAPE_CELLS << k, noise_octave_seed(seed, 1u + k));
+        out[1u + k] = max(1.0 - f1, 0.0);
+        frequency = frequency * 2.0;
+    }
+    return out;
+}
+
+// The detail noise at u (tiles, period 1): inverted Worley with 2, 4 and 8 cells per tile.
+fn cloud_detail_noise(u: vec3<f32>, seed: u32) -> vec3<f32> {
+    let p = u * f32(DETAIL_CELLS);
+    var out = vec3<f32>(0.0);
+    var frequency = 1.0;
+    for (var k = 0u; k < 3u; k++) {
+        let q = p * frequency;
+        let f1 = worley_noise(q, DETAIL_CELLS << k, noise_octave_seed(seed, 4u + k));
+        out[k] = max(1.0 - f1, 0.0);
+        frequency = frequency * 2.0;
+    }
+    return out;
+}
+
+// The fBm of three Worley channels with weights 0.625, 0.25, 0.125.
+fn worley_channels_fbm(c: vec3<f32>) -> f32 {
+    return 0.625 * c.x + 0.25 * c.y + 0.125 * c.z;
+}

@@ -1,0 +1,122 @@
+// Seed 003's procedural cloud shell (Schneider, GPU Pro 7): the height profiles per
+// cloud type, the density from the shape and detail noise, the density at a
+// planet-centred point, procedural weather, the horizon fade and a ray's spans inside
+// the shell (atmos' stable ray–sphere roots, imported). Twin: cloudlight::shell (Rust,
+// generic over the float type: the f32 instantiation mirrors these operations).
+// Lengths in metres, planet-centred.
+#import atmos::geometry
+#import cloudlight::noise
+
+// Height profile corners (a, b, c, d) over the height fraction.
+const STRATUS_GRADIENT: vec4<f32> = vec4<f32>(0.0, 0.1, 0.2, 0.3);
+const STRATOCUMULUS_GRADIENT: vec4<f32> = vec4<f32>(0.02, 0.2, 0.48, 0.625);
+const CUMULUS_GRADIENT: vec4<f32> = vec4<f32>(0.0, 0.1625, 0.88, 0.98);
+
+// Hermite smoothstep t²(3 − 2t), t = clamp((x − lo)/(hi − lo), 0, 1), spelled out.
+fn shell_smoothstep(lo: f32, hi: f32, x: f32) -> f32 {
+    let t = min(max((x - lo) / (hi - lo), 0.0), 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
+// The height profile in [0, 1] at height fraction h for cloud type t (0 stratus,
+// ½ stratocumulus, 1 cumulus): a trapezoid of two smoothsteps between blended corners.
+fn height_gradient(h: f32, cloud_type: f32) -> f32 {
+    let stratus = 1.0 - min(max(cloud_type * 2.0, 0.0), 1.0);
+    let stratocumulus = 1.0 - abs(cloud_type - 0.5) * 2.0;
+    let cumulus = min(max(cloud_type - 0.5, 0.0), 1.0) * 2.0;
+    let corner = stratus * STRATUS_GRADIENT + stratocumulus * STRATOCUMULUS_GRADIENT + cumulus * CUMULUS_GRADIENT;
+    return max(shell_smoothstep(corner.x, corner.y, h) - shell_smoothstep(corner.z, corner.w, h), 0.0);
+}
+
+// The density in [0, 1] from the height fraction, the weather, the shape noise (4
+// channels), the detail noise (3) and the detail erosion strength: Schneider's base
+// remap, height profile, coverage (max(b·g + coverage − 1, 0)) and detail erosion.
+fn shell_density_from_noise(h: f32, coverage: f32, cloud_type: f32, shape: vec4<f32>, detail: vec3<f32>, erosion: f32) -> f32 {
+    let fbm = worley_channels_fbm(shape.yzw);
+    let base = (shape.x + 1.0 - fbm) / (2.0 - fbm);
+    let gradient = height_gradient(h, cloud_type);
+    let covered = max(base * gradient + coverage - 1.0, 0.0);
+    if covered <= 0.0 {
+        return 0.0;
+    }
+    let detail_fbm = worley_channels_fbm(detail);
+    let wisp = min(max(h * 10.0, 0.0), 1.0);
+    let modifier = detail_fbm + wisp * ((1.0 - detail_fbm) - detail_fbm);
+    let e = erosion * modifier;
+    return max(covered - e, 0.0) / (1.0 - e);
+}
+
+// The shell's density at planet-centred p for the weather there; zero outside
+// (inner_radius, outer_radius). Noise in the local frame q = (x, y, |p| − inner).
+fn shell_density(p: vec3<f32>, inner_radius: f32, outer_radius: f32, coverage: f32, cloud_type: f32, shape_period: f32, detail_period: f32, erosion: f32, seed: u32) -> f32 {
+    let r = sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
+    if !(r > inner_radius && r < outer_radius) || coverage <= 0.0 {
+        return 0.0;
+    }
+    let height = r - inner_radius;
+    let h = height / (outer_radius - inner_radius);
+    if height_gradient(h, cloud_type) <= 0.0 {
+        return 0.0;
+    }
+    let q = vec3<f32>(p.x, p.y, height);
+    let shape = cloud_shape_noise(q / shape_period, seed);
+    let detail = cloud_detail_noise(q / detail_period, seed);
+    return shell_density_from_noise(h, coverage, cloud_type, shape, detail, erosion);
+}
+
+// 1 − smoothstep(fade_start, fade_end, t): the view march's fade toward the horizon.
+fn horizon_fade(t: f32, fade_start: f32, fade_end: f32) -> f32 {
+    return 1.0 - shell_smoothstep(fade_start, fade_end, t);
+}
+
+// Procedural weather at (x, y) metres: (coverage, cloud type), each
+// clamp(mean + contrast·(2n − 1), 0, 1) of a Perlin fBm repeating every period metres.
+fn procedural_weather(xy: vec2<f32>, period: f32, cells: u32, seed: u32, coverage_mean: f32, coverage_contrast: f32, type_mean: f32, type_contrast: f32) -> vec2<f32> {
+    let scale = f32(cells) / period;
+    let p = vec3<f32>(xy.x * scale, xy.y * scale, 0.0);
+    let n_coverage = perlin_fbm(p, cells, noise_octave_seed(seed, 7u));
+    let n_type = perlin_fbm(p, cells, noise_octave_seed(seed, 8u));
+    let coverage = min(max(coverage_mean + coverage_contrast * (2.0 * n_coverage - 1.0), 0.0), 1.0);
+    let cloud_type = min(max(type_mean + type_contrast * (2.0 * n_type - 1.0), 0.0), 1.0);
+    return vec2<f32>(coverage, cloud_type);
+}
+
+// A ray's parts inside the shell, nearest first: spans[i] = (t_enter, t_exit) for
+// i < count (0, 1 or 2).
+struct ShellSpans {
+    spans: array<vec2<f32>, 2>,
+    count: u32,
+}
+
+fn shell_push_span(spans: ptr<function, ShellSpans>, a: f32, b: f32) {
+    if b > a {
+        (*spans).spans[(*spans).count] = vec2<f32>(a, b);
+        (*spans).count += 1u;
+    }
+}
+
+// The spans of origin + t·direction (unit direction, t ≥ 0) inside the shell, the ray
+// stopping where it meets the planet; zero-length spans are dropped.
+fn shell_ray_spans(origin: vec3<f32>, direction: vec3<f32>, planet_radius: f32, inner_radius: f32, outer_radius: f32) -> ShellSpans {
+    var spans = ShellSpans(array<vec2<f32>, 2>(vec2<f32>(0.0), vec2<f32>(0.0)), 0u);
+    let r = sqrt(origin.x * origin.x + origin.y * origin.y + origin.z * origin.z);
+    let mu = (origin.x * direction.x + origin.y * direction.y + origin.z * direction.z) / r;
+    let outer = ray_sphere_intersect(r, mu, outer_radius);
+    if !(outer.y > 0.0) {
+        return spans;
+    }
+    let enter = max(outer.x, 0.0);
+    var exit = outer.y;
+    let ground = ray_sphere_intersect(r, mu, planet_radius);
+    if ground.y > 0.0 {
+        exit = min(exit, max(ground.x, 0.0));
+    }
+    let inner = ray_sphere_intersect(r, mu, inner_radius);
+    if inner.y > 0.0 {
+        shell_push_span(&spans, enter, min(exit, inner.x));
+        shell_push_span(&spans, max(enter, inner.y), exit);
+    } else {
+        shell_push_span(&spans, enter, exit);
+    }
+    return spans;
+}
