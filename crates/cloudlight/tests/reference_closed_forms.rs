@@ -1,8 +1,10 @@
 //! The f64 reference (`cloudlight::reference`) against closed forms: homogeneous slab and
 //! sphere transmittance (the adaptive march of a general field, the exact volume integral,
 //! delta tracking), single scattering of a homogeneous slab, the path tracer's order 1
-//! against the single-scattering reference, and energy conservation of a conservative slab
-//! (albedo 1: reflected + transmitted = incident). Small enough for debug CI:
+//! against the single-scattering reference, energy conservation of a conservative slab
+//! (albedo 1: reflected + transmitted = incident), every order of the adjoint walk against
+//! forward photon tracing, and the phase sampler against the phase function. Small enough
+//! for debug CI (~7 s):
 //! `cargo test -p cloudlight --test reference_closed_forms`.
 
 use std::f64::consts::PI;
@@ -367,4 +369,151 @@ fn path_tracer_reflected_single_scattering_matches_the_slab_formula() {
     assert!((m - exact).abs() < 3.5 * se, "{m} ± {se} vs {exact}");
     // Multiple scattering is a real share of a τ = 2 slab's reflection.
     assert!(mc.multiple.mean[0] > 10.0 * mc.multiple.standard_error[0]);
+}
+
+#[test]
+fn phase_sampling_draws_the_phase_function() {
+    // Mean cosine = g (Henyey–Greenstein's defining moment), the dual lobe's = its mix;
+    // and a histogram of the cosines follows 2π·p(μ).
+    let n = 200_000u64;
+    for phase in [
+        Phase::HenyeyGreenstein { g: 0.85 },
+        Phase::HenyeyGreenstein { g: -0.4 },
+        Phase::DualLobe {
+            g_forward: 0.8,
+            g_back: -0.3,
+            back_weight: 0.2,
+        },
+    ] {
+        let mean_cos = match phase {
+            Phase::HenyeyGreenstein { g } => g,
+            Phase::DualLobe {
+                g_forward,
+                g_back,
+                back_weight,
+            } => (1.0 - back_weight) * g_forward + back_weight * g_back,
+        };
+        let mut rng = path_tracer::Random::new(11, 0);
+        let mut bins = [0u64; 8];
+        let (mut sum, mut sum_sq) = (0.0, 0.0);
+        for _ in 0..n {
+            let mu = phase.sample_cosine(rng.uniform(), rng.uniform());
+            sum += mu;
+            sum_sq += mu * mu;
+            bins[(((mu + 1.0) * 4.0) as usize).min(7)] += 1;
+        }
+        let mean = sum / n as f64;
+        let se = ((sum_sq / n as f64 - mean * mean) / n as f64).sqrt();
+        assert!(
+            (mean - mean_cos).abs() < 3.5 * se,
+            "{phase:?}: {mean} ± {se} vs {mean_cos}"
+        );
+        for (k, &count) in bins.iter().enumerate() {
+            // ∫ 2π p(μ) dμ over the bin (Simpson with 64 panels: smooth integrand).
+            let (a, b) = (-1.0 + k as f64 * 0.25, -1.0 + (k + 1) as f64 * 0.25);
+            let h = (b - a) / 64.0;
+            let f = |mu: f64| 2.0 * PI * phase.value(mu);
+            let mut p = f(a) + f(b);
+            for i in 1..64 {
+                p += f(a + i as f64 * h) * if i % 2 == 1 { 4.0 } else { 2.0 };
+            }
+            p *= h / 3.0;
+            let expected = p * n as f64;
+            let sigma = (expected * (1.0 - p)).sqrt();
+            assert!(
+                (count as f64 - expected).abs() < 4.0 * sigma + 1.0,
+                "{phase:?} bin {k}: {count} vs {expected:.0} ± {sigma:.0}"
+            );
+        }
+    }
+}
+
+/// Reflected and transmitted (diffuse + direct) fractions of a collimated beam at cosine
+/// `mu_0` on a homogeneous conservative slab of optical thickness `tau`, by analog forward
+/// photon tracing (independent of the path tracer's adjoint walk): `(R, T, n)`.
+fn forward_photons(tau: f64, mu_0: f64, phase: &Phase, n: u64, seed: u64) -> (f64, f64) {
+    let (mut reflected, mut transmitted) = (0u64, 0u64);
+    for i in 0..n {
+        let mut rng = path_tracer::Random::new(seed, i);
+        // Optical depth from the top (0) down; mu < 0 is downward.
+        let (mut depth, mut mu) = (0.0, -mu_0);
+        loop {
+            let step = -(1.0 - rng.uniform()).ln();
+            depth -= step * mu;
+            if depth <= 0.0 {
+                reflected += 1;
+                break;
+            }
+            if depth >= tau {
+                transmitted += 1;
+                break;
+            }
+            let c = phase.sample_cosine(rng.uniform(), rng.uniform());
+            let phi = 2.0 * PI * rng.uniform();
+            let s = ((1.0 - c * c) * (1.0 - mu * mu)).max(0.0).sqrt();
+            mu = (mu * c + s * phi.cos()).clamp(-1.0, 1.0);
+        }
+    }
+    (reflected as f64 / n as f64, transmitted as f64 / n as f64)
+}
+
+#[test]
+fn every_order_agrees_with_forward_photon_tracing_on_a_slab() {
+    // The adjoint walk (camera → sun, next-event estimation) against photons walked from
+    // the sun: the reflected and diffusely transmitted fluxes of a τ = 2 conservative slab
+    // with a forward lobe (a flipped phase convention would swap R and T).
+    let slab = Slab {
+        bottom: 0.0,
+        top: 100.0,
+        sigma: 0.02,
+    };
+    let sun = Sun::from_elevation_azimuth(50f64.to_radians(), 0.0, [1.0; 3]).unwrap();
+    let mu_0 = sun.to_sun()[2];
+    let phase = Phase::DualLobe {
+        g_forward: 0.8,
+        g_back: -0.3,
+        back_weight: 0.2,
+    };
+    let settings = PathTracerSettings {
+        samples: 160_000,
+        ..Default::default()
+    };
+    let flux = |above: bool, seed: u64| {
+        let run = PathTracerSettings { seed, ..settings };
+        estimate(&slab, &sun, &phase, &run, |[u1, u2]| {
+            let mu = u1.sqrt();
+            RaySample {
+                origin: [0.0, 0.0, if above { 150.0 } else { -50.0 }],
+                direction: from_mu_phi(if above { -mu } else { mu }, 2.0 * PI * u2),
+                weight: PI / mu_0,
+            }
+        })
+        .unwrap()
+        .total
+    };
+    let r = flux(true, 21);
+    let t = flux(false, 22);
+    let n = 400_000;
+    let (r_fwd, t_fwd) = forward_photons(2.0, mu_0, &phase, n, 23);
+    let direct = (-2.0 / mu_0).exp();
+    let se_r = (r_fwd * (1.0 - r_fwd) / n as f64)
+        .sqrt()
+        .hypot(r.standard_error[0]);
+    let se_t = (t_fwd * (1.0 - t_fwd) / n as f64)
+        .sqrt()
+        .hypot(t.standard_error[0]);
+    eprintln!(
+        "R adjoint {:.4} ± {:.4} vs forward {r_fwd:.4}; T adjoint {:.4} + direct {direct:.4} vs forward {t_fwd:.4}",
+        r.mean[0], r.standard_error[0], t.mean[0]
+    );
+    assert!(
+        (r.mean[0] - r_fwd).abs() < 3.5 * se_r,
+        "R: {} vs {r_fwd} (σ {se_r})",
+        r.mean[0]
+    );
+    assert!(
+        (t.mean[0] + direct - t_fwd).abs() < 3.5 * se_t,
+        "T: {} + {direct} vs {t_fwd} (σ {se_t})",
+        t.mean[0]
+    );
 }
