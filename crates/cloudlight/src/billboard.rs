@@ -787,6 +787,60 @@ mod tests {
     }
 
     #[test]
+    fn camera_inside_the_cloud_and_extreme_inputs_give_finite_images() {
+        // A 6³ block of density 0…1e6 around the eye; huge σ_t; both size rules.
+        let n = 6u32;
+        let density: Vec<f32> = (0..n * n * n)
+            .map(|i| [0.0, 0.31, 1.0, 1e6][i as usize % 4])
+            .collect();
+        let v = CloudVolume::new([n; 3], [-150.0; 3], 50.0, 1.0, density).unwrap();
+        let light: Vec<f32> = (0..n * n * n).map(|i| [0.0, 1.0][i as usize % 2]).collect();
+        for (eye, near) in [(DVec3::ZERO, 1.0), (DVec3::new(10.0, 3.0, -7.0), 1e-3)] {
+            let cam = Camera::new(
+                eye,
+                DVec3::new(0.3, 1.0, 0.2),
+                DVec3::Z,
+                FieldOfView::from_degrees(90.0),
+                32,
+                24,
+            )
+            .unwrap();
+            for size in [
+                SizeRule::default(),
+                SizeRule::World {
+                    metres_per_density: 100.0,
+                },
+            ] {
+                let s = BillboardSettings {
+                    size,
+                    near,
+                    ..Default::default()
+                };
+                let b = billboards(&v, &light, &s, &cam).unwrap();
+                assert!(!b.is_empty());
+                assert!(
+                    b.iter()
+                        .all(|b| b.depth > near && (0.0..=1.0).contains(&b.alpha))
+                );
+                assert!(b.windows(2).all(|w| w[0].depth >= w[1].depth));
+                let image = rasterise::<f64>(&b, &cam, size);
+                assert!(image.rgba.iter().flatten().all(|c| c.is_finite()));
+                // Premultiplied: 0 ≤ colour ≤ alpha ≤ 1 (sun colour 1, light ≤ 1).
+                assert!(image.rgba.iter().all(|p| (0.0..=1.0).contains(&p[3])
+                    && p[..3].iter().all(|c| (0.0..=p[3] + 1e-12).contains(c))));
+                let image = rasterise::<f32>(&b, &cam, size);
+                assert!(
+                    image
+                        .rgba
+                        .iter()
+                        .flatten()
+                        .all(|c| c.is_finite() && *c >= 0.0)
+                );
+            }
+        }
+    }
+
+    #[test]
     fn splat_is_smooth_one_at_the_centre_zero_at_the_rim() {
         assert_eq!(splat_alpha(0.0f64), 1.0);
         assert_eq!(splat_alpha(1.0f64), 0.0);

@@ -227,4 +227,19 @@ fn encode_before_prepare_and_a_wrong_target_are_errors() {
             camera: [128, 128]
         })
     ));
+    // No particles: a valid pass that draws nothing.
+    let small = Camera::looking_at(
+        DVec3::ZERO,
+        DVec3::X,
+        DVec3::Z,
+        FieldOfView::from_degrees(40.0),
+        16,
+        16,
+    )
+    .unwrap();
+    pass.prepare(&gpu.device, &gpu.queue, &[], &small, SizeRule::default())
+        .unwrap();
+    assert_eq!(pass.count(), 0);
+    pass.encode(&mut encoder, &view).unwrap();
+    gpu.queue.submit([encoder.finish()]);
 }
