@@ -40,8 +40,19 @@ fn shadow_march_point(p: vec3<f32>, l: vec3<f32>, span: vec2<f32>, k: u32, n: u3
     return vec3<f32>(p.x + t * l.x, p.y + t * l.y, p.z + t * l.z);
 }
 
-// A span's optical depth from its n midpoint densities' sum: σ_t·(Σρ·h).
+// Densities, sums and optical depths saturate at 1e30: exp(−τ) is 0 long before, and
+// every product stays finite (a huge density never meets σ_t = 0 or h = 0 as 0·∞).
+const SHADOW_SATURATION: f32 = 1e30;
+
+// The march's running sum plus one sample's density (saturated).
+fn shadow_accumulate(density_sum: f32, density: f32) -> f32 {
+    return density_sum + min(density, SHADOW_SATURATION);
+}
+
+// A span's optical depth from its n midpoint densities' sum: min(σ_t, S)·min(Σρ·h, S),
+// saturated at S.
 fn shadow_span_optical_depth(density_sum: f32, span: vec2<f32>, n: u32, sigma_t: f32) -> f32 {
     let h = (span.y - span.x) / f32(n);
-    return sigma_t * (density_sum * h);
+    let depth = min(density_sum * h, SHADOW_SATURATION);
+    return min(min(sigma_t, SHADOW_SATURATION) * depth, SHADOW_SATURATION);
 }

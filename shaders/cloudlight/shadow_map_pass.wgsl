@@ -90,9 +90,9 @@ fn shadow_map_main(@builtin(global_invocation_id) gid: vec3<u32>) {
     if span.x <= span.y {
         var sum = 0.0;
         for (var k = 0u; k < params.steps; k++) {
-            sum = sum + volume_density(shadow_march_point(p, l, span, k, params.steps));
+            sum = shadow_accumulate(sum, volume_density(shadow_march_point(p, l, span, k, params.steps)));
         }
-        tau = shadow_span_optical_depth(sum, span, params.steps, params.sigma_t);
+        tau = min(0.0 + shadow_span_optical_depth(sum, span, params.steps, params.sigma_t), SHADOW_SATURATION);
     }
     textureStore(shadow_out, vec2<i32>(gid.xy), vec4<f32>(beer_lambert(tau), 0.0, 0.0, 1.0));
 }

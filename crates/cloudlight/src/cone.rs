@@ -213,16 +213,17 @@ pub struct ConeSettings {
 }
 
 impl ConeSettings {
-    /// Refuses a step that is not finite and > 0 and a spread that is not finite and ≥ 0.
+    /// Refuses a step outside (0, [`MAX_LENGTH`]] and a spread outside [0, 100] (f32 keeps
+    /// every offset finite within them).
     pub fn new(step: f64, spread: f64, weights: ConeWeights) -> Result<Self, ConeError> {
-        if !(step.is_finite() && step > 0.0) {
-            return Err(bad("step", step, "must be finite and > 0 (metres)"));
+        if !(step > 0.0 && step <= MAX_LENGTH) {
+            return Err(bad("step", step, "must be in (0, 1e8] (metres)"));
         }
-        if !(spread.is_finite() && spread >= 0.0) {
+        if !(0.0..=100.0).contains(&spread) {
             return Err(bad(
                 "spread",
                 spread,
-                "must be finite and ≥ 0 (half-width per metre)",
+                "must be in [0, 100] (half-width per metre)",
             ));
         }
         Ok(Self {
@@ -273,9 +274,14 @@ impl MarchSettings {
     }
 }
 
-/// A validated light ray: a finite point, the unit direction toward the sun (normalised
-/// from any finite non-zero vector) and the path length to the cloud's exit (finite,
-/// ≥ 0, metres).
+/// The largest coordinate, exit distance or step the light-estimate API accepts: 1e8 m
+/// (100 000 km, past any cloud in a planet-centred frame), so every f32 offset and
+/// weight stays finite.
+pub const MAX_LENGTH: f64 = 1e8;
+
+/// A validated light ray: a point (|coordinates| ≤ [`MAX_LENGTH`]), the unit direction
+/// toward the sun (normalised from any finite non-zero vector) and the path length to
+/// the cloud's exit (in [0, [`MAX_LENGTH`]], metres).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LightRay {
     point: [f64; 3],
@@ -288,8 +294,8 @@ impl LightRay {
     /// direction, a negative or non-finite exit distance.
     pub fn new(point: [f64; 3], to_sun: [f64; 3], exit_distance: f64) -> Result<Self, ConeError> {
         for (field, value) in ["point.x", "point.y", "point.z"].into_iter().zip(point) {
-            if !value.is_finite() {
-                return Err(bad(field, value, "must be finite (metres)"));
+            if value.is_nan() || value.abs() > MAX_LENGTH {
+                return Err(bad(field, value, "must be in [-1e8, 1e8] (metres)"));
             }
         }
         for (field, value) in ["to_sun.x", "to_sun.y", "to_sun.z"].into_iter().zip(to_sun) {
@@ -301,11 +307,11 @@ impl LightRay {
         if !(norm > 0.0 && norm.is_finite()) {
             return Err(bad("|to_sun|", norm, "must be non-zero and finite"));
         }
-        if !(exit_distance.is_finite() && exit_distance >= 0.0) {
+        if !(0.0..=MAX_LENGTH).contains(&exit_distance) {
             return Err(bad(
                 "exit_distance",
                 exit_distance,
-                "must be finite and ≥ 0 (metres)",
+                "must be in [0, 1e8] (metres)",
             ));
         }
         Ok(Self {
@@ -343,38 +349,56 @@ impl LightRay {
         self.exit_distance
     }
 
-    /// The 6 + 1 optical depth ([`cone_optical_depth`]) through `field` in precision `F`.
+    /// The 6 + 1 optical depth ([`cone_optical_depth`]) through `field` in precision `F`,
+    /// NaN-free for any valid field: densities and σ_t saturate at 1e30 (the f32 lookup of
+    /// an `f32::MAX` density may round to ∞), σ_t = 0 gives 0, and the depth saturates at
+    /// [`TAU_SATURATION`](crate::propagate::TAU_SATURATION). Otherwise the free function's
+    /// operations exactly (σ_t times the weighted sum).
     pub fn cone_optical_depth<F: Real, D: crate::DensityField<F> + ?Sized>(
         &self,
         field: &D,
         settings: &ConeSettings,
     ) -> F {
-        cone_optical_depth(
-            |q| field.density(q),
-            field.extinction_per_density(),
+        let saturation = F::of(crate::propagate::TAU_SATURATION);
+        let sigma = field.extinction_per_density().min(saturation);
+        if sigma == F::zero() {
+            return F::zero();
+        }
+        let sum = cone_optical_depth(
+            |q| field.density(q).min(saturation),
+            F::one(),
             self.point.map(F::of),
             self.to_sun.map(F::of),
             F::of(settings.step),
             F::of(self.exit_distance),
             F::of(settings.spread),
             settings.weights,
-        )
+        );
+        (sigma * sum).min(saturation)
     }
 
-    /// The full light march's optical depth ([`march_optical_depth`]) through `field`.
+    /// The full light march's optical depth ([`march_optical_depth`]) through `field`,
+    /// NaN-free like [`LightRay::cone_optical_depth`] (the march runs with σ_t = 1 and is
+    /// scaled after: the free function's value up to one rounding).
     pub fn march_optical_depth<F: Real, D: crate::DensityField<F> + ?Sized>(
         &self,
         field: &D,
         settings: &MarchSettings,
     ) -> F {
-        march_optical_depth(
-            |q| field.density(q),
-            field.extinction_per_density(),
+        let saturation = F::of(crate::propagate::TAU_SATURATION);
+        let sigma = field.extinction_per_density().min(saturation);
+        if sigma == F::zero() {
+            return F::zero();
+        }
+        let depth = march_optical_depth(
+            |q| field.density(q).min(saturation),
+            F::one(),
             self.point.map(F::of),
             self.to_sun.map(F::of),
             F::of(self.exit_distance),
             settings.steps,
-        )
+        );
+        (sigma * depth.min(saturation)).min(saturation)
     }
 }
 

@@ -13,7 +13,7 @@
 //!   [`CloudVolume`] is the twin of the GPU pass (`gpu::ShadowMapPass`,
 //!   `shaders/cloudlight/shadow_map_pass.wgsl`); the per-texel pieces
 //!   ([`shadow_texel_centre`], [`shadow_box_span`], [`shadow_march_point`],
-//!   [`shadow_span_optical_depth`]) are WGSL twins in `shaders/cloudlight/shadow_map.wgsl`.
+//!   [`shadow_accumulate`], [`shadow_span_optical_depth`]) are WGSL twins in `shaders/cloudlight/shadow_map.wgsl`.
 //! * [`shadow_map_reference`] is the exact f64 transmittance of a [`CloudVolume`]
 //!   ([`crate::reference::transmittance`]: no discretisation error), which the march is
 //!   measured against (`tests` here, the crate README, `examples/shadow_map.rs`).
@@ -79,6 +79,8 @@ pub struct ShadowGrid {
 impl ShadowGrid {
     /// A grid of `resolution = [nx, ny]` texels of edge `cell_size` metres whose minimum
     /// corner is `origin = [x, y]` (metres), on flat ground at `ground_height` (metres, z).
+    /// Coordinates within ±1e8 m and cells up to 1e6 m (f32 keeps every texel centre
+    /// finite); errors name the field and value.
     pub fn new(
         origin: [f64; 2],
         cell_size: f64,
@@ -86,27 +88,23 @@ impl ShadowGrid {
         ground_height: f64,
     ) -> Result<Self, ShadowMapError> {
         for (field, value) in ["origin.x", "origin.y"].into_iter().zip(origin) {
-            if !value.is_finite() {
-                return Err(bad(field, value, "must be finite (metres)"));
+            if value.is_nan() || value.abs() > 1e8 {
+                return Err(bad(field, value, "must be in [-1e8, 1e8] (metres)"));
             }
         }
-        if !(cell_size.is_finite() && cell_size > 0.0) {
-            return Err(bad(
-                "cell_size",
-                cell_size,
-                "must be finite and > 0 (metres)",
-            ));
+        if !(cell_size > 0.0 && cell_size <= 1e6) {
+            return Err(bad("cell_size", cell_size, "must be in (0, 1e6] (metres)"));
         }
         for (field, n) in ["resolution.x", "resolution.y"].into_iter().zip(resolution) {
             if n == 0 {
                 return Err(bad(field, 0.0, "must be ≥ 1 texel"));
             }
         }
-        if !ground_height.is_finite() {
+        if ground_height.is_nan() || ground_height.abs() > 1e8 {
             return Err(bad(
                 "ground_height",
                 ground_height,
-                "must be finite (metres)",
+                "must be in [-1e8, 1e8] (metres)",
             ));
         }
         Ok(Self {
@@ -243,11 +241,27 @@ pub fn shadow_march_point<F: Real>(p: [F; 3], l: [F; 3], span: [F; 2], k: u32, n
     [p[0] + t * l[0], p[1] + t * l[1], p[2] + t * l[2]]
 }
 
+/// Densities, their sums and optical depths saturate here (1e30): `exp(−τ)` is 0 long
+/// before (τ > 104 in f32), and the saturation keeps every product finite, so a huge
+/// density (up to `f32::MAX`, which the f32 lookup can round up to ∞) meets σ_t = 0 or a
+/// zero-length span as 0, never as `0·∞` = NaN.
+pub const SATURATION: f64 = 1e30;
+
+/// The march's running sum plus one sample's density, the density saturated at
+/// [`SATURATION`] (so `MAX_STEPS` samples stay below 5e33, finite in f32). WGSL twin
+/// `shadow_accumulate`.
+pub fn shadow_accumulate<F: Real>(density_sum: F, density: F) -> F {
+    density_sum + density.min(F::of(SATURATION))
+}
+
 /// A span's optical depth from the sum of its `n` midpoint densities:
-/// `σ_t·(Σρ·h)`, `h = (t_exit − t_enter)/n`. WGSL twin `shadow_span_optical_depth`.
+/// `min(σ_t, S)·min(Σρ·h, S)`, saturated at `S` = [`SATURATION`];
+/// `h = (t_exit − t_enter)/n`. WGSL twin `shadow_span_optical_depth`.
 pub fn shadow_span_optical_depth<F: Real>(density_sum: F, span: [F; 2], n: u32, sigma_t: F) -> F {
+    let saturation = F::of(SATURATION);
     let h = (span[1] - span[0]) / atmos::real::count::<F>(n);
-    sigma_t * (density_sum * h)
+    let depth = (density_sum * h).min(saturation);
+    (sigma_t.min(saturation) * depth).min(saturation)
 }
 
 /// The marched transmittance toward the sun from `ground` (unit `to_sun`) through
@@ -269,9 +283,10 @@ pub fn shadow_texel<F: Real, D: DensityField<F> + ?Sized>(
         let span = [enter, exit];
         let mut sum = F::zero();
         for k in 0..steps {
-            sum = sum + field.density(shadow_march_point(ground, to_sun, span, k, steps));
+            let rho = field.density(shadow_march_point(ground, to_sun, span, k, steps));
+            sum = shadow_accumulate(sum, rho);
         }
-        tau = tau + shadow_span_optical_depth(sum, span, steps, sigma_t);
+        tau = (tau + shadow_span_optical_depth(sum, span, steps, sigma_t)).min(F::of(SATURATION));
     }
     cone::beer_lambert(tau)
 }

@@ -132,3 +132,36 @@ fn the_twin_against_the_exact_reference() {
         assert!(rmse < 2e-3 && max < 1e-2, "rmse {rmse}, max {max}");
     }
 }
+
+/// Huge densities (f32::MAX) with σ_t 0 and 1 /m, and zero density: the pass stays
+/// finite and in [0, 1] and agrees with the twin (saturation at 1e30, never 0·∞).
+#[test]
+fn shadow_map_pass_survives_extreme_volumes() {
+    let Some(gpu) = skyscape_harness::gpu_or_skip("shadow_map_pass_survives_extreme_volumes")
+    else {
+        return;
+    };
+    let mut pass = ShadowMapPass::new(&gpu.device).unwrap();
+    for (value, sigma) in [(f32::MAX, 0.0), (f32::MAX, 1.0), (0.0, 1.0), (1e30, 1e-3)] {
+        let v =
+            CloudVolume::new([3, 2, 2], [0.0, 0.0, 100.0], 10.0, sigma, vec![value; 12]).unwrap();
+        let grid = ShadowGrid::new([-20.0, -20.0], 5.0, [16, 12], 0.0).unwrap();
+        let plan = ShadowMapPlan::new(grid, sun(70.0, 10.0), 16).unwrap();
+        let gpu_map = run(gpu, &mut pass, &v, &plan);
+        let twin = shadow_map::<f32, _>(&v, &plan);
+        for (g, c) in gpu_map.iter().zip(&twin) {
+            assert!(
+                (0.0..=1.0).contains(g),
+                "density {value}, σ {sigma}: GPU {g}"
+            );
+            assert!(
+                (g - c).abs() <= 1e-6,
+                "density {value}, σ {sigma}: {g} vs {c}"
+            );
+        }
+        eprintln!(
+            "density {value:e}, σ_t {sigma}: GPU min {}",
+            gpu_map.iter().copied().fold(1.0f32, f32::min)
+        );
+    }
+}
