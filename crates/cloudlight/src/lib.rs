@@ -24,6 +24,9 @@
 //!   term, dual-lobe Henyey–Greenstein on `atmos`' lobe. The per-sample functions have
 //!   WGSL twins (`shaders/cloudlight/cone.wgsl`); no GPU pass samples a volume with them
 //!   yet.
+//! * [`billboard`]: seed 002's billboards, the volume's dense cells as soft splats lit by
+//!   the propagation, sorted back to front; a CPU rasteriser twin of the GPU pass
+//!   [`gpu::billboard::BillboardPass`].
 //! * [`slice::slice_attenuation`] (seed 002's per-texel attenuation) and
 //!   [`jitter::bayer_jitter_4x4`] (seed 003's ordered march jitter).
 //!
@@ -31,7 +34,7 @@
 //! embedded as [`WGSL_MODULES`] (`#import cloudlight::<name>`) and validated with naga at
 //! build time.
 //!
-//! Not here yet (issue 14): billboards, the ray-marched cloud shell and its noise, cloud
+//! Not here yet (issue 14): the ray-marched cloud shell and its noise, cloud
 //! shadow maps, multiple scattering, `xtask tradeoff cloudlight`.
 //!
 //! ```
