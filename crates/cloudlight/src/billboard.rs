@@ -30,6 +30,31 @@
 //! The screen position and radius of a billboard ([`billboard_screen`]) are computed from
 //! its position relative to the eye, rounded to the float type once (what the GPU's
 //! instance buffer holds), with the camera basis and focal length of a [`ScreenFrame`].
+//!
+//! ```
+//! use cloudlight::CloudVolume;
+//! use cloudlight::billboard::{BillboardSettings, Camera, FieldOfView, billboards, rasterise};
+//! use cloudlight::propagate::{SliceMode, propagate_f64};
+//! use glam::DVec3;
+//!
+//! // A 4³ block of density 0.8, 50 m cells, lit from above, seen from 2 km.
+//! let volume = CloudVolume::new([4; 3], [-100.0; 3], 50.0, 0.01, vec![0.8; 64])?;
+//! let light = propagate_f64(&volume, [0.0, 0.0, 1.0], SliceMode::Physical)?;
+//! let camera = Camera::looking_at(
+//!     DVec3::new(0.0, -2000.0, 0.0),
+//!     DVec3::ZERO,
+//!     DVec3::Z,
+//!     FieldOfView::from_degrees(30.0),
+//!     64,
+//!     64,
+//! )?;
+//! let settings = BillboardSettings::default();
+//! let particles = billboards(&volume, &light, &settings, &camera)?;
+//! assert_eq!(particles.len(), 64);
+//! let image = rasterise::<f32>(&particles, &camera, settings.size);
+//! assert!(image.rgba[32 * 64 + 32][3] > 0.0); // the block covers the image's centre
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 use atmos::real::Real;
 use glam::DVec3;
