@@ -52,7 +52,7 @@ struct TerrainUniform {
 @group(2) @binding(4) var<storage, read> cloud_layers: array<CloudLayerUniforms>;
 
 struct TerrainVarying {
-    @builtin(position) clip: vec4<f32>,
+    @builtin(position) @invariant clip: vec4<f32>,
     @location(0) world: vec3<f32>,
 }
 

@@ -28,7 +28,7 @@ use rayon::prelude::*;
 
 use crate::RenderError;
 use crate::present::PresentParameters;
-use crate::scene::prepare::{HorizonMaps, PreparedScene, PreparedTerrain};
+use crate::scene::prepare::{HorizonMaps, Illuminant, PreparedScene, PreparedTerrain};
 use crate::terrain_shading::surface_radiance;
 use crate::tonemap::{pack_rgba8, quantize_srgb8, tonemap_exposure};
 
@@ -61,6 +61,10 @@ struct TerrainLight<'a> {
     terrain: &'a PreparedTerrain,
     tracer: terrain::intersect::HeightfieldTracer<'a>,
     offset: [f64; 2],
+    /// The light (the sun, or the moon at night) and its atmosphere, rung and layers.
+    illuminant: Illuminant<'a>,
+    /// The scene camera with this light as its "sun" (its tables' camera).
+    camera: atmos::frame::FrameCamera,
     sky_irradiance: Vec3,
     /// The sun in terrain's east–north–up frame.
     sun_enu: Vec3,
@@ -101,11 +105,21 @@ impl TerrainLight<'_> {
 /// rung's transmittance of the finite segment to the top of the atmosphere (a finite
 /// segment: the precomputed rung answers it without a per-viewpoint table).
 pub fn sun_irradiance_at(scene: &PreparedScene, elevation: f64) -> Result<Vec3, RenderError> {
-    let a = &scene.atmosphere;
+    light_irradiance_at(scene, &scene.sun_light(), elevation)
+}
+
+/// [`sun_irradiance_at`] for any of the scene's lights (the moon's: its irradiance
+/// through the same atmosphere).
+pub fn light_irradiance_at(
+    scene: &PreparedScene,
+    light: &Illuminant<'_>,
+    elevation: f64,
+) -> Result<Vec3, RenderError> {
+    let a = light.atmosphere;
     let c = scene.camera_position;
     let point = DVec3::new(c.x, a.planet_radius + elevation, c.z);
     let r = point.length();
-    let mu_s = point.dot(scene.sun) / r;
+    let mu_s = point.dot(light.direction) / r;
     let ground =
         atmos::geometry::ray_sphere_intersect(r as f32, mu_s as f32, a.planet_radius as f32);
     if ground[0] >= 0.0 {
@@ -115,12 +129,12 @@ pub fn sun_irradiance_at(scene: &PreparedScene, elevation: f64) -> Result<Vec3, 
     let query = atmos::SkyQuery::with_max_distance(
         a.planet_radius,
         point,
-        scene.sun,
-        scene.sun,
+        light.direction,
+        light.direction,
         f64::from(top[1].max(0.0)),
     )
     .map_err(atmos_error)?;
-    let t = scene.segment_model.evaluate(&query).transmittance;
+    let t = light.segment_model.evaluate(&query).transmittance;
     let e = a.sun_irradiance;
     Ok(Vec3::new(
         (t[0] * e[0]) as f32,
@@ -142,23 +156,10 @@ pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, Rend
     let camera = &scene.camera;
     let (width, height) = (camera.width as usize, camera.height as usize);
     let light = match &scene.terrain {
-        Some(terrain) => Some(terrain_light(scene, terrain)?),
+        Some(terrain) => Some(terrain_light(scene, terrain, scene.sun_light())?),
         None => None,
     };
-    let precomputed = match &scene.precomputed {
-        Some(sky) => Some(PrecomputedFrame {
-            luts: sky.static_luts(),
-            frame: atmos::lut::FrameLuts::bake(sky.static_luts(), camera),
-            sky: atmos::lut::drop_in::SkyPassParameters::new(
-                &scene.atmosphere,
-                scene.sky_objects.is_none(),
-                1.0,
-                0.0,
-            )
-            .map_err(atmos_error)?,
-        }),
-        None => None,
-    };
+    let precomputed = precomputed_frame(&scene.sun_light(), camera, scene.sky_objects.is_none())?;
     let mut out = vec![
         PixelRadiance {
             radiance: [0.0; 3],
@@ -179,6 +180,30 @@ pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, Rend
             }
             Ok::<(), RenderError>(())
         })?;
+    if let (Some(moon), Some(terrain)) = (scene.moon_light(), &scene.terrain) {
+        // The twin of the GPU's second terrain draw: the terrain lit by the moon, seen
+        // through the moonlit air, added where terrain shows.
+        let moon_light = terrain_light(scene, terrain, moon)?;
+        let moon_tables = precomputed_frame(&moon, camera, false)?;
+        out.par_chunks_mut(width)
+            .enumerate()
+            .try_for_each(|(row, pixels)| {
+                for (column, pixel) in pixels.iter_mut().enumerate() {
+                    if pixel.terrain_distance.is_none() {
+                        continue;
+                    }
+                    let xy = [column as u32, row as u32];
+                    if let Some((view, hit)) = trace_terrain(scene, &moon_light, xy) {
+                        let added =
+                            shade_terrain(scene, &moon_light, moon_tables.as_ref(), view, &hit)?;
+                        for (value, a) in pixel.radiance.iter_mut().zip(added) {
+                            *value += a;
+                        }
+                    }
+                }
+                Ok::<(), RenderError>(())
+            })?;
+    }
     if let Some(moon) = &scene.moonlit {
         // The twin of the GPU's second sky pass: the moonlit sky added where the sky
         // shows (no disc: celestial draws the moon).
@@ -310,20 +335,30 @@ pub fn terrain_lighting(
     scene: &PreparedScene,
     terrain: &PreparedTerrain,
 ) -> Result<TerrainLighting, RenderError> {
+    terrain_lighting_for(scene, terrain, &scene.sun_light())
+}
+
+/// [`terrain_lighting`] for any of the scene's lights: the moon's is its direction and
+/// the irradiance of the sky it lights.
+pub fn terrain_lighting_for(
+    scene: &PreparedScene,
+    terrain: &PreparedTerrain,
+    light: &Illuminant<'_>,
+) -> Result<TerrainLighting, RenderError> {
     let [low, high] =
         terrain::intersect::HeightfieldTracer::new(&terrain.heightfield).elevation_range();
     let mean = 0.5 * (low + high);
     let c = scene.camera_position;
-    let here = DVec3::new(c.x, scene.atmosphere.planet_radius + mean, c.z);
+    let here = DVec3::new(c.x, light.atmosphere.planet_radius + mean, c.z);
     let irradiance = atmos::ground_irradiance::ground_irradiance(
-        &ModelRef(scene.sky_model.as_ref()),
-        &scene.atmosphere,
+        &ModelRef(light.sky_model),
+        light.atmosphere,
         here,
-        scene.sun,
+        light.direction,
         atmos::ground_irradiance::HemisphereQuadrature::default(),
     )
     .map_err(atmos_error)?;
-    let s = scene.sun.as_vec3();
+    let s = light.direction.as_vec3();
     let sun_enu = Vec3::new(s.x, -s.z, s.y);
     Ok(TerrainLighting {
         sky_irradiance: Vec3::from_array(irradiance.sky.map(|v| v as f32)),
@@ -337,21 +372,24 @@ pub fn terrain_lighting(
 fn terrain_light<'a>(
     scene: &PreparedScene,
     terrain: &'a PreparedTerrain,
+    illuminant: Illuminant<'a>,
 ) -> Result<TerrainLight<'a>, RenderError> {
     let tracer = terrain::intersect::HeightfieldTracer::new(&terrain.heightfield);
     let offset = terrain.map_offset();
-    let lighting = terrain_lighting(scene, terrain)?;
+    let lighting = terrain_lighting_for(scene, terrain, &illuminant)?;
     let [low, high] = lighting.elevation_range;
     let sun_table = (0..SUN_TABLE_SIZE)
         .map(|k| {
             let f = k as f64 / (SUN_TABLE_SIZE - 1) as f64;
-            sun_irradiance_at(scene, low + (high - low) * f)
+            light_irradiance_at(scene, &illuminant, low + (high - low) * f)
         })
         .collect::<Result<Vec<_>, _>>()?;
     Ok(TerrainLight {
         terrain,
         tracer,
         offset,
+        camera: illuminant.camera(&scene.camera),
+        illuminant,
         sky_irradiance: lighting.sky_irradiance,
         sun_enu: lighting.sun_enu,
         sun_elevation: lighting.sun_elevation,
@@ -383,20 +421,14 @@ fn shade_pixel(
     let view32 = atmos::frame::frame_view_direction(pixel, camera);
     let view = DVec3::from_array(view32.map(f64::from)).normalize();
     let planet = scene.atmosphere.planet_radius;
-    if let Some(light) = light {
-        let c = scene.camera_position;
-        let origin = [c.x + light.offset[0], c.z + light.offset[1], c.y - planet];
-        let direction = [view.x, view.z, view.y];
-        if let Some(hit) = light
-            .tracer
-            .intersect(origin, direction, scene.near, scene.far)
-        {
-            let radiance = shade_terrain(scene, light, precomputed, view, &hit)?;
-            return Ok(PixelRadiance {
-                radiance,
-                terrain_distance: Some(hit.distance as f32),
-            });
-        }
+    if let Some(light) = light
+        && let Some((view, hit)) = trace_terrain(scene, light, pixel)
+    {
+        let radiance = shade_terrain(scene, light, precomputed, view, &hit)?;
+        return Ok(PixelRadiance {
+            radiance,
+            terrain_distance: Some(hit.distance as f32),
+        });
     }
     if let Some(p) = precomputed {
         // The twin of the GPU's sky pass (the sun's disc included).
@@ -419,6 +451,46 @@ fn shade_pixel(
         radiance,
         terrain_distance: None,
     })
+}
+
+/// The first terrain hit of pixel `pixel`'s ray within `[near, far]`, with the ray's
+/// unit world direction.
+fn trace_terrain(
+    scene: &PreparedScene,
+    light: &TerrainLight<'_>,
+    pixel: [u32; 2],
+) -> Option<(DVec3, terrain::intersect::SurfaceHit)> {
+    let view32 = atmos::frame::frame_view_direction(pixel, &scene.camera);
+    let view = DVec3::from_array(view32.map(f64::from)).normalize();
+    let c = scene.camera_position;
+    let origin = [
+        c.x + light.offset[0],
+        c.z + light.offset[1],
+        c.y - scene.atmosphere.planet_radius,
+    ];
+    let direction = [view.x, view.z, view.y];
+    light
+        .tracer
+        .intersect(origin, direction, scene.near, scene.far)
+        .map(|hit| (view, hit))
+}
+
+/// The precomputed rung's tables of one light for one frame (`None` for the other
+/// rungs); `sun_disc`: whether its sky pass draws the light's disc.
+fn precomputed_frame<'a>(
+    light: &Illuminant<'a>,
+    camera: &atmos::frame::FrameCamera,
+    sun_disc: bool,
+) -> Result<Option<PrecomputedFrame<'a>>, RenderError> {
+    let Some(sky) = light.precomputed else {
+        return Ok(None);
+    };
+    Ok(Some(PrecomputedFrame {
+        luts: sky.static_luts(),
+        frame: atmos::lut::FrameLuts::bake(sky.static_luts(), &light.camera(camera)),
+        sky: atmos::lut::drop_in::SkyPassParameters::new(light.atmosphere, sun_disc, 1.0, 0.0)
+            .map_err(atmos_error)?,
+    }))
 }
 
 /// Bilinear weights and the four texels around a fractional texel position.
@@ -466,7 +538,7 @@ fn shade_terrain(
         normal_enu += Vec3::from_array(normals[t]) * w;
     }
     let normal_enu = normal_enu.normalize_or(Vec3::Z);
-    let radius = scene.atmosphere.sun_angular_radius as f32;
+    let radius = light.illuminant.atmosphere.sun_angular_radius as f32;
     let self_shadow = match &terrain.horizon {
         HorizonMaps::EastWest(maps) => terrain::shadow::self_shadow_east_west(
             filtered(maps.east.angles(), &texels, &weights),
@@ -503,9 +575,12 @@ fn shade_terrain(
         );
         let eye = DVec3::new(c.x, c.y - planet, c.z);
         let offset = (world.as_vec3() - eye.as_vec3()).to_array();
-        let sun = atmos::lut::drop_in::sunlight_at(p.luts, &scene.camera, offset);
-        let cloud_shadow =
-            crate::clouds::cloud_shadow_at(offset, scene.viewer_radius as f32, &scene.cloud_layers);
+        let sun = atmos::lut::drop_in::sunlight_at(p.luts, &light.camera, offset);
+        let cloud_shadow = crate::clouds::cloud_shadow_at(
+            offset,
+            scene.viewer_radius as f32,
+            light.illuminant.cloud_layers,
+        );
         let surface = surface_radiance(
             n,
             n.z,
@@ -526,8 +601,11 @@ fn shade_terrain(
     let sun_at_point = light.sun_at_elevation(elevation);
     let planet = scene.atmosphere.planet_radius;
     let offset = (view * hit.distance).as_vec3().to_array();
-    let cloud_shadow =
-        crate::clouds::cloud_shadow_at(offset, scene.viewer_radius as f32, &scene.cloud_layers);
+    let cloud_shadow = crate::clouds::cloud_shadow_at(
+        offset,
+        scene.viewer_radius as f32,
+        light.illuminant.cloud_layers,
+    );
     let surface = surface_radiance(
         n,
         n.z,
@@ -542,11 +620,11 @@ fn shade_terrain(
         planet,
         scene.camera_position,
         view,
-        scene.sun,
+        light.illuminant.direction,
         hit.distance,
     )
     .map_err(atmos_error)?;
-    let segment = scene.segment_model.evaluate(&query);
+    let segment = light.illuminant.segment_model.evaluate(&query);
     Ok(std::array::from_fn(|k| {
         surface[k] * segment.transmittance[k] as f32 + segment.radiance[k] as f32
     }))
@@ -620,7 +698,7 @@ mod tests {
         });
         let prepared = scene.prepare().unwrap();
         let terrain = prepared.terrain.as_ref().unwrap();
-        let light = terrain_light(&prepared, terrain).unwrap();
+        let light = terrain_light(&prepared, terrain, prepared.sun_light()).unwrap();
         let [low, high] = light.elevation_range;
         let mut worst = 0.0f32;
         for k in 0..200 {

@@ -442,6 +442,68 @@ fn a_full_moon_night_is_a_dim_blue_sky_with_the_moon_and_stars() {
     );
 }
 
+/// The moon lights the terrain through the same shading as the sun — N·L, the
+/// horizon maps' self-shadow, the sky it lights, the aerial perspective — scaled by its
+/// irradiance: the night scene's terrain equals, per channel, the same view lit by a
+/// sun standing where the moon stands, times the moon's irradiance over the sun's (the
+/// sun 60° down adds nothing). Only the light's angular radius differs (the soft
+/// shadow's edge).
+#[test]
+fn the_moon_lights_the_terrain_as_a_sun_of_its_irradiance_would() {
+    let small = |mut scene: Scene| {
+        scene.file.output.width = 160;
+        scene.file.output.height = 90;
+        scene
+    };
+    let night = small(Scene::open(NIGHT_SCENE).unwrap()).prepare().unwrap();
+    let moon = night.moonlit.as_ref().expect("the moon is up");
+    let scale: [f64; 3] = std::array::from_fn(|c| {
+        moon.atmosphere.sun_irradiance[c] / night.atmosphere.sun_irradiance[c]
+    });
+    let d = moon.direction; // x east, y up, z south
+    let mut equivalent = small(Scene::open(NIGHT_SCENE).unwrap());
+    equivalent.file.time = None;
+    equivalent.file.sky_objects = None;
+    equivalent.file.sun = Some(render::scene::SunSection {
+        elevation_deg: d.y.asin().to_degrees(),
+        azimuth_deg: d.x.atan2(-d.z).to_degrees(),
+    });
+    let lit = render_radiance(&night).unwrap();
+    let sunlit = render_radiance(&equivalent.prepare().unwrap()).unwrap();
+    let mut differences: Vec<f64> = lit
+        .iter()
+        .zip(&sunlit)
+        .filter(|(a, b)| a.terrain_distance.is_some() && b.terrain_distance.is_some())
+        .flat_map(|(a, b)| {
+            (0..3).map(move |c| {
+                let expected = f64::from(b.radiance[c]) * scale[c];
+                (f64::from(a.radiance[c]) - expected).abs() / expected.max(1e-30)
+            })
+        })
+        .collect();
+    assert!(
+        differences.len() > 3 * 1000,
+        "{} terrain values",
+        differences.len()
+    );
+    differences.sort_by(f64::total_cmp);
+    let median = differences[differences.len() / 2];
+    let p95 = differences[differences.len() * 95 / 100];
+    eprintln!("moonlit terrain vs the scaled sunlit one: median {median:.2e}, p95 {p95:.2e}");
+    assert!(
+        median < 1e-5 && p95 < 1e-3,
+        "median {median:e}, p95 {p95:e}"
+    );
+    // And it is lit: the terrain's median is of the order of the moonlit sky's.
+    let mut terrain: Vec<f64> = lit
+        .iter()
+        .filter(|p| p.terrain_distance.is_some())
+        .map(|p| luminance(p.radiance))
+        .collect();
+    terrain.sort_by(f64::total_cmp);
+    assert!(terrain[terrain.len() / 2] > 0.0);
+}
+
 #[test]
 fn time_and_place_errors_name_the_key() {
     let timed = VALID.replace(

@@ -8,7 +8,8 @@
 //! 1. compute: the LUT bakes (the static ones once, the sky view and aerial
 //!    perspective per frame), and the moonlit sky's when the moon lights the night;
 //! 2. render: the sky (drawn first, depth writes off, seed 000), the moonlit sky added
-//!    to it, then the terrain (reverse-z depth, cloud shadows);
+//!    to it, then the terrain (reverse-z depth, cloud shadows) and, at night, the
+//!    terrain again lit by the moon through the moonlit tables (additive, depth-equal);
 //! 3. render: the sun, moon, planets and stars, additive, depth-tested behind terrain;
 //! 4. render: the cloud layers, farthest first, hidden where the terrain is nearer;
 //! 5. compute: the display pass (tone map, sRGB, dither) into RGBA8 pixels.
@@ -25,8 +26,9 @@ use glam::Vec3;
 use wgpu::util::DeviceExt as _;
 
 use crate::RenderError;
-use crate::cpu_renderer::terrain_lighting;
+use crate::cpu_renderer::{TerrainLighting, terrain_lighting, terrain_lighting_for};
 use crate::gpu::timer::PassTimes;
+use crate::scene::Illuminant;
 use crate::scene::Rung;
 use crate::scene::prepare::{HorizonMaps, PreparedScene, PreparedTerrain};
 use crate::terrain_mesh::{TerrainLod, Tile, tile_mesh};
@@ -125,6 +127,19 @@ struct TerrainPass {
     lod: TerrainLod,
     cloud_layers: wgpu::Buffer,
     cloud_layer_capacity: usize,
+    /// The terrain lit by the moon (scenes with a moonlit sky): drawn again over the
+    /// sunlit terrain with the moonlit tables, added.
+    moon: Option<MoonTerrain>,
+}
+
+/// The moonlit terrain draw: the terrain pipeline with additive blending, depth-equal
+/// against the sunlit draw's depth, with the moon's uniform and cloud layers.
+#[derive(Debug)]
+struct MoonTerrain {
+    pipeline: wgpu::RenderPipeline,
+    uniform: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+    cloud_layers: wgpu::Buffer,
 }
 
 /// Every pass of a scene on the GPU.
@@ -209,7 +224,14 @@ pub fn planned_passes(scene: &PreparedScene) -> Vec<(&'static str, Result<String
     plan.push((
         "terrain",
         if scene.terrain.is_some() {
-            Ok("instanced quadtree tiles, seed 000's shading, aerial perspective per pixel".into())
+            Ok(if scene.moonlit.is_some() {
+                "instanced quadtree tiles, seed 000's shading, aerial perspective per pixel; \
+                 drawn again lit by the moon through the moonlit tables, added (timed with \
+                 \"terrain\")"
+                    .into()
+            } else {
+                "instanced quadtree tiles, seed 000's shading, aerial perspective per pixel".into()
+            })
         } else {
             Err("the scene has no [terrain]: no terrain pipeline, no horizon maps".into())
         },
@@ -506,6 +528,7 @@ impl SceneRenderer {
             Some(terrain) => Some(Self::terrain_pass(
                 device,
                 &luts,
+                moonlit.as_ref().map(|(moon_luts, _)| moon_luts),
                 terrain,
                 scene.cloud_layers.len(),
             )?),
@@ -655,19 +678,23 @@ impl SceneRenderer {
     fn terrain_pass(
         device: &wgpu::Device,
         luts: &AtmosphereLuts,
+        moon_luts: Option<&AtmosphereLuts>,
         terrain: &PreparedTerrain,
         cloud_layer_capacity: usize,
     ) -> Result<TerrainPass, RenderError> {
         // The cloud layers whose shadows fall on the terrain (one unused element when
         // the scene has none: a binding may not be empty).
-        let cloud_layers = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("render terrain cloud layers"),
-            size: (cloud_layer_capacity.max(1)
-                * std::mem::size_of::<celestial::clouds::CloudLayerUniforms>())
-                as u64,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let layers_buffer = |label| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: (cloud_layer_capacity.max(1)
+                    * std::mem::size_of::<celestial::clouds::CloudLayerUniforms>())
+                    as u64,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        let cloud_layers = layers_buffer("render terrain cloud layers");
         let hf = &terrain.heightfield;
         let texels = hf.width() * hf.height();
         let heights: Vec<f32> = hf.elevations().iter().map(|&e| e as f32).collect();
@@ -710,12 +737,15 @@ impl SceneRenderer {
         let heights = storage("render terrain heights", bytemuck::cast_slice(&heights));
         let normals = storage("render terrain normals", bytemuck::cast_slice(&normals));
         let horizons = storage("render terrain horizons", bytemuck::cast_slice(&horizons));
-        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("render terrain uniform"),
-            size: std::mem::size_of::<TerrainUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let uniform_buffer = |label| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: std::mem::size_of::<TerrainUniform>() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        let uniform = uniform_buffer("render terrain uniform");
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("render terrain"),
@@ -727,84 +757,122 @@ impl SceneRenderer {
                 storage_read(4, wgpu::ShaderStages::FRAGMENT),
             ],
         });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("render terrain"),
-            layout: &layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: uniform.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: heights.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: normals.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: horizons.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 4,
-                    resource: cloud_layers.as_entire_binding(),
-                },
-            ],
-        });
+        let bind_group_with = |uniform: &wgpu::Buffer, cloud_layers: &wgpu::Buffer| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("render terrain"),
+                layout: &layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: uniform.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: heights.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: normals.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: horizons.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 4,
+                        resource: cloud_layers.as_entire_binding(),
+                    },
+                ],
+            })
+        };
+        let bind_group = bind_group_with(&uniform, &cloud_layers);
         let source = crate::composer().compose_module("render::terrain")?;
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("render terrain"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
         });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("render terrain"),
-            bind_group_layouts: &[
-                Some(&luts.layouts().uniforms),
-                Some(&luts.layouts().tables),
-                Some(&layout),
-            ],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("render terrain"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("terrain_vertex"),
-                compilation_options: Default::default(),
-                buffers: &[
-                    Some(wgpu::VertexBufferLayout {
-                        array_stride: 16,
-                        step_mode: wgpu::VertexStepMode::Vertex,
-                        attributes: &wgpu::vertex_attr_array![0 => Uint32x4],
-                    }),
-                    Some(wgpu::VertexBufferLayout {
-                        array_stride: std::mem::size_of::<Tile>() as u64,
-                        step_mode: wgpu::VertexStepMode::Instance,
-                        attributes: &wgpu::vertex_attr_array![1 => Uint32x2, 2 => Uint32, 3 => Float32],
-                    }),
+        // `moon`: the additive, depth-equal draw of the moonlit terrain over the sunlit
+        // one (the same vertices give the same depths: the clip position is invariant).
+        let make_pipeline = |luts: &AtmosphereLuts, moon: bool| {
+            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("render terrain"),
+                bind_group_layouts: &[
+                    Some(&luts.layouts().uniforms),
+                    Some(&luts.layouts().tables),
+                    Some(&layout),
                 ],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH,
-                depth_write_enabled: Some(true),
-                // Reverse z: near 1, infinitely far 0.
-                depth_compare: Some(wgpu::CompareFunction::Greater),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("terrain_fragment"),
-                compilation_options: Default::default(),
-                targets: &[Some(HDR.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
+                immediate_size: 0,
+            });
+            let additive = wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::One,
+                dst_factor: wgpu::BlendFactor::One,
+                operation: wgpu::BlendOperation::Add,
+            };
+            let target = wgpu::ColorTargetState {
+                blend: moon.then_some(wgpu::BlendState {
+                    color: additive,
+                    alpha: additive,
+                }),
+                ..HDR.into()
+            };
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(if moon {
+                    "render terrain (moonlit)"
+                } else {
+                    "render terrain"
+                }),
+                layout: Some(&pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some("terrain_vertex"),
+                    compilation_options: Default::default(),
+                    buffers: &[
+                        Some(wgpu::VertexBufferLayout {
+                            array_stride: 16,
+                            step_mode: wgpu::VertexStepMode::Vertex,
+                            attributes: &wgpu::vertex_attr_array![0 => Uint32x4],
+                        }),
+                        Some(wgpu::VertexBufferLayout {
+                            array_stride: std::mem::size_of::<Tile>() as u64,
+                            step_mode: wgpu::VertexStepMode::Instance,
+                            attributes: &wgpu::vertex_attr_array![1 => Uint32x2, 2 => Uint32, 3 => Float32],
+                        }),
+                    ],
+                },
+                primitive: wgpu::PrimitiveState::default(),
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: DEPTH,
+                    depth_write_enabled: Some(!moon),
+                    // Reverse z: near 1, infinitely far 0.
+                    depth_compare: Some(if moon {
+                        wgpu::CompareFunction::Equal
+                    } else {
+                        wgpu::CompareFunction::Greater
+                    }),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some("terrain_fragment"),
+                    compilation_options: Default::default(),
+                    targets: &[Some(target)],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let pipeline = make_pipeline(luts, false);
+        let moon = moon_luts.map(|moon_luts| {
+            let uniform = uniform_buffer("render moonlit terrain uniform");
+            let cloud_layers = layers_buffer("render moonlit terrain cloud layers");
+            MoonTerrain {
+                pipeline: make_pipeline(moon_luts, true),
+                bind_group: bind_group_with(&uniform, &cloud_layers),
+                uniform,
+                cloud_layers,
+            }
         });
         let (grid, indices) = tile_mesh();
         let grid = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -839,6 +907,7 @@ impl SceneRenderer {
             lod,
             cloud_layers,
             cloud_layer_capacity,
+            moon,
         })
     }
 
@@ -948,14 +1017,14 @@ impl SceneRenderer {
             );
             let offset = terrain.map_offset();
             let hf = &terrain.heightfield;
-            let uniform = TerrainUniform {
+            let uniform_for = |lighting: &TerrainLighting, light: &Illuminant<'_>| TerrainUniform {
                 view_projection: (projection * view).to_cols_array_2d(),
                 camera: eye32.to_array(),
                 spacing: hf.spacing() as f32,
                 map_offset: [offset[0] as f32, offset[1] as f32],
                 map_size: [hf.width() as u32, hf.height() as u32],
                 sun_enu: lighting.sun_enu.to_array(),
-                sun_angular_radius: scene.atmosphere.sun_angular_radius as f32,
+                sun_angular_radius: light.atmosphere.sun_angular_radius as f32,
                 sky_irradiance: lighting.sky_irradiance.to_array(),
                 sun_elevation: lighting.sun_elevation,
                 sun_azimuth: lighting.sun_azimuth,
@@ -964,14 +1033,39 @@ impl SceneRenderer {
                     HorizonMaps::Azimuths(maps) => maps.count() as u32,
                 },
                 viewer_radius: scene.viewer_radius as f32,
-                cloud_layer_count: scene.cloud_layers.len() as u32,
+                cloud_layer_count: light.cloud_layers.len() as u32,
                 albedo: terrain.albedo.uniform(),
                 radiance_scale: scene.present.exposure,
                 padding0: 0.0,
                 padding1: 0.0,
                 padding2: 0.0,
             };
+            let uniform = uniform_for(&lighting, &scene.sun_light());
             queue.write_buffer(&pass.uniform, 0, bytemuck::bytes_of(&uniform));
+            match (&pass.moon, scene.moon_light()) {
+                (Some(moon_pass), Some(moon)) => {
+                    let moon_lighting = terrain_lighting_for(scene, terrain, &moon)?;
+                    let uniform = uniform_for(&moon_lighting, &moon);
+                    queue.write_buffer(&moon_pass.uniform, 0, bytemuck::bytes_of(&uniform));
+                    if !moon.cloud_layers.is_empty()
+                        && moon.cloud_layers.len() <= pass.cloud_layer_capacity
+                    {
+                        queue.write_buffer(
+                            &moon_pass.cloud_layers,
+                            0,
+                            bytemuck::cast_slice(moon.cloud_layers),
+                        );
+                    }
+                }
+                (None, None) => {}
+                (built, _) => {
+                    return Err(RenderError::InvalidParameter {
+                        field: "moonlit terrain",
+                        value: if built.is_some() { "off" } else { "on" }.into(),
+                        reason: "differs from the scene the renderer was built for",
+                    });
+                }
+            }
             if scene.cloud_layers.len() > pass.cloud_layer_capacity {
                 return Err(RenderError::InvalidParameter {
                     field: "clouds.layers",
@@ -1093,6 +1187,13 @@ impl SceneRenderer {
             pass.set_vertex_buffer(1, terrain.tiles.slice(..));
             pass.set_index_buffer(terrain.indices.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..terrain.index_count, 0, 0..terrain.tile_count);
+            if let (Some(moon), Some((moon_luts, _))) = (&terrain.moon, &self.moonlit) {
+                pass.set_pipeline(&moon.pipeline);
+                pass.set_bind_group(0, moon_luts.uniform_bind_group(), &[]);
+                pass.set_bind_group(1, moon_luts.table_bind_group(), &[]);
+                pass.set_bind_group(2, &moon.bind_group, &[]);
+                pass.draw_indexed(0..terrain.index_count, 0, 0..terrain.tile_count);
+            }
         }
         if let Some(objects) = &self.sky_objects {
             objects.encode(

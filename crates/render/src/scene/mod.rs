@@ -47,7 +47,7 @@ pub mod prepare;
 pub mod shipped;
 
 pub use error::{Location, SceneError};
-pub use prepare::{PreparedScene, PreparedTerrain};
+pub use prepare::{Illuminant, PreparedScene, PreparedTerrain};
 
 use std::path::{Path, PathBuf};
 

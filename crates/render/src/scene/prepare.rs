@@ -116,8 +116,55 @@ pub struct MoonlitSky {
     pub direction: DVec3,
     /// The scene's rung built from the moonlit atmosphere.
     pub sky_model: SharedSkyModel,
+    /// The model finite segments (terrain's aerial perspective) are evaluated with.
+    pub segment_model: SharedSkyModel,
     /// Its tables, for the precomputed rung.
     pub precomputed: Option<std::sync::Arc<atmos::lut::PrecomputedSky>>,
+    /// The scene's cloud layers with the moon as their light: the shadows they cast
+    /// in moonlight.
+    pub cloud_layers: Vec<celestial::clouds::CloudLayerUniforms>,
+}
+
+/// One light of a scene's terrain — the sun, or the moon at night — and what the
+/// terrain's shading and its aerial perspective read for it. The moon's is the same
+/// atmosphere lit by the moon (celestial's `MoonLight::atmosphere`), so both go through
+/// the same functions.
+#[derive(Clone, Copy)]
+pub struct Illuminant<'a> {
+    /// The atmosphere lit by this light (its `sun_irradiance` and `sun_angular_radius`
+    /// are the light's).
+    pub atmosphere: &'a atmos::Atmosphere,
+    /// Unit world direction toward the light.
+    pub direction: DVec3,
+    /// The scene's rung lit by it.
+    pub sky_model: &'a (dyn atmos::SkyModel + Send + Sync),
+    /// Its model for finite segments.
+    pub segment_model: &'a (dyn atmos::SkyModel + Send + Sync),
+    /// Its tables (precomputed rung).
+    pub precomputed: Option<&'a atmos::lut::PrecomputedSky>,
+    /// The cloud layers with this light's direction (their shadows).
+    pub cloud_layers: &'a [celestial::clouds::CloudLayerUniforms],
+}
+
+impl std::fmt::Debug for Illuminant<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Illuminant")
+            .field("direction", &self.direction)
+            .field("sky_model", &self.sky_model.label())
+            .field("cloud_layers", &self.cloud_layers.len())
+            .finish_non_exhaustive()
+    }
+}
+
+impl Illuminant<'_> {
+    /// The scene camera with this light as its "sun" (what its tables are baked and
+    /// looked up for).
+    pub fn camera(&self, camera: &atmos::frame::FrameCamera) -> atmos::frame::FrameCamera {
+        atmos::frame::FrameCamera {
+            sun: self.direction.as_vec3().to_array(),
+            ..*camera
+        }
+    }
 }
 
 impl std::fmt::Debug for MoonlitSky {
@@ -141,6 +188,30 @@ impl MoonlitSky {
 }
 
 impl PreparedScene {
+    /// The sun as the terrain's light.
+    pub fn sun_light(&self) -> Illuminant<'_> {
+        Illuminant {
+            atmosphere: &self.atmosphere,
+            direction: self.sun,
+            sky_model: self.sky_model.as_ref(),
+            segment_model: self.segment_model.as_ref(),
+            precomputed: self.precomputed.as_deref(),
+            cloud_layers: &self.cloud_layers,
+        }
+    }
+
+    /// The moon as the terrain's light, when the scene has a moonlit sky.
+    pub fn moon_light(&self) -> Option<Illuminant<'_>> {
+        self.moonlit.as_ref().map(|moon| Illuminant {
+            atmosphere: &moon.atmosphere,
+            direction: moon.direction,
+            sky_model: moon.sky_model.as_ref(),
+            segment_model: moon.segment_model.as_ref(),
+            precomputed: moon.precomputed.as_deref(),
+            cloud_layers: &moon.cloud_layers,
+        })
+    }
+
     /// The sun's elevation above the horizon plane, degrees.
     pub fn sun_elevation_deg(&self) -> f64 {
         self.sun.y.clamp(-1.0, 1.0).asin().to_degrees()
@@ -330,7 +401,7 @@ impl Scene {
             }
         };
         let moonlit = match &sky {
-            Some(sky) => self.moonlit_sky(sky, &atmosphere, sun)?,
+            Some(sky) => self.moonlit_sky(sky, &atmosphere, sun, &cloud_layers)?,
             None => None,
         };
         if sky_objects.is_some() {
@@ -365,6 +436,7 @@ impl Scene {
         sky: &celestial::sky::Sky,
         atmosphere: &atmos::Atmosphere,
         sun: DVec3,
+        cloud_layers: &[celestial::clouds::CloudLayerUniforms],
     ) -> Result<Option<MoonlitSky>, SceneError> {
         let Some(placement) = sky.placement() else {
             return Ok(None);
@@ -375,12 +447,23 @@ impl Scene {
             return Ok(None);
         }
         let moon_atmosphere = light.atmosphere(atmosphere);
-        let (sky_model, _, precomputed) = self.models(&moon_atmosphere)?;
+        let (sky_model, segment_model, precomputed) = self.models(&moon_atmosphere)?;
+        // The layers' light is in their east–north–up frame, as the moon's direction.
+        let toward_moon = light.direction.map(|c| c as f32);
+        let cloud_layers = cloud_layers
+            .iter()
+            .map(|layer| celestial::clouds::CloudLayerUniforms {
+                sun_direction: toward_moon,
+                ..*layer
+            })
+            .collect();
         Ok(Some(MoonlitSky {
             atmosphere: moon_atmosphere,
             direction: DVec3::new(east, up, -north),
             sky_model,
+            segment_model,
             precomputed,
+            cloud_layers,
         }))
     }
 
