@@ -111,6 +111,14 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/cone.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "cloudlight::march",
+        source: include_str!("../shaders/march.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "cloudlight::march_pass",
+        source: include_str!("../shaders/march_pass.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "cloudlight::noise",
         source: include_str!("../shaders/noise.wgsl"),
     },

@@ -20,18 +20,18 @@
 //! `S = σ_s · (E_sun · P(τ_l, cos θ) · [powder(τ_l)] + L_amb · V_amb)`
 //!
 //! * `τ_l`: the optical depth toward the sun, from the [`LightMarch`] setting — seed 003's
-//!   6 + 1 cone ([`cone::cone_optical_depth`], raw or partitioned weights) or the full
-//!   `N`-step march ([`cone::march_optical_depth`], the accurate option), both to the last
+//!   6 + 1 cone ([`crate::cone::cone_optical_depth`], raw or partitioned weights) or the full
+//!   `N`-step march ([`crate::cone::march_optical_depth`], the accurate option), both to the last
 //!   exit of the field's spans along the sun direction;
 //! * `P` = [`octave_scattering`]: multiple scattering approximated by octaves
 //!   (Wrenninge 2013, Hillaire 2016): `Σ_{n<N} bⁿ · e^{−aⁿτ_l} · p(cⁿg, cos θ)` with `p`
-//!   the dual-lobe Henyey–Greenstein phase of [`cone::dual_lobe_henyey_greenstein`]
+//!   the dual-lobe Henyey–Greenstein phase of [`crate::cone::dual_lobe_henyey_greenstein`]
 //!   (`atmos`' lobe). `N = 1` is single scattering (Beer–Lambert toward the sun times the
 //!   phase). With `a ≤ b` (and `b < 1`) every octave's extra energy is bounded by its
 //!   attenuation, which keeps the sum energy-conserving (Hillaire 2016); `a > b` is
 //!   accepted but can create energy. `cos θ = direction · sun_direction` (1 looking
 //!   straight at the sun: forward scattering);
-//! * `powder(τ_l) = 1 − e^{−2τ_l}` ([`cone::powder`]), Schneider's darkening of the sun
+//! * `powder(τ_l) = 1 − e^{−2τ_l}` ([`crate::cone::powder`]), Schneider's darkening of the sun
 //!   term near sunward edges: **not physical** (no radiative-transfer law gives it; it is
 //!   an art-directed option), off by default;
 //! * `L_amb · V_amb`: an isotropic ambient sky radiance `L_amb` (its phase integrates to 1
@@ -59,7 +59,7 @@
 //! [`atmos_light`] gives, at a point of a planet's atmosphere, the sun's irradiance (the
 //! atmosphere's `sun_irradiance` times the transmittance toward the sun of any `atmos`
 //! [`SkyModel`], zero behind the planet) and the ambient sky radiance (`atmos`' sky
-//! irradiance on a horizontal surface from [`ground_irradiance`] divided by π: the
+//! irradiance on a horizontal surface from [`ground_irradiance`](atmos::ground_irradiance::ground_irradiance) divided by π: the
 //! uniform radiance with the same irradiance). [`apply_aerial_perspective`] composites the
 //! marched cloud through the air in front of it with the model's transmittance and
 //! in-scattering up to [`MarchResult::depth`]. The march itself needs none of it: a
@@ -145,7 +145,7 @@ impl Jitter {
 /// How the optical depth toward the sun is estimated at each view sample.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum LightMarch {
-    /// Seed 003's 6 cone + 1 far samples ([`cone::cone_optical_depth`]).
+    /// Seed 003's 6 cone + 1 far samples ([`crate::cone::cone_optical_depth`]).
     Cone {
         /// The cone's step Δ, metres (> 0). With [`ConeWeights::Partitioned`] the step
         /// used is `min(step, L/7)`, `L` the path to the field's exit.
@@ -156,7 +156,7 @@ pub enum LightMarch {
         weights: ConeWeights,
     },
     /// `steps` midpoint steps over the path to the field's exit
-    /// ([`cone::march_optical_depth`]).
+    /// ([`crate::cone::march_optical_depth`]).
     Full {
         /// Steps along the light ray.
         steps: NonZeroU32,
@@ -242,7 +242,6 @@ impl Default for MarchConfig {
 pub struct MarchSettings {
     config: MarchConfig,
 }
-
 
 impl MarchSettings {
     /// Checks every field: zero steps or octaves, a negative or ≥ 1 ε, coefficients out of
@@ -653,7 +652,7 @@ pub struct AtmosLight {
     /// the model's transmittance toward the sun; zero behind the planet.
     pub sun_irradiance: [f64; 3],
     /// The uniform sky radiance with the sky's irradiance on a horizontal surface at the
-    /// point (`atmos` [`ground_irradiance`]`.sky / π`).
+    /// point (`atmos` [`ground_irradiance`](atmos::ground_irradiance::ground_irradiance)`.sky / π`).
     pub ambient_radiance: [f64; 3],
 }
 
@@ -708,4 +707,132 @@ pub fn apply_aerial_perspective(
     Ok(std::array::from_fn(|k| {
         cloud.radiance[k] * air.transmittance[k] + air.radiance[k] * opacity
     }))
+}
+
+/// The unit view direction through the centre of pixel `pixel` of a `size[0] × size[1]`
+/// image (row 0 at the top) of a pinhole camera looking along unit `forward` with unit
+/// `right` and `up`; `tan_half` the tangents of the horizontal and vertical half fields of
+/// view. WGSL twin `pixel_direction`.
+pub fn pixel_direction<F: Real>(
+    pixel: [u32; 2],
+    size: [u32; 2],
+    forward: [F; 3],
+    right: [F; 3],
+    up: [F; 3],
+    tan_half: [F; 2],
+) -> [F; 3] {
+    let (one, two, half) = (F::one(), F::of(2.0), F::of(0.5));
+    let sx = (two * (count::<F>(pixel[0]) + half) / count::<F>(size[0]) - one) * tan_half[0];
+    let sy = (one - two * (count::<F>(pixel[1]) + half) / count::<F>(size[1])) * tan_half[1];
+    let v: [F; 3] = std::array::from_fn(|a| forward[a] + sx * right[a] + sy * up[a]);
+    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    v.map(|c| c / n)
+}
+
+/// A pinhole camera in the field's frame: position, orthonormal forward / right / up and
+/// the horizontal field of view (the vertical one follows from the image's aspect).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PinholeCamera {
+    origin: [f64; 3],
+    forward: [f64; 3],
+    right: [f64; 3],
+    up: [f64; 3],
+    horizontal_fov: f64,
+}
+
+impl PinholeCamera {
+    /// A camera at `origin` (m) looking at `target` (m) with `up_hint` roughly up and a
+    /// horizontal field of view `horizontal_fov` in radians (0, π). Errors name the field
+    /// (a target at the origin, an up hint along the view, NaN, a field of view out of
+    /// range).
+    pub fn look_at(
+        origin: [f64; 3],
+        target: [f64; 3],
+        up_hint: [f64; 3],
+        horizontal_fov: f64,
+    ) -> Result<Self, MarchError> {
+        let o = DVec3::from_array(origin);
+        let t = DVec3::from_array(target);
+        for c in origin.into_iter().chain(target).chain(up_hint) {
+            if !c.is_finite() {
+                return Err(invalid("camera position/target/up", c, "must be finite"));
+            }
+        }
+        if !(horizontal_fov > 0.0 && horizontal_fov < std::f64::consts::PI) {
+            return Err(invalid(
+                "horizontal_fov",
+                horizontal_fov,
+                "must be in (0, π) rad",
+            ));
+        }
+        let forward = (t - o).normalize_or_zero();
+        if forward == DVec3::ZERO {
+            return Err(invalid(
+                "target",
+                (t - o).length(),
+                "must differ from the origin",
+            ));
+        }
+        let right = forward
+            .cross(DVec3::from_array(up_hint))
+            .normalize_or_zero();
+        if right == DVec3::ZERO {
+            return Err(invalid("up_hint", 0.0, "must not be parallel to the view"));
+        }
+        let up = right.cross(forward);
+        Ok(Self {
+            origin,
+            forward: forward.to_array(),
+            right: right.to_array(),
+            up: up.to_array(),
+            horizontal_fov,
+        })
+    }
+
+    /// Position (m).
+    pub fn origin(&self) -> [f64; 3] {
+        self.origin
+    }
+
+    /// Unit forward, right and up.
+    pub fn basis(&self) -> [[f64; 3]; 3] {
+        [self.forward, self.right, self.up]
+    }
+
+    /// `[tan(h/2), tan(h/2)·height/width]` for an image of `size`.
+    pub fn tan_half(&self, size: [u32; 2]) -> [f64; 2] {
+        let t = (0.5 * self.horizontal_fov).tan();
+        [t, t * f64::from(size[1]) / f64::from(size[0])]
+    }
+}
+
+/// The CPU image of the view march (rows top to bottom, x fastest): each pixel marched by
+/// [`march_view_at_pixel`] along [`pixel_direction`]. `render_image::<f32>` on a
+/// [`CloudVolume`](crate::CloudVolume) is the twin of the GPU pass
+/// `gpu::MarchPass`; a zero-sized image is empty.
+pub fn render_image<F: Real>(
+    field: &impl DensityField<F>,
+    camera: &PinholeCamera,
+    size: [u32; 2],
+    settings: &MarchSettings,
+    lighting: &Lighting<F>,
+) -> Vec<MarchResult<F>> {
+    let [forward, right, up] = camera.basis().map(|v| v.map(F::of));
+    let tan_half = camera.tan_half(size).map(F::of);
+    let origin = camera.origin.map(F::of);
+    let mut out = Vec::with_capacity(size[0] as usize * size[1] as usize);
+    for y in 0..size[1] {
+        for x in 0..size[0] {
+            let d = pixel_direction([x, y], size, forward, right, up, tan_half);
+            out.push(march_view_at_pixel(
+                field,
+                origin,
+                d,
+                settings,
+                lighting,
+                [x, y],
+            ));
+        }
+    }
+    out
 }

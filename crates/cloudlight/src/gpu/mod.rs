@@ -15,6 +15,9 @@ use crate::propagate::{Resampling, SliceMode, SlicePlan};
 
 pub mod billboard;
 
+mod march;
+pub use march::{MARCH_WORKGROUP_SIZE, MarchGpuError, MarchPass, compose_march_shader};
+
 mod shadow_map;
 pub use shadow_map::{ShadowMapGpuError, ShadowMapPass, compose_shadow_map_shader};
 

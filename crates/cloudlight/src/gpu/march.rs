@@ -1,0 +1,389 @@
+//! [`MarchPass`]: seed 003's view ray-march of a [`CloudVolume`] on a GPU
+//! (`shaders/cloudlight/march_pass.wgsl`), bring your own device.
+//!
+//! [`MarchPass::new`] builds the pipeline; [`MarchPass::prepare`] uploads the volume's
+//! density (a storage buffer read with manual trilinear interpolation, as the CPU's
+//! [`CloudVolume::density_at`] does), the camera, settings and lighting, and creates the
+//! output buffer and the bind group; [`MarchPass::encode`] only records one dispatch
+//! (8×8 pixels per workgroup).
+//!
+//! The output is a storage buffer of two `vec4<f32>` per pixel (x fastest, row 0 at the
+//! top): `(radiance r, g, b, transmittance)` and `(depth, 0, 0, 0)` — the fields of
+//! [`MarchResult`]; [`MarchPass::decode`] turns its bytes into them. The f32 CPU twin is
+//! [`render_image::<f32>`](crate::march::render_image) on the same volume (whose density
+//! lookup is f64 rounded once; the shader's is f32).
+
+use crate::CloudVolume;
+use crate::march::{Jitter, LightMarch, Lighting, MarchResult, MarchSettings, PinholeCamera};
+
+/// Pixels per workgroup along each image axis.
+pub const MARCH_WORKGROUP_SIZE: u32 = 8;
+
+const PARAMS_BYTES: u64 = 240;
+
+/// Errors of the march pass, naming the field and value.
+#[derive(Debug, thiserror::Error)]
+pub enum MarchGpuError {
+    /// Composing the WGSL failed (a packaging bug).
+    #[error(transparent)]
+    Compose(#[from] skyscape_wgsl::ComposeError),
+    /// A buffer is larger than the device lets a shader bind.
+    #[error(
+        "`{what}` needs {bytes} bytes but the device's max_storage_buffer_binding_size is {limit}"
+    )]
+    BufferTooLarge {
+        /// `density` or `image`.
+        what: &'static str,
+        /// Its size.
+        bytes: u64,
+        /// The device limit.
+        limit: u64,
+    },
+    /// The image is empty or needs more workgroups along one axis than the device allows.
+    #[error("{field} = {value} pixels: must be ≥ 1 and need at most {limit} workgroups")]
+    ImageSize {
+        /// `size.x` or `size.y`.
+        field: &'static str,
+        /// Pixels along it.
+        value: u32,
+        /// `max_compute_workgroups_per_dimension`.
+        limit: u32,
+    },
+    /// `encode` was called before `prepare`.
+    #[error("encode before prepare: no image to march")]
+    EncodeBeforePrepare,
+    /// Bytes handed to [`MarchPass::decode`] have the wrong length.
+    #[error("readback has {got} bytes, expected {expected}")]
+    ReadbackSize {
+        /// Bytes given.
+        got: usize,
+        /// Bytes expected.
+        expected: usize,
+    },
+}
+
+/// The composed WGSL of the march pass (entry point `march_main`).
+pub fn compose_march_shader() -> Result<String, skyscape_wgsl::ComposeError> {
+    crate::composer().compose_module("cloudlight::march_pass")
+}
+
+#[derive(Debug)]
+struct Prepared {
+    bind_group: wgpu::BindGroup,
+    workgroups: [u32; 2],
+    size: [u32; 2],
+    image: wgpu::Buffer,
+    _params: wgpu::Buffer,
+    _density: wgpu::Buffer,
+}
+
+/// The view march on a GPU (see the module documentation).
+#[derive(Debug)]
+pub struct MarchPass {
+    pipeline: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+    prepared: Option<Prepared>,
+}
+
+/// The uniform block of `march_pass.wgsl` (`MarchParams`), as 60 words.
+fn params_words(
+    volume: &CloudVolume,
+    camera: &PinholeCamera,
+    size: [u32; 2],
+    settings: &MarchSettings,
+    lighting: &Lighting<f32>,
+) -> [u32; 60] {
+    let c = settings.config();
+    let f = |x: f64| (x as f32).to_bits();
+    let g = |x: f32| x.to_bits();
+    let [forward, right, up] = camera.basis();
+    let tan_half = camera.tan_half(size);
+    let origin = camera.origin();
+    let (lo, dims, voxel) = (volume.origin(), volume.dims(), volume.voxel_size());
+    let hi: [f64; 3] = [0, 1, 2].map(|a| lo[a] + f64::from(dims[a]) * voxel);
+    let (sun, irr, amb, amb_up) = (
+        lighting.sun_direction(),
+        lighting.sun_irradiance(),
+        lighting.ambient_radiance(),
+        lighting.up(),
+    );
+    let (mode, light_steps, cone_step, spread) = match c.light {
+        LightMarch::Full { steps } => (0u32, steps.get(), 0.0, 0.0),
+        LightMarch::Cone {
+            step,
+            spread,
+            weights,
+        } => (
+            match weights {
+                crate::cone::ConeWeights::Raw => 1,
+                crate::cone::ConeWeights::Partitioned => 2,
+            },
+            0,
+            step,
+            spread,
+        ),
+    };
+    let jitter = match c.jitter {
+        Jitter::None => 0u32,
+        Jitter::Bayer4x4 => 1,
+        Jitter::InterleavedGradient => 2,
+    };
+    [
+        f(origin[0]),
+        f(origin[1]),
+        f(origin[2]),
+        0,
+        f(forward[0]),
+        f(forward[1]),
+        f(forward[2]),
+        f(tan_half[0]),
+        f(right[0]),
+        f(right[1]),
+        f(right[2]),
+        f(tan_half[1]),
+        f(up[0]),
+        f(up[1]),
+        f(up[2]),
+        f(volume.extinction_per_density()),
+        f(lo[0]),
+        f(lo[1]),
+        f(lo[2]),
+        f(voxel),
+        f(hi[0]),
+        f(hi[1]),
+        f(hi[2]),
+        f(c.transmittance_epsilon),
+        g(sun[0]),
+        g(sun[1]),
+        g(sun[2]),
+        f(c.albedo),
+        g(irr[0]),
+        g(irr[1]),
+        g(irr[2]),
+        f(c.g_forward),
+        g(amb[0]),
+        g(amb[1]),
+        g(amb[2]),
+        f(c.g_back),
+        g(amb_up[0]),
+        g(amb_up[1]),
+        g(amb_up[2]),
+        f(c.back_weight),
+        f(c.octaves.a),
+        f(c.octaves.b),
+        f(c.octaves.c),
+        f(cone_step),
+        f(spread),
+        0,
+        0,
+        0,
+        dims[0],
+        dims[1],
+        dims[2],
+        c.view_steps,
+        size[0],
+        size[1],
+        jitter,
+        mode,
+        light_steps,
+        c.octaves.count,
+        u32::from(c.powder),
+        c.ambient_steps,
+    ]
+}
+
+impl MarchPass {
+    /// Builds the pipeline on `device`.
+    pub fn new(device: &wgpu::Device) -> Result<Self, MarchGpuError> {
+        let source = compose_march_shader()?;
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("cloudlight::march_pass"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let entry = |binding: u32, ty: wgpu::BufferBindingType, min: Option<u64>| {
+            wgpu::BindGroupLayoutEntry {
+                binding,
+                visibility: wgpu::ShaderStages::COMPUTE,
+                ty: wgpu::BindingType::Buffer {
+                    ty,
+                    has_dynamic_offset: false,
+                    min_binding_size: min.and_then(wgpu::BufferSize::new),
+                },
+                count: None,
+            }
+        };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("cloudlight march"),
+            entries: &[
+                entry(0, wgpu::BufferBindingType::Uniform, Some(PARAMS_BYTES)),
+                entry(
+                    1,
+                    wgpu::BufferBindingType::Storage { read_only: true },
+                    None,
+                ),
+                entry(
+                    2,
+                    wgpu::BufferBindingType::Storage { read_only: false },
+                    None,
+                ),
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("cloudlight march"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("cloudlight::march_main"),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some("march_main"),
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            cache: None,
+        });
+        Ok(Self {
+            pipeline,
+            layout,
+            prepared: None,
+        })
+    }
+
+    /// Uploads `volume`'s density, the camera, settings and lighting, creates the output
+    /// buffer (`size[0] × size[1]` pixels) and the bind group [`MarchPass::encode`]
+    /// records with. Takes effect at the next submit.
+    #[allow(clippy::too_many_arguments)] // device, queue and the twin's five inputs
+    pub fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        volume: &CloudVolume,
+        camera: &PinholeCamera,
+        size: [u32; 2],
+        settings: &MarchSettings,
+        lighting: &Lighting<f32>,
+    ) -> Result<(), MarchGpuError> {
+        let limits = device.limits();
+        let mut workgroups = [0u32; 2];
+        for (k, (field, value)) in ["size.x", "size.y"].into_iter().zip(size).enumerate() {
+            let groups = value.div_ceil(MARCH_WORKGROUP_SIZE);
+            let limit = limits.max_compute_workgroups_per_dimension;
+            if value == 0 || groups > limit {
+                return Err(MarchGpuError::ImageSize {
+                    field,
+                    value,
+                    limit,
+                });
+            }
+            workgroups[k] = groups;
+        }
+        let limit = limits.max_storage_buffer_binding_size;
+        let density_bytes = volume.density().len() as u64 * 4;
+        let image_bytes = u64::from(size[0]) * u64::from(size[1]) * 32;
+        for (what, bytes) in [("density", density_bytes), ("image", image_bytes)] {
+            if bytes > limit {
+                return Err(MarchGpuError::BufferTooLarge { what, bytes, limit });
+            }
+        }
+        let words = params_words(volume, camera, size, settings, lighting);
+        let params = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("cloudlight march params"),
+            size: PARAMS_BYTES,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        queue.write_buffer(&params, 0, bytemuck::cast_slice(&words));
+        let density = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("cloudlight march density"),
+            size: density_bytes,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        queue.write_buffer(&density, 0, bytemuck::cast_slice(volume.density()));
+        let image = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("cloudlight march image"),
+            size: image_bytes,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("cloudlight march"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: params.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: density.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: image.as_entire_binding(),
+                },
+            ],
+        });
+        self.prepared = Some(Prepared {
+            bind_group,
+            workgroups,
+            size,
+            image,
+            _params: params,
+            _density: density,
+        });
+        Ok(())
+    }
+
+    /// Records the march's dispatch into `encoder`.
+    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder) -> Result<(), MarchGpuError> {
+        let prepared = self
+            .prepared
+            .as_ref()
+            .ok_or(MarchGpuError::EncodeBeforePrepare)?;
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("cloudlight march"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &prepared.bind_group, &[]);
+        pass.dispatch_workgroups(prepared.workgroups[0], prepared.workgroups[1], 1);
+        Ok(())
+    }
+
+    /// The output buffer (module documentation); `None` before `prepare`.
+    pub fn image_buffer(&self) -> Option<&wgpu::Buffer> {
+        self.prepared.as_ref().map(|p| &p.image)
+    }
+
+    /// The output buffer's size in bytes (0 before `prepare`).
+    pub fn image_size(&self) -> u64 {
+        self.prepared.as_ref().map_or(0, |p| p.image.size())
+    }
+
+    /// Turns the output buffer's bytes into one [`MarchResult`] per pixel (x fastest).
+    pub fn decode(&self, bytes: &[u8]) -> Result<Vec<MarchResult<f32>>, MarchGpuError> {
+        let expected = self
+            .prepared
+            .as_ref()
+            .map_or(0, |p| p.size[0] as usize * p.size[1] as usize * 32);
+        if bytes.len() != expected || expected == 0 {
+            return Err(MarchGpuError::ReadbackSize {
+                got: bytes.len(),
+                expected,
+            });
+        }
+        Ok(bytes
+            .chunks_exact(32)
+            .map(|b| {
+                let w: [f32; 8] = std::array::from_fn(|k| {
+                    f32::from_ne_bytes([b[4 * k], b[4 * k + 1], b[4 * k + 2], b[4 * k + 3]])
+                });
+                MarchResult {
+                    radiance: [w[0], w[1], w[2]],
+                    transmittance: w[3],
+                    depth: w[4],
+                }
+            })
+            .collect())
+    }
+}

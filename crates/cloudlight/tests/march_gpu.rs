@@ -1,0 +1,207 @@
+//! The view-march pass on a GPU against its f32 CPU twin `render_image::<f32>` (skipped
+//! without an adapter, see skyscape-harness).
+#![cfg(feature = "gpu")]
+
+use std::num::NonZeroU32;
+
+use cloudlight::CloudVolume;
+use cloudlight::cone::ConeWeights;
+use cloudlight::gpu::{MarchGpuError, MarchPass};
+use cloudlight::march::{
+    Jitter, LightMarch, Lighting, MarchConfig, MarchResult, MarchSettings, Octaves, PinholeCamera,
+    render_image,
+};
+
+/// A lumpy blob on a 32³ grid of 25 m cells, 1 km up.
+fn volume() -> CloudVolume {
+    let n = 32u32;
+    let mut density = Vec::new();
+    for z in 0..n {
+        for y in 0..n {
+            for x in 0..n {
+                let p = [x, y, z].map(|c| (f64::from(c) + 0.5) / f64::from(n) * 2.0 - 1.0);
+                let r2 = p[0] * p[0] + p[1] * p[1] + 1.4 * p[2] * p[2];
+                let wobble = 0.3 * ((x * 7 + y * 3 + z * 5) % 5) as f64 / 4.0;
+                density.push((1.5 * (1.0 + wobble) * (1.0 - r2).max(0.0)) as f32);
+            }
+        }
+    }
+    CloudVolume::new([n, n, n], [-400.0, -400.0, 1000.0], 25.0, 0.02, density).unwrap()
+}
+
+fn run(
+    gpu: &skyscape_harness::GpuContext,
+    pass: &mut MarchPass,
+    v: &CloudVolume,
+    camera: &PinholeCamera,
+    size: [u32; 2],
+    settings: &MarchSettings,
+    lighting: &Lighting<f32>,
+) -> Vec<MarchResult<f32>> {
+    pass.prepare(&gpu.device, &gpu.queue, v, camera, size, settings, lighting)
+        .unwrap();
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    pass.encode(&mut encoder).unwrap();
+    gpu.queue.submit([encoder.finish()]);
+    let bytes = skyscape_harness::read_buffer(
+        gpu,
+        "cloudlight march image",
+        pass.image_buffer().unwrap(),
+        0,
+        pass.image_size(),
+    )
+    .unwrap();
+    pass.decode(&bytes).unwrap()
+}
+
+#[test]
+fn march_pass_matches_the_f32_twin() {
+    let Some(gpu) = skyscape_harness::gpu_or_skip("march_pass_matches_the_f32_twin") else {
+        return;
+    };
+    let v = volume();
+    let mut pass = MarchPass::new(&gpu.device).unwrap();
+    let size = [32, 32];
+    let cameras = [
+        // Below the cloud looking up, beside it looking across, inside it.
+        PinholeCamera::look_at([0.0, -100.0, 0.0], [0.0, 0.0, 1400.0], [0.0, 0.0, 1.0], 0.9),
+        PinholeCamera::look_at(
+            [-1500.0, -300.0, 1300.0],
+            [0.0, 0.0, 1400.0],
+            [0.0, 0.0, 1.0],
+            0.8,
+        ),
+        PinholeCamera::look_at(
+            [10.0, 20.0, 1400.0],
+            [300.0, 0.0, 1500.0],
+            [0.0, 0.0, 1.0],
+            1.4,
+        ),
+    ]
+    .map(Result::unwrap);
+    let configs = [
+        MarchConfig {
+            view_steps: 32,
+            light: LightMarch::Full {
+                steps: NonZeroU32::new(8).unwrap(),
+            },
+            octaves: Octaves {
+                count: 3,
+                a: 0.5,
+                b: 0.6,
+                c: 0.5,
+            },
+            ..MarchConfig::default()
+        },
+        MarchConfig {
+            view_steps: 24,
+            jitter: Jitter::Bayer4x4,
+            light: LightMarch::Cone {
+                step: 40.0,
+                spread: 0.0,
+                weights: ConeWeights::Partitioned,
+            },
+            powder: true,
+            ambient_steps: 0,
+            ..MarchConfig::default()
+        },
+        MarchConfig {
+            view_steps: 16,
+            jitter: Jitter::InterleavedGradient,
+            transmittance_epsilon: 0.05,
+            light: LightMarch::Cone {
+                step: 25.0,
+                spread: 0.3,
+                weights: ConeWeights::Raw,
+            },
+            ..MarchConfig::default()
+        },
+    ]
+    .map(|c| MarchSettings::new(c).unwrap());
+    let suns: [[f64; 3]; 3] = [[0.5, 0.1, 0.86], [0.98, 0.0, 0.2], [0.3, 0.3, -0.905]];
+    let mut worst_radiance = 0.0f64;
+    let mut worst_transmittance = 0.0f64;
+    let mut cloudy_pixels = 0usize;
+    for (i, camera) in cameras.iter().enumerate() {
+        for (j, settings) in configs.iter().enumerate() {
+            let sun = suns[(i + j) % 3];
+            let n = (sun[0] * sun[0] + sun[1] * sun[1] + sun[2] * sun[2]).sqrt();
+            let sun = sun.map(|c| c / n);
+            let lighting =
+                Lighting::<f32>::new(sun, [1.0, 0.95, 0.9], [0.05, 0.08, 0.12], [0.0, 0.0, 1.0])
+                    .unwrap();
+            let gpu_image = run(gpu, &mut pass, &v, camera, size, settings, &lighting);
+            let cpu_image = render_image::<f32>(&v, camera, size, settings, &lighting);
+            let peak = cpu_image
+                .iter()
+                .flat_map(|r| r.radiance)
+                .fold(0.0f32, f32::max) as f64;
+            assert!(
+                peak > 0.0,
+                "camera {i} config {j}: an empty image tests nothing"
+            );
+            for (k, (g, c)) in gpu_image.iter().zip(&cpu_image).enumerate() {
+                if c.transmittance < 0.999 {
+                    cloudy_pixels += 1;
+                }
+                for ch in 0..3 {
+                    let e = (g.radiance[ch] - c.radiance[ch]).abs() as f64 / peak;
+                    worst_radiance = worst_radiance.max(e);
+                    // Lavapipe: 8.1e-7 of the peak (the f32 trilinear lookup against the
+                    // f64 one rounded once, exp and HG within a few ULP, over 16–32 steps).
+                    assert!(
+                        e < 2e-5,
+                        "camera {i} config {j} pixel {k} ch {ch}: GPU {g:?} CPU {c:?}"
+                    );
+                }
+                let e = (g.transmittance - c.transmittance).abs() as f64;
+                worst_transmittance = worst_transmittance.max(e);
+                // Lavapipe: 9.5e-7.
+                assert!(
+                    e < 1e-5,
+                    "camera {i} config {j} pixel {k}: GPU {g:?} CPU {c:?}"
+                );
+            }
+        }
+    }
+    println!(
+        "march pass vs f32 twin, 9 images 32x32 ({cloudy_pixels} cloudy pixels): radiance max \
+         |diff|/peak {worst_radiance:.2e}, transmittance max |diff| {worst_transmittance:.2e}"
+    );
+    assert!(cloudy_pixels > 2000, "{cloudy_pixels}");
+}
+
+#[test]
+fn encode_before_prepare_and_bad_sizes_are_errors() {
+    let Some(gpu) = skyscape_harness::gpu_or_skip("encode_before_prepare_and_bad_sizes_are_errors")
+    else {
+        return;
+    };
+    let mut pass = MarchPass::new(&gpu.device).unwrap();
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    assert!(matches!(
+        pass.encode(&mut encoder),
+        Err(MarchGpuError::EncodeBeforePrepare)
+    ));
+    let camera = PinholeCamera::look_at([0.0; 3], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 1.0).unwrap();
+    let lighting = Lighting::<f32>::white_sun([0.0, 0.0, 1.0]).unwrap();
+    let err = pass
+        .prepare(
+            &gpu.device,
+            &gpu.queue,
+            &volume(),
+            &camera,
+            [0, 4],
+            &MarchSettings::default(),
+            &lighting,
+        )
+        .unwrap_err();
+    assert!(matches!(
+        err,
+        MarchGpuError::ImageSize {
+            field: "size.x",
+            value: 0,
+            ..
+        }
+    ));
+}
