@@ -209,6 +209,7 @@ fn single_scattering_of_a_homogeneous_slab_is_analytic() {
         albedo: 0.99,
         relative_tolerance: 1e-8,
         optical_depth_tolerance: 1e-12,
+        ..Default::default()
     };
     for (mu_v, phi) in [(1.0, 0.0), (0.6, 1.0), (0.25, 2.5)] {
         // Reflected: camera above, looking down.

@@ -204,18 +204,24 @@ impl Integral {
     }
 }
 
+/// Integrand evaluations one default [`ReferenceField::reference_optical_depth`] may spend.
+pub const OPTICAL_DEPTH_BUDGET: usize = 1 << 20;
+
 /// Deepest bisection of the adaptive Simpson rule (2⁻⁴⁰ of a piece).
 const MAX_DEPTH: u32 = 40;
 
 /// Adaptive Simpson quadrature of `f` over `[a, b]`, split first into `panels` equal
 /// pieces, each bisected until Richardson's estimate `|S₂ − S₁|/15` is within its share of
 /// the absolute `tolerance` (the returned value includes the Richardson correction).
+/// `budget` counts the evaluations left: once spent, pieces are accepted as they are and
+/// the result says it did not converge (no input can make the rule run forever).
 pub fn adaptive_simpson(
     f: &mut impl FnMut(f64) -> f64,
     a: f64,
     b: f64,
     tolerance: f64,
     panels: usize,
+    budget: &mut usize,
 ) -> Integral {
     let mut total = Integral::exact(0.0);
     if b <= a {
@@ -234,6 +240,7 @@ pub fn adaptive_simpson(
         );
         let xm = 0.5 * (x0 + x1);
         let (f0, fm, f1) = (f(x0), f(xm), f(x1));
+        *budget = budget.saturating_sub(3);
         let whole = (x1 - x0) / 6.0 * (f0 + 4.0 * fm + f1);
         let mut piece = Integral {
             value: 0.0,
@@ -246,7 +253,14 @@ pub fn adaptive_simpson(
         while let Some((x0, x1, f0, fm, f1, whole, tol, depth)) = stack.pop() {
             let xm = 0.5 * (x0 + x1);
             let (xl, xr) = (0.5 * (x0 + xm), 0.5 * (xm + x1));
+            if *budget < 2 {
+                piece.value += whole;
+                piece.error_estimate += tol.max(f64::MIN_POSITIVE);
+                piece.converged = false;
+                continue;
+            }
             let (fl, fr) = (f(xl), f(xr));
+            *budget -= 2;
             piece.evaluations += 2;
             let left = (xm - x0) / 6.0 * (f0 + 4.0 * fl + fm);
             let right = (x1 - xm) / 6.0 * (fm + 4.0 * fr + f1);
@@ -440,7 +454,8 @@ pub trait ReferenceField: DensityField<f64> + Sync {
     /// `length = ∞` to the field's end), to within `tolerance` (absolute). The default is
     /// an adaptive Simpson march of every [`ray_spans`](DensityField::ray_spans) piece
     /// (split at [`breakpoints`](Self::breakpoints), 8 panels each) with Richardson's
-    /// convergence test; its reached error is in the result.
+    /// convergence test, at most [`OPTICAL_DEPTH_BUDGET`] evaluations; its reached error is in
+    /// the result.
     fn reference_optical_depth(
         &self,
         origin: [f64; 3],
@@ -458,6 +473,7 @@ pub trait ReferenceField: DensityField<f64> + Sync {
             .filter(|&(a, b)| b > a)
             .collect();
         let share = tolerance / pieces.len().max(1) as f64;
+        let mut budget = OPTICAL_DEPTH_BUDGET;
         for (a, b) in pieces {
             let mut cuts = self.breakpoints(origin, direction, a, b);
             cuts.push(a);
@@ -476,6 +492,7 @@ pub trait ReferenceField: DensityField<f64> + Sync {
                     w[1],
                     share * (w[1] - w[0]) / whole,
                     8,
+                    &mut budget,
                 ));
             }
         }

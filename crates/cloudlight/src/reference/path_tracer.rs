@@ -533,3 +533,115 @@ pub fn transmittance<F: ReferenceField + ?Sized>(
     let p = escaped as f64 / samples as f64;
     Ok((p, (p * (1.0 - p) / samples as f64).sqrt()))
 }
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::CloudVolume;
+    use crate::reference::single_scattering::{SingleScatteringSettings, single_scattering};
+
+    fn direction() -> impl Strategy<Value = [f64; 3]> {
+        (-1.0f64..1.0, 0.0f64..std::f64::consts::TAU).prop_map(|(z, phi)| {
+            let s = (1.0 - z * z).sqrt();
+            [s * phi.cos(), s * phi.sin(), z]
+        })
+    }
+
+    fn volume() -> impl Strategy<Value = CloudVolume> {
+        (
+            (1u32..=4, 1u32..=4, 1u32..=4),
+            prop_oneof![Just(0.0f64), 1e-4f64..1.0],
+            prop_oneof![Just(0.0f32), 0.0f32..2.0, Just(1e6f32)],
+            any::<u64>(),
+        )
+            .prop_map(|((nx, ny, nz), sigma, scale, seed)| {
+                let n = (nx * ny * nz) as u64;
+                let density = (0..n)
+                    .map(|i| {
+                        let mut r = Random::new(seed, i);
+                        scale * r.uniform() as f32
+                    })
+                    .collect();
+                CloudVolume::new([nx, ny, nz], [-20.0, -20.0, -20.0], 10.0, sigma, density).unwrap()
+            })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+
+        /// Densities 0 to 1e6, σ_t 0 to 1 /m, grids 1³ to 4³, any sun (below the horizon
+        /// too), cameras inside and outside: no NaN or Inf, transmittance in [0, 1],
+        /// radiance ≥ 0, from both the single-scattering reference and the path tracer.
+        #[test]
+        fn outputs_are_finite_and_in_range(
+            v in volume(),
+            to_sun in direction(),
+            view in direction(),
+            origin in prop::array::uniform3(-60.0f64..60.0),
+            albedo in 0.0f64..=1.0,
+        ) {
+            let sun = Sun::new(to_sun, [1.0, 0.5, 2.0]).unwrap();
+            let phase = Phase::DualLobe { g_forward: 0.8, g_back: -0.3, back_weight: 0.2 };
+            let t = crate::reference::transmittance(&v, origin, view, f64::INFINITY).unwrap();
+            prop_assert!((0.0..=1.0).contains(&t), "{}", t);
+            let ss = single_scattering(
+                &v,
+                origin,
+                view,
+                &sun,
+                &phase,
+                &SingleScatteringSettings { albedo, max_evaluations: 20_000, ..Default::default() },
+            )
+            .unwrap();
+            for c in ss.radiance {
+                prop_assert!(c.is_finite() && c >= 0.0, "{:?}", ss);
+            }
+            prop_assert!(ss.integral.error_estimate.is_finite());
+            let settings = PathTracerSettings {
+                albedo,
+                samples: 32,
+                max_order: Some(16),
+                ..Default::default()
+            };
+            let mc = radiance(&v, origin, view, &sun, &phase, &settings).unwrap();
+            for c in 0..3 {
+                prop_assert!(mc.total.mean[c].is_finite() && mc.total.mean[c] >= 0.0, "{:?}", mc);
+                prop_assert!(mc.total.standard_error[c].is_finite());
+            }
+            let (tr, se) = transmittance(&v, origin, view, f64::INFINITY, 32, 1).unwrap();
+            prop_assert!((0.0..=1.0).contains(&tr) && se.is_finite());
+        }
+    }
+
+    #[test]
+    fn bad_settings_are_named() {
+        let v = CloudVolume::new([1, 1, 1], [0.0; 3], 1.0, 0.1, vec![1.0]).unwrap();
+        let sun = Sun::new([0.0, 0.0, 1.0], [1.0; 3]).unwrap();
+        let phase = Phase::HenyeyGreenstein { g: 0.5 };
+        let run = |settings: PathTracerSettings| {
+            radiance(&v, [0.0; 3], [1.0, 0.0, 0.0], &sun, &phase, &settings)
+                .unwrap_err()
+                .to_string()
+        };
+        let base = PathTracerSettings::default();
+        assert!(run(PathTracerSettings { samples: 1, ..base }).starts_with("samples = 1"));
+        assert!(
+            run(PathTracerSettings {
+                albedo: -0.1,
+                ..base
+            })
+            .starts_with("albedo = -0.1")
+        );
+        assert!(
+            run(PathTracerSettings {
+                max_order: Some(0),
+                ..base
+            })
+            .starts_with("max_order = 0")
+        );
+        let err = radiance(&v, [0.0; 3], [0.0; 3], &sun, &phase, &base).unwrap_err();
+        assert!(err.to_string().starts_with("direction = 0"), "{err}");
+    }
+}

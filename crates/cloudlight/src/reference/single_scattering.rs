@@ -24,15 +24,19 @@ pub struct SingleScatteringSettings {
     pub relative_tolerance: f64,
     /// Absolute optical-depth tolerance for fields without an exact optical depth (> 0).
     pub optical_depth_tolerance: f64,
+    /// Most integrand evaluations of the view quadrature (≥ 3); a result that ran out says
+    /// so (`integral.converged == false`) with its reached error.
+    pub max_evaluations: usize,
 }
 
 impl Default for SingleScatteringSettings {
-    /// Albedo 1, relative tolerance 1e-6, optical depth to 1e-9.
+    /// Albedo 1, relative tolerance 1e-6, optical depth to 1e-9, 10⁶ evaluations.
     fn default() -> Self {
         Self {
             albedo: 1.0,
             relative_tolerance: 1e-6,
             optical_depth_tolerance: 1e-9,
+            max_evaluations: 1_000_000,
         }
     }
 }
@@ -62,6 +66,13 @@ impl SingleScatteringSettings {
                 "optical_depth_tolerance",
                 self.optical_depth_tolerance,
                 "must be finite and > 0",
+            );
+        }
+        if self.max_evaluations < 3 {
+            return bad(
+                "max_evaluations",
+                self.max_evaluations as f64,
+                "must be ≥ 3",
             );
         }
         Ok(())
@@ -152,6 +163,7 @@ pub fn single_scattering<F: ReferenceField + ?Sized>(
     let total_length: f64 = pieces.iter().map(|&(a, b)| b - a).sum();
     let tolerance = settings.relative_tolerance * first.abs().max(1e-12);
     let mut integral = Integral::exact(0.0);
+    let mut budget = settings.max_evaluations.saturating_sub(3 * pieces.len());
     for &(a, b) in &pieces {
         integral.add(adaptive_simpson(
             &mut integrand,
@@ -159,6 +171,7 @@ pub fn single_scattering<F: ReferenceField + ?Sized>(
             b,
             tolerance * (b - a) / total_length,
             1,
+            &mut budget,
         ));
     }
     if let Some(e) = failure {
