@@ -755,7 +755,11 @@ fn reference_error_causes() {
     let atmosphere = Atmosphere::earth();
     let traced = tracer(&atmosphere, samples, None);
     let altitudes = [0.0, 1e3, 1e4, 1e5, 1e6];
-    let suns = [-6.0, -4.0, -2.0, 0.0, 2.0, 4.0, 5.0, 10.0, 30.0, 60.0, 90.0];
+    // SKYSCAPE_PT_SUNS: a comma-separated subset of the sun elevations (degrees).
+    let all_suns = [-6.0, -4.0, -2.0, 0.0, 2.0, 4.0, 5.0, 10.0, 30.0, 60.0, 90.0];
+    let suns: Vec<f64> = std::env::var("SKYSCAPE_PT_SUNS").map_or(all_suns.to_vec(), |v| {
+        v.split(',').map(|x| x.trim().parse().unwrap()).collect()
+    });
     let views = sphere_directions(directions);
     let queries: Vec<(f64, f64, SkyQuery)> = altitudes
         .iter()
@@ -940,7 +944,9 @@ fn reference_orders_two_and_up_follow_the_path_tracer() {
 /// Rung 3 (the precomputed sky, default settings) against the same path-traced set as
 /// `reference_error_causes` (issue 13.3: its twilight).
 /// `SKYSCAPE_PT_SAMPLES=4096 SKYSCAPE_PT_CACHE=… cargo test -p atmos --test path_tracer
-/// -- --ignored --nocapture precomputed_against_the_path_tracer`.
+/// -- --ignored --nocapture precomputed_against_the_path_tracer` (`SKYSCAPE_PT_SUNS`: a
+/// subset of the suns; `SKYSCAPE_PT_REFINE`: re-trace the worst twilight views with that
+/// many times the samples).
 #[test]
 #[ignore = "minutes of path tracing; CI runs precomputed_twilight_follows_the_path_tracer"]
 fn precomputed_against_the_path_tracer() {
@@ -950,7 +956,11 @@ fn precomputed_against_the_path_tracer() {
     let atmosphere = Atmosphere::earth();
     let traced = tracer(&atmosphere, samples, None);
     let altitudes = [0.0, 1e3, 1e4, 1e5, 1e6];
-    let suns = [-6.0, -4.0, -2.0, 0.0, 2.0, 4.0, 5.0, 10.0, 30.0, 60.0, 90.0];
+    // SKYSCAPE_PT_SUNS: a comma-separated subset of the sun elevations (degrees).
+    let all_suns = [-6.0, -4.0, -2.0, 0.0, 2.0, 4.0, 5.0, 10.0, 30.0, 60.0, 90.0];
+    let suns: Vec<f64> = std::env::var("SKYSCAPE_PT_SUNS").map_or(all_suns.to_vec(), |v| {
+        v.split(',').map(|x| x.trim().parse().unwrap()).collect()
+    });
     let views = sphere_directions(directions);
     let queries: Vec<(f64, f64, SkyQuery)> = altitudes
         .iter()
@@ -958,7 +968,7 @@ fn precomputed_against_the_path_tracer() {
         .flat_map(|(h, e)| views.iter().map(move |&v| (h, e, v)))
         .map(|(h, e, v)| (h, e, query(&atmosphere, h, v, sun_at(e), f64::INFINITY)))
         .collect();
-    let estimates = traced_luminances(
+    let mut estimates = traced_luminances(
         &traced,
         &queries.iter().map(|q| q.2).collect::<Vec<_>>(),
         cache.as_deref(),
@@ -982,6 +992,49 @@ fn precomputed_against_the_path_tracer() {
         settings.transmittance_size, settings.multiple_scattering_size
     );
     let sky = atmos::lut::PrecomputedSky::new(&atmosphere, &settings).unwrap();
+    // The max over ~450 twilight views is a max over noisy values: a view whose error is
+    // a few of its own σ from 0 may be noise. SKYSCAPE_PT_REFINE = k re-traces the
+    // twilight views whose |e| exceeds 15 %, or whose |e| + 3σ exceeds the 30 % goal,
+    // with k times the samples (a σ √k smaller), so the reported max is the view's
+    // error, not its noise.
+    let refine: u32 = env_or("SKYSCAPE_PT_REFINE", 1);
+    if refine > 1 {
+        let finer = tracer(&atmosphere, samples * refine, None);
+        let worst: Vec<usize> = queries
+            .iter()
+            .zip(&estimates)
+            .enumerate()
+            .filter(|(_, ((_, elevation, q), pt))| {
+                *elevation < 5.0 && pt[0] >= 1e-6 && {
+                    let got = luminance(sky.evaluate(q).radiance);
+                    let error = ((got - pt[0]) / pt[0]).abs();
+                    let sigma = pt[1] * got / (pt[0] * pt[0]);
+                    error > 0.15 || error + 3.0 * sigma > 0.30
+                }
+            })
+            .map(|(i, _)| i)
+            .collect();
+        let refined = traced_luminances(
+            &finer,
+            &worst.iter().map(|&i| queries[i].2).collect::<Vec<_>>(),
+            None,
+        );
+        for (&i, pt) in worst.iter().zip(&refined) {
+            let (altitude, elevation, q) = &queries[i];
+            let got = luminance(sky.evaluate(q).radiance);
+            eprintln!(
+                "refined: camera {altitude} m, sun {elevation}°, view {:.3?}: e {:+.1} % (σ {:.1} %) at {} samples, {:+.1} % (σ {:.1} %) at {}",
+                q.view(),
+                100.0 * (got - estimates[i][0]) / estimates[i][0],
+                100.0 * estimates[i][1] * got / (estimates[i][0] * estimates[i][0]),
+                samples,
+                100.0 * (got - pt[0]) / pt[0],
+                100.0 * pt[1] * got / (pt[0] * pt[0]),
+                samples * refine
+            );
+            estimates[i] = *pt;
+        }
+    }
     let mut day = Errors::default();
     let mut twilight = Errors::default();
     let mut by_sun: Vec<(f64, Errors)> = Vec::new();
@@ -1025,9 +1078,17 @@ fn precomputed_against_the_path_tracer() {
             100.0 * t[6]
         );
     }
-    // Issue 13's goals for rung 3 (measured at 4,096 samples: day 0.50 %, twilight 2.2 %).
+    // Issue 13's goals for rung 3 (measured at 4,096 samples: day 0.50 %, twilight 2.2 %;
+    // refined 16×, twilight max 19.8 % (σ 1.9 %)).
+    if refine > 1 {
+        assert!(
+            twilight.summary()[4] <= 0.30,
+            "twilight max {:.1} %",
+            100.0 * twilight.summary()[4]
+        );
+    }
     assert!(
-        day.summary()[0] <= 0.01,
+        day.values.is_empty() || day.summary()[0] <= 0.01,
         "day mean {:.2} %",
         100.0 * day.summary()[0]
     );
