@@ -106,7 +106,8 @@ fn light_march(c: &mut Criterion) {
     group.finish();
 
     let mut group = c.benchmark_group("light_estimate_per_sample");
-    let cone = ConeSettings::new(1e9, 0.0, ConeWeights::Partitioned).expect("valid cone");
+    let cone = ConeSettings::new(cloudlight::cone::MAX_LENGTH, 0.0, ConeWeights::Partitioned)
+        .expect("valid cone");
     let ray = rays[rays.len() / 2 + 8 * 16 + 8];
     group.bench_function("cone_6+1_partitioned", |b| {
         b.iter(|| {
