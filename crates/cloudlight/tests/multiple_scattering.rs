@@ -12,12 +12,25 @@
 //! standard error is the mean's) and computed by `march::march_view` over every pixel
 //! (256 view steps, a 64-step full light march: the octaves are what is measured).
 //!
-//! * `octaves_follow_the_monte_carlo_reference_on_a_small_cumulus` (CI, debug ~1 min):
-//!   the same construction on a 32×32×16 cumulus (300 steps) at σ_t 0.02 /m, 24 × 18
-//!   pixels, fewer paths; fails if the 8-octave march leaves 10 % (+ 3σ) of the reference
-//!   or if single scattering alone stops being darker than it.
-//! * `octaves_against_the_monte_carlo_reference_on_the_cumulus` (`#[ignore]`, minutes):
-//!   the full case, printing every figure;
+//! Measured (the ignored test below, release, this machine's 2 shared cores, 2,000,000
+//! paths): MC 0.006558 ± 0.71 %, orders ≥ 2 are 89.3 % of it; the march's single
+//! scattering is the exact single-scattering reference to −0.01 %; the usual octave
+//! defaults a = b = c = 0.5 are 72.7 / 52.1 / 43.9 % too dark at N = 2 / 4 / 8: issue 14's
+//! goal is **not** met by them. N = 8, a = 0.5, b = 0.65, c = 0.5 (still a ≤ b) gives
+//! +0.4 % on this case, +7.7 % with the camera facing the sun, −12.3 % with the sun behind
+//! it, and +68 % at sun 10° (where a = b = c = 0.5 gives −9.7 %): a fit to one sun
+//! elevation, not a model that holds across them.
+//!
+//! * `octaves_follow_the_monte_carlo_reference_at_ci_size` (CI, ~8 s in debug): the goal
+//!   case at a 32 × 24 image, 200,000 paths, 128 view / 32 light steps; fails if the
+//!   march's single scattering leaves the path tracer's order 1, if single scattering
+//!   stops being less than half the total, or if N = 8, a = 0.5, b = 0.65, c = 0.5 leaves
+//!   10 % (+ 3σ) of the reference.
+//! * `octaves_against_the_monte_carlo_reference_on_the_cumulus` (`#[ignore]`, ~35 s in
+//!   release): the goal case and three others (camera facing the sun, sun behind the camera,
+//!   sun 10°) at 64 × 48, every setting tried (`CLOUDLIGHT_OCTAVE_SCAN=1` adds 16 more,
+//!   `CLOUDLIGHT_MC_SAMPLES` sets the paths), and the exact single-scattering reference over
+//!   the goal image; prints markdown tables;
 //!   `cargo test --release -p cloudlight --test multiple_scattering -- --ignored --nocapture`.
 
 use std::num::NonZeroU32;
@@ -27,7 +40,9 @@ use cloudlight::march::{
     Jitter, LightMarch, Lighting, MarchConfig, MarchSettings, Octaves, march_view,
 };
 use cloudlight::reference::path_tracer::{PathTracerSettings, RaySample, estimate};
+use cloudlight::reference::single_scattering::{SingleScatteringSettings, single_scattering};
 use cloudlight::reference::{Phase, Sun};
+use rayon::prelude::*;
 
 /// The march's default phase, for both sides.
 const G_FORWARD: f64 = 0.8;
@@ -344,6 +359,7 @@ fn octaves_against_the_monte_carlo_reference_on_the_cumulus() {
         ("sun 10°, camera at azimuth 150°", 10.0, 150.0),
     ];
     let mut goal = None;
+    let mut goal_order_1 = (0.0, 0.0);
     for (k, (name, elevation, azimuth)) in cases.into_iter().enumerate() {
         let sun =
             Sun::from_elevation_azimuth(f64::to_radians(elevation), 30f64.to_radians(), [1.0; 3])
@@ -385,10 +401,70 @@ fn octaves_against_the_monte_carlo_reference_on_the_cumulus() {
                 );
             }
             if k == 0 {
+                goal_order_1 = (mc.single, mc.single_se);
                 goal = goal.or((o == octaves(8, 0.5, 0.65, 0.5)).then_some((rel, mc.se / mc.mean)));
             }
         }
     }
+    // The exact single-scattering reference over the goal case's image: the march's single
+    // scattering (256 view / 64 light steps) and the path tracer's order 1 against it.
+    let sun = sun_60();
+    let (eye, rays) = camera_rays(&case.volume, 8000.0, 20.0, 150.0, 64, 48);
+    let start = std::time::Instant::now();
+    let phase = Phase::DualLobe {
+        g_forward: G_FORWARD,
+        g_back: G_BACK,
+        back_weight: BACK_WEIGHT,
+    };
+    let results: Vec<_> = rays
+        .par_iter()
+        .map(|&d| {
+            single_scattering(
+                &case.volume,
+                eye,
+                d,
+                &sun,
+                &phase,
+                &SingleScatteringSettings::default(),
+            )
+            .unwrap()
+        })
+        .collect();
+    let exact = results.iter().map(|r| r.radiance[0]).sum::<f64>() / rays.len() as f64;
+    let error = results
+        .iter()
+        .map(|r| r.integral.error_estimate)
+        .sum::<f64>()
+        / rays.len() as f64;
+    let converged = results.iter().filter(|r| r.integral.converged).count();
+    let evaluations: usize = results.iter().map(|r| r.integral.evaluations).sum();
+    let march_single = march_mean(
+        &case.volume,
+        sun.to_sun(),
+        eye,
+        &rays,
+        Octaves::SINGLE,
+        256,
+        64,
+    );
+    eprintln!(
+        "\nsingle-scattering reference over the goal image: {exact:.6} (reached integral error \
+         {error:.1e} per pixel, {converged}/{} pixels converged, {evaluations} evaluations, {:.1} s); \
+         march 1 octave {march_single:.6} ({:+.2} %)",
+        rays.len(),
+        start.elapsed().as_secs_f64(),
+        100.0 * (march_single / exact - 1.0),
+    );
+    eprintln!(
+        "path tracer order 1 {:.6} ± {:.6} vs the reference: {:+.1} σ",
+        goal_order_1.0,
+        goal_order_1.1,
+        (goal_order_1.0 - exact) / goal_order_1.1
+    );
+    assert!((goal_order_1.0 - exact).abs() < 3.5 * goal_order_1.1);
+    assert_eq!(converged, rays.len());
+    assert!((march_single / exact - 1.0).abs() < 0.01);
+
     let (rel, se) = goal.unwrap();
     assert!(
         rel.abs() < 0.10 + 3.0 * se,
