@@ -127,6 +127,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/shell.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "cloudlight::noise_bake_pass",
+        source: include_str!("../shaders/noise_bake_pass.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "cloudlight::slice_propagation",
         source: include_str!("../shaders/slice_propagation.wgsl"),
     },

@@ -252,6 +252,50 @@ pub fn worley_channels_fbm<F: Real>(c: [F; 3]) -> F {
         + F::of(WORLEY_FBM_WEIGHTS[2]) * c[2]
 }
 
+/// The tile coordinate of texel `texel` of a `size`³ noise texture: its centre,
+/// `(i + ½)/size` on each axis (in [0, 1), period 1). WGSL twin
+/// `noise_texel_coordinate` (in `noise_bake_pass.wgsl`).
+pub fn noise_texel_coordinate<F: Real>(texel: [u32; 3], size: u32) -> [F; 3] {
+    let n = F::of(f64::from(size));
+    texel.map(|i| (F::of(f64::from(i)) + F::of(0.5)) / n)
+}
+
+/// A texel's value in an 8-bit UNORM texture: `round(clamp(v, 0, 1)·255)` (what the
+/// bake pass's `rgba8unorm` store does to the f32 it writes).
+pub fn unorm8(v: f32) -> u8 {
+    (v.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+/// The f32 twin of the GPU bake's shape texture: [`cloud_shape_noise`] at every texel
+/// centre of a `size`³ tile, x fastest, then y, then z.
+pub fn bake_shape_noise(seed: u32, size: u32) -> Vec<[f32; 4]> {
+    let mut texels = Vec::with_capacity((size as usize).pow(3));
+    for z in 0..size {
+        for y in 0..size {
+            for x in 0..size {
+                let u = noise_texel_coordinate::<f32>([x, y, z], size);
+                texels.push(cloud_shape_noise(u, seed));
+            }
+        }
+    }
+    texels
+}
+
+/// The f32 twin of the GPU bake's detail texture: [`cloud_detail_noise`] at every texel
+/// centre of a `size`³ tile, x fastest.
+pub fn bake_detail_noise(seed: u32, size: u32) -> Vec<[f32; 3]> {
+    let mut texels = Vec::with_capacity((size as usize).pow(3));
+    for z in 0..size {
+        for y in 0..size {
+            for x in 0..size {
+                let u = noise_texel_coordinate::<f32>([x, y, z], size);
+                texels.push(cloud_detail_noise(u, seed));
+            }
+        }
+    }
+    texels
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -399,3 +399,109 @@ fn bad_settings_are_typed_errors_naming_the_field_and_value() {
         "weather grid coverage[1] = NaN: must be in [0, 1]",
     );
 }
+
+/// The GPU bake against its f32 twin, every texel of both textures (skipped without an
+/// adapter unless SKYSCAPE_REQUIRE_GPU=1, see skyscape-harness). A power-of-two and a
+/// non-power-of-two size (whose texel coordinate's division WGSL may round differently).
+#[cfg(feature = "gpu")]
+#[test]
+fn baked_noise_matches_the_f32_twin() {
+    use cloudlight::gpu::{NoiseBake, NoiseBakeSettings};
+    use cloudlight::noise::{bake_detail_noise, bake_shape_noise, unorm8};
+    let Some(gpu) = skyscape_harness::gpu_or_skip("baked_noise_matches_the_f32_twin") else {
+        return;
+    };
+    let mut bake = NoiseBake::new(&gpu.device).unwrap();
+    for settings in [
+        NoiseBakeSettings {
+            seed: 77,
+            shape_size: 32,
+            detail_size: 16,
+        },
+        NoiseBakeSettings {
+            seed: 5,
+            shape_size: 20,
+            detail_size: 9,
+        },
+    ] {
+        bake.prepare(&gpu.device, &gpu.queue, settings).unwrap();
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        bake.encode(&mut encoder).unwrap();
+        gpu.queue.submit([encoder.finish()]);
+        let shape =
+            skyscape_harness::read_texture(gpu, "shape", bake.shape_texture().unwrap()).unwrap();
+        let detail =
+            skyscape_harness::read_texture(gpu, "detail", bake.detail_texture().unwrap()).unwrap();
+        let twin_shape: Vec<u8> = bake_shape_noise(settings.seed, settings.shape_size)
+            .into_iter()
+            .flat_map(|t| t.map(unorm8))
+            .collect();
+        let twin_detail: Vec<u8> = bake_detail_noise(settings.seed, settings.detail_size)
+            .into_iter()
+            .flat_map(|t| [unorm8(t[0]), unorm8(t[1]), unorm8(t[2]), 255])
+            .collect();
+        for (name, gpu_bytes, twin) in [
+            ("shape", &shape, &twin_shape),
+            ("detail", &detail, &twin_detail),
+        ] {
+            assert_eq!(gpu_bytes.len(), twin.len(), "{name}");
+            let differ = gpu_bytes.iter().zip(twin).filter(|(a, b)| a != b).count();
+            let worst = gpu_bytes
+                .iter()
+                .zip(twin)
+                .map(|(&a, &b)| a.abs_diff(b))
+                .max()
+                .unwrap();
+            println!(
+                "{name} {}³ seed {}: {differ} of {} channel bytes differ from the f32 twin, worst {worst} LSB",
+                if name == "shape" {
+                    settings.shape_size
+                } else {
+                    settings.detail_size
+                },
+                settings.seed,
+                twin.len()
+            );
+            // The GPU's noise is within ~1e-6 of the twin's (parity cases), so a byte can
+            // differ only where the value sits on a rounding boundary of v·255.
+            assert!(worst <= 1, "{name}: worst {worst} LSB");
+            assert!(differ * 1000 <= twin.len(), "{name}: {differ} bytes differ");
+        }
+    }
+}
+
+/// The full-size bake's GPU time (128³ + 32³), median of three; prints the adapter.
+/// Ignored: seconds to minutes on a CPU adapter. `cargo test -p cloudlight --test shell
+/// -- --ignored --nocapture noise_bake_time`.
+#[cfg(feature = "gpu")]
+#[test]
+#[ignore]
+fn noise_bake_time() {
+    use cloudlight::gpu::{NoiseBake, NoiseBakeSettings};
+    let Some(gpu) = skyscape_harness::gpu_or_skip("noise_bake_time") else {
+        return;
+    };
+    let mut bake = NoiseBake::new(&gpu.device).unwrap();
+    for settings in [
+        NoiseBakeSettings {
+            shape_size: 32,
+            detail_size: 32,
+            ..NoiseBakeSettings::default()
+        },
+        NoiseBakeSettings::default(),
+    ] {
+        bake.prepare(&gpu.device, &gpu.queue, settings).unwrap();
+        let seconds = skyscape_harness::median_pass_seconds(gpu, 3, |encoder, timer, span| {
+            bake.encode_timed(encoder, Some(timer.compute_writes(span)))
+                .unwrap();
+        })
+        .unwrap();
+        println!(
+            "noise bake {}³ + {}³ on {}: {:.1} ms (median of 3)",
+            settings.shape_size,
+            settings.detail_size,
+            skyscape_harness::describe_adapter(&gpu.info),
+            seconds * 1e3
+        );
+    }
+}

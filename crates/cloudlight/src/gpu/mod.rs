@@ -18,6 +18,12 @@ pub mod billboard;
 mod march;
 pub use march::{MARCH_WORKGROUP_SIZE, MarchGpuError, MarchPass, compose_march_shader};
 
+mod noise_bake;
+pub use noise_bake::{
+    NOISE_BAKE_WORKGROUP_SIZE, NOISE_TEXTURE_FORMAT, NoiseBake, NoiseBakeError, NoiseBakeSettings,
+    compose_noise_bake_shader,
+};
+
 mod shadow_map;
 pub use shadow_map::{ShadowMapGpuError, ShadowMapPass, compose_shadow_map_shader};
 
