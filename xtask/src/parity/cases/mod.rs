@@ -15,6 +15,7 @@ mod atmos_single_scattering_cases;
 mod celestial_cases;
 mod cloudlight_billboard_cases;
 mod cloudlight_cases;
+mod cloudlight_march_cases;
 mod cloudlight_shadow_cases;
 mod cloudlight_shell_cases;
 mod cloudsim_cases;
@@ -370,6 +371,7 @@ pub fn all() -> Vec<Case> {
         terrain_cases::cases(),
         cloudlight_cases::cases(),
         cloudlight_cases::cone_cases(),
+        cloudlight_march_cases::cases(),
         cloudlight_shadow_cases::cases(),
         cloudlight_shell_cases::cases(),
         cloudlight_billboard_cases::cases(),
