@@ -27,6 +27,11 @@
 //! * [`billboard`]: seed 002's billboards, the volume's dense cells as soft splats lit by
 //!   the propagation, sorted back to front; a CPU rasteriser twin of the GPU pass
 //!   [`gpu::billboard::BillboardPass`].
+//! * [`shadow_map`](mod@shadow_map): the ground's cloud shadow map (seed 000's
+//!   `clouds_shadow`), the sun's transmittance through any [`DensityField`] from every
+//!   texel of a ground grid, at any sun elevation: the march written once over the float
+//!   type (f32: the twin of the GPU pass [`gpu::ShadowMapPass`], an R32Float texture) and
+//!   the exact f64 map of a volume.
 //! * [`slice::slice_attenuation`] (seed 002's per-texel attenuation) and
 //!   [`jitter::bayer_jitter_4x4`] (seed 003's ordered march jitter).
 //!
@@ -34,8 +39,8 @@
 //! embedded as [`WGSL_MODULES`] (`#import cloudlight::<name>`) and validated with naga at
 //! build time.
 //!
-//! Not here yet (issue 14): the ray-marched cloud shell and its noise, cloud
-//! shadow maps, multiple scattering, `xtask tradeoff cloudlight`.
+//! Not here yet (issue 14): the ray-marched cloud shell and its noise, multiple
+//! scattering, `xtask tradeoff cloudlight`.
 //!
 //! ```
 //! use cloudlight::CloudVolume;
@@ -81,14 +86,20 @@ pub use volume::{CloudVolume, VolumeError};
 /// assert_eq!(light.len(), 64);
 /// ```
 pub mod prelude {
+    pub use crate::cone::{ConeError, ConeSettings, LightRay, MarchSettings};
     pub use crate::cone::{
         ConeWeights, beer_lambert, box_exit_distance, cone_optical_depth, cone_sample,
         dual_lobe_henyey_greenstein, march_optical_depth, powder,
     };
     #[cfg(feature = "gpu")]
+    pub use crate::gpu::ShadowMapPass;
+    #[cfg(feature = "gpu")]
     pub use crate::gpu::SlicePropagation;
     pub use crate::propagate::{
         Resampling, SliceError, SliceMode, SlicePlan, propagate, propagate_f32, propagate_f64,
+    };
+    pub use crate::shadow_map::{
+        ShadowGrid, ShadowMapError, ShadowMapPlan, shadow_map, shadow_map_reference,
     };
     pub use crate::shell::{
         CloudShell, ProceduralWeather, ShellError, ShellSettings, WeatherGrid, WeatherMap,
