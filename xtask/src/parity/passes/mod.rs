@@ -7,6 +7,7 @@ use super::compare::Tolerance;
 
 mod atmos_drop_in_passes;
 mod atmos_passes;
+mod cloudlight_noise_passes;
 mod cloudlight_passes;
 mod cloudsim_passes;
 mod terrain_passes;
@@ -54,6 +55,7 @@ pub fn all() -> Vec<PassCase> {
         terrain_passes::cases(),
         cloudsim_passes::cases(),
         cloudlight_passes::cases(),
+        cloudlight_noise_passes::cases(),
         atmos_passes::cases(),
         atmos_drop_in_passes::cases(),
     ]
