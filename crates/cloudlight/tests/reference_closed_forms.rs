@@ -518,3 +518,64 @@ fn every_order_agrees_with_forward_photon_tracing_on_a_slab() {
         t.mean[0]
     );
 }
+
+/// The shell's noise makes both sides slow in debug (release: reference 2.7 s, 20,000
+/// paths 1.8 s); measured with `SHELL_SAMPLES=400000`: reference 0.0643096 (475
+/// evaluations, reached error 2.7e-7), path tracer order 1 0.064290 ± 0.00012 (−0.2 σ).
+/// `cargo test --release -p cloudlight --test reference_closed_forms -- --ignored --nocapture`
+#[test]
+#[ignore = "~5 s in release, a minute in debug: cargo test --release -p cloudlight --test reference_closed_forms -- --ignored --nocapture"]
+fn path_tracer_order_one_is_the_single_scattering_reference_in_the_procedural_shell() {
+    // Seed 003's shell (cumulus over the Earth, 62.5 m finest noise lattice) with a thin
+    // σ_t 0.004 /m to keep delta tracking cheap in debug; looking up at 60° from the ground.
+    let r = 6_360_000.0;
+    let mut settings = cloudlight::ShellSettings::cumulus_over(r);
+    settings.extinction_per_density = 0.004;
+    let shell = cloudlight::CloudShell::new(&atmos::Atmosphere::earth(), settings).unwrap();
+    assert_eq!(shell.max_panel_length(), 62.5);
+    let sun = Sun::from_elevation_azimuth(40f64.to_radians(), 1.0, [1.0; 3]).unwrap();
+    let phase = Phase::HenyeyGreenstein { g: 0.6 };
+    let origin = [0.0, 0.0, r + 10.0];
+    let direction = from_mu_phi(60f64.to_radians().sin(), 0.3);
+    let start = std::time::Instant::now();
+    let reference = single_scattering(
+        &shell,
+        origin,
+        direction,
+        &sun,
+        &phase,
+        &SingleScatteringSettings {
+            relative_tolerance: 1e-5,
+            optical_depth_tolerance: 1e-7,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let reference_s = start.elapsed().as_secs_f64();
+    assert!(reference.integral.converged, "{:?}", reference.integral);
+    assert!(reference.radiance[0] > 0.0);
+    let start = std::time::Instant::now();
+    let settings = PathTracerSettings {
+        samples: std::env::var("SHELL_SAMPLES")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(20_000),
+        max_order: Some(1),
+        ..Default::default()
+    };
+    let mc = path_tracer::radiance(&shell, origin, direction, &sun, &phase, &settings).unwrap();
+    let (m, se) = (mc.total.mean[0], mc.total.standard_error[0]);
+    eprintln!(
+        "shell: reference {:.6e} ({} evaluations, error {:.1e}, {reference_s:.1} s), MC order 1 \
+         {m:.6e} ± {se:.1e} ({:.1} s)",
+        reference.radiance[0],
+        reference.integral.evaluations,
+        reference.integral.error_estimate,
+        start.elapsed().as_secs_f64()
+    );
+    assert!(
+        (m - reference.radiance[0]).abs() < 3.5 * se,
+        "MC {m} ± {se} vs reference {}",
+        reference.radiance[0]
+    );
+}

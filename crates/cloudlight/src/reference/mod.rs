@@ -280,6 +280,30 @@ pub fn adaptive_simpson(
     total
 }
 
+/// Panels of at most `max_panel` covering `length` (at least 1; capped at 2²⁰).
+pub(crate) fn initial_panels(length: f64, max_panel: f64) -> usize {
+    let n = (length / max_panel).ceil();
+    if n.is_finite() && n >= 1.0 {
+        n.min(f64::from(1u32 << 20)) as usize
+    } else {
+        1
+    }
+}
+
+/// The procedural shell: its density is dimensionless in [0, 1] (the shell's module
+/// documentation), so 1 bounds it; the first panels are no longer than the finest noise
+/// lattice spacing, `min(shape_period/128, detail_period/32)`.
+impl ReferenceField for crate::CloudShell {
+    fn density_bound(&self) -> f64 {
+        1.0
+    }
+
+    fn max_panel_length(&self) -> f64 {
+        let s = self.settings();
+        (s.shape_period / 128.0).min(s.detail_period / 32.0)
+    }
+}
+
 /// A directional sun: the unit direction toward it and its irradiance (RGB, on a surface
 /// facing it, W/m² per channel or any unit: radiances come out in it per steradian).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -453,7 +477,8 @@ pub trait ReferenceField: DensityField<f64> + Sync {
     /// Optical depth along `origin + t·direction`, `t ∈ [0, length]` (unit `direction`,
     /// `length = ∞` to the field's end), to within `tolerance` (absolute). The default is
     /// an adaptive Simpson march of every [`ray_spans`](DensityField::ray_spans) piece
-    /// (split at [`breakpoints`](Self::breakpoints), 8 panels each) with Richardson's
+    /// (split at [`breakpoints`](Self::breakpoints), then into at least 8 panels no longer
+    /// than [`max_panel_length`](Self::max_panel_length)) with Richardson's
     /// convergence test, at most [`OPTICAL_DEPTH_BUDGET`] evaluations; its reached error is in
     /// the result.
     fn reference_optical_depth(
@@ -491,12 +516,19 @@ pub trait ReferenceField: DensityField<f64> + Sync {
                     w[0],
                     w[1],
                     share * (w[1] - w[0]) / whole,
-                    8,
+                    initial_panels(w[1] - w[0], self.max_panel_length()).max(8),
                     &mut budget,
                 ));
             }
         }
         Ok(total)
+    }
+
+    /// The longest first panel an adaptive quadrature of this field may start from,
+    /// metres: about its smallest feature, so that a convergence test cannot be fooled by
+    /// panels that all miss it (a noise field's lattice spacing). The default is ∞ (none).
+    fn max_panel_length(&self) -> f64 {
+        f64::INFINITY
     }
 
     /// The `t ∈ (t0, t1)` where the density along the ray may change formula (a grid's

@@ -9,11 +9,14 @@
 //! `τ_sun(x)` the optical depth from `x` toward the sun out of the field. Both optical
 //! depths come from [`ReferenceField::reference_optical_depth`] at every quadrature point
 //! (exact for a [`CloudVolume`](crate::CloudVolume)); the integral over `t` is adaptive
-//! Simpson on each piece between the field's breakpoints, refined until Richardson's error
+//! Simpson on each piece between the field's breakpoints (cut into panels no longer than
+//! its [`max_panel_length`](ReferenceField::max_panel_length)), refined until Richardson's error
 //! estimate is below `relative_tolerance` of a first estimate. The reached error is
 //! returned. No ground, black background.
 
-use super::{Integral, Phase, ReferenceError, ReferenceField, Sun, adaptive_simpson, unit};
+use super::{
+    Integral, Phase, ReferenceError, ReferenceField, Sun, adaptive_simpson, initial_panels, unit,
+};
 
 /// Settings of [`single_scattering`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -129,25 +132,49 @@ pub fn single_scattering<F: ReferenceField + ?Sized>(
         cuts.push(a);
         cuts.push(b);
         cuts.sort_by(f64::total_cmp);
-        pieces.extend(
-            cuts.windows(2)
-                .filter(|w| w[1] > w[0])
-                .map(|w| (w[0], w[1])),
-        );
+        for w in cuts.windows(2).filter(|w| w[1] > w[0]) {
+            let n = initial_panels(w[1] - w[0], field.max_panel_length());
+            let h = (w[1] - w[0]) / n as f64;
+            pieces.extend((0..n).map(|k| {
+                let end = if k + 1 == n {
+                    w[1]
+                } else {
+                    w[0] + (k + 1) as f64 * h
+                };
+                (w[0] + k as f64 * h, end)
+            }));
+        }
     }
 
-    // The integrand; an optical-depth error (none for valid input) is kept and returned.
+    // The view optical depth at each piece's start, accumulated piece by piece, so that an
+    // integrand evaluation integrates only from its piece's start.
+    let mut tau_start = Vec::with_capacity(pieces.len());
+    let mut tau = 0.0;
+    let mut previous = 0.0;
+    for &(a, _) in &pieces {
+        let from = [0, 1, 2].map(|i| origin[i] + previous * d[i]);
+        tau += field
+            .reference_optical_depth(from, d, a - previous, tol_tau)?
+            .value;
+        tau_start.push(tau);
+        previous = a;
+    }
+
+    // The integrand on piece `k`; an optical-depth error (none for valid input) is kept
+    // and returned.
     let mut failure = None;
-    let mut integrand = |t: f64| -> f64 {
+    let mut integrand = |k: usize, t: f64| -> f64 {
         let x = [0, 1, 2].map(|i| origin[i] + t * d[i]);
         let rho = field.density(x);
         if rho == 0.0 {
             return 0.0;
         }
-        let view = field.reference_optical_depth(origin, d, t, tol_tau);
+        let a = pieces[k].0;
+        let from = [0, 1, 2].map(|i| origin[i] + a * d[i]);
+        let view = field.reference_optical_depth(from, d, t - a, tol_tau);
         let light = field.reference_optical_depth(x, to_sun, f64::INFINITY, tol_tau);
         match (view, light) {
-            (Ok(v), Ok(l)) => sigma * rho * (-(v.value + l.value)).exp(),
+            (Ok(v), Ok(l)) => sigma * rho * (-(tau_start[k] + v.value + l.value)).exp(),
             (Err(e), _) | (_, Err(e)) => {
                 failure = Some(e);
                 0.0
@@ -157,16 +184,17 @@ pub fn single_scattering<F: ReferenceField + ?Sized>(
 
     // A first estimate (one Simpson panel per piece) sets the absolute tolerance.
     let mut first = 0.0;
-    for &(a, b) in &pieces {
-        first += (b - a) / 6.0 * (integrand(a) + 4.0 * integrand(0.5 * (a + b)) + integrand(b));
+    for (k, &(a, b)) in pieces.iter().enumerate() {
+        first +=
+            (b - a) / 6.0 * (integrand(k, a) + 4.0 * integrand(k, 0.5 * (a + b)) + integrand(k, b));
     }
     let total_length: f64 = pieces.iter().map(|&(a, b)| b - a).sum();
     let tolerance = settings.relative_tolerance * first.abs().max(1e-12);
     let mut integral = Integral::exact(0.0);
     let mut budget = settings.max_evaluations.saturating_sub(3 * pieces.len());
-    for &(a, b) in &pieces {
+    for (k, &(a, b)) in pieces.iter().enumerate() {
         integral.add(adaptive_simpson(
-            &mut integrand,
+            &mut |t| integrand(k, t),
             a,
             b,
             tolerance * (b - a) / total_length,
