@@ -130,6 +130,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/march_pass.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "cloudlight::march_shell_pass",
+        source: include_str!("../shaders/march_shell_pass.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "cloudlight::noise",
         source: include_str!("../shaders/noise.wgsl"),
     },

@@ -836,3 +836,15 @@ pub fn render_image<F: Real>(
     }
     out
 }
+
+/// A march result faded by `fade` in [0, 1] (e.g. a shell's horizon fade at the result's
+/// [`depth`](MarchResult::depth)): the cloud's radiance times `fade` and its opacity
+/// times `fade`, i.e. transmittance `1 − fade·(1 − T)`. The GPU shell pass applies it
+/// with [`CloudShell::horizon_fade`](crate::CloudShell::horizon_fade).
+pub fn faded<F: Real>(result: MarchResult<F>, fade: F) -> MarchResult<F> {
+    MarchResult {
+        radiance: result.radiance.map(|c| c * fade),
+        transmittance: F::one() - fade * (F::one() - result.transmittance),
+        depth: result.depth,
+    }
+}

@@ -13,8 +13,9 @@
 //! [`render_image::<f32>`](crate::march::render_image) on the same volume (whose density
 //! lookup is f64 rounded once; the shader's is f32).
 
-use crate::CloudVolume;
 use crate::march::{Jitter, LightMarch, Lighting, MarchResult, MarchSettings, PinholeCamera};
+use crate::shell::{ProceduralWeather, WeatherMap};
+use crate::{CloudShell, CloudVolume};
 
 /// Pixels per workgroup along each image axis.
 pub const MARCH_WORKGROUP_SIZE: u32 = 8;
@@ -49,6 +50,9 @@ pub enum MarchGpuError {
         /// `max_compute_workgroups_per_dimension`.
         limit: u32,
     },
+    /// The shell pass computes procedural weather only.
+    #[error("weather = Grid: the GPU shell pass supports procedural weather only")]
+    GridWeather,
     /// `encode` was called before `prepare`.
     #[error("encode before prepare: no image to march")]
     EncodeBeforePrepare,
@@ -107,27 +111,7 @@ fn params_words(
         lighting.ambient_radiance(),
         lighting.up(),
     );
-    let (mode, light_steps, cone_step, spread) = match c.light {
-        LightMarch::Full { steps } => (0u32, steps.get(), 0.0, 0.0),
-        LightMarch::Cone {
-            step,
-            spread,
-            weights,
-        } => (
-            match weights {
-                crate::cone::ConeWeights::Raw => 1,
-                crate::cone::ConeWeights::Partitioned => 2,
-            },
-            0,
-            step,
-            spread,
-        ),
-    };
-    let jitter = match c.jitter {
-        Jitter::None => 0u32,
-        Jitter::Bayer4x4 => 1,
-        Jitter::InterleavedGradient => 2,
-    };
+    let (mode, cone_step, spread, light_steps, jitter) = light_words(settings);
     [
         f(origin[0]),
         f(origin[1]),
@@ -366,24 +350,343 @@ impl MarchPass {
             .prepared
             .as_ref()
             .map_or(0, |p| p.size[0] as usize * p.size[1] as usize * 32);
-        if bytes.len() != expected || expected == 0 {
-            return Err(MarchGpuError::ReadbackSize {
-                got: bytes.len(),
-                expected,
+        decode_pixels(bytes, expected)
+    }
+}
+
+/// The composed WGSL of the shell march pass (entry point `march_shell_main`).
+pub fn compose_march_shell_shader() -> Result<String, skyscape_wgsl::ComposeError> {
+    crate::composer().compose_module("cloudlight::march_shell_pass")
+}
+
+/// The light march's mode word, cone step and spread, light steps; the jitter's word.
+fn light_words(settings: &MarchSettings) -> (u32, f64, f64, u32, u32) {
+    let c = settings.config();
+    let (mode, light_steps, cone_step, spread) = match c.light {
+        LightMarch::Full { steps } => (0u32, steps.get(), 0.0, 0.0),
+        LightMarch::Cone {
+            step,
+            spread,
+            weights,
+        } => (
+            match weights {
+                crate::cone::ConeWeights::Raw => 1,
+                crate::cone::ConeWeights::Partitioned => 2,
+            },
+            0,
+            step,
+            spread,
+        ),
+    };
+    let jitter = match c.jitter {
+        Jitter::None => 0u32,
+        Jitter::Bayer4x4 => 1,
+        Jitter::InterleavedGradient => 2,
+    };
+    (mode, cone_step, spread, light_steps, jitter)
+}
+
+/// The uniform block of `march_shell_pass.wgsl` (`ShellMarchParams`), as 64 words.
+fn shell_params_words(
+    shell: &CloudShell,
+    weather: &ProceduralWeather,
+    camera: &PinholeCamera,
+    size: [u32; 2],
+    settings: &MarchSettings,
+    lighting: &Lighting<f32>,
+) -> [u32; 64] {
+    let c = settings.config();
+    let s = shell.settings();
+    let f = |x: f64| (x as f32).to_bits();
+    let g = |x: f32| x.to_bits();
+    let [forward, right, up] = camera.basis();
+    let tan_half = camera.tan_half(size);
+    let origin = camera.origin();
+    let (sun, irr, amb, amb_up) = (
+        lighting.sun_direction(),
+        lighting.sun_irradiance(),
+        lighting.ambient_radiance(),
+        lighting.up(),
+    );
+    let (mode, cone_step, spread, light_steps, jitter) = light_words(settings);
+    [
+        f(origin[0]),
+        f(origin[1]),
+        f(origin[2]),
+        f(shell.planet_radius()),
+        f(forward[0]),
+        f(forward[1]),
+        f(forward[2]),
+        f(tan_half[0]),
+        f(right[0]),
+        f(right[1]),
+        f(right[2]),
+        f(tan_half[1]),
+        f(up[0]),
+        f(up[1]),
+        f(up[2]),
+        f(s.extinction_per_density),
+        f(s.inner_radius),
+        f(s.outer_radius),
+        f(s.shape_period),
+        f(s.detail_period),
+        f(s.erosion),
+        f(s.horizon_fade_start),
+        f(s.horizon_fade_end),
+        f(c.transmittance_epsilon),
+        f(weather.period),
+        f(weather.coverage_mean),
+        f(weather.coverage_contrast),
+        f(weather.cloud_type_mean),
+        f(weather.cloud_type_contrast),
+        f(c.albedo),
+        f(cone_step),
+        f(spread),
+        g(sun[0]),
+        g(sun[1]),
+        g(sun[2]),
+        f(c.g_forward),
+        g(irr[0]),
+        g(irr[1]),
+        g(irr[2]),
+        f(c.g_back),
+        g(amb[0]),
+        g(amb[1]),
+        g(amb[2]),
+        f(c.back_weight),
+        g(amb_up[0]),
+        g(amb_up[1]),
+        g(amb_up[2]),
+        0,
+        f(c.octaves.a),
+        f(c.octaves.b),
+        f(c.octaves.c),
+        0,
+        s.seed,
+        weather.seed,
+        weather.cells,
+        c.view_steps,
+        size[0],
+        size[1],
+        jitter,
+        mode,
+        light_steps,
+        c.octaves.count,
+        u32::from(c.powder),
+        c.ambient_steps,
+    ]
+}
+
+const SHELL_PARAMS_BYTES: u64 = 256;
+
+#[derive(Debug)]
+struct PreparedShell {
+    bind_group: wgpu::BindGroup,
+    workgroups: [u32; 2],
+    size: [u32; 2],
+    image: wgpu::Buffer,
+    _params: wgpu::Buffer,
+}
+
+/// The view march of a procedural [`CloudShell`] on a GPU
+/// (`shaders/cloudlight/march_shell_pass.wgsl`): the same output layout as
+/// [`MarchPass`], each pixel faded toward the horizon at its depth. The f32 CPU twin is
+/// [`render_image::<f32>`](crate::march::render_image) on the shell, each pixel then
+/// [`faded`](crate::march::faded) by [`CloudShell::horizon_fade`] of its depth. The camera
+/// is planet-centred (metres); the weather must be [`WeatherMap::Procedural`].
+#[derive(Debug)]
+pub struct MarchShellPass {
+    pipeline: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+    prepared: Option<PreparedShell>,
+}
+
+impl MarchShellPass {
+    /// Builds the pipeline on `device`.
+    pub fn new(device: &wgpu::Device) -> Result<Self, MarchGpuError> {
+        let source = compose_march_shell_shader()?;
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("cloudlight::march_shell_pass"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let entry = |binding: u32, ty: wgpu::BufferBindingType, min: Option<u64>| {
+            wgpu::BindGroupLayoutEntry {
+                binding,
+                visibility: wgpu::ShaderStages::COMPUTE,
+                ty: wgpu::BindingType::Buffer {
+                    ty,
+                    has_dynamic_offset: false,
+                    min_binding_size: min.and_then(wgpu::BufferSize::new),
+                },
+                count: None,
+            }
+        };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("cloudlight march shell"),
+            entries: &[
+                entry(
+                    0,
+                    wgpu::BufferBindingType::Uniform,
+                    Some(SHELL_PARAMS_BYTES),
+                ),
+                entry(
+                    1,
+                    wgpu::BufferBindingType::Storage { read_only: false },
+                    None,
+                ),
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("cloudlight march shell"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("cloudlight::march_shell_main"),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some("march_shell_main"),
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            cache: None,
+        });
+        Ok(Self {
+            pipeline,
+            layout,
+            prepared: None,
+        })
+    }
+
+    /// Uploads the shell, camera, settings and lighting, creates the output buffer
+    /// (`size[0] × size[1]` pixels) and the bind group. Takes effect at the next submit.
+    #[allow(clippy::too_many_arguments)] // device, queue and the twin's five inputs
+    pub fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        shell: &CloudShell,
+        camera: &PinholeCamera,
+        size: [u32; 2],
+        settings: &MarchSettings,
+        lighting: &Lighting<f32>,
+    ) -> Result<(), MarchGpuError> {
+        let WeatherMap::Procedural(weather) = &shell.settings().weather else {
+            return Err(MarchGpuError::GridWeather);
+        };
+        let limits = device.limits();
+        let mut workgroups = [0u32; 2];
+        for (k, (field, value)) in ["size.x", "size.y"].into_iter().zip(size).enumerate() {
+            let groups = value.div_ceil(MARCH_WORKGROUP_SIZE);
+            let limit = limits.max_compute_workgroups_per_dimension;
+            if value == 0 || groups > limit {
+                return Err(MarchGpuError::ImageSize {
+                    field,
+                    value,
+                    limit,
+                });
+            }
+            workgroups[k] = groups;
+        }
+        let limit = limits.max_storage_buffer_binding_size;
+        let image_bytes = u64::from(size[0]) * u64::from(size[1]) * 32;
+        if image_bytes > limit {
+            return Err(MarchGpuError::BufferTooLarge {
+                what: "image",
+                bytes: image_bytes,
+                limit,
             });
         }
-        Ok(bytes
-            .chunks_exact(32)
-            .map(|b| {
-                let w: [f32; 8] = std::array::from_fn(|k| {
-                    f32::from_ne_bytes([b[4 * k], b[4 * k + 1], b[4 * k + 2], b[4 * k + 3]])
-                });
-                MarchResult {
-                    radiance: [w[0], w[1], w[2]],
-                    transmittance: w[3],
-                    depth: w[4],
-                }
-            })
-            .collect())
+        let words = shell_params_words(shell, weather, camera, size, settings, lighting);
+        let params = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("cloudlight march shell params"),
+            size: SHELL_PARAMS_BYTES,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        queue.write_buffer(&params, 0, bytemuck::cast_slice(&words));
+        let image = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("cloudlight march shell image"),
+            size: image_bytes,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("cloudlight march shell"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: params.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: image.as_entire_binding(),
+                },
+            ],
+        });
+        self.prepared = Some(PreparedShell {
+            bind_group,
+            workgroups,
+            size,
+            image,
+            _params: params,
+        });
+        Ok(())
     }
+
+    /// Records the march's dispatch into `encoder`.
+    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder) -> Result<(), MarchGpuError> {
+        let prepared = self
+            .prepared
+            .as_ref()
+            .ok_or(MarchGpuError::EncodeBeforePrepare)?;
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("cloudlight march shell"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &prepared.bind_group, &[]);
+        pass.dispatch_workgroups(prepared.workgroups[0], prepared.workgroups[1], 1);
+        Ok(())
+    }
+
+    /// The output buffer (as [`MarchPass`]'s); `None` before `prepare`.
+    pub fn image_buffer(&self) -> Option<&wgpu::Buffer> {
+        self.prepared.as_ref().map(|p| &p.image)
+    }
+
+    /// The output buffer's size in bytes (0 before `prepare`).
+    pub fn image_size(&self) -> u64 {
+        self.prepared.as_ref().map_or(0, |p| p.image.size())
+    }
+
+    /// Turns the output buffer's bytes into one [`MarchResult`] per pixel (x fastest).
+    pub fn decode(&self, bytes: &[u8]) -> Result<Vec<MarchResult<f32>>, MarchGpuError> {
+        let expected = self
+            .prepared
+            .as_ref()
+            .map_or(0, |p| p.size[0] as usize * p.size[1] as usize * 32);
+        decode_pixels(bytes, expected)
+    }
+}
+
+fn decode_pixels(bytes: &[u8], expected: usize) -> Result<Vec<MarchResult<f32>>, MarchGpuError> {
+    if bytes.len() != expected || expected == 0 {
+        return Err(MarchGpuError::ReadbackSize {
+            got: bytes.len(),
+            expected,
+        });
+    }
+    Ok(bytes
+        .chunks_exact(32)
+        .map(|b| {
+            let w: [f32; 8] = std::array::from_fn(|k| {
+                f32::from_ne_bytes([b[4 * k], b[4 * k + 1], b[4 * k + 2], b[4 * k + 3]])
+            });
+            MarchResult {
+                radiance: [w[0], w[1], w[2]],
+                transmittance: w[3],
+                depth: w[4],
+            }
+        })
+        .collect())
 }

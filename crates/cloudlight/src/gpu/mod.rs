@@ -16,7 +16,10 @@ use crate::propagate::{Resampling, SliceMode, SlicePlan};
 pub mod billboard;
 
 mod march;
-pub use march::{MARCH_WORKGROUP_SIZE, MarchGpuError, MarchPass, compose_march_shader};
+pub use march::{
+    MARCH_WORKGROUP_SIZE, MarchGpuError, MarchPass, MarchShellPass, compose_march_shader,
+    compose_march_shell_shader,
+};
 
 mod noise_bake;
 pub use noise_bake::{
