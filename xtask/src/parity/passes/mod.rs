@@ -9,6 +9,7 @@ mod atmos_drop_in_passes;
 mod atmos_passes;
 mod cloudlight_noise_passes;
 mod cloudlight_passes;
+mod cloudlight_shadow_passes;
 mod cloudsim_passes;
 mod terrain_passes;
 
@@ -56,6 +57,7 @@ pub fn all() -> Vec<PassCase> {
         cloudsim_passes::cases(),
         cloudlight_passes::cases(),
         cloudlight_noise_passes::cases(),
+        cloudlight_shadow_passes::cases(),
         atmos_passes::cases(),
         atmos_drop_in_passes::cases(),
     ]
