@@ -282,7 +282,67 @@ pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, Rend
                 }
             });
     }
+    if let Some(cloud) = &scene.volume_cloud {
+        composite_volume_cloud(scene, cloud, precomputed.as_ref(), &mut out)?;
+    }
     Ok(out)
+}
+
+/// The twin of the GPU's march and volume-cloud composite (`crate::volume_clouds`):
+/// each pixel's f32 march through the scene's cloud, drawn where its depth is nearer
+/// than the terrain, seen through the air (the precomputed rung's aerial-perspective
+/// table, else the segment model) over what is behind it.
+fn composite_volume_cloud(
+    scene: &PreparedScene,
+    cloud: &crate::volume_clouds::PreparedVolume,
+    precomputed: Option<&PrecomputedFrame<'_>>,
+    out: &mut [PixelRadiance],
+) -> Result<(), RenderError> {
+    use crate::volume_clouds::{cloud_in_front, cloud_through_air, march_pixel, pinhole_camera};
+    let camera = &scene.camera;
+    let size = [camera.width, camera.height];
+    let pinhole = pinhole_camera(camera, scene.atmosphere.planet_radius)?;
+    out.par_chunks_mut(camera.width as usize)
+        .enumerate()
+        .try_for_each(|(row, pixels)| {
+            for (column, pixel) in pixels.iter_mut().enumerate() {
+                let xy = [column as u32, row as u32];
+                let result = march_pixel(cloud, &pinhole, size, xy);
+                if !cloud_in_front(&result, pixel.terrain_distance.unwrap_or(f32::INFINITY)) {
+                    continue;
+                }
+                let view = atmos::frame::frame_view_direction(xy, camera);
+                let (air_transmittance, air_radiance) = match precomputed {
+                    Some(p) => {
+                        let offset = view.map(|v| v * result.depth);
+                        let segment =
+                            atmos::lut::drop_in::aerial_perspective(p.luts, &p.frame, offset);
+                        (segment.transmittance, segment.radiance)
+                    }
+                    None => {
+                        let view = DVec3::from_array(view.map(f64::from)).normalize();
+                        let query = atmos::SkyQuery::with_max_distance(
+                            scene.atmosphere.planet_radius,
+                            scene.camera_position,
+                            view,
+                            scene.sun,
+                            f64::from(result.depth),
+                        )
+                        .map_err(atmos_error)?;
+                        let air = scene.segment_model.evaluate(&query);
+                        (
+                            air.transmittance.map(|t| t as f32),
+                            air.radiance.map(|l| l as f32),
+                        )
+                    }
+                };
+                let seen = cloud_through_air(&result, air_transmittance, air_radiance);
+                for (value, s) in pixel.radiance.iter_mut().zip(seen) {
+                    *value = s + result.transmittance * *value;
+                }
+            }
+            Ok::<(), RenderError>(())
+        })
 }
 
 /// The scene on the CPU, tone-mapped and dithered to RGBA8.

@@ -26,6 +26,14 @@ pub enum RenderError {
     Celestial(#[from] celestial::CelestialError),
     #[error("WGSL composition: {0}")]
     Shader(#[from] skyscape_wgsl::ComposeError),
+    /// `cloudlight` rejected the volume cloud's camera or lighting (its message names
+    /// the field and value).
+    #[error("cloudlight: {0}")]
+    VolumeCloud(#[from] cloudlight::march::MarchError),
+    /// `cloudlight`'s GPU march pass failed (a size beyond the device's limits).
+    #[cfg(feature = "gpu")]
+    #[error("cloudlight march pass: {0}")]
+    MarchPass(#[from] cloudlight::gpu::MarchGpuError),
 }
 
 pub(crate) fn check(

@@ -26,6 +26,7 @@ pub mod scene;
 pub mod terrain_mesh;
 pub mod terrain_shading;
 pub mod tonemap;
+pub mod volume_clouds;
 
 pub use error::RenderError;
 

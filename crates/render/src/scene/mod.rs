@@ -186,12 +186,82 @@ pub struct SceneFile {
 }
 
 /// `[clouds]`: `[[clouds.layers]]` tables, drawn after the opaque scene, farthest
-/// first, each hidden where terrain is nearer than the layer.
+/// first, each hidden where terrain is nearer than the layer; and `[clouds.volume]`, a
+/// cumulus grown by `cloudsim` and ray-marched by `cloudlight`.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CloudsSection {
     /// The layers.
+    #[serde(default)]
     pub layers: Vec<CloudLayerSection>,
+    /// A volumetric cloud (`crate::volume_clouds`).
+    pub volume: Option<CloudVolumeSection>,
+}
+
+/// `[clouds.volume]`: a cloud grown by `cloudsim`'s automaton (seed, steps, grid,
+/// ellipsoids) and marched by `cloudlight` (seed 003's lighting). The grid's cells are
+/// `cell_size_m` cubes; its axes are east, north, up (cloudsim's x, y, z up).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CloudVolumeSection {
+    /// The automaton's seed.
+    #[serde(default)]
+    pub seed: u32,
+    /// Automaton steps grown before the frame (≥ 1).
+    pub steps: u32,
+    /// Cells `[east, north, up]` (each ≥ 1; at most 256 × 256 × 128).
+    #[serde(default = "default_volume_grid")]
+    pub grid: [u32; 3],
+    /// Cell edge, metres.
+    pub cell_size_m: f64,
+    /// Altitude of the grid's bottom above the camera's ground (world y), metres.
+    pub base_m: f64,
+    /// World `[x, z]` (east, south) of the grid's horizontal centre, metres.
+    #[serde(default)]
+    pub centre_m: [f64; 2],
+    /// Extinction per unit density σ_t, 1/m (physical: 0.03 /m is a 33 m mean free
+    /// path in the cloud's core).
+    #[serde(default = "default_sigma_t")]
+    pub sigma_t_per_density: f64,
+    /// View-march steps per pixel (1..=1024).
+    #[serde(default = "default_view_steps")]
+    pub view_steps: u32,
+    /// Light-march steps toward the sun per sample (1..=256).
+    #[serde(default = "default_light_steps")]
+    pub light_steps: u32,
+    /// Multiple-scattering octaves of the march (1: single scattering; 1..=8).
+    #[serde(default = "default_octaves_volume")]
+    pub octaves: u32,
+    /// Where clouds may grow, in cells of the grid (default: two overlapping
+    /// ellipsoids filling the grid, a cumulus with a tower).
+    #[serde(default)]
+    pub ellipsoids: Vec<EllipsoidSection>,
+}
+
+/// One `[[clouds.volume.ellipsoids]]`: cloudsim's growth region, in cells.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EllipsoidSection {
+    /// Centre, cells `[east, north, up]` from the grid's corner.
+    pub centre: [f64; 3],
+    /// Semi-axes, cells.
+    pub radii: [f64; 3],
+}
+
+fn default_volume_grid() -> [u32; 3] {
+    [32, 32, 16]
+}
+fn default_sigma_t() -> f64 {
+    0.03
+}
+fn default_view_steps() -> u32 {
+    48
+}
+fn default_light_steps() -> u32 {
+    8
+}
+fn default_octaves_volume() -> u32 {
+    4
 }
 
 /// One `[[clouds.layers]]` table (`celestial::clouds::CloudLayer`).

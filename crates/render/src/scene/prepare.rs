@@ -105,6 +105,9 @@ pub struct PreparedScene {
     /// The moonlit sky, added to the sunlit one where the sky shows (scenes with
     /// `[time]`, the sun down and the moon up).
     pub moonlit: Option<MoonlitSky>,
+    /// The `[clouds.volume]` cloud grown, placed and lit (`crate::volume_clouds`);
+    /// `None` without the section (then no automaton runs and no march pass is built).
+    pub volume_cloud: Option<crate::volume_clouds::PreparedVolume>,
 }
 
 /// The sky lit by the moon: the scene's atmosphere with the moon's irradiance
@@ -404,6 +407,10 @@ impl Scene {
             Some(sky) => self.moonlit_sky(sky, &atmosphere, sun, &cloud_layers)?,
             None => None,
         };
+        let volume_cloud = match file.clouds.as_ref().and_then(|c| c.volume.as_ref()) {
+            Some(section) => Some(self.volume_cloud(section, &atmosphere, &*sky_model, sun)?),
+            None => None,
+        };
         if sky_objects.is_some() {
             // celestial draws the sun's limb-darkened disc: atmos' uniform one is off.
             present.sun_disc_radiance = [0.0; 3];
@@ -425,6 +432,7 @@ impl Scene {
             cloud_layers,
             viewer_radius: planet + cam.position[1],
             moonlit,
+            volume_cloud,
         })
     }
 

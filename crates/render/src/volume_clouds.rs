@@ -1,0 +1,345 @@
+//! A volumetric cloud in a scene (`[clouds.volume]`): `cloudsim` grows a cumulus,
+//! `cloudlight` ray-marches it with seed 003's lighting, and this module composites it
+//! over the opaque scene (sky and terrain), depth-aware. It owns only the placement,
+//! the frames and the compositing; the march is `cloudlight::march` (CPU, the f32 twin)
+//! and `cloudlight::gpu::MarchPass` (GPU, `shaders/render/volume_clouds.wgsl` composites).
+//!
+//! # Frames
+//!
+//! The render world is `x` east, `y` up, `z` south (metres, the camera's ground at the
+//! origin); the cloud's volume frame is east, north, up (cloudsim's `x`, `y`, `z` up):
+//! `world_to_enu(x, y, z) = (x, −z, y)`, a rotation, so the march's pixel rays are the
+//! scene camera's rays rotated ([`pinhole_camera`]; `tests/volume_clouds.rs` checks them
+//! against `atmos::frame::frame_view_direction` within f32 rounding).
+//!
+//! # Lighting
+//!
+//! Once per scene, at the grid's centre: the sun's irradiance through the scene's rung
+//! (`cloudlight::march::atmos_light`: the atmosphere's sun irradiance × the rung's
+//! transmittance toward the sun, zero behind the planet) and the ambient sky (atmos'
+//! sky irradiance on a horizontal surface / π). The cloud is lit by the sun only (a
+//! night scene's moon does not light it).
+//!
+//! # Compositing
+//!
+//! Per pixel the march gives the cloud's radiance `L_c`, its transmittance `T_c` and the
+//! transmittance-weighted depth `d` of its opacity along the ray. The pixel becomes
+//!
+//! `L = L_c · T_air(d) + L_air(d) · (1 − T_c) + T_c · L_behind`
+//!
+//! where `(L_air, T_air)` are the rung's in-scattering and transmittance of the air
+//! between the camera and `d` (the same aerial perspective the terrain gets: for the
+//! precomputed rung the aerial-perspective LUT, `atmos::lut::drop_in`; otherwise a
+//! `SkyQuery::with_max_distance`, `cloudlight::march::apply_aerial_perspective`) and
+//! `L_behind` is the sky or terrain already drawn. The cloud is drawn only where
+//! `d` is nearer than the terrain hit (or the pixel shows sky). This treats the cloud as
+//! a surface at its opacity's centroid: a cloud that the terrain cuts through (part in
+//! front of a ridge, part behind it) is drawn whole or not at all per pixel, and the
+//! march integrates density behind the terrain too (the march has no maximum
+//! distance). For a cloud wholly in front of or behind the terrain it is exact.
+
+use glam::DVec3;
+
+use cloudlight::CloudVolume;
+use cloudlight::march::{
+    Jitter, LightMarch, Lighting, MarchConfig, MarchResult, MarchSettings, Octaves, PinholeCamera,
+};
+
+use crate::scene::{CloudVolumeSection, Scene, SceneError};
+
+/// The largest grid side along east and north (cells).
+pub const MAX_HORIZONTAL_CELLS: u32 = 256;
+/// The largest grid side along up (cells).
+pub const MAX_VERTICAL_CELLS: u32 = 128;
+/// The most automaton steps a scene may ask for.
+pub const MAX_STEPS: u32 = 100_000;
+
+/// A world direction or offset (x east, y up, z south) in the volume's east/north/up
+/// frame.
+pub fn world_to_enu(v: [f64; 3]) -> [f64; 3] {
+    [v[0], -v[2], v[1]]
+}
+
+/// The scene's volumetric cloud, built once per scene.
+#[derive(Debug, Clone)]
+pub struct PreparedVolume {
+    /// The grown density in the east/north/up frame, metres from the camera's ground
+    /// point (its minimum corner at `origin`).
+    pub volume: CloudVolume,
+    /// The march's settings (the scene's view and light steps; midpoint samples).
+    pub settings: MarchSettings,
+    /// The sun and ambient sky at the grid's centre, east/north/up.
+    pub lighting: Lighting<f32>,
+    /// The automaton steps grown.
+    pub steps: u32,
+    /// Cells holding density > 0.
+    pub cloudy_cells: usize,
+}
+
+/// `ground_irradiance` takes a sized model; this lends it the scene's boxed one.
+struct ModelRef<'a>(&'a (dyn atmos::SkyModel + Send + Sync));
+
+impl atmos::SkyModel for ModelRef<'_> {
+    fn label(&self) -> String {
+        self.0.label()
+    }
+    fn evaluate(&self, query: &atmos::SkyQuery) -> atmos::SkySample {
+        self.0.evaluate(query)
+    }
+}
+
+fn deg_free(value: f64, unit: &str) -> String {
+    format!("{value}{unit}")
+}
+
+impl Scene {
+    /// Grows and lights `[clouds.volume]` (validated first, every error naming its key).
+    pub(crate) fn volume_cloud(
+        &self,
+        section: &CloudVolumeSection,
+        atmosphere: &atmos::Atmosphere,
+        model: &(dyn atmos::SkyModel + Send + Sync),
+        sun: DVec3,
+    ) -> Result<PreparedVolume, SceneError> {
+        let key = |k: &str| ["clouds", "volume", k].map(str::to_owned);
+        let invalid = |k: &str, value: String, reason: String| {
+            let path = key(k);
+            let path: Vec<&str> = path.iter().map(String::as_str).collect();
+            self.invalid(&path, value, reason)
+        };
+        let s = section;
+        if s.steps == 0 || s.steps > MAX_STEPS {
+            return Err(invalid(
+                "steps",
+                s.steps.to_string(),
+                format!("must be in 1..={MAX_STEPS}"),
+            ));
+        }
+        let limits = [
+            MAX_HORIZONTAL_CELLS,
+            MAX_HORIZONTAL_CELLS,
+            MAX_VERTICAL_CELLS,
+        ];
+        if s.grid.iter().zip(limits).any(|(&n, max)| n == 0 || n > max) {
+            return Err(invalid(
+                "grid",
+                format!("[{}, {}, {}]", s.grid[0], s.grid[1], s.grid[2]),
+                format!(
+                    "cells [east, north, up] must each be ≥ 1 and at most \
+                     [{MAX_HORIZONTAL_CELLS}, {MAX_HORIZONTAL_CELLS}, {MAX_VERTICAL_CELLS}]"
+                ),
+            ));
+        }
+        if !(s.cell_size_m.is_finite() && s.cell_size_m > 0.0 && s.cell_size_m <= 10_000.0) {
+            return Err(invalid(
+                "cell_size_m",
+                deg_free(s.cell_size_m, " m"),
+                "must be finite, > 0 m and ≤ 10,000 m".into(),
+            ));
+        }
+        if !(s.base_m.is_finite() && s.base_m >= 0.0 && s.base_m <= 20_000.0) {
+            return Err(invalid(
+                "base_m",
+                deg_free(s.base_m, " m"),
+                "must be in [0 m, 20,000 m] above the camera's ground".into(),
+            ));
+        }
+        if s.centre_m.iter().any(|c| !c.is_finite() || c.abs() > 1e6) {
+            return Err(invalid(
+                "centre_m",
+                format!("[{}, {}]", s.centre_m[0], s.centre_m[1]),
+                "must be finite world [x, z] metres within 1,000 km of the origin".into(),
+            ));
+        }
+        if !(s.sigma_t_per_density.is_finite()
+            && s.sigma_t_per_density > 0.0
+            && s.sigma_t_per_density <= 10.0)
+        {
+            return Err(invalid(
+                "sigma_t_per_density",
+                deg_free(s.sigma_t_per_density, " /m"),
+                "must be finite, > 0 /m and ≤ 10 /m".into(),
+            ));
+        }
+        if s.view_steps == 0 || s.view_steps > 1024 {
+            return Err(invalid(
+                "view_steps",
+                s.view_steps.to_string(),
+                "must be in 1..=1024".into(),
+            ));
+        }
+        if s.light_steps == 0 || s.light_steps > 256 {
+            return Err(invalid(
+                "light_steps",
+                s.light_steps.to_string(),
+                "must be in 1..=256".into(),
+            ));
+        }
+        if s.octaves == 0 || s.octaves > 8 {
+            return Err(invalid(
+                "octaves",
+                s.octaves.to_string(),
+                "must be in 1..=8".into(),
+            ));
+        }
+        let [nx, ny, nz] = s.grid;
+        let ellipsoids = if s.ellipsoids.is_empty() {
+            // The cumulus of cloudlight's examples (64×64×24 cells) scaled to the grid.
+            let scale = [
+                f64::from(nx) / 64.0,
+                f64::from(ny) / 64.0,
+                f64::from(nz) / 24.0,
+            ];
+            [
+                ([28.0, 32.0, 9.0], [20.0, 18.0, 8.0]),
+                ([40.0, 30.0, 13.0], [16.0, 20.0, 9.0]),
+            ]
+            .map(|(c, r): ([f64; 3], [f64; 3])| cloudsim::Ellipsoid {
+                center: std::array::from_fn(|a| (c[a] * scale[a]) as f32),
+                radii: std::array::from_fn(|a| (r[a] * scale[a]) as f32),
+            })
+            .to_vec()
+        } else {
+            s.ellipsoids
+                .iter()
+                .map(|e| cloudsim::Ellipsoid {
+                    center: e.centre.map(|c| c as f32),
+                    radii: e.radii.map(|r| r as f32),
+                })
+                .collect()
+        };
+        let mut config = cloudsim::Config::new(cloudsim::GridSize::new(nx, ny, nz));
+        config.seed = s.seed;
+        config.ellipsoids = ellipsoids;
+        let model_error = |e: cloudsim::Error| {
+            let message = e.to_string();
+            let k = if message.contains("ellipsoid") || message.contains("radii") {
+                "ellipsoids"
+            } else if message.contains("size") || message.contains("cells") {
+                "grid"
+            } else {
+                "seed"
+            };
+            invalid(k, format!("{section:?}"), message)
+        };
+        let automaton = cloudsim::Model::new(config).map_err(model_error)?;
+        let mut simulation = cloudsim::Simulation::new(automaton).map_err(model_error)?;
+        simulation
+            .advance(s.steps)
+            .map_err(|e| invalid("steps", s.steps.to_string(), e.to_string()))?;
+        let density = simulation
+            .density()
+            .map_err(|e| invalid("steps", s.steps.to_string(), e.to_string()))?;
+        let cloudy_cells = density.iter().filter(|&&d| d > 0.0).count();
+        let cell = s.cell_size_m;
+        // World [x, z] centre → east/north corner: north is −z.
+        let origin = [
+            s.centre_m[0] - 0.5 * f64::from(nx) * cell,
+            -s.centre_m[1] - 0.5 * f64::from(ny) * cell,
+            s.base_m,
+        ];
+        let volume = CloudVolume::new(s.grid, origin, cell, s.sigma_t_per_density, density)
+            .map_err(|e| invalid("cell_size_m", deg_free(cell, " m"), e.to_string()))?;
+        let settings = MarchSettings::new(MarchConfig {
+            view_steps: s.view_steps,
+            jitter: Jitter::None,
+            light: LightMarch::Full {
+                steps: std::num::NonZeroU32::new(s.light_steps).expect("checked ≥ 1 above"),
+            },
+            // Wrenninge's octaves with a = b = c = ½ (energy-conserving: a ≤ b < 1).
+            octaves: Octaves {
+                count: s.octaves,
+                ..Octaves::SINGLE
+            },
+            ..MarchConfig::default()
+        })
+        .map_err(|e| invalid("view_steps", s.view_steps.to_string(), e.to_string()))?;
+        // The light at the grid's centre (planet-centred: world + planet radius up).
+        let centre = DVec3::new(
+            s.centre_m[0],
+            atmosphere.planet_radius + s.base_m + 0.5 * f64::from(nz) * cell,
+            s.centre_m[1],
+        );
+        let light = cloudlight::march::atmos_light(
+            &ModelRef(model),
+            atmosphere,
+            centre,
+            sun,
+            atmos::ground_irradiance::HemisphereQuadrature::default(),
+        )
+        .map_err(|e| invalid("base_m", deg_free(s.base_m, " m"), e.to_string()))?;
+        let lighting = Lighting::new(
+            world_to_enu(sun.to_array()),
+            light.sun_irradiance,
+            light.ambient_radiance,
+            [0.0, 0.0, 1.0],
+        )
+        .map_err(|e| invalid("base_m", deg_free(s.base_m, " m"), e.to_string()))?;
+        Ok(PreparedVolume {
+            volume,
+            settings,
+            lighting,
+            steps: s.steps,
+            cloudy_cells,
+        })
+    }
+}
+
+/// The scene camera as the march's pinhole camera in the volume's frame: the camera's
+/// position (its planet-centred position less the planet radius up) and basis rotated
+/// to east/north/up, the horizontal field of view from the vertical one and the aspect,
+/// so [`cloudlight::march::pixel_direction`] gives the scene's pixel rays.
+pub fn pinhole_camera(
+    camera: &atmos::frame::FrameCamera,
+    planet_radius: f64,
+) -> Result<PinholeCamera, cloudlight::march::MarchError> {
+    let p = camera.position.map(f64::from);
+    let origin = world_to_enu([p[0], p[1] - planet_radius, p[2]]);
+    let forward = world_to_enu(camera.forward.map(f64::from));
+    let up = world_to_enu(camera.up.map(f64::from));
+    let target = std::array::from_fn(|a| origin[a] + forward[a]);
+    let aspect = f64::from(camera.width) / f64::from(camera.height);
+    let horizontal_fov = 2.0 * (f64::from(camera.tan_half_fov_y) * aspect).atan();
+    PinholeCamera::look_at(origin, target, up, horizontal_fov)
+}
+
+/// The march of pixel `pixel` (f32, the twin of `MarchPass`'s pixel): along
+/// [`cloudlight::march::pixel_direction`] of `camera` from its origin.
+pub fn march_pixel(
+    cloud: &PreparedVolume,
+    camera: &PinholeCamera,
+    size: [u32; 2],
+    pixel: [u32; 2],
+) -> MarchResult<f32> {
+    let [forward, right, up] = camera.basis().map(|v| v.map(|c| c as f32));
+    let tan_half = camera.tan_half(size).map(|t| t as f32);
+    let origin = camera.origin().map(|c| c as f32);
+    let direction = cloudlight::march::pixel_direction(pixel, size, forward, right, up, tan_half);
+    cloudlight::march::march_view_at_pixel(
+        &cloud.volume,
+        origin,
+        direction,
+        &cloud.settings,
+        &cloud.lighting,
+        pixel,
+    )
+}
+
+/// Whether a march result is drawn over a scene whose opaque surface is
+/// `scene_distance` metres along the ray (infinite for the sky): the cloud has opacity
+/// and its depth is nearer. Twin of the test in `volume_clouds.wgsl`.
+pub fn cloud_in_front(cloud: &MarchResult<f32>, scene_distance: f32) -> bool {
+    cloud.transmittance < 1.0 && cloud.depth < scene_distance
+}
+
+/// The cloud seen through the air: `L_c · T_air + L_air · (1 − T_c)` (module docs); the
+/// caller adds `T_c · L_behind`.
+pub fn cloud_through_air(
+    cloud: &MarchResult<f32>,
+    air_transmittance: [f32; 3],
+    air_radiance: [f32; 3],
+) -> [f32; 3] {
+    std::array::from_fn(|k| {
+        cloud.radiance[k] * air_transmittance[k] + air_radiance[k] * (1.0 - cloud.transmittance)
+    })
+}
