@@ -441,3 +441,198 @@ fn atmos_lighting_and_aerial_perspective() {
         assert!(seen[k] < 0.3 + air.radiance[k]);
     }
 }
+
+#[test]
+fn a_shell_marches_from_below_inside_and_above_without_nan() {
+    use cloudlight::{CloudShell, ShellSettings};
+    let earth = atmos::Atmosphere::earth();
+    let r = earth.planet_radius;
+    let mut settings = ShellSettings::cumulus_over(r);
+    if let cloudlight::shell::WeatherMap::Procedural(w) = &mut settings.weather {
+        w.coverage_mean = 0.9; // dense: most rays meet cloud
+    }
+    let shell = CloudShell::new(&earth, settings).unwrap();
+    let s = settings_for_shell();
+    let origins = [
+        [0.0, 0.0, r + 2.0],        // on the ground
+        [300.0, 200.0, r + 2500.0], // inside the layer
+        [0.0, 0.0, r + 14_000.0],   // above it
+    ];
+    let c = std::f64::consts::FRAC_1_SQRT_2;
+    let dirs = [[0.0, 0.0, 1.0], [c, 0.0, c], [1.0, 0.0, 0.0], [0.0, c, -c]];
+    let suns = [[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [0.6, 0.0, -0.8]];
+    let mut hits = 0;
+    for origin in origins {
+        for dir in dirs {
+            for sun in suns {
+                let l64 = Lighting::<f64>::new(sun, [1.0; 3], [0.1; 3], [0.0, 0.0, 1.0]).unwrap();
+                let l32 = Lighting::<f32>::new(sun, [1.0; 3], [0.1; 3], [0.0, 0.0, 1.0]).unwrap();
+                let what = format!("shell from {origin:?} along {dir:?}, sun {sun:?}");
+                let a = march_view(&shell, origin, dir, &s, &l64);
+                check(a, &what);
+                if a.transmittance < 0.999 {
+                    hits += 1;
+                }
+                let o32 = origin.map(|x| x as f32);
+                let d32 = dir.map(|x| x as f32);
+                check32(
+                    march_view_at_pixel(&shell, o32, d32, &s, &l32, [3, 5]),
+                    &what,
+                );
+            }
+        }
+    }
+    assert!(
+        hits >= 6,
+        "only {hits} rays met cloud: the test would test little"
+    );
+}
+
+fn settings_for_shell() -> MarchSettings {
+    settings(MarchConfig {
+        view_steps: 8,
+        jitter: Jitter::Bayer4x4,
+        light: full(4),
+        ambient_steps: 2,
+        octaves: Octaves {
+            count: 3,
+            a: 0.5,
+            b: 0.5,
+            c: 0.5,
+        },
+        ..MarchConfig::default()
+    })
+}
+
+/// The march's single scattering against `reference::single_scattering` (adaptive, exact
+/// optical depths) on a lumpy 32³ blob seen from below, and its CPU cost per pixel.
+/// `cargo test --release -p cloudlight --test march -- --ignored --nocapture march_accuracy`
+#[test]
+#[ignore = "a measurement (seconds in release): run it with --ignored --nocapture"]
+fn march_accuracy_and_cost() {
+    use cloudlight::march::{PinholeCamera, pixel_direction};
+    use cloudlight::reference::single_scattering::{SingleScatteringSettings, single_scattering};
+    use cloudlight::reference::{Phase, Sun};
+    let n = 32u32;
+    let mut density = Vec::new();
+    for z in 0..n {
+        for y in 0..n {
+            for x in 0..n {
+                let p = [x, y, z].map(|c| (f64::from(c) + 0.5) / f64::from(n) * 2.0 - 1.0);
+                let r2 = p[0] * p[0] + p[1] * p[1] + 1.4 * p[2] * p[2];
+                let wobble = 0.3 * ((x * 7 + y * 3 + z * 5) % 5) as f64 / 4.0;
+                density.push((1.5 * (1.0 + wobble) * (1.0 - r2).max(0.0)) as f32);
+            }
+        }
+    }
+    let volume =
+        CloudVolume::new([n, n, n], [-400.0, -400.0, 1000.0], 25.0, 0.02, density).unwrap();
+    let size = [32u32, 32];
+    let camera =
+        PinholeCamera::look_at([0.0, -100.0, 0.0], [0.0, 0.0, 1400.0], [0.0, 0.0, 1.0], 0.9)
+            .unwrap();
+    let [forward, right, up] = camera.basis();
+    let tan_half = camera.tan_half(size);
+    let rays: Vec<[f64; 3]> = (0..size[1])
+        .flat_map(|y| (0..size[0]).map(move |x| [x, y]))
+        .map(|p| pixel_direction(p, size, forward, right, up, tan_half))
+        .collect();
+    let d = MarchConfig::default();
+    let phase = Phase::DualLobe {
+        g_forward: d.g_forward,
+        g_back: d.g_back,
+        back_weight: d.back_weight,
+    };
+    let cone = |step: f64, weights| LightMarch::Cone {
+        step,
+        spread: 0.0,
+        weights,
+    };
+    let methods: Vec<(&str, u32, LightMarch)> = vec![
+        ("view 16, full light 8", 16, full(8)),
+        ("view 64, full light 8", 64, full(8)),
+        ("view 64, full light 32", 64, full(32)),
+        ("view 256, full light 64", 256, full(64)),
+        (
+            "view 64, cone 6+1 partitioned, step 1e9 (L/7)",
+            64,
+            cone(1e9, ConeWeights::Partitioned),
+        ),
+        (
+            "view 64, cone 6+1 raw, step 25 m (1 cell)",
+            64,
+            cone(25.0, ConeWeights::Raw),
+        ),
+    ];
+    for elevation in [60.0f64, 10.0] {
+        let (e, a) = (elevation.to_radians(), 30f64.to_radians());
+        let to_sun = [e.cos() * a.cos(), e.cos() * a.sin(), e.sin()];
+        let sun = Sun::new(to_sun, [1.0; 3]).unwrap();
+        let lighting = Lighting::<f64>::white_sun(to_sun).unwrap();
+        let start = std::time::Instant::now();
+        let reference: Vec<_> = rays
+            .iter()
+            .map(|&dir| {
+                single_scattering(
+                    &volume,
+                    camera.origin(),
+                    dir,
+                    &sun,
+                    &phase,
+                    &SingleScatteringSettings::default(),
+                )
+                .unwrap()
+            })
+            .collect();
+        let reference_ms = start.elapsed().as_secs_f64() * 1e3;
+        let total: f64 = reference.iter().map(|r| r.radiance[0]).sum();
+        println!(
+            "sun {elevation}°: reference {reference_ms:.0} ms for {} rays; mean radiance {:.4e}",
+            rays.len(),
+            total / rays.len() as f64
+        );
+        for (name, steps, light) in &methods {
+            let s = settings(MarchConfig {
+                view_steps: *steps,
+                light: *light,
+                transmittance_epsilon: 0.0,
+                ambient_steps: 0,
+                ..d
+            });
+            let start = std::time::Instant::now();
+            let marched: Vec<_> = rays
+                .iter()
+                .map(|&dir| march_view(&volume, camera.origin(), dir, &s, &lighting))
+                .collect();
+            let per_ray_us = start.elapsed().as_secs_f64() * 1e6 / rays.len() as f64;
+            let start = std::time::Instant::now();
+            let o32 = camera.origin().map(|c| c as f32);
+            let l32 = Lighting::<f32>::white_sun(to_sun).unwrap();
+            for &dir in &rays {
+                std::hint::black_box(march_view(&volume, o32, dir.map(|c| c as f32), &s, &l32));
+            }
+            let per_ray_us_f32 = start.elapsed().as_secs_f64() * 1e6 / rays.len() as f64;
+            let abs_sum: f64 = marched
+                .iter()
+                .zip(&reference)
+                .map(|(m, r)| (m.radiance[0] - r.radiance[0]).abs())
+                .sum();
+            let bias: f64 = marched
+                .iter()
+                .zip(&reference)
+                .map(|(m, r)| m.radiance[0] - r.radiance[0])
+                .sum();
+            let t_max = marched
+                .iter()
+                .zip(&reference)
+                .map(|(m, r)| (m.transmittance - r.transmittance).abs())
+                .fold(0.0, f64::max);
+            println!(
+                "  {name}: radiance mean |error| {:.2} % of the mean, bias {:+.2} %, view T max \
+                 |error| {t_max:.1e}; {per_ray_us:.0} µs/ray f64, {per_ray_us_f32:.0} µs/ray f32",
+                100.0 * abs_sum / total,
+                100.0 * bias / total
+            );
+        }
+    }
+}
