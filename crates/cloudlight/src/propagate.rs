@@ -46,6 +46,14 @@ pub enum SliceError {
         /// What the field must satisfy.
         requirement: &'static str,
     },
+    /// The plan was made for a volume of other dimensions ([`try_propagate`]).
+    #[error("plan is for a {plan:?} volume, the volume is {volume:?}")]
+    PlanMismatch {
+        /// The plan's `[nx, ny, nz]`.
+        plan: [u32; 3],
+        /// The volume's.
+        volume: [u32; 3],
+    },
 }
 
 fn bad(field: &'static str, value: f64, requirement: &'static str) -> SliceError {
@@ -309,8 +317,24 @@ fn texel<F: Real>(field: &[F], nb: u32, nc: u32, i: i64, j: i64, outside: F) -> 
     }
 }
 
+/// [`propagate`] with the plan checked against the volume: a plan made for a volume of
+/// other dimensions is a [`SliceError::PlanMismatch`] naming both, not a panic.
+pub fn try_propagate<F: Real>(
+    volume: &CloudVolume,
+    plan: &SlicePlan,
+) -> Result<Vec<F>, SliceError> {
+    if plan.volume_dims() != volume.dims() {
+        return Err(SliceError::PlanMismatch {
+            plan: plan.volume_dims(),
+            volume: volume.dims(),
+        });
+    }
+    Ok(propagate(volume, plan))
+}
+
 /// The light (transmittance toward the sun in physical mode, seed 002's shading value in
-/// faithful mode) at every cell centre, x fastest like the density.
+/// faithful mode) at every cell centre, x fastest like the density. Panics if `plan` was
+/// made for a volume of other dimensions; [`try_propagate`] returns that as an error.
 pub fn propagate<F: Real>(volume: &CloudVolume, plan: &SlicePlan) -> Vec<F> {
     let [na, nb, nc] = plan.dims_abc;
     assert_eq!(

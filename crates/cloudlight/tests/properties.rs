@@ -13,7 +13,7 @@
 
 use cloudlight::CloudVolume;
 use cloudlight::cone::{ConeSettings, ConeWeights, LightRay, MarchSettings, beer_lambert};
-use cloudlight::propagate::{Resampling, SliceMode, SlicePlan, propagate};
+use cloudlight::propagate::{Resampling, SliceMode, SlicePlan, propagate, try_propagate};
 use cloudlight::reference;
 use cloudlight::shadow_map::{ShadowGrid, ShadowMapPlan, shadow_map, shadow_map_reference};
 use proptest::prelude::*;
@@ -147,6 +147,14 @@ proptest! {
         let faithful = SliceMode::Faithful { attenuation_ratio: ratio };
         let err = SlicePlan::new(&v, [0.0, 0.0, 1.0], faithful).unwrap_err();
         prop_assert!(err.to_string().starts_with("attenuation_ratio = "), "{err}");
+        // A plan for another volume: an error naming both sizes, not a panic.
+        let d = v.dims();
+        let other = CloudVolume::new([d[0] + 1, d[1], d[2]], [0.0; 3], 1.0, 0.1,
+            vec![0.0; ((d[0] + 1) * d[1] * d[2]) as usize]).unwrap();
+        let plan = SlicePlan::new(&other, [0.0, 0.0, 1.0], SliceMode::Physical).unwrap();
+        let err = try_propagate::<f32>(&v, &plan).unwrap_err();
+        prop_assert!(err.to_string().starts_with("plan is for a "), "{err}");
+        prop_assert!(try_propagate::<f64>(&other, &plan).is_ok());
     }
 
     #[test]
