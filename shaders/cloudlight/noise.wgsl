@@ -178,3 +178,44 @@ fn cloud_detail_noise(u: vec3<f32>, seed: u32) -> vec3<f32> {
 fn worley_channels_fbm(c: vec3<f32>) -> f32 {
     return 0.625 * c.x + 0.25 * c.y + 0.125 * c.z;
 }
+
+// One axis of a trilinear lookup at tile coordinate u in a size-texel repeating texture
+// (texel centres at (i + ½)/size): (i0, i1, t) — the two wrapped texels as floats (exact)
+// and the weight of i1.
+fn noise_texel_lerp(u: f32, size: u32) -> vec3<f32> {
+    let g = u * f32(size) - 0.5;
+    let floor_g = floor(g);
+    let i = i32(floor_g);
+    return vec3<f32>(f32(noise_wrap(i, size)), f32(noise_wrap(i + 1, size)), g - floor_g);
+}
+
+// Trilinear lookup of a baked noise texture (cubic, repeating) at tile coordinate u with
+// textureLoad: c000 + t·(c100 − c000) along x, then y, then z. Twin:
+// cloudlight::noise::NoiseTexture::sample_trilinear.
+fn noise_texture_trilinear(tex: texture_3d<f32>, u: vec3<f32>) -> vec4<f32> {
+    let size = textureDimensions(tex).x;
+    let lx = noise_texel_lerp(u.x, size);
+    let ly = noise_texel_lerp(u.y, size);
+    let lz = noise_texel_lerp(u.z, size);
+    let x0 = u32(lx.x);
+    let x1 = u32(lx.y);
+    let y0 = u32(ly.x);
+    let y1 = u32(ly.y);
+    let z0 = u32(lz.x);
+    let z1 = u32(lz.y);
+    let c000 = textureLoad(tex, vec3<u32>(x0, y0, z0), 0);
+    let c100 = textureLoad(tex, vec3<u32>(x1, y0, z0), 0);
+    let c010 = textureLoad(tex, vec3<u32>(x0, y1, z0), 0);
+    let c110 = textureLoad(tex, vec3<u32>(x1, y1, z0), 0);
+    let c001 = textureLoad(tex, vec3<u32>(x0, y0, z1), 0);
+    let c101 = textureLoad(tex, vec3<u32>(x1, y0, z1), 0);
+    let c011 = textureLoad(tex, vec3<u32>(x0, y1, z1), 0);
+    let c111 = textureLoad(tex, vec3<u32>(x1, y1, z1), 0);
+    let x00 = c000 + lx.z * (c100 - c000);
+    let x10 = c010 + lx.z * (c110 - c010);
+    let x01 = c001 + lx.z * (c101 - c001);
+    let x11 = c011 + lx.z * (c111 - c011);
+    let xy0 = x00 + ly.z * (x10 - x00);
+    let xy1 = x01 + ly.z * (x11 - x01);
+    return xy0 + lz.z * (xy1 - xy0);
+}

@@ -64,6 +64,24 @@ fn shell_density(p: vec3<f32>, inner_radius: f32, outer_radius: f32, coverage: f
     return shell_density_from_noise(h, coverage, cloud_type, shape, detail, erosion);
 }
 
+// shell_density with the noise looked up in baked textures (NoiseBake's shape and
+// detail textures, trilinear and repeating) instead of evaluated.
+fn shell_density_textured(p: vec3<f32>, inner_radius: f32, outer_radius: f32, coverage: f32, cloud_type: f32, shape_period: f32, detail_period: f32, erosion: f32, shape_tex: texture_3d<f32>, detail_tex: texture_3d<f32>) -> f32 {
+    let r = sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
+    if !(r > inner_radius && r < outer_radius) || coverage <= 0.0 {
+        return 0.0;
+    }
+    let height = r - inner_radius;
+    let h = height / (outer_radius - inner_radius);
+    if height_gradient(h, cloud_type) <= 0.0 {
+        return 0.0;
+    }
+    let q = vec3<f32>(p.x, p.y, height);
+    let shape = noise_texture_trilinear(shape_tex, q / shape_period);
+    let detail = noise_texture_trilinear(detail_tex, q / detail_period).xyz;
+    return shell_density_from_noise(h, coverage, cloud_type, shape, detail, erosion);
+}
+
 // 1 − smoothstep(fade_start, fade_end, t): the view march's fade toward the horizon.
 fn horizon_fade(t: f32, fade_start: f32, fade_end: f32) -> f32 {
     return 1.0 - shell_smoothstep(fade_start, fade_end, t);

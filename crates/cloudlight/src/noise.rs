@@ -296,6 +296,79 @@ pub fn bake_detail_noise(seed: u32, size: u32) -> Vec<[f32; 3]> {
     texels
 }
 
+/// Where a trilinear lookup at tile coordinate `u` falls along one axis of a `size`-texel
+/// repeating texture: the two texels `(i0, i1)` (wrapped) and the weight `t` of `i1`, with
+/// texel centres at `(i + ½)/size` (`g = u·size − ½`, `i0 = floor(g)`, `t = g − i0`).
+/// The arithmetic of `noise_texture_trilinear` (WGSL), one axis.
+pub fn noise_texel_lerp<F: Real>(u: F, size: u32) -> (u32, u32, F) {
+    let g = u * F::of(f64::from(size)) - F::of(0.5);
+    let (i, t) = cell_and_fraction(g);
+    (wrap(i, size), wrap(i.wrapping_add(1), size), t)
+}
+
+/// A baked noise texture as the GPU holds it: `size`³ texels (x fastest) of four channels,
+/// each `byte/255` of the `rgba8unorm` texel (what `textureLoad` returns). The CPU twin of
+/// [`crate::gpu::NoiseBake`]'s textures, for marching the same density on both sides.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NoiseTexture {
+    size: u32,
+    texels: Vec<[f32; 4]>,
+}
+
+impl NoiseTexture {
+    /// The shape texture of `seed` at `size`³ ([`bake_shape_noise`] quantised by
+    /// [`unorm8`]). Costs `size`³ evaluations of [`cloud_shape_noise`] (128³: about
+    /// 2 million).
+    pub fn shape(seed: u32, size: u32) -> Self {
+        let texels = bake_shape_noise(seed, size)
+            .into_iter()
+            .map(|t| t.map(|v| f32::from(unorm8(v)) / 255.0))
+            .collect();
+        Self { size, texels }
+    }
+
+    /// The detail texture of `seed` at `size`³ ([`bake_detail_noise`] quantised; alpha 1).
+    pub fn detail(seed: u32, size: u32) -> Self {
+        let texels = bake_detail_noise(seed, size)
+            .into_iter()
+            .map(|t| {
+                let q = t.map(|v| f32::from(unorm8(v)) / 255.0);
+                [q[0], q[1], q[2], 1.0]
+            })
+            .collect();
+        Self { size, texels }
+    }
+
+    /// Edge in texels.
+    pub fn size(&self) -> u32 {
+        self.size
+    }
+
+    /// Texel `(x, y, z)` (each below [`size`](Self::size)).
+    pub fn texel(&self, x: u32, y: u32, z: u32) -> [f32; 4] {
+        let n = self.size as usize;
+        self.texels[x as usize + n * (y as usize + n * z as usize)]
+    }
+
+    /// Trilinear lookup at tile coordinate `u` with repeat addressing, channel by channel
+    /// `c000 + t·(c100 − c000)` along x, then y, then z ([`noise_texel_lerp`] per axis).
+    /// WGSL twin `noise_texture_trilinear` (over `textureLoad`).
+    pub fn sample_trilinear<F: Real>(&self, u: [F; 3]) -> [F; 4] {
+        let (x0, x1, tx) = noise_texel_lerp(u[0], self.size);
+        let (y0, y1, ty) = noise_texel_lerp(u[1], self.size);
+        let (z0, z1, tz) = noise_texel_lerp(u[2], self.size);
+        let c = |x, y, z| self.texel(x, y, z).map(|v| F::of(f64::from(v)));
+        let lerp4 = |a: [F; 4], b: [F; 4], t: F| std::array::from_fn(|k| lerp(a[k], b[k], t));
+        let x00 = lerp4(c(x0, y0, z0), c(x1, y0, z0), tx);
+        let x10 = lerp4(c(x0, y1, z0), c(x1, y1, z0), tx);
+        let x01 = lerp4(c(x0, y0, z1), c(x1, y0, z1), tx);
+        let x11 = lerp4(c(x0, y1, z1), c(x1, y1, z1), tx);
+        let xy0 = lerp4(x00, x10, ty);
+        let xy1 = lerp4(x01, x11, ty);
+        lerp4(xy0, xy1, tz)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -55,7 +55,9 @@ use atmos::geometry::ray_sphere_intersect;
 use atmos::real::Real;
 
 use crate::density::{DensityField, RaySpans};
-use crate::noise::{cloud_detail_noise, cloud_shape_noise, perlin_fbm, worley_channels_fbm};
+use crate::noise::{
+    NoiseTexture, cloud_detail_noise, cloud_shape_noise, perlin_fbm, worley_channels_fbm,
+};
 
 /// Stratus height profile corners `(a, b, c, d)` over the height fraction.
 pub const STRATUS_GRADIENT: [f64; 4] = [0.0, 0.1, 0.2, 0.3];
@@ -133,6 +135,62 @@ pub fn shell_density<F: Real>(
     erosion: F,
     seed: u32,
 ) -> F {
+    density_with(
+        p,
+        inner_radius,
+        outer_radius,
+        coverage,
+        cloud_type,
+        erosion,
+        |q| {
+            let shape = cloud_shape_noise(q.map(|c| c / shape_period), seed);
+            let detail = cloud_detail_noise(q.map(|c| c / detail_period), seed);
+            (shape, detail)
+        },
+    )
+}
+
+/// [`shell_density`] with the noise looked up in baked textures (trilinear, repeating:
+/// [`NoiseTexture::sample_trilinear`]) instead of evaluated: what a GPU march over
+/// [`crate::gpu::NoiseBake`]'s textures computes. WGSL twin `shell_density_textured`.
+#[allow(clippy::too_many_arguments)]
+pub fn shell_density_textured<F: Real>(
+    p: [F; 3],
+    inner_radius: F,
+    outer_radius: F,
+    coverage: F,
+    cloud_type: F,
+    shape_period: F,
+    detail_period: F,
+    erosion: F,
+    shape: &NoiseTexture,
+    detail: &NoiseTexture,
+) -> F {
+    density_with(
+        p,
+        inner_radius,
+        outer_radius,
+        coverage,
+        cloud_type,
+        erosion,
+        |q| {
+            let s = shape.sample_trilinear(q.map(|c| c / shape_period));
+            let d = detail.sample_trilinear(q.map(|c| c / detail_period));
+            (s, [d[0], d[1], d[2]])
+        },
+    )
+}
+
+/// The shell density's steps around the noise lookup `noise(q)` (shape, detail).
+fn density_with<F: Real>(
+    p: [F; 3],
+    inner_radius: F,
+    outer_radius: F,
+    coverage: F,
+    cloud_type: F,
+    erosion: F,
+    noise: impl Fn([F; 3]) -> ([F; 4], [F; 3]),
+) -> F {
     let zero = F::zero();
     let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
     if !(r > inner_radius && r < outer_radius) || coverage <= zero {
@@ -143,9 +201,7 @@ pub fn shell_density<F: Real>(
     if height_gradient(h, cloud_type) <= zero {
         return zero;
     }
-    let q = [p[0], p[1], height];
-    let shape = cloud_shape_noise(q.map(|c| c / shape_period), seed);
-    let detail = cloud_detail_noise(q.map(|c| c / detail_period), seed);
+    let (shape, detail) = noise([p[0], p[1], height]);
     shell_density_from_noise(h, coverage, cloud_type, shape, detail, erosion)
 }
 
@@ -682,5 +738,88 @@ impl<F: Real> DensityField<F> for CloudShell {
             F::of(self.settings.inner_radius),
             F::of(self.settings.outer_radius),
         )
+    }
+}
+
+/// A [`CloudShell`] whose noise is looked up in baked textures ([`NoiseTexture`], the CPU
+/// twins of [`crate::gpu::NoiseBake`]'s) instead of evaluated: the density a GPU march
+/// over the baked textures sees, as a [`DensityField`] (the spans and σ_t are the
+/// shell's).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BakedShell {
+    shell: CloudShell,
+    shape: NoiseTexture,
+    detail: NoiseTexture,
+}
+
+impl BakedShell {
+    /// Bakes `shell`'s noise (its seed) into a `shape_size`³ shape and a `detail_size`³
+    /// detail texture on the CPU (128³ is about 2 million noise evaluations: seconds in
+    /// a release build). Sizes of 0 are an error naming the field.
+    pub fn new(shell: CloudShell, shape_size: u32, detail_size: u32) -> Result<Self, ShellError> {
+        if shape_size == 0 {
+            return Err(ShellError::ZeroCount {
+                field: "shape_size",
+            });
+        }
+        if detail_size == 0 {
+            return Err(ShellError::ZeroCount {
+                field: "detail_size",
+            });
+        }
+        let seed = shell.settings.seed;
+        Ok(Self {
+            shape: NoiseTexture::shape(seed, shape_size),
+            detail: NoiseTexture::detail(seed, detail_size),
+            shell,
+        })
+    }
+
+    /// The shell.
+    pub fn shell(&self) -> &CloudShell {
+        &self.shell
+    }
+
+    /// The baked shape texture.
+    pub fn shape(&self) -> &NoiseTexture {
+        &self.shape
+    }
+
+    /// The baked detail texture.
+    pub fn detail(&self) -> &NoiseTexture {
+        &self.detail
+    }
+}
+
+impl<F: Real> DensityField<F> for BakedShell {
+    /// [`shell_density_textured`] with the shell's weather at `(x, y)`.
+    fn density(&self, p: [F; 3]) -> F {
+        let s = &self.shell.settings;
+        let (inner, outer) = (F::of(s.inner_radius), F::of(s.outer_radius));
+        let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        if !(r > inner && r < outer) {
+            return F::zero();
+        }
+        let weather = self.shell.weather_at([p[0], p[1]]);
+        shell_density_textured(
+            p,
+            inner,
+            outer,
+            weather.coverage,
+            weather.cloud_type,
+            F::of(s.shape_period),
+            F::of(s.detail_period),
+            F::of(s.erosion),
+            &self.shape,
+            &self.detail,
+        )
+    }
+
+    fn extinction_per_density(&self) -> F {
+        DensityField::<F>::extinction_per_density(&self.shell)
+    }
+
+    fn ray_spans(&self, origin: [F; 3], direction: [F; 3]) -> RaySpans<F> {
+        self.shell.ray_spans(origin, direction)
     }
 }

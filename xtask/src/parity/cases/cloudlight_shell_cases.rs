@@ -607,6 +607,52 @@ pub fn cases() -> Vec<Case> {
             },
         },
         Case {
+            name: "cloudlight::noise_texel_lerp",
+            imports: &["cloudlight::noise"],
+            arity: (2, 3),
+            wgsl: "let l = noise_texel_lerp(x0, u32(x1)); y0 = l.x; y1 = l.y; y2 = l.z;",
+            grid: || {
+                let mut grid: Vec<Vec<f64>> = (0..10_000u32)
+                    .map(|i| {
+                        let size = [128u32, 32, 20, 7, 1][i as usize % 5];
+                        vec![60.0 * (unit(i, 1) - 0.5), f64::from(size)]
+                    })
+                    .collect();
+                for k in 0..=64 {
+                    // Texel centres and edges of a 32-texel tile.
+                    grid.push(vec![f64::from(k) / 64.0, 32.0]);
+                }
+                grid
+            },
+            cpu: |x| {
+                let (i0, i1, t) = noise::noise_texel_lerp(x[0], x[1] as u32);
+                vec![i0 as f32, i1 as f32, t]
+            },
+            // Independent form: Euclidean remainders of the floor in f64.
+            reference: |x| {
+                let n = x[1];
+                let g = x[0] * n - 0.5;
+                let i = g.floor();
+                vec![i.rem_euclid(n), (i + 1.0).rem_euclid(n), g - i]
+            },
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 0.0,
+                // u·size − ½ rounds twice (≤ u·|g| each) before the exact floor and
+                // fraction; a rounding across an integer changes the texels, which the
+                // grid's values do not (checked: the case passes with texels exact).
+                bound: Some(|x| {
+                    let g = (x[0] * x[1] - 0.5).abs();
+                    vec![0.0, 0.0, 2.0 * U * (g + 1.0)]
+                }),
+                why: "texels exact (the grid has no g within rounding of an integer); the \
+                      weight inherits the two roundings of g = u·size − ½ (reference: floor and \
+                      rem_euclid in f64)",
+            },
+        },
+        Case {
             name: "cloudlight::shell_smoothstep",
             imports: &["cloudlight::shell"],
             arity: (3, 1),
