@@ -32,6 +32,13 @@
 //!   texel of a ground grid, at any sun elevation: the march written once over the float
 //!   type (f32: the twin of the GPU pass [`gpu::ShadowMapPass`], an R32Float texture) and
 //!   the exact f64 map of a volume.
+//! * [`shell`](mod@shell) and [`noise`]: seed 003's procedural cloud shell about the
+//!   planet ([`CloudShell`], a [`DensityField`]): tileable Perlin, Worley and
+//!   Perlin–Worley noise, a procedural or user weather map, height profiles per cloud
+//!   type, Schneider's coverage remap and detail erosion, the ray's spans from `atmos`'
+//!   ray–sphere roots, the horizon fade; WGSL twins (`noise.wgsl`, `shell.wgsl`), the GPU
+//!   bake of the noise into 128³ and 32³ textures ([`gpu::NoiseBake`]) and the density
+//!   over the baked textures ([`shell::BakedShell`]).
 //! * [`slice::slice_attenuation`] (seed 002's per-texel attenuation) and
 //!   [`jitter::bayer_jitter_4x4`] (seed 003's ordered march jitter).
 //!
@@ -39,7 +46,7 @@
 //! embedded as [`WGSL_MODULES`] (`#import cloudlight::<name>`) and validated with naga at
 //! build time.
 //!
-//! Not here yet (issue 14): the ray-marched cloud shell and its noise, multiple
+//! Not here yet (issue 14): the ray-marched cloud shell, multiple
 //! scattering, `xtask tradeoff cloudlight`.
 //!
 //! ```
