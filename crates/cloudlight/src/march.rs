@@ -27,9 +27,11 @@
 //!   (Wrenninge 2013, Hillaire 2016): `Σ_{n<N} bⁿ · e^{−aⁿτ_l} · p(cⁿg, cos θ)` with `p`
 //!   the dual-lobe Henyey–Greenstein phase of [`crate::cone::dual_lobe_henyey_greenstein`]
 //!   (`atmos`' lobe). `N = 1` is single scattering (Beer–Lambert toward the sun times the
-//!   phase). With `a ≤ b` (and `b < 1`) every octave's extra energy is bounded by its
-//!   attenuation, which keeps the sum energy-conserving (Hillaire 2016); `a > b` is
-//!   accepted but can create energy. `cos θ = direction · sun_direction` (1 looking
+//!   phase). Hillaire 2016 gives `a ≤ b` as the condition for the approximation to stay
+//!   energy-conserving; `a > b` is accepted. It is an approximation, not derived here:
+//!   in the optically thin limit (`τ_l → 0`) the sum is `Σ bⁿ ≥ 1` times single
+//!   scattering, so thin edges are brightened whatever `a` and `b` — measure it against
+//!   the Monte Carlo reference. `cos θ = direction · sun_direction` (1 looking
 //!   straight at the sun: forward scattering);
 //! * `powder(τ_l) = 1 − e^{−2τ_l}` ([`crate::cone::powder`]), Schneider's darkening of the sun
 //!   term near sunward edges: **not physical** (no radiative-transfer law gives it; it is
@@ -171,7 +173,7 @@ pub struct Octaves {
     pub count: u32,
     /// Extinction factor per octave, in [0, 1].
     pub a: f64,
-    /// Contribution factor per octave, in [0, 1]; energy-conserving when `a ≤ b`.
+    /// Contribution factor per octave, in [0, 1]; Hillaire 2016 asks for `a ≤ b`.
     pub b: f64,
     /// Phase eccentricity factor per octave, in [0, 1].
     pub c: f64,
