@@ -74,6 +74,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/clouds.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "render::volume_clouds",
+        source: include_str!("../shaders/volume_clouds.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "render::display",
         source: include_str!("../shaders/display.wgsl"),
     },

@@ -93,20 +93,19 @@ fn deg_free(value: f64, unit: &str) -> String {
 }
 
 impl Scene {
-    /// Grows and lights `[clouds.volume]` (validated first, every error naming its key).
-    pub(crate) fn volume_cloud(
+    /// An error about `[clouds.volume]`'s key `key`.
+    fn volume_invalid(&self, key: &str, value: String, reason: String) -> SceneError {
+        self.invalid(&["clouds", "volume", key], value, reason)
+    }
+
+    /// Checks `[clouds.volume]`'s values (cheap: before any table or automaton is
+    /// built), every error naming its key.
+    pub(crate) fn check_volume_cloud(
         &self,
         section: &CloudVolumeSection,
-        atmosphere: &atmos::Atmosphere,
-        model: &(dyn atmos::SkyModel + Send + Sync),
-        sun: DVec3,
-    ) -> Result<PreparedVolume, SceneError> {
-        let key = |k: &str| ["clouds", "volume", k].map(str::to_owned);
-        let invalid = |k: &str, value: String, reason: String| {
-            let path = key(k);
-            let path: Vec<&str> = path.iter().map(String::as_str).collect();
-            self.invalid(&path, value, reason)
-        };
+    ) -> Result<(), SceneError> {
+        let invalid =
+            |k: &str, value: String, reason: String| self.volume_invalid(k, value, reason);
         let s = section;
         if s.steps == 0 || s.steps > MAX_STEPS {
             return Err(invalid(
@@ -182,6 +181,38 @@ impl Scene {
                 "must be in 1..=8".into(),
             ));
         }
+        for (index, e) in s.ellipsoids.iter().enumerate() {
+            if e.centre.iter().chain(&e.radii).any(|v| !v.is_finite())
+                || e.radii.iter().any(|&r| r <= 0.0)
+            {
+                return Err(self.invalid(
+                    &[
+                        "clouds",
+                        "volume",
+                        "ellipsoids",
+                        &index.to_string(),
+                        "radii",
+                    ],
+                    format!("centre {:?}, radii {:?}", e.centre, e.radii),
+                    "centre and radii (cells) must be finite, radii > 0".into(),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Grows and lights `[clouds.volume]` (checked by [`Scene::check_volume_cloud`]).
+    pub(crate) fn volume_cloud(
+        &self,
+        section: &CloudVolumeSection,
+        atmosphere: &atmos::Atmosphere,
+        model: &(dyn atmos::SkyModel + Send + Sync),
+        sun: DVec3,
+    ) -> Result<PreparedVolume, SceneError> {
+        self.check_volume_cloud(section)?;
+        let invalid =
+            |k: &str, value: String, reason: String| self.volume_invalid(k, value, reason);
+        let s = section;
         let [nx, ny, nz] = s.grid;
         let ellipsoids = if s.ellipsoids.is_empty() {
             // The cumulus of cloudlight's examples (64×64×24 cells) scaled to the grid.
@@ -342,4 +373,228 @@ pub fn cloud_through_air(
     std::array::from_fn(|k| {
         cloud.radiance[k] * air_transmittance[k] + air_radiance[k] * (1.0 - cloud.transmittance)
     })
+}
+
+/// The composite pass's uniform (layout identical to WGSL `VolumeComposite`).
+#[cfg(feature = "gpu")]
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct VolumeComposite {
+    /// The scene's camera.
+    pub camera: atmos::frame::FrameCamera,
+    /// The reverse-z projection's near plane (m).
+    pub near: f32,
+    /// Multiplies the cloud's own light (the HDR target holds radiance × exposure).
+    pub radiance_scale: f32,
+    /// The march image's width (pixels).
+    pub width: u32,
+    /// Keeps the struct a multiple of 16 bytes.
+    pub padding0: u32,
+}
+
+/// The GPU side: `cloudlight::gpu::MarchPass` over the scene's pixels (prepared per
+/// frame with [`pinhole_camera`]) and the composite render pass
+/// (`shaders/render/volume_clouds.wgsl`).
+#[cfg(feature = "gpu")]
+#[derive(Debug)]
+pub(crate) struct VolumeCloudPass {
+    march: cloudlight::gpu::MarchPass,
+    pipeline: wgpu::RenderPipeline,
+    layout: wgpu::BindGroupLayout,
+    uniform: wgpu::Buffer,
+    bind_group: Option<wgpu::BindGroup>,
+}
+
+#[cfg(feature = "gpu")]
+impl VolumeCloudPass {
+    /// The march pipeline and the composite pipeline (the LUTs' layouts in groups 0, 1).
+    pub(crate) fn new(
+        device: &wgpu::Device,
+        luts: &atmos::gpu::AtmosphereLuts,
+        target: wgpu::TextureFormat,
+    ) -> Result<Self, crate::RenderError> {
+        let march = cloudlight::gpu::MarchPass::new(device)?;
+        let source = crate::composer().compose_module("render::volume_clouds")?;
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("render volume clouds"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let fragment = wgpu::ShaderStages::FRAGMENT;
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("render volume clouds"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: fragment,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: fragment,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Storage { read_only: true },
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2,
+                    visibility: fragment,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Depth,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render volume clouds uniform"),
+            size: std::mem::size_of::<VolumeComposite>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("render volume clouds"),
+            bind_group_layouts: &[
+                Some(&luts.layouts().uniforms),
+                Some(&luts.layouts().tables),
+                Some(&layout),
+            ],
+            immediate_size: 0,
+        });
+        // dst · T_c + the cloud's own light (premultiplied).
+        let blend = wgpu::BlendState {
+            color: wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::One,
+                dst_factor: wgpu::BlendFactor::SrcAlpha,
+                operation: wgpu::BlendOperation::Add,
+            },
+            alpha: wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::Zero,
+                dst_factor: wgpu::BlendFactor::One,
+                operation: wgpu::BlendOperation::Add,
+            },
+        };
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("render volume clouds"),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("volume_clouds_vertex"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("volume_clouds_fragment"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format: target,
+                    blend: Some(blend),
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        Ok(Self {
+            march,
+            pipeline,
+            layout,
+            uniform,
+            bind_group: None,
+        })
+    }
+
+    /// The frame's march (the scene camera as a pinhole camera in the volume's frame,
+    /// one ray per pixel) and the composite's uniform and bind group.
+    pub(crate) fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &crate::scene::PreparedScene,
+        cloud: &PreparedVolume,
+        depth_view: &wgpu::TextureView,
+    ) -> Result<(), crate::RenderError> {
+        let camera = &scene.camera;
+        let pinhole = pinhole_camera(camera, scene.atmosphere.planet_radius)?;
+        self.march.prepare(
+            device,
+            queue,
+            &cloud.volume,
+            &pinhole,
+            [camera.width, camera.height],
+            &cloud.settings,
+            &cloud.lighting,
+        )?;
+        let uniform = VolumeComposite {
+            camera: *camera,
+            near: scene.near.max(0.01) as f32,
+            radiance_scale: scene.present.exposure,
+            width: camera.width,
+            padding0: 0,
+        };
+        queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
+        let image = self
+            .march
+            .image_buffer()
+            .ok_or(crate::RenderError::NotPrepared)?;
+        self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("render volume clouds"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: self.uniform.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: image.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(depth_view),
+                },
+            ],
+        }));
+        Ok(())
+    }
+
+    /// Records the march's dispatch (a compute pass of its own, untimed: `MarchPass`
+    /// takes no timestamp writes).
+    pub(crate) fn encode_march(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+    ) -> Result<(), crate::RenderError> {
+        Ok(self.march.encode(encoder)?)
+    }
+
+    /// Draws the composite (one full-screen triangle) into `pass`.
+    pub(crate) fn draw(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        luts: &atmos::gpu::AtmosphereLuts,
+    ) -> Result<(), crate::RenderError> {
+        let bind_group = self
+            .bind_group
+            .as_ref()
+            .ok_or(crate::RenderError::NotPrepared)?;
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, luts.uniform_bind_group(), &[]);
+        pass.set_bind_group(1, luts.table_bind_group(), &[]);
+        pass.set_bind_group(2, bind_group, &[]);
+        pass.draw(0..3, 0..1);
+        Ok(())
+    }
 }

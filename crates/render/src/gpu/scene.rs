@@ -155,6 +155,7 @@ pub struct SceneRenderer {
     terrain: Option<TerrainPass>,
     sky_objects: Option<celestial::gpu::SkyObjectsPass>,
     clouds: Option<CloudPass>,
+    volume_cloud: Option<crate::volume_clouds::VolumeCloudPass>,
     hdr: wgpu::Texture,
     hdr_view: wgpu::TextureView,
     depth_view: wgpu::TextureView,
@@ -269,6 +270,30 @@ pub fn planned_passes(scene: &PreparedScene) -> Vec<(&'static str, Result<String
                  where the terrain's depth is nearer",
                 scene.cloud_layers.len()
             ))
+        },
+    ));
+    plan.push((
+        "volume clouds",
+        match &scene.volume_cloud {
+            Some(cloud) => Ok(format!(
+                "cloudlight's march of the [clouds.volume] cumulus ({}×{}×{} cells, {} grown \
+                 by cloudsim in {} steps; {} view × {} light steps per pixel; the march's \
+                 compute pass is untimed), composited over the scene where its depth is \
+                 nearer than the terrain, through the aerial-perspective table",
+                cloud.volume.dims()[0],
+                cloud.volume.dims()[1],
+                cloud.volume.dims()[2],
+                cloud.cloudy_cells,
+                cloud.steps,
+                cloud.settings.config().view_steps,
+                match cloud.settings.config().light {
+                    cloudlight::march::LightMarch::Full { steps } => steps.get(),
+                    _ => 0,
+                },
+            )),
+            None => {
+                Err("no [clouds.volume]: no automaton, no march pass, nothing allocated".into())
+            }
         },
     ));
     plan.push((
@@ -545,6 +570,14 @@ impl SceneRenderer {
             )?)
         };
 
+        // Only a scene with [clouds.volume] builds the march and its composite.
+        let volume_cloud = match &scene.volume_cloud {
+            Some(_) => Some(crate::volume_clouds::VolumeCloudPass::new(
+                device, &luts, HDR,
+            )?),
+            None => None,
+        };
+
         // Display: HDR texture → packed RGBA8.
         let source = crate::composer().compose_module("render::display")?;
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -646,6 +679,9 @@ impl SceneRenderer {
             if !scene.cloud_layers.is_empty() {
                 labels.push("clouds");
             }
+            if scene.volume_cloud.is_some() {
+                labels.push("volume clouds");
+            }
             labels.push("display");
             PassTimes::new(device, queue, labels)
         } else {
@@ -662,6 +698,7 @@ impl SceneRenderer {
             terrain,
             sky_objects,
             clouds,
+            volume_cloud,
             hdr,
             hdr_view,
             depth_view,
@@ -956,6 +993,19 @@ impl SceneRenderer {
                 });
             }
         }
+        match (&mut self.volume_cloud, &scene.volume_cloud) {
+            (Some(pass), Some(cloud)) => {
+                pass.prepare(&self.device, queue, scene, cloud, &self.depth_view)?;
+            }
+            (None, None) => {}
+            (built, _) => {
+                return Err(RenderError::InvalidParameter {
+                    field: "clouds.volume",
+                    value: if built.is_some() { "absent" } else { "given" }.into(),
+                    reason: "differs from the scene the renderer was built for",
+                });
+            }
+        }
         // Every pass writes radiance × the exposure into the half-float target: a night
         // sky's ~1e-7 (the sun's irradiance as unit) would sink into f16's subnormals
         // (below 6.1e-5) and flush; exposed, the image's values are near 1.
@@ -1128,6 +1178,9 @@ impl SceneRenderer {
                 times.and_then(|t| t.compute_writes("moonlit sky LUT bakes")),
             );
         }
+        if let Some(volume) = &self.volume_cloud {
+            volume.encode_march(encoder)?;
+        }
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("render scene"),
@@ -1222,6 +1275,24 @@ impl SceneRenderer {
             pass.set_pipeline(&clouds.pipeline);
             pass.set_bind_group(0, &clouds.bind_group, &[]);
             pass.draw(0..3, 0..1);
+        }
+        if let Some(volume) = &self.volume_cloud {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("render volume clouds"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &self.hdr_view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: times.and_then(|t| t.render_writes("volume clouds")),
+                ..Default::default()
+            });
+            volume.draw(&mut pass, &self.luts)?;
         }
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {

@@ -385,6 +385,9 @@ impl Scene {
             ));
         }
 
+        if let Some(section) = file.clouds.as_ref().and_then(|c| c.volume.as_ref()) {
+            self.check_volume_cloud(section)?;
+        }
         // The expensive parts last, once every cheap check has passed.
         let (sky_model, segment_model, precomputed) = self.models(&atmosphere)?;
         let terrain = self.terrain()?;

@@ -36,6 +36,11 @@ pub const SHIPPED: &[ShippedScene] = &[
         source: include_str!("../../scenes/night.toml"),
     },
     ShippedScene {
+        name: "cumulus",
+        description: "a cumulus grown by cloudsim and ray-marched by cloudlight over hills, its foot behind them",
+        source: include_str!("../../scenes/cumulus.toml"),
+    },
+    ShippedScene {
         name: "orbit",
         description: "the planet's limb from 400 km up, the sun just above it",
         source: include_str!("../../scenes/orbit.toml"),

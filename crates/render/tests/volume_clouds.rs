@@ -1,0 +1,281 @@
+//! `[clouds.volume]`: the scene keys' errors, the CPU composite of the shipped cumulus
+//! scene (sunlit flank brighter than the sky behind, the hills in front hiding the
+//! cloud's foot, no NaN), the march's pixel rays against atmos' frame rays, and the GPU
+//! image against the CPU's on the shipped scene's 160×90 (lavapipe in CI).
+
+use render::scene::{Scene, SceneError};
+use render::volume_clouds::{march_pixel, pinhole_camera, world_to_enu};
+
+const VALID: &str = "[camera]\nposition = [0.0, 2.0, 0.0]\nlook_direction = [0.0, 0.2, -1.0]\n\
+                     [sun]\nelevation_deg = 30.0\nazimuth_deg = 180.0\n\
+                     [atmosphere]\nrung = \"closed-form\"\n";
+
+const VOLUME: &str = "[clouds.volume]\nseed = 3\nsteps = 20\ngrid = [8, 8, 4]\n\
+                      cell_size_m = 100.0\nbase_m = 800.0\nsigma_t_per_density = 0.03\n";
+
+fn parse_error(text: &str) -> SceneError {
+    match Scene::parse(text, ".") {
+        Err(e) => e,
+        Ok(scene) => scene.prepare().unwrap_err(),
+    }
+}
+
+fn shipped(width: u32, height: u32) -> Scene {
+    let path = format!("{}/../../scenes/cumulus.toml", env!("CARGO_MANIFEST_DIR"));
+    let mut scene = Scene::open(&path).unwrap();
+    scene.file.output.width = width;
+    scene.file.output.height = height;
+    scene
+}
+
+#[test]
+fn volume_errors_name_the_key_and_its_line() {
+    let prepared = Scene::parse(&format!("{VALID}{VOLUME}"), ".")
+        .unwrap()
+        .prepare()
+        .unwrap();
+    let cloud = prepared.volume_cloud.as_ref().unwrap();
+    assert_eq!(cloud.volume.dims(), [8, 8, 4]);
+    // The volume section starts on line 9: seed 10, steps 11, grid 12, cell size 13,
+    // base 14, sigma 15.
+    for (from, to, field, line, shown) in [
+        ("steps = 20", "steps = 0", "clouds.volume.steps", 11, "0"),
+        (
+            "grid = [8, 8, 4]",
+            "grid = [0, 8, 4]",
+            "clouds.volume.grid",
+            12,
+            "[0, 8, 4]",
+        ),
+        (
+            "cell_size_m = 100.0",
+            "cell_size_m = -5.0",
+            "clouds.volume.cell_size_m",
+            13,
+            "-5 m",
+        ),
+        (
+            "base_m = 800.0",
+            "base_m = nan",
+            "clouds.volume.base_m",
+            14,
+            "NaN m",
+        ),
+        (
+            "sigma_t_per_density = 0.03",
+            "sigma_t_per_density = 0.0",
+            "clouds.volume.sigma_t_per_density",
+            15,
+            "0 /m",
+        ),
+    ] {
+        let e = parse_error(&format!("{VALID}{}", VOLUME.replace(from, to)));
+        let message = e.to_string();
+        assert_eq!(e.field(), Some(field), "{message}");
+        assert_eq!(e.location().map(|l| l.line), Some(line), "{message}");
+        assert!(message.contains(shown), "{message}");
+    }
+    // A seed that is not a u32 fails in the parser, located and named.
+    let e = parse_error(&format!(
+        "{VALID}{}",
+        VOLUME.replace("seed = 3", "seed = -3")
+    ));
+    assert_eq!(e.location().map(|l| l.line), Some(10), "{e}");
+    assert!(e.to_string().contains("seed"), "{e}");
+    let e = parse_error(&format!(
+        "{VALID}{}",
+        VOLUME.replace("seed = 3", "sead = 3")
+    ));
+    assert!(e.to_string().contains("seed"), "{e}");
+    // An ellipsoid with a zero radius.
+    let e = parse_error(&format!(
+        "{VALID}{VOLUME}[[clouds.volume.ellipsoids]]\ncentre = [4.0, 4.0, 2.0]\nradii = [3.0, 0.0, 2.0]\n"
+    ));
+    assert_eq!(e.field(), Some("clouds.volume.ellipsoids.0.radii"), "{e}");
+}
+
+#[test]
+fn the_march_rays_are_the_scene_cameras_rays() {
+    for (look, size) in [
+        ("look_direction = [0.3, 0.2, -1.0]", [160, 90]),
+        ("look_direction = [0.0, 1.0, 0.0]", [64, 48]), // straight up: north is the top
+        ("look_direction = [-1.0, -0.4, 0.2]", [33, 91]),
+    ] {
+        let text = VALID
+            .replace("look_direction = [0.0, 0.2, -1.0]", look)
+            .replace(
+                "position = [0.0, 2.0, 0.0]",
+                "position = [-700.0, 1500.0, 2500.0]",
+            );
+        let mut scene = Scene::parse(&text, ".").unwrap();
+        scene.file.output.width = size[0];
+        scene.file.output.height = size[1];
+        let prepared = scene.prepare().unwrap();
+        let camera = &prepared.camera;
+        let pinhole = pinhole_camera(camera, prepared.atmosphere.planet_radius).unwrap();
+        let p = camera.position.map(f64::from);
+        let origin = world_to_enu([p[0], p[1] - prepared.atmosphere.planet_radius, p[2]]);
+        assert!(
+            (0..3).all(|a| (pinhole.origin()[a] - origin[a]).abs() < 1e-6),
+            "{:?} {origin:?}",
+            pinhole.origin()
+        );
+        let [forward, right, up] = pinhole.basis().map(|v| v.map(|c| c as f32));
+        let tan_half = pinhole.tan_half(size).map(|t| t as f32);
+        let mut worst = 0.0f32;
+        for y in 0..size[1] {
+            for x in 0..size[0] {
+                let march =
+                    cloudlight::march::pixel_direction([x, y], size, forward, right, up, tan_half);
+                let frame = atmos::frame::frame_view_direction([x, y], camera);
+                let frame = world_to_enu(frame.map(f64::from));
+                for a in 0..3 {
+                    worst = worst.max((march[a] - frame[a] as f32).abs());
+                }
+            }
+        }
+        eprintln!("{look} {size:?}: largest component difference {worst:e}");
+        assert!(worst < 1e-6, "{look}: {worst:e}");
+    }
+}
+
+fn luminance(rgb: [f32; 3]) -> f32 {
+    0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]
+}
+
+#[test]
+fn the_shipped_cumulus_is_lit_hidden_by_the_hills_in_front_and_finite() {
+    let (width, height) = (96, 54);
+    let scene = shipped(width, height);
+    let cloudy = scene.prepare().unwrap();
+    let mut clear = scene.clone();
+    clear.file.clouds = None;
+    let clear = clear.prepare().unwrap();
+    assert!(clear.volume_cloud.is_none());
+    let with = render::cpu_renderer::render_radiance(&cloudy).unwrap();
+    let without = render::cpu_renderer::render_radiance(&clear).unwrap();
+    let cloud = cloudy.volume_cloud.as_ref().unwrap();
+    let pinhole = pinhole_camera(&cloudy.camera, cloudy.atmosphere.planet_radius).unwrap();
+    let (mut sunlit, mut brighter, mut hidden, mut shown) = (0, 0, 0, 0);
+    // The sun is in the south-south-west, behind the camera's left: the cloud's west
+    // half (the image's left half of its pixels) faces it.
+    let mut columns = Vec::new();
+    for y in 0..height {
+        for x in 0..width {
+            let i = (y * width + x) as usize;
+            assert!(with[i].radiance.iter().all(|v| v.is_finite() && *v >= 0.0));
+            let m = march_pixel(cloud, &pinhole, [width, height], [x, y]);
+            if m.transmittance < 1.0 {
+                columns.push(x);
+            }
+            match without[i].terrain_distance {
+                Some(d) if m.transmittance < 0.5 && m.depth >= d => {
+                    // The hills in front: the cloud is not drawn.
+                    hidden += 1;
+                    assert_eq!(with[i].radiance, without[i].radiance, "pixel {x}, {y}");
+                }
+                _ if m.transmittance < 0.5 => shown += 1,
+                _ => {}
+            }
+        }
+    }
+    columns.sort_unstable();
+    let middle = columns[columns.len() / 2];
+    // Mean luminance of the opaque cloud pixels over the sky, west (sunlit) and east
+    // halves, and how many of the west half's are brighter than the sky behind them.
+    let mut halves = [(0.0f64, 0usize); 2];
+    for y in 0..height {
+        for x in 0..width {
+            let i = (y * width + x) as usize;
+            let m = march_pixel(cloud, &pinhole, [width, height], [x, y]);
+            if m.transmittance < 0.1 && without[i].terrain_distance.is_none() {
+                let half = usize::from(x >= middle);
+                halves[half].0 += f64::from(luminance(with[i].radiance));
+                halves[half].1 += 1;
+                if half == 0 {
+                    sunlit += 1;
+                    if luminance(with[i].radiance) > luminance(without[i].radiance) {
+                        brighter += 1;
+                    }
+                }
+            }
+        }
+    }
+    let [west, east] = halves.map(|(sum, n)| sum / n.max(1) as f64);
+    eprintln!(
+        "cumulus {width}×{height}: {shown} cloud pixels drawn, {hidden} hidden by the hills; \
+         opaque cloud over the sky: mean luminance west (sunlit) {west:.4}, east {east:.4}; \
+         {brighter} of {sunlit} west pixels brighter than the sky behind"
+    );
+    assert!(shown > 50 && hidden > 5, "{shown} {hidden}");
+    assert!(sunlit > 20 && west > 1.1 * east, "{west} {east}");
+}
+
+#[test]
+fn the_cumulus_agrees_on_the_gpu_and_the_cpu() {
+    let Some(gpu) = skyscape_harness::gpu_or_skip("render::volume_clouds") else {
+        return;
+    };
+    let (width, height) = (160, 90);
+    let scene = shipped(width, height).prepare().unwrap();
+    let settings = render::gpu::SceneRendererSettings {
+        terrain_error_px: 0.0,
+        timestamps: false,
+    };
+    let mut renderer =
+        render::gpu::SceneRenderer::new(&gpu.device, &gpu.queue, &scene, settings).unwrap();
+    renderer.prepare(&gpu.queue, &scene).unwrap();
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    renderer.encode(&mut encoder).unwrap();
+    gpu.queue.submit([encoder.finish()]);
+    let buffer = renderer.pixel_buffer();
+    let bytes =
+        skyscape_harness::read_buffer(gpu, "scene pixels", buffer, 0, buffer.size()).unwrap();
+    let gpu_image: Vec<u32> = bytemuck::cast_slice(&bytes).to_vec();
+    let cpu_image = render::cpu_renderer::render_cpu(&scene).unwrap().pixels;
+    // The metric of tests/scene_gpu.rs (docs/scenes.md), on the cloud's pixels too.
+    let within = |lsb| render::tonemap::fraction_within_lsb(&gpu_image, &cpu_image, lsb).unwrap();
+    let shifted = render::tonemap::fraction_within_lsb_of_neighbourhood(
+        &gpu_image,
+        &cpu_image,
+        width as usize,
+        2,
+        1,
+    )
+    .unwrap();
+    let cloud = scene.volume_cloud.as_ref().unwrap();
+    let pinhole = pinhole_camera(&scene.camera, scene.atmosphere.planet_radius).unwrap();
+    let (mut cloud_pixels, mut cloud_within) = (0usize, 0usize);
+    let mut worst = 0u32;
+    for y in 0..height {
+        for x in 0..width {
+            if march_pixel(cloud, &pinhole, [width, height], [x, y]).transmittance < 1.0 {
+                let i = (y * width + x) as usize;
+                let d = (0..3)
+                    .map(|c| {
+                        let code = |p: u32| (p >> (8 * c)) & 255;
+                        code(gpu_image[i]).abs_diff(code(cpu_image[i]))
+                    })
+                    .max()
+                    .unwrap();
+                cloud_pixels += 1;
+                cloud_within += usize::from(d <= 2);
+                worst = worst.max(d);
+            }
+        }
+    }
+    let (two, eight) = (within(2), within(8));
+    eprintln!(
+        "cumulus 160×90 GPU vs CPU: {:.3} % of pixels within 2 LSB, {:.3} % within 8, \
+         {:.3} % within 2 LSB of the other image's 3×3 neighbourhood; cloud pixels \
+         {cloud_within} of {cloud_pixels} within 2 LSB, worst {worst} LSB",
+        100.0 * two,
+        100.0 * eight,
+        100.0 * shifted
+    );
+    assert!(
+        two >= 0.96 && eight >= 0.985 && shifted >= 0.975,
+        "{two} {eight} {shifted}"
+    );
+    assert!(cloud_pixels > 100, "{cloud_pixels}");
+}
