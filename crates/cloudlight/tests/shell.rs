@@ -695,3 +695,48 @@ fn a_baked_shell_is_zero_outside_and_bounded_inside() {
         "shape_size = 0: must be ≥ 1"
     );
 }
+
+/// How far the density over baked textures (8-bit, trilinear) is from the procedural
+/// density it stands for, at the default 128³ / 32³ and at 64³ / 16³: mean and max
+/// |difference| over points through the default cumulus shell, and the fraction of
+/// points cloudy in one and clear in the other. Ignored (a 128³ CPU bake): `cargo test
+/// --release -p cloudlight --test shell -- --ignored --nocapture baked_against_procedural`.
+#[test]
+#[ignore]
+fn baked_against_procedural() {
+    use cloudlight::shell::BakedShell;
+    let shell =
+        CloudShell::new(&earth(), ShellSettings::cumulus_over(earth().planet_radius)).unwrap();
+    let (inner, outer) = (shell.settings().inner_radius, shell.settings().outer_radius);
+    let points: Vec<[f64; 3]> = dyadic_points(20_000, 60_000.0)
+        .into_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let r = inner + (outer - inner) * (f64::from(i as u32 % 101) + 0.5) / 101.0;
+            [p[0], p[1], (r * r - p[0] * p[0] - p[1] * p[1]).sqrt()]
+        })
+        .collect();
+    let procedural: Vec<f64> = points.iter().map(|&p| shell.density(p)).collect();
+    for (shape, detail) in [(64, 16), (128, 32)] {
+        let start = std::time::Instant::now();
+        let baked = BakedShell::new(shell.clone(), shape, detail).unwrap();
+        let bake_seconds = start.elapsed().as_secs_f64();
+        let (mut sum, mut worst, mut disagree, mut cloudy) = (0.0, 0.0f64, 0, 0);
+        for (&p, &d) in points.iter().zip(&procedural) {
+            let b: f64 = baked.density(p);
+            sum += (b - d).abs();
+            worst = worst.max((b - d).abs());
+            disagree += usize::from((b > 0.0) != (d > 0.0));
+            cloudy += usize::from(d > 0.0);
+        }
+        let n = points.len() as f64;
+        println!(
+            "baked {shape}³/{detail}³ (CPU bake {bake_seconds:.1} s) vs procedural, {} points \
+             ({cloudy} cloudy): mean |Δ| {:.4}, max {:.3}, cloudy/clear disagree {:.2} %",
+            points.len(),
+            sum / n,
+            worst,
+            100.0 * disagree as f64 / n
+        );
+    }
+}
