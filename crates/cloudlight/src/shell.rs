@@ -50,6 +50,22 @@
 //!
 //! Every function is written once over the float type: `f32` mirrors
 //! `shaders/cloudlight/shell.wgsl`, `f64` is the parity reference.
+//!
+//! ```
+//! use cloudlight::{CloudShell, DensityField, ShellSettings};
+//!
+//! let earth = atmos::Atmosphere::earth();
+//! // Cumulus between 1.5 km and 4 km, procedural weather.
+//! let shell = CloudShell::new(&earth, ShellSettings::cumulus_over(earth.planet_radius))?;
+//! // A camera 2 m above the ground looking straight up meets the layer once.
+//! let camera = [0.0, 0.0, earth.planet_radius + 2.0];
+//! let spans = DensityField::<f64>::ray_spans(&shell, camera, [0.0, 0.0, 1.0]);
+//! assert_eq!(spans.count, 1);
+//! assert!((spans.spans[0].0 - 1498.0).abs() < 1e-6);
+//! // No cloud below the layer.
+//! assert_eq!(DensityField::<f64>::density(&shell, camera), 0.0);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 use atmos::geometry::ray_sphere_intersect;
 use atmos::real::Real;
