@@ -39,6 +39,13 @@
 //!   ray–sphere roots, the horizon fade; WGSL twins (`noise.wgsl`, `shell.wgsl`), the GPU
 //!   bake of the noise into 128³ and 32³ textures ([`gpu::NoiseBake`]) and the density
 //!   over the baked textures ([`shell::BakedShell`]).
+//! * [`march`](mod@march): seed 003's view ray-march through any [`DensityField`] (a
+//!   volume or the shell), written once over the float type: jittered steps (Bayer,
+//!   interleaved gradient noise), the 6 + 1 cone or a full light march at every sample,
+//!   dual-lobe Henyey–Greenstein octaves, powder (optional, not physical), ambient light,
+//!   Hillaire's energy-conserving step; sun and sky light and aerial perspective from
+//!   `atmos`; the GPU passes [`gpu::MarchPass`] (a volume) and [`gpu::MarchShellPass`]
+//!   (the procedural shell), whose twin is `march::render_image::<f32>`.
 //! * [`slice::slice_attenuation`] (seed 002's per-texel attenuation) and
 //!   [`jitter::bayer_jitter_4x4`] (seed 003's ordered march jitter).
 //!
@@ -46,8 +53,8 @@
 //! embedded as [`WGSL_MODULES`] (`#import cloudlight::<name>`) and validated with naga at
 //! build time.
 //!
-//! Not here yet (issue 14): the ray-marched cloud shell, multiple
-//! scattering, `xtask tradeoff cloudlight`.
+//! Not here yet (issue 14): the octaves measured against the Monte Carlo reference,
+//! `xtask tradeoff cloudlight`.
 //!
 //! ```
 //! use cloudlight::CloudVolume;
