@@ -591,6 +591,30 @@ fn march_accuracy_and_cost() {
             rays.len(),
             total / rays.len() as f64
         );
+        // Jitter at 8 view steps: the same pixels marched with each start offset.
+        for jitter in [Jitter::None, Jitter::Bayer4x4, Jitter::InterleavedGradient] {
+            let s = settings(MarchConfig {
+                view_steps: 8,
+                jitter,
+                light: full(32),
+                transmittance_epsilon: 0.0,
+                ambient_steps: 0,
+                ..d
+            });
+            let (mut abs_sum, mut bias) = (0.0, 0.0);
+            for (k, &dir) in rays.iter().enumerate() {
+                let pixel = [k as u32 % size[0], k as u32 / size[0]];
+                let m = march_view_at_pixel(&volume, camera.origin(), dir, &s, &lighting, pixel);
+                abs_sum += (m.radiance[0] - reference[k].radiance[0]).abs();
+                bias += m.radiance[0] - reference[k].radiance[0];
+            }
+            println!(
+                "  view 8, full light 32, jitter {jitter:?}: radiance mean |error| {:.2} % of the \
+                 mean, bias {:+.3} %",
+                100.0 * abs_sum / total,
+                100.0 * bias / total
+            );
+        }
         for (name, steps, light) in &methods {
             let s = settings(MarchConfig {
                 view_steps: *steps,
