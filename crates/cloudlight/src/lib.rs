@@ -77,8 +77,8 @@ pub mod march;
 pub mod noise;
 pub mod propagate;
 pub mod reference;
-pub mod shell;
 pub mod shadow_map;
+pub mod shell;
 pub mod slice;
 pub mod volume;
 

@@ -7,8 +7,8 @@ use super::compare::Tolerance;
 
 mod atmos_drop_in_passes;
 mod atmos_passes;
-mod cloudlight_noise_passes;
 mod cloudlight_march_passes;
+mod cloudlight_noise_passes;
 mod cloudlight_passes;
 mod cloudlight_shadow_passes;
 mod cloudsim_passes;
