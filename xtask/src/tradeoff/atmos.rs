@@ -372,7 +372,7 @@ fn criterion_seconds_per_query(
 }
 
 /// `median.point_estimate` of a criterion `estimates.json` (nanoseconds).
-fn median_point_estimate(json: &str) -> Option<f64> {
+pub(super) fn median_point_estimate(json: &str) -> Option<f64> {
     let median = &json[json.find("\"median\"")?..];
     let value = &median[median.find("\"point_estimate\":")? + "\"point_estimate\":".len()..];
     let end = value.find([',', '}'])?;

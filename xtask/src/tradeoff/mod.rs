@@ -6,13 +6,13 @@
 pub mod plot;
 
 mod atmos;
+mod cloudlight;
 mod sky_dome;
 mod terrain;
 
 use std::process::ExitCode;
 
-const USAGE: &str =
-    "usage: cargo xtask tradeoff <atmos|terrain|sky-dome> [--quick] [--backend BACKENDS]";
+const USAGE: &str = "usage: cargo xtask tradeoff <atmos|terrain|sky-dome|cloudlight> [--quick] [--backend BACKENDS]";
 
 /// Options shared by every subsystem.
 #[derive(Debug, Default, Clone)]
@@ -57,6 +57,7 @@ pub fn run(args: &[String]) -> ExitCode {
         "atmos" => atmos::run(&options),
         "terrain" => terrain::run(&options),
         "sky-dome" => sky_dome::run(&options),
+        "cloudlight" => cloudlight::run(&options),
         other => Err(format!("unknown subsystem `{other}`\n{USAGE}")),
     };
     match result {
