@@ -15,7 +15,7 @@
 use std::hint::black_box;
 
 use cloudlight::CloudVolume;
-use cloudlight::cone::{ConeSettings, ConeWeights, LightRay, MarchSettings};
+use cloudlight::cone::{ConeSettings, ConeWeights, LightRay, FullMarchSettings};
 use cloudlight::propagate::{SliceMode, SlicePlan, propagate};
 use cloudlight::shadow_map::{DEFAULT_STEPS, ShadowGrid, ShadowMapPlan, shadow_map};
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -91,7 +91,7 @@ fn light_march(c: &mut Criterion) {
     let mut group = c.benchmark_group("per_voxel_march_128^3_on_4096_cells");
     group.sample_size(10);
     for steps in [32, 128] {
-        let march = MarchSettings::new(steps).expect("valid steps");
+        let march = FullMarchSettings::new(steps).expect("valid steps");
         group.bench_function(format!("{steps}_steps"), |b| {
             b.iter(|| {
                 let mut sum = 0.0f32;
@@ -116,7 +116,7 @@ fn light_march(c: &mut Criterion) {
         })
     });
     for steps in [8, 32, 128] {
-        let march = MarchSettings::new(steps).expect("valid steps");
+        let march = FullMarchSettings::new(steps).expect("valid steps");
         group.bench_function(format!("full_march_{steps}"), |b| {
             b.iter(|| {
                 let tau: f32 = black_box(&ray).march_optical_depth(&v, &march);

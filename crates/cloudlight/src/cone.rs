@@ -178,7 +178,7 @@ pub fn march_optical_depth<F: Real>(
     sigma_t * sum * h
 }
 
-/// Bad input to the light-estimate API ([`ConeSettings`], [`MarchSettings`],
+/// Bad input to the light-estimate API ([`ConeSettings`], [`FullMarchSettings`],
 /// [`LightRay`]), naming the field and its value. The per-sample functions above mirror
 /// WGSL and stay infallible; these constructors validate at the API edge.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -251,11 +251,11 @@ impl ConeSettings {
 
 /// Validated settings of the full light march: its midpoint steps (1 to 65 536).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct MarchSettings {
+pub struct FullMarchSettings {
     steps: std::num::NonZeroU32,
 }
 
-impl MarchSettings {
+impl FullMarchSettings {
     /// Refuses 0 steps and more than 65 536.
     pub fn new(steps: u32) -> Result<Self, ConeError> {
         match std::num::NonZeroU32::new(steps) {
@@ -383,7 +383,7 @@ impl LightRay {
     pub fn march_optical_depth<F: Real, D: crate::DensityField<F> + ?Sized>(
         &self,
         field: &D,
-        settings: &MarchSettings,
+        settings: &FullMarchSettings,
     ) -> F {
         let saturation = F::of(crate::propagate::TAU_SATURATION);
         let sigma = field.extinction_per_density().min(saturation);
@@ -466,7 +466,7 @@ mod tests {
         assert!(err.to_string().starts_with("step = -3"), "{err}");
         let err = ConeSettings::new(10.0, f64::NAN, ConeWeights::Raw).unwrap_err();
         assert!(err.to_string().starts_with("spread = NaN"), "{err}");
-        let err = MarchSettings::new(0).unwrap_err();
+        let err = FullMarchSettings::new(0).unwrap_err();
         assert!(err.to_string().starts_with("steps = 0"), "{err}");
         let err = LightRay::new([0.0; 3], [f64::NAN, 0.0, 1.0], 1.0).unwrap_err();
         assert!(err.to_string().starts_with("to_sun.x = NaN"), "{err}");
@@ -483,7 +483,7 @@ mod tests {
         let v = CloudVolume::new([4, 4, 4], [0.0; 3], 100.0, 0.004, vec![1.0; 64]).unwrap();
         let ray = LightRay::through(&v, [200.0, 200.0, 50.0], [0.0, 0.0, 2.0]).unwrap();
         assert_eq!(ray.exit_distance(), 350.0);
-        let march = MarchSettings::new(5).unwrap();
+        let march = FullMarchSettings::new(5).unwrap();
         let tau: f64 = ray.march_optical_depth(&v, &march);
         assert!((tau - 0.004 * 350.0).abs() < 1e-12, "{tau}");
         let cone = ConeSettings::new(40.0, 0.0, ConeWeights::Partitioned).unwrap();

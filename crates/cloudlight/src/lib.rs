@@ -100,7 +100,7 @@ pub use volume::{CloudVolume, VolumeError};
 /// assert_eq!(light.len(), 64);
 /// ```
 pub mod prelude {
-    pub use crate::cone::{ConeError, ConeSettings, LightRay, MarchSettings};
+    pub use crate::cone::{ConeError, ConeSettings, FullMarchSettings, LightRay};
     pub use crate::cone::{
         ConeWeights, beer_lambert, box_exit_distance, cone_optical_depth, cone_sample,
         dual_lobe_henyey_greenstein, march_optical_depth, powder,

@@ -12,7 +12,7 @@
 //! ```
 
 use cloudlight::CloudVolume;
-use cloudlight::cone::{ConeSettings, ConeWeights, LightRay, MarchSettings, beer_lambert};
+use cloudlight::cone::{ConeSettings, ConeWeights, LightRay, FullMarchSettings, beer_lambert};
 use cloudlight::propagate::{Resampling, SliceMode, SlicePlan, propagate, try_propagate};
 use cloudlight::reference;
 use cloudlight::shadow_map::{ShadowGrid, ShadowMapPlan, shadow_map, shadow_map_reference};
@@ -169,7 +169,7 @@ proptest! {
         let p = point_in(&v, fraction);
         let ray = LightRay::through(&v, p, l).unwrap();
         prop_assert!(ray.exit_distance().is_finite() && ray.exit_distance() >= 0.0);
-        let march = MarchSettings::new(steps).unwrap();
+        let march = FullMarchSettings::new(steps).unwrap();
         for weights in [ConeWeights::Raw, ConeWeights::Partitioned] {
             let cone = ConeSettings::new(step, spread, weights).unwrap();
             let tau32: f32 = ray.cone_optical_depth(&v, &cone);
@@ -208,7 +208,7 @@ proptest! {
         prop_assert!(err.to_string().starts_with("step = "), "{err}");
         let err = ConeSettings::new(1.0, bad, ConeWeights::Raw).unwrap_err();
         prop_assert!(err.to_string().starts_with("spread = "), "{err}");
-        prop_assert!(MarchSettings::new(0).is_err());
+        prop_assert!(FullMarchSettings::new(0).is_err());
     }
 
     #[test]
