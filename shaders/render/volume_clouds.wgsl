@@ -1,11 +1,11 @@
 // The volumetric cloud over the opaque scene: reads cloudlight's march output (two
 // vec4 per pixel, x fastest: radiance rgb + transmittance T_c, then the
 // transmittance-weighted depth d) and the terrain's reverse-z depth, and draws the cloud
-// where d is nearer than the terrain. Twin: render::cpu_renderer's
-// composite_volume_cloud (render::volume_clouds), which also applies the aerial
-// perspective in front of the cloud: this pass does not yet (see the fragment).
+// where d is nearer than the terrain, seen through the air in front of it (the
+// aerial-perspective volume, as the terrain's). Twin: render::cpu_renderer's
+// composite_volume_cloud (render::volume_clouds).
 //
-// The fragment is L_c × radiance_scale with alpha T_c; the
+// The fragment is (L_c·T_air + L_air·(1 − T_c)) × radiance_scale with alpha T_c; the
 // pipeline blends it as src·1 + dst·src_alpha, i.e. + T_c · L_behind (the colour target
 // holds radiance × exposure, so only the cloud's own light is scaled).
 //
@@ -51,10 +51,15 @@ fn volume_clouds_fragment(@builtin(position) position: vec4<f32>) -> @location(0
     let depth = march[i + 1u].x;
     let view = frame_view_direction(pixel, composite.camera);
     let behind = volume_scene_distance(textureLoad(scene_depth, pixel, 0), view);
-    // NOT DONE: the air in front of the cloud. Calling atmos' aerial_perspective here
-    // crashes lavapipe (SIGSEGV in llvmpipe, Mesa 22.3.6) whatever the offset; until that
-    // is found the GPU draws the cloud without it (the CPU twin applies it).
-    let seen = cloud.rgb;
+    // The air in front of the cloud from the aerial-perspective volume: the cloud's
+    // point is on this pixel's ray, so always on screen, which is the branch atmos'
+    // aerial_perspective (and the CPU twin's drop_in) takes within the volume's range
+    // (32 km by default); beyond it this clamps to the last slice where they march.
+    // (Calling aerial_perspective itself, whose off-screen branch marches the LUTs,
+    // from this full-screen fragment crashes lavapipe: SIGSEGV in llvmpipe, Mesa 22.3.6.)
+    let screen = frame_screen_position(frame_camera, view);
+    let air = lookup_aerial_perspective(screen.xy, max(depth, 1.0));
+    let seen = cloud.rgb * air.transmittance + air.radiance * (1.0 - cloud.w);
     // cloud_in_front: some opacity, nearer than the scene.
     if !(cloud.w < 1.0 && depth < behind) {
         return vec4<f32>(0.0, 0.0, 0.0, 1.0);

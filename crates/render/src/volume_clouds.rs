@@ -31,10 +31,10 @@
 //! between the camera and `d` (the same aerial perspective the terrain gets: for the
 //! precomputed rung the aerial-perspective LUT, `atmos::lut::drop_in`; otherwise a
 //! `SkyQuery::with_max_distance`, `cloudlight::march::apply_aerial_perspective`) and
-//! `L_behind` is the sky or terrain already drawn. **Not done on the GPU**: its composite
-//! draws `L_c + T_c · L_behind` without the air in front (calling atmos'
-//! `aerial_perspective` from the composite's fragment crashes lavapipe; see
-//! `volume_clouds.wgsl`), so its cloud pixels differ from the CPU's. The cloud is drawn only where
+//! `L_behind` is the sky or terrain already drawn. The GPU composite reads the
+//! aerial-perspective volume only (the branch atmos takes for an on-screen point within
+//! its range, 32 km by default; beyond it the GPU clamps to the last slice where the CPU
+//! marches the tables: a cloud farther than the range differs). The cloud is drawn only where
 //! `d` is nearer than the terrain hit (or the pixel shows sky). This treats the cloud as
 //! a surface at its opacity's centroid: a cloud that the terrain cuts through (part in
 //! front of a ridge, part behind it) is drawn whole or not at all per pixel, and the
