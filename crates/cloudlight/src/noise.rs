@@ -54,7 +54,7 @@ pub fn noise_octave_seed(seed: u32, k: u32) -> u32 {
 }
 
 /// Lattice index `i` wrapped into `[0, period)` (`period ≥ 1`).
-fn wrap(i: i32, period: u32) -> u32 {
+fn noise_wrap(i: i32, period: u32) -> u32 {
     let p = period as i32;
     (((i % p) + p) % p) as u32
 }
@@ -66,7 +66,7 @@ fn cell_and_fraction<F: Real>(x: F) -> (i32, F) {
 }
 
 /// The top 24 bits of `bits` as a float in [0, 1), exact in f32 and f64.
-fn unit_from_bits<F: Real>(bits: u32) -> F {
+fn noise_unit_from_bits<F: Real>(bits: u32) -> F {
     F::of(f64::from(bits >> 8)) * F::of(1.0 / 16_777_216.0)
 }
 
@@ -94,7 +94,7 @@ pub fn perlin_gradient_dot<F: Real>(hash: u32, x: F, y: F, z: F) -> F {
 
 /// `a + t·(b − a)`, the interpolation both languages spell out (WGSL's `mix` may be
 /// evaluated as `a·(1 − t) + b·t`).
-fn lerp<F: Real>(a: F, b: F, t: F) -> F {
+fn noise_lerp<F: Real>(a: F, b: F, t: F) -> F {
     a + t * (b - a)
 }
 
@@ -104,9 +104,18 @@ pub fn perlin_noise<F: Real>(p: [F; 3], period: u32, seed: u32) -> F {
     let (ix, fx) = cell_and_fraction(p[0]);
     let (iy, fy) = cell_and_fraction(p[1]);
     let (iz, fz) = cell_and_fraction(p[2]);
-    let (x0, x1) = (wrap(ix, period), wrap(ix.wrapping_add(1), period));
-    let (y0, y1) = (wrap(iy, period), wrap(iy.wrapping_add(1), period));
-    let (z0, z1) = (wrap(iz, period), wrap(iz.wrapping_add(1), period));
+    let (x0, x1) = (
+        noise_wrap(ix, period),
+        noise_wrap(ix.wrapping_add(1), period),
+    );
+    let (y0, y1) = (
+        noise_wrap(iy, period),
+        noise_wrap(iy.wrapping_add(1), period),
+    );
+    let (z0, z1) = (
+        noise_wrap(iz, period),
+        noise_wrap(iz.wrapping_add(1), period),
+    );
     let one = F::one();
     let (gx, gy, gz) = (fx - one, fy - one, fz - one);
     let n000 = perlin_gradient_dot(noise_cell_hash([x0, y0, z0], seed), fx, fy, fz);
@@ -118,13 +127,13 @@ pub fn perlin_noise<F: Real>(p: [F; 3], period: u32, seed: u32) -> F {
     let n011 = perlin_gradient_dot(noise_cell_hash([x0, y1, z1], seed), fx, gy, gz);
     let n111 = perlin_gradient_dot(noise_cell_hash([x1, y1, z1], seed), gx, gy, gz);
     let (u, v, w) = (perlin_fade(fx), perlin_fade(fy), perlin_fade(fz));
-    let nx00 = lerp(n000, n100, u);
-    let nx10 = lerp(n010, n110, u);
-    let nx01 = lerp(n001, n101, u);
-    let nx11 = lerp(n011, n111, u);
-    let nxy0 = lerp(nx00, nx10, v);
-    let nxy1 = lerp(nx01, nx11, v);
-    lerp(nxy0, nxy1, w)
+    let nx00 = noise_lerp(n000, n100, u);
+    let nx10 = noise_lerp(n010, n110, u);
+    let nx01 = noise_lerp(n001, n101, u);
+    let nx11 = noise_lerp(n011, n111, u);
+    let nxy0 = noise_lerp(nx00, nx10, v);
+    let nxy1 = noise_lerp(nx01, nx11, v);
+    noise_lerp(nxy0, nxy1, w)
 }
 
 /// Worley (cellular) noise F1 at `p` (lattice cells) with integer period `period` (≥ 1):
@@ -141,16 +150,16 @@ pub fn worley_noise<F: Real>(p: [F; 3], period: u32, seed: u32) -> F {
         for dy in -1i32..=1 {
             for dx in -1i32..=1 {
                 let cell = [
-                    wrap(ix.wrapping_add(dx), period),
-                    wrap(iy.wrapping_add(dy), period),
-                    wrap(iz.wrapping_add(dz), period),
+                    noise_wrap(ix.wrapping_add(dx), period),
+                    noise_wrap(iy.wrapping_add(dy), period),
+                    noise_wrap(iz.wrapping_add(dz), period),
                 ];
                 let h0 = noise_cell_hash(cell, seed);
                 let h1 = hash_u32(h0);
                 let h2 = hash_u32(h1);
-                let ox = F::of(f64::from(dx)) + unit_from_bits::<F>(h0) - fx;
-                let oy = F::of(f64::from(dy)) + unit_from_bits::<F>(h1) - fy;
-                let oz = F::of(f64::from(dz)) + unit_from_bits::<F>(h2) - fz;
+                let ox = F::of(f64::from(dx)) + noise_unit_from_bits::<F>(h0) - fx;
+                let oy = F::of(f64::from(dy)) + noise_unit_from_bits::<F>(h1) - fy;
+                let oz = F::of(f64::from(dz)) + noise_unit_from_bits::<F>(h2) - fz;
                 best = best.min(ox * ox + oy * oy + oz * oz);
             }
         }
@@ -303,7 +312,7 @@ pub fn bake_detail_noise(seed: u32, size: u32) -> Vec<[f32; 3]> {
 pub fn noise_texel_lerp<F: Real>(u: F, size: u32) -> (u32, u32, F) {
     let g = u * F::of(f64::from(size)) - F::of(0.5);
     let (i, t) = cell_and_fraction(g);
-    (wrap(i, size), wrap(i.wrapping_add(1), size), t)
+    (noise_wrap(i, size), noise_wrap(i.wrapping_add(1), size), t)
 }
 
 /// A baked noise texture as the GPU holds it: `size`³ texels (x fastest) of four channels,
@@ -358,7 +367,7 @@ impl NoiseTexture {
         let (y0, y1, ty) = noise_texel_lerp(u[1], self.size);
         let (z0, z1, tz) = noise_texel_lerp(u[2], self.size);
         let c = |x, y, z| self.texel(x, y, z).map(|v| F::of(f64::from(v)));
-        let lerp4 = |a: [F; 4], b: [F; 4], t: F| std::array::from_fn(|k| lerp(a[k], b[k], t));
+        let lerp4 = |a: [F; 4], b: [F; 4], t: F| std::array::from_fn(|k| noise_lerp(a[k], b[k], t));
         let x00 = lerp4(c(x0, y0, z0), c(x1, y0, z0), tx);
         let x10 = lerp4(c(x0, y1, z0), c(x1, y1, z0), tx);
         let x01 = lerp4(c(x0, y0, z1), c(x1, y0, z1), tx);
@@ -375,10 +384,10 @@ mod tests {
 
     #[test]
     fn wrap_is_modulo_for_negative_indices() {
-        assert_eq!(wrap(-1, 4), 3);
-        assert_eq!(wrap(-4, 4), 0);
-        assert_eq!(wrap(9, 4), 1);
-        assert_eq!(wrap(0, 1), 0);
+        assert_eq!(noise_wrap(-1, 4), 3);
+        assert_eq!(noise_wrap(-4, 4), 0);
+        assert_eq!(noise_wrap(9, 4), 1);
+        assert_eq!(noise_wrap(0, 1), 0);
     }
 
     #[test]
