@@ -2,7 +2,7 @@
 //! sky objects, the cloud layers, the display pass. Bring your own device;
 //! [`SceneRenderer::new`] builds only the passes the scene needs (no terrain: no terrain
 //! pipeline, no buffers; no `[time]`: no sky objects, no moonlit tables; no cloud
-//! layers: no cloud pipeline), [`SceneRenderer::prepare`] writes the frame's uniforms
+//! layers: no cloud pipeline; no `[clouds.volume]`: no march, no composite), [`SceneRenderer::prepare`] writes the frame's uniforms
 //! and tile list, [`SceneRenderer::encode`] records:
 //!
 //! 1. compute: the LUT bakes (the static ones once, the sky view and aerial
@@ -12,6 +12,9 @@
 //!    terrain again lit by the moon through the moonlit tables (additive, depth-equal);
 //! 3. render: the sun, moon, planets and stars, additive, depth-tested behind terrain;
 //! 4. render: the cloud layers, farthest first, hidden where the terrain is nearer;
+//!    then the `[clouds.volume]` cloud: cloudlight's march (a compute pass recorded
+//!    after the LUT bakes) composited where its depth is nearer than the terrain
+//!    (`render::volume_clouds`);
 //! 5. compute: the display pass (tone map, sRGB, dither) into RGBA8 pixels.
 //!
 //! The half-float HDR target holds radiance × the scene's exposure (a night's radiance
