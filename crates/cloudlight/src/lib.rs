@@ -53,8 +53,8 @@
 //! embedded as [`WGSL_MODULES`] (`#import cloudlight::<name>`) and validated with naga at
 //! build time.
 //!
-//! Not here yet (issue 14): the octaves measured against the Monte Carlo reference,
-//! `xtask tradeoff cloudlight`.
+//! What each method costs and how wrong it is: `cargo xtask tradeoff cloudlight`
+//! (`docs/tradeoffs/cloudlight.md`).
 //!
 //! ```
 //! use cloudlight::CloudVolume;
