@@ -279,7 +279,7 @@ pub fn planned_passes(scene: &PreparedScene) -> Vec<(&'static str, Result<String
         "volume clouds",
         match &scene.volume_cloud {
             Some(cloud) => Ok(format!(
-                "cloudlight's march of the [clouds.volume] cumulus ({}×{}×{} cells, {} grown \
+                "cloudlight's march of the [clouds.volume] cumulus ({}×{}×{} cells, {} of density > 0, grown \
                  by cloudsim in {} steps; {} view × {} light steps per pixel; the march's \
                  compute pass is untimed), composited over the scene where its depth is \
                  nearer than the terrain, through the aerial-perspective table",
