@@ -152,6 +152,15 @@ fn the_shipped_cumulus_is_lit_hidden_by_the_hills_in_front_and_finite() {
     clear.file.clouds = None;
     let clear = clear.prepare().unwrap();
     assert!(clear.volume_cloud.is_none());
+    // Only the scene with the section plans the pass (`skyscape explain`).
+    let volume_pass = |scene: &render::scene::PreparedScene| {
+        render::gpu::scene::planned_passes(scene)
+            .into_iter()
+            .find(|(name, _)| *name == "volume clouds")
+            .map(|(_, plan)| plan.is_ok())
+    };
+    assert_eq!(volume_pass(&cloudy), Some(true));
+    assert_eq!(volume_pass(&clear), Some(false));
     let with = render::cpu_renderer::render_radiance(&cloudy).unwrap();
     let without = render::cpu_renderer::render_radiance(&clear).unwrap();
     let cloud = cloudy.volume_cloud.as_ref().unwrap();
