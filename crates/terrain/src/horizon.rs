@@ -609,6 +609,9 @@ struct LineScratch {
     /// (sample, added, popped count) per sample offered to the prefix hull.
     undo_log: Vec<(usize, bool, usize)>,
     popped: Vec<usize>,
+    /// The running maximum of `g` over the next block, from its first sample: the
+    /// bound that lets a window skip its part-B search.
+    prefix_max: Vec<f64>,
     out: Vec<f32>,
 }
 
@@ -751,6 +754,7 @@ impl Sampler<'_> {
             prefix,
             undo_log,
             popped,
+            prefix_max,
             out,
         } = sc;
         let g = &g[..];
@@ -810,6 +814,14 @@ impl Sampler<'_> {
                             .copied()
                             .filter(|x| !x.is_nan())
                             .fold(f64::NEG_INFINITY, f64::max);
+                        prefix_max.clear();
+                        let mut running = f64::NEG_INFINITY;
+                        for &x in &g[start.min(prefix_end)..prefix_end] {
+                            if !x.is_nan() {
+                                running = running.max(x);
+                            }
+                            prefix_max.push(running);
+                        }
                         for j in start..prefix_end {
                             if h[j].is_nan() {
                                 undo_log.push((j, false, 0));
@@ -856,18 +868,30 @@ impl Sampler<'_> {
                     }
                     continue;
                 }
-                if !unlimited {
-                    // Part B: the next block's samples up to b.
-                    self.shrink_prefix(prefix, undo_log, popped, &mut prefix_end, b);
-                    if !prefix.is_empty() {
-                        let j = self.tangent_point(g, v, prefix.len(), |k| prefix[k]);
-                        best = best.max(self.tangent_h(h, v, j));
-                    }
-                }
                 if !hull.is_empty() {
                     let len = hull.len();
                     let j = self.tangent_point(g, v, len, |k| hull[len - 1 - k]);
                     best = best.max(self.tangent_h(h, v, j));
+                }
+                if !unlimited {
+                    // Part B: the next block's samples up to b, searched only when
+                    // its highest sample, at its nearest distance, could rise above
+                    // what the near field and part A found (the same bound as above,
+                    // on the next block alone: most windows skip the search).
+                    self.shrink_prefix(prefix, undo_log, popped, &mut prefix_end, b);
+                    let start = (block + 1) * far;
+                    if !prefix.is_empty() && b >= start {
+                        let rise = prefix_max[b - start] - v.g;
+                        let reach = if rise >= 0.0 {
+                            rise / self.distance(v, start)
+                        } else {
+                            rise / self.distance(v, b)
+                        };
+                        if reach + lift >= best {
+                            let j = self.tangent_point(g, v, prefix.len(), |k| prefix[k]);
+                            best = best.max(self.tangent_h(h, v, j));
+                        }
+                    }
                 }
             }
             out[slot] = angle_from_tangent(best);
