@@ -15,7 +15,7 @@
 use std::hint::black_box;
 
 use cloudlight::CloudVolume;
-use cloudlight::cone::{ConeSettings, ConeWeights, LightRay, FullMarchSettings};
+use cloudlight::cone::{ConeSettings, ConeWeights, FullMarchSettings, LightRay};
 use cloudlight::propagate::{SliceMode, SlicePlan, propagate};
 use cloudlight::shadow_map::{DEFAULT_STEPS, ShadowGrid, ShadowMapPlan, shadow_map};
 use criterion::{Criterion, criterion_group, criterion_main};

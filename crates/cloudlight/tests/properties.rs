@@ -12,7 +12,7 @@
 //! ```
 
 use cloudlight::CloudVolume;
-use cloudlight::cone::{ConeSettings, ConeWeights, LightRay, FullMarchSettings, beer_lambert};
+use cloudlight::cone::{ConeSettings, ConeWeights, FullMarchSettings, LightRay, beer_lambert};
 use cloudlight::propagate::{Resampling, SliceMode, SlicePlan, propagate, try_propagate};
 use cloudlight::reference;
 use cloudlight::shadow_map::{ShadowGrid, ShadowMapPlan, shadow_map, shadow_map_reference};
