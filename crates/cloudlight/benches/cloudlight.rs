@@ -74,7 +74,12 @@ fn propagation(c: &mut Criterion) {
         ] {
             let plan = SlicePlan::new(&v, sun(60.0), mode).expect("valid plan");
             group.bench_function(format!("{name}_{n}^3"), |b| {
-                b.iter(|| black_box(propagate::<f32>(black_box(&v), &plan)))
+                b.iter(|| {
+                    black_box(
+                        propagate::<f32>(black_box(&v), &plan)
+                            .expect("the plan was made for this volume"),
+                    )
+                })
             });
         }
     }

@@ -100,9 +100,19 @@ fn cost_at_128() {
     println!("| method | ms | per cell |");
     println!("|---|---|---|");
     let plan = SlicePlan::new(&volume, l, SliceMode::Physical).unwrap();
-    let slices = time(&|| propagate::<f64>(&volume, &plan).iter().sum());
+    let slices = time(&|| {
+        propagate::<f64>(&volume, &plan)
+            .expect("the plan was made for this volume")
+            .iter()
+            .sum()
+    });
     let bilinear = plan.clone().with_resampling(Resampling::Bilinear);
-    let slices_bilinear = time(&|| propagate::<f64>(&volume, &bilinear).iter().sum());
+    let slices_bilinear = time(&|| {
+        propagate::<f64>(&volume, &bilinear)
+            .expect("the plan was made for this volume")
+            .iter()
+            .sum()
+    });
     let density = |q: [f64; 3]| volume.density_at(q);
     let cells = (n * n * n) as usize;
     let point = |cell: usize| {
@@ -190,7 +200,8 @@ fn main() {
                     .unwrap()
                     .with_resampling(resampling);
                 let start = Instant::now();
-                let light = propagate::<f64>(&volume, &plan);
+                let light =
+                    propagate::<f64>(&volume, &plan).expect("the plan was made for this volume");
                 let ms = start.elapsed().as_secs_f64() * 1e3;
                 let (rmse, max) = errors(&light, &exact, &inside);
                 rows.push(Row {

@@ -63,7 +63,7 @@
 //! // A 4×4×4 cube of 50 m cells, density 1, σ_t 0.01 /m, lit from straight above.
 //! let volume = CloudVolume::new([4, 4, 4], [0.0, 0.0, 1000.0], 50.0, 0.01, vec![1.0; 64])?;
 //! let plan = SlicePlan::new(&volume, [0.0, 0.0, 1.0], SliceMode::Physical)?;
-//! let light = propagate::<f32>(&volume, &plan);
+//! let light = propagate::<f32>(&volume, &plan)?;
 //! // The bottom centres are 175 m deep: exp(−0.01 · 175).
 //! assert!((light[0] - (-1.75f32).exp()).abs() < 1e-6);
 //! # Ok::<(), Box<dyn std::error::Error>>(())

@@ -317,25 +317,22 @@ fn texel<F: Real>(field: &[F], nb: u32, nc: u32, i: i64, j: i64, outside: F) -> 
     }
 }
 
-/// [`propagate`] with the plan checked against the volume: a plan made for a volume of
-/// other dimensions is a [`SliceError::PlanMismatch`] naming both, not a panic.
-pub fn try_propagate<F: Real>(
-    volume: &CloudVolume,
-    plan: &SlicePlan,
-) -> Result<Vec<F>, SliceError> {
+/// The light (transmittance toward the sun in physical mode, seed 002's shading value in
+/// faithful mode) at every cell centre, x fastest like the density. A plan made for a
+/// volume of other dimensions is a [`SliceError::PlanMismatch`] naming both.
+pub fn propagate<F: Real>(volume: &CloudVolume, plan: &SlicePlan) -> Result<Vec<F>, SliceError> {
     if plan.volume_dims() != volume.dims() {
         return Err(SliceError::PlanMismatch {
             plan: plan.volume_dims(),
             volume: volume.dims(),
         });
     }
-    Ok(propagate(volume, plan))
+    Ok(propagate_unchecked(volume, plan))
 }
 
-/// The light (transmittance toward the sun in physical mode, seed 002's shading value in
-/// faithful mode) at every cell centre, x fastest like the density. Panics if `plan` was
-/// made for a volume of other dimensions; [`try_propagate`] returns that as an error.
-pub fn propagate<F: Real>(volume: &CloudVolume, plan: &SlicePlan) -> Vec<F> {
+/// [`propagate`] without the check: panics if `plan` was made for a volume of other
+/// dimensions (for callers that built the plan from this volume, e.g. in a loop).
+pub fn propagate_unchecked<F: Real>(volume: &CloudVolume, plan: &SlicePlan) -> Vec<F> {
     let [na, nb, nc] = plan.dims_abc;
     assert_eq!(
         plan.volume_dims(),
@@ -407,7 +404,7 @@ pub fn propagate_f64(
     to_sun: [f64; 3],
     mode: SliceMode,
 ) -> Result<Vec<f64>, SliceError> {
-    Ok(propagate::<f64>(
+    Ok(propagate_unchecked::<f64>(
         volume,
         &SlicePlan::new(volume, to_sun, mode)?,
     ))
@@ -419,7 +416,7 @@ pub fn propagate_f32(
     to_sun: [f64; 3],
     mode: SliceMode,
 ) -> Result<Vec<f32>, SliceError> {
-    Ok(propagate::<f32>(
+    Ok(propagate_unchecked::<f32>(
         volume,
         &SlicePlan::new(volume, to_sun, mode)?,
     ))
@@ -456,7 +453,7 @@ mod tests {
         let plan = SlicePlan::new(volume, to_sun, SliceMode::Physical)
             .unwrap()
             .with_resampling(resampling);
-        let light = propagate::<f64>(volume, &plan);
+        let light = propagate_unchecked::<f64>(volume, &plan);
         let [nx, ny, nz] = volume.dims();
         let mut sum = 0.0;
         let mut max = 0.0f64;
@@ -554,8 +551,8 @@ mod tests {
                                         continue;
                                     }
                                 };
-                                let a = propagate::<f32>(&v, &plan);
-                                let b = propagate::<f64>(&v, &plan);
+                                let a = propagate_unchecked::<f32>(&v, &plan);
+                                let b = propagate_unchecked::<f64>(&v, &plan);
                                 assert!(
                                     a.iter().all(|l| (0.0..=1.0).contains(l)),
                                     "{dims:?} {density} {sigma} {to_sun:?} {mode:?}: {a:?}"

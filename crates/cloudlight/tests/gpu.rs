@@ -70,7 +70,7 @@ fn slice_pass_matches_the_f32_twin() {
                 .unwrap()
                 .with_resampling(resampling);
             let gpu_light = run(gpu, &mut pass, &v, &plan);
-            let cpu = propagate::<f32>(&v, &plan);
+            let cpu = propagate::<f32>(&v, &plan).unwrap();
             let worst = gpu_light
                 .iter()
                 .zip(&cpu)

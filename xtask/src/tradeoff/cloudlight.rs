@@ -308,12 +308,12 @@ fn light_study(volume: &CloudVolume, quick: bool) -> Result<Vec<LightRow>, Strin
                     let plan = SlicePlan::new(volume, l, mode)
                         .map_err(|e| e.to_string())?
                         .with_resampling(*resampling);
-                    let all = propagate::<f32>(volume, &plan);
+                    let all = propagate::<f32>(volume, &plan).map_err(|e| e.to_string())?;
                     let seconds = criterion_seconds(
                         &slug(&["light", &sun_deg.to_string(), &method]),
                         quick,
                         || {
-                            std::hint::black_box(propagate::<f32>(
+                            let _ = std::hint::black_box(propagate::<f32>(
                                 std::hint::black_box(volume),
                                 &plan,
                             ));
@@ -387,7 +387,7 @@ fn volume_cost(quick: bool) -> Result<Vec<VolumeCost>, String> {
     let mut rows = Vec::new();
     let plan = SlicePlan::new(&volume, l, SliceMode::Physical).map_err(|e| e.to_string())?;
     let seconds = criterion_seconds(&format!("volume_{n}_slices"), quick, || {
-        std::hint::black_box(propagate::<f32>(std::hint::black_box(&volume), &plan));
+        let _ = std::hint::black_box(propagate::<f32>(std::hint::black_box(&volume), &plan));
     })?;
     rows.push(VolumeCost {
         n,

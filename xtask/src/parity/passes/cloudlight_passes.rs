@@ -99,8 +99,8 @@ fn plan(case: usize) -> Result<(cloudlight::CloudVolume, SlicePlan), String> {
 
 fn slices_cpu(case: usize) -> Result<PassCpu, String> {
     let (v, plan) = plan(case)?;
-    let reference = propagate::<f64>(&v, &plan);
-    let cpu = propagate::<f32>(&v, &plan);
+    let reference = propagate::<f64>(&v, &plan).expect("the plan was made for this volume");
+    let cpu = propagate::<f32>(&v, &plan).expect("the plan was made for this volume");
     let [na, nb, nc] = plan.dims_abc;
     let n = f64::from(nb.max(nc));
     let mut bounds = vec![0.0; reference.len()];
