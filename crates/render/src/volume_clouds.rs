@@ -184,6 +184,15 @@ impl Scene {
                 "must be in 1..=8".into(),
             ));
         }
+        for (k, v) in [
+            ("octave_a", s.octave_a),
+            ("octave_b", s.octave_b),
+            ("octave_c", s.octave_c),
+        ] {
+            if !(0.0..=1.0).contains(&v) {
+                return Err(invalid(k, v.to_string(), "must be in [0, 1]".into()));
+            }
+        }
         for (index, e) in s.ellipsoids.iter().enumerate() {
             if e.centre.iter().chain(&e.radii).any(|v| !v.is_finite())
                 || e.radii.iter().any(|&r| r <= 0.0)
@@ -280,10 +289,13 @@ impl Scene {
             light: LightMarch::Full {
                 steps: std::num::NonZeroU32::new(s.light_steps).expect("checked ≥ 1 above"),
             },
-            // Wrenninge's octaves with a = b = c = ½ (energy-conserving: a ≤ b < 1).
+            // Wrenninge's octaves (docs/tradeoffs/cloudlight.md measures them against the
+            // path tracer).
             octaves: Octaves {
                 count: s.octaves,
-                ..Octaves::SINGLE
+                a: s.octave_a,
+                b: s.octave_b,
+                c: s.octave_c,
             },
             ..MarchConfig::default()
         })

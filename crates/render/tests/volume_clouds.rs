@@ -75,6 +75,9 @@ fn volume_errors_name_the_key_and_its_line() {
         assert_eq!(e.location().map(|l| l.line), Some(line), "{message}");
         assert!(message.contains(shown), "{message}");
     }
+    let e = parse_error(&format!("{VALID}{VOLUME}octave_b = 1.5\n"));
+    assert_eq!(e.field(), Some("clouds.volume.octave_b"), "{e}");
+    assert_eq!(e.location().map(|l| l.line), Some(16), "{e}");
     // A seed that is not a u32 fails in the parser, located and named.
     let e = parse_error(&format!(
         "{VALID}{}",
@@ -166,8 +169,8 @@ fn the_shipped_cumulus_is_lit_hidden_by_the_hills_in_front_and_finite() {
     let cloud = cloudy.volume_cloud.as_ref().unwrap();
     let pinhole = pinhole_camera(&cloudy.camera, cloudy.atmosphere.planet_radius).unwrap();
     let (mut sunlit, mut brighter, mut hidden, mut shown) = (0, 0, 0, 0);
-    // The sun is in the south-south-west, behind the camera's left: the cloud's west
-    // half (the image's left half of its pixels) faces it.
+    // The sun is high in the west-south-west: the cloud's west half (the image's left
+    // half of its pixels) faces it.
     let mut columns = Vec::new();
     for y in 0..height {
         for x in 0..width {
@@ -218,6 +221,10 @@ fn the_shipped_cumulus_is_lit_hidden_by_the_hills_in_front_and_finite() {
     );
     assert!(shown > 50 && hidden > 5, "{shown} {hidden}");
     assert!(sunlit > 20 && west > 1.1 * east, "{west} {east}");
+    assert!(
+        brighter as f64 >= 0.8 * sunlit as f64,
+        "{brighter} of {sunlit} brighter than the sky"
+    );
 }
 
 #[test]

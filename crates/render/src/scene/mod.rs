@@ -232,6 +232,16 @@ pub struct CloudVolumeSection {
     /// Multiple-scattering octaves of the march (1: single scattering; 1..=8).
     #[serde(default = "default_octaves_volume")]
     pub octaves: u32,
+    /// The octaves' extinction factor `a` in [0, 1] (octave `n` sees `aⁿ·τ`).
+    #[serde(default = "half")]
+    pub octave_a: f64,
+    /// The octaves' contribution factor `b` in [0, 1] (octave `n` weighs `bⁿ`;
+    /// `a ≤ b` keeps the sum energy-conserving).
+    #[serde(default = "half")]
+    pub octave_b: f64,
+    /// The octaves' phase eccentricity factor `c` in [0, 1] (octave `n` uses `cⁿ·g`).
+    #[serde(default = "half")]
+    pub octave_c: f64,
     /// Where clouds may grow, in cells of the grid (default: two overlapping
     /// ellipsoids filling the grid, a cumulus with a tower).
     #[serde(default)]
@@ -261,7 +271,10 @@ fn default_light_steps() -> u32 {
     8
 }
 fn default_octaves_volume() -> u32 {
-    4
+    8
+}
+fn half() -> f64 {
+    0.5
 }
 
 /// One `[[clouds.layers]]` table (`celestial::clouds::CloudLayer`).
