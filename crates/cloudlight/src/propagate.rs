@@ -46,7 +46,7 @@ pub enum SliceError {
         /// What the field must satisfy.
         requirement: &'static str,
     },
-    /// The plan was made for a volume of other dimensions ([`try_propagate`]).
+    /// The plan was made for a volume of other dimensions ([`propagate`]).
     #[error("plan is for a {plan:?} volume, the volume is {volume:?}")]
     PlanMismatch {
         /// The plan's `[nx, ny, nz]`.
