@@ -300,3 +300,30 @@ fn the_cumulus_agrees_on_the_gpu_and_the_cpu() {
         "{cloud_within} of {cloud_pixels}, worst {worst}"
     );
 }
+
+/// `[animation] automaton_steps_per_frame`: frame `k` is the cloud grown `k` more steps
+/// from the same seed (the automaton is deterministic per step), so the frames are one
+/// growth; a count past the steps limit is refused naming the key.
+#[test]
+fn animation_grows_the_cloud_between_frames() {
+    let text = format!("{VALID}{VOLUME}[animation]\nframes = 3\nautomaton_steps_per_frame = 15\n");
+    let scene = Scene::parse(&text, ".").unwrap();
+    let animation = scene.file.animation.expect("the scene has [animation]");
+    let steps_at = |frame: u32| {
+        let mut frame_scene = scene.clone();
+        animation.apply(&mut frame_scene.file, frame);
+        let prepared = frame_scene.prepare().unwrap();
+        let cloud = prepared.volume_cloud.expect("the scene has a volume");
+        (cloud.steps, cloud.volume.density().to_vec())
+    };
+    let (first, d0) = steps_at(0);
+    let (third, d2) = steps_at(2);
+    assert_eq!((first, third), (20, 50));
+    assert_ne!(d0, d2, "the cloud changes as it grows");
+    // The same frame twice: the same cloud (frames can be rendered anywhere).
+    assert_eq!(steps_at(2).1, d2);
+    let mut huge = scene.clone();
+    animation.apply(&mut huge.file, u32::MAX);
+    let e = huge.prepare().unwrap_err();
+    assert_eq!(e.field(), Some("clouds.volume.steps"), "{e}");
+}

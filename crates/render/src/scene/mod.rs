@@ -342,9 +342,10 @@ impl From<CloudKindName> for celestial::clouds::CloudKind {
     }
 }
 
-/// `[animation]`: frames of the scene with the sun moving (a time-lapse). Frames are
-/// independent (frame `k` is the scene with the sun moved `k` steps), so any range of
-/// them can be rendered anywhere (`--frame-range a..b`).
+/// `[animation]`: frames of the scene with the sun moving (a time-lapse) and the volume
+/// cloud growing. Frames are independent (frame `k` is the scene with the sun moved `k`
+/// steps and the cloud grown `k` more steps from the same seed), so any range of them
+/// can be rendered anywhere (`--frame-range a..b`).
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AnimationSection {
@@ -359,6 +360,10 @@ pub struct AnimationSection {
     /// Seconds of `[time]` per frame (a time-lapse: sun, moon and stars move).
     #[serde(default)]
     pub seconds_per_frame: f64,
+    /// Automaton steps `[clouds.volume]`'s cloud grows per frame: frame `k` shows it
+    /// after `steps + k × this` steps (the same seed, so the frames are one growth).
+    #[serde(default)]
+    pub automaton_steps_per_frame: u32,
 }
 
 impl AnimationSection {
@@ -371,6 +376,12 @@ impl AnimationSection {
         }
         if let Some(time) = &mut file.time {
             time.offset_s += k * self.seconds_per_frame;
+        }
+        if let Some(volume) = file.clouds.as_mut().and_then(|c| c.volume.as_mut()) {
+            // Saturating: a count past u32 is then refused by the steps check, naming it.
+            volume.steps = volume
+                .steps
+                .saturating_add(frame.saturating_mul(self.automaton_steps_per_frame));
         }
     }
 }
