@@ -92,7 +92,7 @@ use crate::cone::{
     ConeWeights, beer_lambert, cone_optical_depth, dual_lobe_henyey_greenstein,
     march_optical_depth, powder,
 };
-use crate::density::DensityField;
+use crate::density::{DensityField, RaySpans};
 use crate::jitter::{bayer_jitter_4x4, interleaved_gradient_noise};
 
 /// Errors of the march's settings and lighting, naming the field and value.
@@ -538,8 +538,31 @@ pub fn march_view_at_pixel<F: Real>(
     march_view_with_offset(field, origin, direction, settings, lighting, offset)
 }
 
+/// [`march_view_at_pixel`] stopped at `max_distance` metres along the ray
+/// ([`march_view_limited`]).
+pub fn march_view_at_pixel_limited<F: Real>(
+    field: &impl DensityField<F>,
+    origin: [F; 3],
+    direction: [F; 3],
+    settings: &MarchSettings,
+    lighting: &Lighting<F>,
+    pixel: [u32; 2],
+    max_distance: F,
+) -> MarchResult<F> {
+    let offset = F::of(f64::from(settings.config.jitter.offset(pixel)));
+    march_view_limited(
+        field,
+        origin,
+        direction,
+        settings,
+        lighting,
+        offset,
+        max_distance,
+    )
+}
+
 /// The view march with step `k` sampled at `(k + offset)·Δ` (`offset` in [0, 1); other
-/// values are wrapped into it).
+/// values are wrapped into it). Unlimited: [`march_view_limited`] with `max_distance = ∞`.
 pub fn march_view_with_offset<F: Real>(
     field: &impl DensityField<F>,
     origin: [F; 3],
@@ -547,6 +570,53 @@ pub fn march_view_with_offset<F: Real>(
     settings: &MarchSettings,
     lighting: &Lighting<F>,
     offset: F,
+) -> MarchResult<F> {
+    march_view_limited(
+        field,
+        origin,
+        direction,
+        settings,
+        lighting,
+        offset,
+        F::infinity(),
+    )
+}
+
+/// The field's spans along a ray clipped to `[0, max_distance]` (WGSL twins: the clip in
+/// `march_pass.wgsl` and `march_shell_pass.wgsl`). A span starting at or beyond the limit
+/// is dropped, one crossing it ends there. `max_distance` of `+∞` (or at least the
+/// largest finite `f32`, the WGSL's "infinite") or NaN means no limit; a negative one
+/// clips everything, as 0 does.
+pub fn clip_spans<F: Real>(spans: RaySpans<F>, max_distance: F) -> RaySpans<F> {
+    if !(max_distance < F::of(f64::from(f32::MAX))) {
+        return spans;
+    }
+    let limit = max_distance.max(F::zero());
+    let mut out = RaySpans::none();
+    for &(enter, exit) in spans.as_slice() {
+        if enter < limit {
+            out.spans[out.count] = (enter, if exit > limit { limit } else { exit });
+            out.count += 1;
+        }
+    }
+    out
+}
+
+/// The view march stopped at `max_distance` metres along the ray (an opaque surface
+/// there: terrain in front of or inside the cloud). The field's spans are clipped to
+/// `[0, max_distance]` ([`clip_spans`]) and the `view_steps` steps spread over the
+/// clipped length, so a limited march is the unlimited march of the field cut at that
+/// distance; a limit of 0 (or below) gives radiance 0 and transmittance 1, and a limit of
+/// `+∞` or NaN is no limit ([`march_view_with_offset`]). Step offsets as
+/// [`march_view_with_offset`].
+pub fn march_view_limited<F: Real>(
+    field: &impl DensityField<F>,
+    origin: [F; 3],
+    direction: [F; 3],
+    settings: &MarchSettings,
+    lighting: &Lighting<F>,
+    offset: F,
+    max_distance: F,
 ) -> MarchResult<F> {
     let c = &settings.config;
     let zero = F::zero();
@@ -560,7 +630,7 @@ pub fn march_view_with_offset<F: Real>(
         transmittance: F::one(),
         depth: zero,
     };
-    let spans = field.ray_spans(origin, direction);
+    let spans = clip_spans(field.ray_spans(origin, direction), max_distance);
     let total = spans.length();
     if total <= zero || !total.is_finite() {
         return result;
@@ -837,6 +907,48 @@ pub fn render_image<F: Real>(
         }
     }
     out
+}
+
+/// [`render_image`] with each pixel's march stopped at its `max_distance` (metres along
+/// the pixel's ray, x fastest, row 0 at the top: [`march_view_at_pixel_limited`]); the
+/// twin of `gpu::MarchPass::prepare_limited`. `max_distance` must hold one value per
+/// pixel (`+∞` or NaN: no limit).
+pub fn render_image_limited<F: Real>(
+    field: &impl DensityField<F>,
+    camera: &PinholeCamera,
+    size: [u32; 2],
+    settings: &MarchSettings,
+    lighting: &Lighting<F>,
+    max_distance: &[F],
+) -> Result<Vec<MarchResult<F>>, MarchError> {
+    let pixels = size[0] as usize * size[1] as usize;
+    if max_distance.len() != pixels {
+        return Err(invalid(
+            "max_distance.len()",
+            max_distance.len() as f64,
+            "must be size[0]·size[1] (one distance per pixel)",
+        ));
+    }
+    let [forward, right, up] = camera.basis().map(|v| v.map(F::of));
+    let tan_half = camera.tan_half(size).map(F::of);
+    let origin = camera.origin.map(F::of);
+    let mut out = Vec::with_capacity(pixels);
+    for y in 0..size[1] {
+        for x in 0..size[0] {
+            let d = pixel_direction([x, y], size, forward, right, up, tan_half);
+            let limit = max_distance[x as usize + size[0] as usize * y as usize];
+            out.push(march_view_at_pixel_limited(
+                field,
+                origin,
+                d,
+                settings,
+                lighting,
+                [x, y],
+                limit,
+            ));
+        }
+    }
+    Ok(out)
 }
 
 /// A march result faded by `fade` in [0, 1] (e.g. a shell's horizon fade at the result's

@@ -660,3 +660,190 @@ fn march_accuracy_and_cost() {
         }
     }
 }
+
+/// A 200 m × 100 m × 100 m block of 25 m cells (x from 0 to `25·nx`), its density varying
+/// in y and z only, so the block cut at a plane `x = const` on a cell face has the same
+/// density in front of the plane.
+fn block(nx: u32) -> CloudVolume {
+    let mut density = Vec::new();
+    for z in 0..4u32 {
+        for y in 0..4u32 {
+            for _x in 0..nx {
+                density.push(0.4 + 0.3 * ((y * 3 + z * 5) % 4) as f32);
+            }
+        }
+    }
+    CloudVolume::new([nx, 4, 4], [0.0, 0.0, 1000.0], 25.0, 0.015, density).unwrap()
+}
+
+#[test]
+fn a_limited_march_is_the_unlimited_march_of_the_field_cut_there() {
+    use cloudlight::march::march_view_limited;
+    use cloudlight::march::march_view_with_offset;
+    // A wall at x = 100 m cuts the 200 m block in half; the sun is overhead and the ambient
+    // comes from above, so the light paths never cross the wall: the march stopped at the
+    // wall is the march of the front half alone.
+    let (whole, front) = (block(8), block(4));
+    let settings = settings(MarchConfig {
+        view_steps: 24,
+        light: full(6),
+        transmittance_epsilon: 0.0,
+        ..MarchConfig::default()
+    });
+    let lighting64 = Lighting::<f64>::new(
+        [0.0, 0.0, 1.0],
+        [1.0, 0.9, 0.8],
+        [0.1, 0.1, 0.2],
+        [0.0, 0.0, 1.0],
+    )
+    .unwrap();
+    let lighting32 = Lighting::<f32>::new(
+        [0.0, 0.0, 1.0],
+        [1.0, 0.9, 0.8],
+        [0.1, 0.1, 0.2],
+        [0.0, 0.0, 1.0],
+    )
+    .unwrap();
+    let origin = [-50.0, 40.0, 1030.0];
+    let mut worst64 = 0.0f64;
+    let mut worst32 = 0.0f64;
+    for dir in [
+        [1.0, 0.0, 0.0],
+        [0.98, 0.1, 0.17],
+        [0.9, 0.3, -0.1],
+        [0.95, -0.2, 0.24],
+    ] {
+        let n: f64 = dir.iter().map(|c| c * c).sum::<f64>().sqrt();
+        let d = dir.map(|c| c / n);
+        let wall = (100.0 - origin[0]) / d[0];
+        for offset in [0.5, 0.13, 0.87] {
+            let limited =
+                march_view_limited::<f64>(&whole, origin, d, &settings, &lighting64, offset, wall);
+            let cut =
+                march_view_with_offset::<f64>(&front, origin, d, &settings, &lighting64, offset);
+            assert!(
+                limited.transmittance < 0.9,
+                "{limited:?}: the front half is seen"
+            );
+            for ch in 0..3 {
+                let e = (limited.radiance[ch] - cut.radiance[ch]).abs() / cut.radiance[ch];
+                worst64 = worst64.max(e);
+            }
+            worst64 = worst64.max((limited.transmittance - cut.transmittance).abs());
+            worst64 = worst64.max((limited.depth - cut.depth).abs() / cut.depth);
+            let unlimited =
+                march_view_with_offset::<f64>(&whole, origin, d, &settings, &lighting64, offset);
+            assert!(unlimited.transmittance < limited.transmittance - 0.01);
+            let o32 = origin.map(|c| c as f32);
+            let d32 = d.map(|c| c as f32);
+            let limited = march_view_limited::<f32>(
+                &whole,
+                o32,
+                d32,
+                &settings,
+                &lighting32,
+                offset as f32,
+                wall as f32,
+            );
+            let cut = march_view_with_offset::<f32>(
+                &front,
+                o32,
+                d32,
+                &settings,
+                &lighting32,
+                offset as f32,
+            );
+            for ch in 0..3 {
+                let e = (limited.radiance[ch] - cut.radiance[ch]).abs() as f64
+                    / cut.radiance[ch] as f64;
+                worst32 = worst32.max(e);
+            }
+            worst32 = worst32.max((limited.transmittance - cut.transmittance).abs() as f64);
+        }
+    }
+    println!("limited march vs the cut field: f64 worst relative {worst64:.2e}, f32 {worst32:.2e}");
+    assert!(worst64 < 1e-12, "{worst64}");
+    assert!(worst32 < 1e-5, "{worst32}");
+}
+
+#[test]
+fn a_zero_limit_sees_nothing_and_a_far_limit_everything() {
+    use cloudlight::march::march_view_limited;
+    use cloudlight::march::march_view_with_offset;
+    let whole = block(8);
+    let settings = settings(MarchConfig {
+        view_steps: 16,
+        light: full(4),
+        ..MarchConfig::default()
+    });
+    let lighting =
+        Lighting::<f64>::white_sun([0.3, 0.0, 0.3f64.mul_add(-0.3, 1.0).sqrt()]).unwrap();
+    let origin = [-50.0, 40.0, 1030.0];
+    let d = [1.0, 0.0, 0.0];
+    for limit in [0.0, -5.0, f64::NEG_INFINITY, 50.0] {
+        // 50 m: the wall is where the block starts.
+        let r = march_view_limited::<f64>(&whole, origin, d, &settings, &lighting, 0.5, limit);
+        assert_eq!(r.radiance, [0.0; 3], "limit {limit}");
+        assert_eq!(r.transmittance, 1.0, "limit {limit}");
+        assert_eq!(r.depth, 0.0, "limit {limit}");
+    }
+    let unlimited = march_view_with_offset::<f64>(&whole, origin, d, &settings, &lighting, 0.5);
+    assert!(unlimited.transmittance < 0.5);
+    for limit in [250.0, 1e6, f64::INFINITY, f64::NAN] {
+        // The block ends 250 m along the ray.
+        let r = march_view_limited::<f64>(&whole, origin, d, &settings, &lighting, 0.5, limit);
+        assert_eq!(r, unlimited, "limit {limit}");
+    }
+}
+
+#[test]
+fn clipped_spans_and_the_limited_image() {
+    use cloudlight::RaySpans;
+    use cloudlight::march::{PinholeCamera, clip_spans, render_image, render_image_limited};
+    let two = RaySpans {
+        spans: [(10.0f64, 20.0), (50.0, 80.0)],
+        count: 2,
+    };
+    assert_eq!(
+        clip_spans(two, 60.0).as_slice(),
+        &[(10.0, 20.0), (50.0, 60.0)]
+    );
+    assert_eq!(clip_spans(two, 30.0).as_slice(), &[(10.0, 20.0)]);
+    assert_eq!(clip_spans(two, 50.0).as_slice(), &[(10.0, 20.0)]);
+    assert_eq!(clip_spans(two, 15.0).as_slice(), &[(10.0, 15.0)]);
+    assert_eq!(clip_spans(two, 10.0).count, 0);
+    assert_eq!(clip_spans(two, -1.0).count, 0);
+    assert_eq!(clip_spans(two, f64::INFINITY), two);
+    assert_eq!(clip_spans(two, f64::NAN), two);
+    let whole = block(8);
+    let camera = PinholeCamera::look_at(
+        [-50.0, 50.0, 1050.0],
+        [100.0, 50.0, 1050.0],
+        [0.0, 0.0, 1.0],
+        0.6,
+    )
+    .unwrap();
+    let settings = MarchSettings::default();
+    let lighting = Lighting::<f32>::white_sun([0.0, 0.0, 1.0]).unwrap();
+    let size = [4, 3];
+    let err = render_image_limited::<f32>(&whole, &camera, size, &settings, &lighting, &[1.0; 5])
+        .unwrap_err();
+    assert!(err.to_string().contains("max_distance.len() = 5"), "{err}");
+    let unlimited = render_image::<f32>(&whole, &camera, size, &settings, &lighting);
+    let all = render_image_limited::<f32>(
+        &whole,
+        &camera,
+        size,
+        &settings,
+        &lighting,
+        &[f32::INFINITY; 12],
+    )
+    .unwrap();
+    assert_eq!(all, unlimited);
+    let none = render_image_limited::<f32>(&whole, &camera, size, &settings, &lighting, &[0.0; 12])
+        .unwrap();
+    assert!(
+        none.iter()
+            .all(|r| r.transmittance == 1.0 && r.radiance == [0.0; 3])
+    );
+}
