@@ -31,7 +31,8 @@ struct MarchParams {
     ambient_up: vec4<f32>,
     // Octave factors a, b, c; w: the cone's step (m).
     octave_abc: vec4<f32>,
-    // x: the cone's spread; yzw unused.
+    // x: the cone's spread; y: 1 when max_distance holds a per-pixel limit, 0 when none;
+    // zw unused.
     cone: vec4<f32>,
     // Cells along x, y, z; w: view steps.
     dims: vec4<u32>,
@@ -46,6 +47,9 @@ struct MarchParams {
 @group(0) @binding(1) var<storage, read> density: array<f32>;
 // Two texels per pixel (x fastest): (radiance rgb, transmittance), (depth, 0, 0, 0).
 @group(0) @binding(2) var<storage, read_write> image_out: array<vec4<f32>>;
+// The distance (m) along each pixel's ray (x fastest) where its march stops; read only
+// when cone.y is 1 (otherwise a placeholder is bound).
+@group(0) @binding(3) var<storage, read> max_distance: array<f32>;
 
 const INFINITE_DISTANCE: f32 = 3.40282347e+38;
 
@@ -117,6 +121,24 @@ fn volume_span(o: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
         return vec3<f32>(1.0, enter, exit);
     }
     return vec3<f32>(0.0);
+}
+
+// The span clipped to [0, limit] (march::clip_spans): dropped when it starts at or
+// beyond the limit, ended there when it crosses it; a limit not below the largest f32
+// (or NaN) is none, a negative one is 0.
+fn clip_span(span: vec3<f32>, limit_in: f32) -> vec3<f32> {
+    if !(limit_in < INFINITE_DISTANCE) {
+        return span;
+    }
+    let limit = max(limit_in, 0.0);
+    if span.x == 0.0 || !(span.y < limit) {
+        return vec3<f32>(0.0);
+    }
+    var exit = span.z;
+    if exit > limit {
+        exit = limit;
+    }
+    return vec3<f32>(1.0, span.y, exit);
 }
 
 // Distance to the last exit of the spans along d (0 if none).
@@ -195,7 +217,10 @@ fn march_main(@builtin(global_invocation_id) gid: vec3<u32>) {
     var radiance = vec3<f32>(0.0);
     var transmittance = 1.0;
     var depth = 0.0;
-    let span = volume_span(o, d);
+    var span = volume_span(o, d);
+    if params.cone.y != 0.0 {
+        span = clip_span(span, max_distance[gid.x + size.x * gid.y]);
+    }
     let total = 0.0 + (span.z - span.y);
     if span.x != 0.0 && total > 0.0 && total < INFINITE_DISTANCE {
         let steps = params.dims.w;

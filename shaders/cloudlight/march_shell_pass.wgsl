@@ -36,7 +36,7 @@ struct ShellMarchParams {
     ambient: vec4<f32>,
     // Unit up of the ambient visibility (xyz); w unused.
     ambient_up: vec4<f32>,
-    // Octave factors a, b, c; w unused.
+    // Octave factors a, b, c; w: 1 when max_distance holds a per-pixel limit, 0 when none.
     octave_abc: vec4<f32>,
     // Noise seed, weather seed, weather cells, view steps.
     seeds: vec4<u32>,
@@ -50,6 +50,9 @@ struct ShellMarchParams {
 @group(0) @binding(0) var<uniform> params: ShellMarchParams;
 // Two texels per pixel (x fastest): (radiance rgb, transmittance), (depth, 0, 0, 0).
 @group(0) @binding(1) var<storage, read_write> image_out: array<vec4<f32>>;
+// The distance (m) along each pixel's ray (x fastest) where its march stops; read only
+// when octave_abc.w is 1 (otherwise a placeholder is bound).
+@group(0) @binding(2) var<storage, read> max_distance: array<f32>;
 
 // The shell's density with the procedural weather at (x, y) (DensityField for CloudShell).
 fn field_density(p: vec3<f32>) -> f32 {
@@ -84,6 +87,32 @@ fn field_density(p: vec3<f32>) -> f32 {
 
 fn field_spans(o: vec3<f32>, d: vec3<f32>) -> ShellSpans {
     return shell_ray_spans(o, d, params.cam_origin.w, params.shell.x, params.shell.y);
+}
+
+// The spans clipped to [0, limit] (march::clip_spans): a span starting at or beyond the
+// limit is dropped, one crossing it ends there; a limit not below the largest f32 (or
+// NaN) is none, a negative one is 0.
+fn clip_spans(spans: ShellSpans, limit_in: f32) -> ShellSpans {
+    if !(limit_in < 3.40282347e+38) {
+        return spans;
+    }
+    let limit = max(limit_in, 0.0);
+    var out: ShellSpans;
+    out.spans[0] = vec2<f32>(0.0);
+    out.spans[1] = vec2<f32>(0.0);
+    out.count = 0u;
+    for (var s = 0u; s < spans.count; s++) {
+        let enter = spans.spans[s].x;
+        if enter < limit {
+            var exit = spans.spans[s].y;
+            if exit > limit {
+                exit = limit;
+            }
+            out.spans[out.count] = vec2<f32>(enter, exit);
+            out.count += 1u;
+        }
+    }
+    return out;
 }
 
 // Distance to the last exit of the spans along d (0 if none).
@@ -162,7 +191,10 @@ fn march_shell_main(@builtin(global_invocation_id) gid: vec3<u32>) {
     var radiance = vec3<f32>(0.0);
     var transmittance = 1.0;
     var depth = 0.0;
-    let spans = field_spans(o, d);
+    var spans = field_spans(o, d);
+    if params.octave_abc.w != 0.0 {
+        spans = clip_spans(spans, max_distance[gid.x + size.x * gid.y]);
+    }
     var total = 0.0;
     for (var s = 0u; s < spans.count; s++) {
         total = total + (spans.spans[s].y - spans.spans[s].x);

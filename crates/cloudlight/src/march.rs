@@ -588,7 +588,8 @@ pub fn march_view_with_offset<F: Real>(
 /// largest finite `f32`, the WGSL's "infinite") or NaN means no limit; a negative one
 /// clips everything, as 0 does.
 pub fn clip_spans<F: Real>(spans: RaySpans<F>, max_distance: F) -> RaySpans<F> {
-    if !(max_distance < F::of(f64::from(f32::MAX))) {
+    // `!(limit < MAX)` as the WGSL writes it: NaN is no limit too.
+    if max_distance.is_nan() || max_distance >= F::of(f64::from(f32::MAX)) {
         return spans;
     }
     let limit = max_distance.max(F::zero());

@@ -5,7 +5,11 @@
 //! density (a storage buffer read with manual trilinear interpolation, as the CPU's
 //! [`CloudVolume::density_at`] does), the camera, settings and lighting, and creates the
 //! output buffer and the bind group; [`MarchPass::encode`] only records one dispatch
-//! (8×8 pixels per workgroup).
+//! (8×8 pixels per workgroup; [`MarchPass::encode_timed`] adds timestamp writes).
+//! [`MarchPass::prepare_limited`] also binds a per-pixel distance buffer (`f32` metres
+//! along each pixel's ray, x fastest, row 0 at the top) where each march stops: terrain
+//! in front of or inside the cloud. A caller with a depth buffer converts depth to
+//! distance along the ray itself.
 //!
 //! The output is a storage buffer of two `vec4<f32>` per pixel (x fastest, row 0 at the
 //! top): `(radiance r, g, b, transmittance)` and `(depth, 0, 0, 0)` — the fields of
@@ -53,6 +57,18 @@ pub enum MarchGpuError {
     /// The shell pass computes procedural weather only.
     #[error("weather = Grid: the GPU shell pass supports procedural weather only")]
     GridWeather,
+    /// The per-pixel distance buffer is too small or cannot be bound as storage.
+    #[error(
+        "max_distance buffer: {bytes} bytes with usage {usage:?}: needs ≥ {needed} bytes (one f32 per pixel) and STORAGE"
+    )]
+    DistanceBuffer {
+        /// Its size.
+        bytes: u64,
+        /// Its usage.
+        usage: wgpu::BufferUsages,
+        /// `4·size[0]·size[1]`.
+        needed: u64,
+    },
     /// `encode` was called before `prepare`.
     #[error("encode before prepare: no image to march")]
     EncodeBeforePrepare,
@@ -79,6 +95,7 @@ struct Prepared {
     image: wgpu::Buffer,
     _params: wgpu::Buffer,
     _density: wgpu::Buffer,
+    _distance: wgpu::Buffer,
 }
 
 /// The view march on a GPU (see the module documentation).
@@ -96,6 +113,7 @@ fn params_words(
     size: [u32; 2],
     settings: &MarchSettings,
     lighting: &Lighting<f32>,
+    limited: bool,
 ) -> [u32; 60] {
     let c = settings.config();
     let f = |x: f64| (x as f32).to_bits();
@@ -158,7 +176,7 @@ fn params_words(
         f(c.octaves.c),
         f(cone_step),
         f(spread),
-        0,
+        g(if limited { 1.0 } else { 0.0 }),
         0,
         0,
         dims[0],
@@ -210,6 +228,11 @@ impl MarchPass {
                     wgpu::BufferBindingType::Storage { read_only: false },
                     None,
                 ),
+                entry(
+                    3,
+                    wgpu::BufferBindingType::Storage { read_only: true },
+                    None,
+                ),
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -234,7 +257,8 @@ impl MarchPass {
 
     /// Uploads `volume`'s density, the camera, settings and lighting, creates the output
     /// buffer (`size[0] × size[1]` pixels) and the bind group [`MarchPass::encode`]
-    /// records with. Takes effect at the next submit.
+    /// records with. Takes effect at the next submit. Unlimited rays:
+    /// [`MarchPass::prepare_limited`] with no distance buffer.
     #[allow(clippy::too_many_arguments)] // device, queue and the twin's five inputs
     pub fn prepare(
         &mut self,
@@ -245,6 +269,34 @@ impl MarchPass {
         size: [u32; 2],
         settings: &MarchSettings,
         lighting: &Lighting<f32>,
+    ) -> Result<(), MarchGpuError> {
+        self.prepare_limited(
+            device, queue, volume, camera, size, settings, lighting, None,
+        )
+    }
+
+    /// [`MarchPass::prepare`] with each pixel's march stopped at a distance:
+    /// `max_distance`, when given, holds one `f32` per pixel (x fastest, row 0 at the
+    /// top), the metres along that pixel's ray where the march stops (`+∞`, or any value
+    /// ≥ `f32::MAX`: no limit; ≤ 0: nothing marched; see
+    /// [`march_view_limited`](crate::march::march_view_limited), whose NaN-as-none only
+    /// holds on backends that keep NaN comparisons, so write `+∞`). It is bound
+    /// as a read-only storage buffer (usage `STORAGE`, at least `4·size[0]·size[1]`
+    /// bytes) and read when the pass runs, so the caller may write it on the GPU before
+    /// it. A caller with a depth buffer converts depth to distance along the ray itself
+    /// (the pass takes no projection). `None` is unlimited. The f32 CPU twin is
+    /// [`render_image_limited::<f32>`](crate::march::render_image_limited).
+    #[allow(clippy::too_many_arguments)] // device, queue, the twin's five inputs, the limit
+    pub fn prepare_limited(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        volume: &CloudVolume,
+        camera: &PinholeCamera,
+        size: [u32; 2],
+        settings: &MarchSettings,
+        lighting: &Lighting<f32>,
+        max_distance: Option<&wgpu::Buffer>,
     ) -> Result<(), MarchGpuError> {
         let limits = device.limits();
         let mut workgroups = [0u32; 2];
@@ -268,7 +320,14 @@ impl MarchPass {
                 return Err(MarchGpuError::BufferTooLarge { what, bytes, limit });
             }
         }
-        let words = params_words(volume, camera, size, settings, lighting);
+        let words = params_words(
+            volume,
+            camera,
+            size,
+            settings,
+            lighting,
+            max_distance.is_some(),
+        );
         let params = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("cloudlight march params"),
             size: PARAMS_BYTES,
@@ -289,6 +348,7 @@ impl MarchPass {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
+        let distance = distance_binding(device, max_distance, size)?;
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("cloudlight march"),
             layout: &self.layout,
@@ -305,6 +365,10 @@ impl MarchPass {
                     binding: 2,
                     resource: image.as_entire_binding(),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: distance.as_entire_binding(),
+                },
             ],
         });
         self.prepared = Some(Prepared {
@@ -314,19 +378,29 @@ impl MarchPass {
             image,
             _params: params,
             _density: density,
+            _distance: distance,
         });
         Ok(())
     }
 
-    /// Records the march's dispatch into `encoder`.
+    /// Records the march's dispatch into `encoder` (one compute pass, untimed).
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder) -> Result<(), MarchGpuError> {
+        self.encode_timed(encoder, None)
+    }
+
+    /// [`MarchPass::encode`] with timestamp writes on its compute pass.
+    pub fn encode_timed(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), MarchGpuError> {
         let prepared = self
             .prepared
             .as_ref()
             .ok_or(MarchGpuError::EncodeBeforePrepare)?;
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("cloudlight march"),
-            timestamp_writes: None,
+            timestamp_writes,
         });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &prepared.bind_group, &[]);
@@ -394,6 +468,7 @@ fn shell_params_words(
     size: [u32; 2],
     settings: &MarchSettings,
     lighting: &Lighting<f32>,
+    limited: bool,
 ) -> [u32; 64] {
     let c = settings.config();
     let s = shell.settings();
@@ -461,7 +536,7 @@ fn shell_params_words(
         f(c.octaves.a),
         f(c.octaves.b),
         f(c.octaves.c),
-        0,
+        g(if limited { 1.0 } else { 0.0 }),
         s.seed,
         weather.seed,
         weather.cells,
@@ -486,6 +561,7 @@ struct PreparedShell {
     size: [u32; 2],
     image: wgpu::Buffer,
     _params: wgpu::Buffer,
+    _distance: wgpu::Buffer,
 }
 
 /// The view march of a procedural [`CloudShell`] on a GPU
@@ -534,6 +610,11 @@ impl MarchShellPass {
                     wgpu::BufferBindingType::Storage { read_only: false },
                     None,
                 ),
+                entry(
+                    2,
+                    wgpu::BufferBindingType::Storage { read_only: true },
+                    None,
+                ),
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -558,6 +639,7 @@ impl MarchShellPass {
 
     /// Uploads the shell, camera, settings and lighting, creates the output buffer
     /// (`size[0] × size[1]` pixels) and the bind group. Takes effect at the next submit.
+    /// Unlimited rays: [`MarchShellPass::prepare_limited`] with no distance buffer.
     #[allow(clippy::too_many_arguments)] // device, queue and the twin's five inputs
     pub fn prepare(
         &mut self,
@@ -568,6 +650,29 @@ impl MarchShellPass {
         size: [u32; 2],
         settings: &MarchSettings,
         lighting: &Lighting<f32>,
+    ) -> Result<(), MarchGpuError> {
+        self.prepare_limited(device, queue, shell, camera, size, settings, lighting, None)
+    }
+
+    /// [`MarchShellPass::prepare`] with each pixel's march stopped at a distance: the
+    /// per-pixel `max_distance` buffer as [`MarchPass::prepare_limited`]'s (one `f32`
+    /// per pixel, metres along the ray, x fastest, row 0 at the top; a caller with a depth
+    /// buffer converts depth to distance itself; `None` is unlimited). The spans are
+    /// clipped before the march and the horizon fade is applied at the limited march's
+    /// depth. The f32 CPU twin is
+    /// [`render_image_limited::<f32>`](crate::march::render_image_limited) on the shell,
+    /// each pixel then [`faded`](crate::march::faded).
+    #[allow(clippy::too_many_arguments)] // device, queue, the twin's five inputs, the limit
+    pub fn prepare_limited(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        shell: &CloudShell,
+        camera: &PinholeCamera,
+        size: [u32; 2],
+        settings: &MarchSettings,
+        lighting: &Lighting<f32>,
+        max_distance: Option<&wgpu::Buffer>,
     ) -> Result<(), MarchGpuError> {
         let WeatherMap::Procedural(weather) = &shell.settings().weather else {
             return Err(MarchGpuError::GridWeather);
@@ -595,7 +700,15 @@ impl MarchShellPass {
                 limit,
             });
         }
-        let words = shell_params_words(shell, weather, camera, size, settings, lighting);
+        let words = shell_params_words(
+            shell,
+            weather,
+            camera,
+            size,
+            settings,
+            lighting,
+            max_distance.is_some(),
+        );
         let params = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("cloudlight march shell params"),
             size: SHELL_PARAMS_BYTES,
@@ -609,6 +722,7 @@ impl MarchShellPass {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
+        let distance = distance_binding(device, max_distance, size)?;
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("cloudlight march shell"),
             layout: &self.layout,
@@ -621,6 +735,10 @@ impl MarchShellPass {
                     binding: 1,
                     resource: image.as_entire_binding(),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: distance.as_entire_binding(),
+                },
             ],
         });
         self.prepared = Some(PreparedShell {
@@ -629,19 +747,29 @@ impl MarchShellPass {
             size,
             image,
             _params: params,
+            _distance: distance,
         });
         Ok(())
     }
 
-    /// Records the march's dispatch into `encoder`.
+    /// Records the march's dispatch into `encoder` (one compute pass, untimed).
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder) -> Result<(), MarchGpuError> {
+        self.encode_timed(encoder, None)
+    }
+
+    /// [`MarchShellPass::encode`] with timestamp writes on its compute pass.
+    pub fn encode_timed(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), MarchGpuError> {
         let prepared = self
             .prepared
             .as_ref()
             .ok_or(MarchGpuError::EncodeBeforePrepare)?;
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("cloudlight march shell"),
-            timestamp_writes: None,
+            timestamp_writes,
         });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &prepared.bind_group, &[]);
@@ -667,6 +795,33 @@ impl MarchShellPass {
             .map_or(0, |p| p.size[0] as usize * p.size[1] as usize * 32);
         decode_pixels(bytes, expected)
     }
+}
+
+/// The buffer bound as `max_distance`: the caller's (checked) or a 4-byte placeholder the
+/// shader does not read (its flag word is 0).
+fn distance_binding(
+    device: &wgpu::Device,
+    max_distance: Option<&wgpu::Buffer>,
+    size: [u32; 2],
+) -> Result<wgpu::Buffer, MarchGpuError> {
+    let Some(buffer) = max_distance else {
+        return Ok(device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("cloudlight march no max_distance"),
+            size: 4,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        }));
+    };
+    let needed = u64::from(size[0]) * u64::from(size[1]) * 4;
+    let (bytes, usage) = (buffer.size(), buffer.usage());
+    if bytes < needed || !usage.contains(wgpu::BufferUsages::STORAGE) {
+        return Err(MarchGpuError::DistanceBuffer {
+            bytes,
+            usage,
+            needed,
+        });
+    }
+    Ok(buffer.clone())
 }
 
 fn decode_pixels(bytes: &[u8], expected: usize) -> Result<Vec<MarchResult<f32>>, MarchGpuError> {
