@@ -12,6 +12,8 @@
 #import terrain::shadow
 #import render::terrain_shading
 #import celestial::clouds
+#import cloudlight::slice_propagation
+#import render::volume_shadow
 
 struct TerrainUniform {
     view_projection: mat4x4<f32>,
@@ -50,6 +52,23 @@ struct TerrainUniform {
 @group(2) @binding(3) var<storage, read> horizons: array<f32>;
 // The scene's cloud layers (celestial::clouds), casting shadows on the terrain.
 @group(2) @binding(4) var<storage, read> cloud_layers: array<CloudLayerUniforms>;
+
+// The volumetric cloud's shadow map (render::volume_clouds::CloudShadow, layout
+// identical to VolumeShadowUniform): texel (0, 0)'s corner east/north, the texel edge,
+// the plane's altitude, the direction toward the light (east/north/up), whether a map is
+// bound (0: no volume, or the moon's draw), the texels east × north.
+struct VolumeShadowUniform {
+    origin: vec2<f32>,
+    cell_size: f32,
+    plane: f32,
+    to_sun: vec3<f32>,
+    enabled: u32,
+    resolution: vec2<u32>,
+    padding: vec2<u32>,
+}
+@group(2) @binding(5) var<uniform> volume_shadow: VolumeShadowUniform;
+// Transmittance toward the sun per texel, east fastest (one element when none).
+@group(2) @binding(6) var<storage, read> volume_shadow_values: array<f32>;
 
 struct TerrainVarying {
     @builtin(position) @invariant clip: vec4<f32>,
@@ -120,6 +139,28 @@ fn cloud_shadow_at(offset: vec3<f32>) -> f32 {
     return shadow;
 }
 
+fn volume_shadow_value(x: i32, y: i32) -> f32 {
+    let size = vec2<i32>(volume_shadow.resolution);
+    if x < 0 || y < 0 || x >= size.x || y >= size.y {
+        return 1.0;
+    }
+    return volume_shadow_values[u32(x + size.x * y)];
+}
+
+// The volumetric cloud's shadow at world position `world` (x east, y up, z south).
+// Twin: render::volume_clouds::CloudShadow::at (the same map, bilinear between texel
+// centres with cloudlight's bilinear, 1 outside it).
+fn volume_cloud_shadow(world: vec3<f32>) -> f32 {
+    if volume_shadow.enabled == 0u {
+        return 1.0;
+    }
+    let texel = volume_shadow_texel(vec3<f32>(world.x, -world.z, world.y), volume_shadow.to_sun, volume_shadow.plane, volume_shadow.origin, volume_shadow.cell_size);
+    let f = floor(texel);
+    let i = i32(f.x);
+    let j = i32(f.y);
+    return bilinear(volume_shadow_value(i, j), volume_shadow_value(i + 1, j), volume_shadow_value(i, j + 1), volume_shadow_value(i + 1, j + 1), texel.x - f.x, texel.y - f.y);
+}
+
 // Radiance of the terrain at world position `world`, seen from the camera.
 fn terrain_radiance(world: vec3<f32>) -> vec3<f32> {
     let map = vec2<f32>(world.x, world.z) + terrain.map_offset;
@@ -141,7 +182,8 @@ fn terrain_radiance(world: vec3<f32>) -> vec3<f32> {
     }
     let albedo = terrain_albedo(terrain.albedo, world.y, normal.z);
     let offset = world - terrain.camera;
-    let surface = surface_radiance(normal, normal.z, terrain.sun_enu, albedo, self_shadow, cloud_shadow_at(offset), sunlight_at(offset), terrain.sky_irradiance);
+    let cloud_shadow = cloud_shadow_at(offset) * volume_cloud_shadow(world);
+    let surface = surface_radiance(normal, normal.z, terrain.sun_enu, albedo, self_shadow, cloud_shadow, sunlight_at(offset), terrain.sky_irradiance);
     return apply_aerial_perspective(surface, offset);
 }
 

@@ -553,6 +553,16 @@ fn precomputed_frame<'a>(
     }))
 }
 
+/// The volumetric cloud's shadow at world point `world` (x east, y up, z south, metres
+/// from the camera's ground point) toward `light` (1 without a volume or for the moon).
+/// The GPU terrain pass's `volume_cloud_shadow` does the same in f32.
+fn volume_shadow_at(light: &TerrainLight<'_>, world: Vec3) -> f32 {
+    light
+        .illuminant
+        .volume_shadow
+        .map_or(1.0, |shadow| shadow.at([world.x, -world.z, world.y]))
+}
+
 /// Bilinear weights and the four texels around a fractional texel position.
 fn bilinear_texels(texel: [f64; 2], width: usize, height: usize) -> ([usize; 4], [f32; 4]) {
     let i = (texel[0].floor() as usize).min(width - 2);
@@ -640,7 +650,7 @@ fn shade_terrain(
             offset,
             scene.viewer_radius as f32,
             light.illuminant.cloud_layers,
-        );
+        ) * volume_shadow_at(light, world.as_vec3());
         let surface = surface_radiance(
             n,
             n.z,
@@ -661,11 +671,12 @@ fn shade_terrain(
     let sun_at_point = light.sun_at_elevation(elevation);
     let planet = scene.atmosphere.planet_radius;
     let offset = (view * hit.distance).as_vec3().to_array();
+    let eye = scene.camera_position - DVec3::new(0.0, planet, 0.0);
     let cloud_shadow = crate::clouds::cloud_shadow_at(
         offset,
         scene.viewer_radius as f32,
         light.illuminant.cloud_layers,
-    );
+    ) * volume_shadow_at(light, eye.as_vec3() + Vec3::from_array(offset));
     let surface = surface_radiance(
         n,
         n.z,

@@ -66,6 +66,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/terrain_shading.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "render::volume_shadow",
+        source: include_str!("../shaders/volume_shadow.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "render::terrain",
         source: include_str!("../shaders/terrain.wgsl"),
     },
@@ -91,7 +95,7 @@ pub fn composer() -> skyscape_wgsl::Composer {
 }
 
 /// Adds the modules of the crates `render` composes (beyond atmos and common) to a
-/// composer: terrain's, celestial's and its own.
+/// composer: terrain's, celestial's, cloudlight's and its own.
 pub fn add_composed_crates(composer: &mut skyscape_wgsl::Composer) {
     composer
         .add_modules(terrain::WGSL_MODULES)
@@ -99,6 +103,9 @@ pub fn add_composed_crates(composer: &mut skyscape_wgsl::Composer) {
     composer
         .add_modules(celestial::WGSL_MODULES)
         .expect("celestial WGSL module names are unique and well formed");
+    composer
+        .add_modules(cloudlight::WGSL_MODULES)
+        .expect("cloudlight WGSL module names are unique and well formed");
     composer
         .add_modules(WGSL_MODULES)
         .expect("render WGSL module names are unique and well formed");
@@ -167,7 +174,9 @@ mod wgsl_tests {
         ];
         #[cfg(feature = "gpu")]
         let twins = {
-            use crate::gpu::scene::{CloudComposite, DisplayParameters, TerrainUniform};
+            use crate::gpu::scene::{
+                CloudComposite, DisplayParameters, TerrainUniform, VolumeShadowUniform,
+            };
             let mut twins = twins.to_vec();
             twins.push((
                 skyscape_wgsl::rust_layout!(TerrainUniform {
@@ -191,6 +200,18 @@ mod wgsl_tests {
                     padding2,
                 }),
                 wgsl("render::terrain", "TerrainUniform"),
+            ));
+            twins.push((
+                skyscape_wgsl::rust_layout!(VolumeShadowUniform {
+                    origin,
+                    cell_size,
+                    plane,
+                    to_sun,
+                    enabled,
+                    resolution,
+                    padding,
+                }),
+                wgsl("render::terrain", "VolumeShadowUniform"),
             ));
             twins.push((
                 skyscape_wgsl::rust_layout!(DisplayParameters {

@@ -77,6 +77,125 @@ pub struct PreparedVolume {
     pub steps: u32,
     /// Cells holding density > 0.
     pub cloudy_cells: usize,
+    /// Its shadow on the terrain under the sun (`None` with the sun below 1° or no
+    /// terrain in the scene: nothing is computed then).
+    pub shadow: Option<CloudShadow>,
+}
+
+/// The volume's shadow on the terrain: `cloudlight`'s ground shadow map (seed 000's
+/// `cloud_shadow` term; `shadow_map::<f32>`, the twin of `cloudlight::gpu::ShadowMapPass`)
+/// on the plane of the grid's base, over the part of it whose sun rays can cross the
+/// grid (the footprint swept away from the sun by the grid's height). A terrain point is
+/// carried along the sun ray to that plane and the map read there, bilinearly between
+/// texel centres (1 outside the map): exact, up to the map's sampling, for terrain
+/// below the cloud's base (the ray between the point and the plane is clear air); a peak
+/// reaching into the cloud reads the shadow of the cloud's part above the plane.
+/// Both renderers read the same map (the GPU's terrain pass uploads it).
+#[derive(Debug, Clone)]
+pub struct CloudShadow {
+    /// East/north of texel (0, 0)'s corner, metres (the volume's frame).
+    pub origin: [f32; 2],
+    /// Texel edge, metres.
+    pub cell_size: f32,
+    /// Texels east × north.
+    pub resolution: [u32; 2],
+    /// The plane's altitude (the grid's base), metres.
+    pub plane: f32,
+    /// Unit direction toward the sun, east/north/up.
+    pub to_sun: [f32; 3],
+    /// Transmittance toward the sun per texel, east fastest.
+    pub values: Vec<f32>,
+}
+
+/// The most texels along one side of the cloud's shadow map.
+pub const SHADOW_MAP_MAX_SIDE: u32 = 256;
+/// Midpoint steps of the shadow map's march per span.
+pub const SHADOW_MAP_STEPS: u32 = 32;
+
+impl CloudShadow {
+    /// The shadow map of `volume` for the sun along unit `to_sun` (east/north/up), or
+    /// `None` when the sun is below 1° (it lights no terrain through a cloud layer then).
+    pub fn new(volume: &CloudVolume, to_sun: [f64; 3]) -> Option<Self> {
+        if to_sun[2] < 1f64.to_radians().sin() {
+            return None;
+        }
+        let o = volume.origin();
+        let size = volume.voxel_size();
+        let [nx, ny, nz] = volume.dims();
+        let height = f64::from(nz) * size;
+        // The footprint, swept by −(horizontal sun) × height / sun_z (capped at 100 km).
+        let reach = (height / to_sun[2]).min(1e5);
+        let (sx, sy) = (-to_sun[0] * reach, -to_sun[1] * reach);
+        let lo = [o[0] + sx.min(0.0), o[1] + sy.min(0.0)];
+        let hi = [
+            o[0] + f64::from(nx) * size + sx.max(0.0),
+            o[1] + f64::from(ny) * size + sy.max(0.0),
+        ];
+        let cell = size
+            .max((hi[0] - lo[0]) / f64::from(SHADOW_MAP_MAX_SIDE))
+            .max((hi[1] - lo[1]) / f64::from(SHADOW_MAP_MAX_SIDE));
+        let resolution = [
+            (((hi[0] - lo[0]) / cell).ceil() as u32).clamp(1, SHADOW_MAP_MAX_SIDE),
+            (((hi[1] - lo[1]) / cell).ceil() as u32).clamp(1, SHADOW_MAP_MAX_SIDE),
+        ];
+        let grid = cloudlight::shadow_map::ShadowGrid::new(lo, cell, resolution, o[2]).ok()?;
+        let plan =
+            cloudlight::shadow_map::ShadowMapPlan::new(grid, to_sun, SHADOW_MAP_STEPS).ok()?;
+        let values = cloudlight::shadow_map::shadow_map::<f32, _>(volume, &plan);
+        Some(Self {
+            origin: [lo[0] as f32, lo[1] as f32],
+            cell_size: cell as f32,
+            resolution,
+            plane: o[2] as f32,
+            to_sun: to_sun.map(|c| c as f32),
+            values,
+        })
+    }
+
+    /// The transmittance toward the sun at `point` (east/north/up, metres). The WGSL
+    /// twin is `volume_cloud_shadow` in `shaders/render/terrain.wgsl`.
+    pub fn at(&self, point: [f32; 3]) -> f32 {
+        let texel =
+            volume_shadow_texel(point, self.to_sun, self.plane, self.origin, self.cell_size);
+        let [w, h] = self.resolution.map(|r| r as i64);
+        let (fx, fy) = (texel[0].floor(), texel[1].floor());
+        let (i, j) = (fx as i64, fy as i64);
+        let value = |x: i64, y: i64| -> f32 {
+            if x < 0 || y < 0 || x >= w || y >= h {
+                1.0
+            } else {
+                self.values[(x + w * y) as usize]
+            }
+        };
+        cloudlight::propagate::bilinear(
+            value(i, j),
+            value(i + 1, j),
+            value(i, j + 1),
+            value(i + 1, j + 1),
+            texel[0] - fx,
+            texel[1] - fy,
+        )
+    }
+}
+
+/// Where `point` (east/north/up, metres) reads the cloud's shadow map: carried along
+/// unit `to_sun` to the plane at altitude `plane`, in texel-centre coordinates
+/// (`(x − origin)/cell − ½`: texel `(i, j)`'s centre is `(i, j)`). WGSL twin of the same
+/// name in `shaders/render/terrain.wgsl`.
+pub fn volume_shadow_texel(
+    point: [f32; 3],
+    to_sun: [f32; 3],
+    plane: f32,
+    origin: [f32; 2],
+    cell_size: f32,
+) -> [f32; 2] {
+    let t = (plane - point[2]) / to_sun[2];
+    let x = point[0] + t * to_sun[0];
+    let y = point[1] + t * to_sun[1];
+    [
+        (x - origin[0]) / cell_size - 0.5,
+        (y - origin[1]) / cell_size - 0.5,
+    ]
 }
 
 /// `ground_irradiance` takes a sized model; this lends it the scene's boxed one.
@@ -220,6 +339,7 @@ impl Scene {
         atmosphere: &atmos::Atmosphere,
         model: &(dyn atmos::SkyModel + Send + Sync),
         sun: DVec3,
+        shadows_on_terrain: bool,
     ) -> Result<PreparedVolume, SceneError> {
         self.check_volume_cloud(section)?;
         let invalid =
@@ -321,12 +441,17 @@ impl Scene {
             [0.0, 0.0, 1.0],
         )
         .map_err(|e| invalid("base_m", deg_free(s.base_m, " m"), e.to_string()))?;
+        // Only a scene with terrain needs the shadow map.
+        let shadow = shadows_on_terrain
+            .then(|| CloudShadow::new(&volume, world_to_enu(sun.to_array())))
+            .flatten();
         Ok(PreparedVolume {
             volume,
             settings,
             lighting,
             steps: s.steps,
             cloudy_cells,
+            shadow,
         })
     }
 }

@@ -327,3 +327,92 @@ fn animation_grows_the_cloud_between_frames() {
     let e = huge.prepare().unwrap_err();
     assert_eq!(e.field(), Some("clouds.volume.steps"), "{e}");
 }
+
+/// The cloud shades the terrain under it (cloudlight's shadow map, seed 000's
+/// cloud_shadow term): with the map, no terrain pixel gets brighter and some are
+/// clearly darker; without terrain, no map is computed.
+#[test]
+fn the_volume_cloud_shadows_the_terrain() {
+    // Looking down at the cloud and the ground east of it (the sun is in the
+    // west-south-west, 60° up: the shadow falls east-north-east of the cloud).
+    let mut scene = shipped(96, 54);
+    scene.file.camera.position = [4000.0, 7000.0, -3000.0];
+    scene.file.camera.look_at = Some([1200.0, 300.0, -5400.0]);
+    scene.file.camera.look_direction = None;
+    scene.file.camera.vertical_fov_deg = 60.0;
+    let mut prepared = scene.prepare().unwrap();
+    let shadow = prepared
+        .volume_cloud
+        .as_ref()
+        .and_then(|v| v.shadow.as_ref())
+        .expect("a sunlit cloud over terrain has a shadow map");
+    let darkest = shadow.values.iter().fold(1.0f32, |m, &v| m.min(v));
+    assert!(darkest < 0.5, "the map's darkest texel {darkest}");
+    let shaded = render::cpu_renderer::render_radiance(&prepared).unwrap();
+    prepared.volume_cloud.as_mut().unwrap().shadow = None;
+    let unshaded = render::cpu_renderer::render_radiance(&prepared).unwrap();
+    let luminance = |p: [f32; 3]| 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+    let (mut darker, mut terrain, mut worst) = (0, 0, 1.0f32);
+    for (a, b) in shaded.iter().zip(&unshaded) {
+        if a.terrain_distance.is_some() {
+            terrain += 1;
+            let (la, lb) = (luminance(a.radiance), luminance(b.radiance));
+            assert!(
+                la <= lb * (1.0 + 1e-6) + 1e-12,
+                "brighter in shadow: {la} vs {lb}"
+            );
+            if la < 0.9 * lb {
+                darker += 1;
+            }
+            worst = worst.min(la / lb.max(1e-30));
+        }
+    }
+    eprintln!(
+        "{darker} of {terrain} terrain pixels over 10 % darker in the cloud's shadow (darkest ratio {worst})"
+    );
+    assert!(darker > 0, "no terrain pixel in the cloud's shadow");
+    // The GPU terrain pass reads the same map: its shadowed pixels agree with the CPU's.
+    prepared = scene.prepare().unwrap();
+    if let Some(gpu) = skyscape_harness::gpu_or_skip("render::volume_clouds shadow") {
+        let settings = render::gpu::SceneRendererSettings {
+            terrain_error_px: 0.0,
+            timestamps: false,
+        };
+        let mut renderer =
+            render::gpu::SceneRenderer::new(&gpu.device, &gpu.queue, &prepared, settings).unwrap();
+        renderer.prepare(&gpu.queue, &prepared).unwrap();
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        renderer.encode(&mut encoder).unwrap();
+        gpu.queue.submit([encoder.finish()]);
+        let buffer = renderer.pixel_buffer();
+        let bytes =
+            skyscape_harness::read_buffer(gpu, "scene pixels", buffer, 0, buffer.size()).unwrap();
+        let gpu_image: Vec<u32> = bytemuck::cast_slice(&bytes).to_vec();
+        let cpu_image = render::cpu_renderer::render_cpu(&prepared).unwrap().pixels;
+        let (mut shadowed, mut agree) = (0usize, 0usize);
+        for (i, (a, b)) in shaded.iter().zip(&unshaded).enumerate() {
+            if a.terrain_distance.is_some() && luminance(a.radiance) < 0.9 * luminance(b.radiance) {
+                shadowed += 1;
+                let d = (0..3)
+                    .map(|c| {
+                        ((gpu_image[i] >> (8 * c)) & 255).abs_diff((cpu_image[i] >> (8 * c)) & 255)
+                    })
+                    .max()
+                    .unwrap();
+                agree += usize::from(d <= 2);
+            }
+        }
+        let everywhere = render::tonemap::fraction_within_lsb(&gpu_image, &cpu_image, 2).unwrap();
+        eprintln!(
+            "GPU vs CPU, looking down at the shadow: {agree} of {shadowed} shadowed pixels within 2 LSB; {:.3} % of all pixels",
+            100.0 * everywhere
+        );
+        assert!(agree * 10 >= shadowed * 9, "{agree} of {shadowed}");
+        assert!(everywhere >= 0.95, "{everywhere}");
+    }
+    // A scene without terrain computes no map.
+    let mut no_terrain = shipped(32, 18);
+    no_terrain.file.terrain = None;
+    let prepared = no_terrain.prepare().unwrap();
+    assert!(prepared.volume_cloud.unwrap().shadow.is_none());
+}

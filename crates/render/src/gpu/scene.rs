@@ -101,6 +101,53 @@ pub struct TerrainUniform {
     pub padding2: f32,
 }
 
+/// The volumetric cloud's shadow map parameters of a terrain draw (layout identical to
+/// WGSL `VolumeShadowUniform` in `shaders/render/terrain.wgsl`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct VolumeShadowUniform {
+    /// East/north of texel (0, 0)'s corner, metres.
+    pub origin: [f32; 2],
+    /// Texel edge, metres.
+    pub cell_size: f32,
+    /// The map plane's altitude, metres.
+    pub plane: f32,
+    /// Unit direction toward the light, east/north/up.
+    pub to_sun: [f32; 3],
+    /// 1 when a map is bound, 0 otherwise (no volume cloud, or the moon's draw).
+    pub enabled: u32,
+    /// Texels east × north.
+    pub resolution: [u32; 2],
+    /// Alignment.
+    pub padding: [u32; 2],
+}
+
+impl VolumeShadowUniform {
+    /// No volume shadow.
+    pub const DISABLED: Self = Self {
+        origin: [0.0; 2],
+        cell_size: 1.0,
+        plane: 0.0,
+        to_sun: [0.0, 0.0, 1.0],
+        enabled: 0,
+        resolution: [1, 1],
+        padding: [0; 2],
+    };
+
+    /// The parameters of `shadow`'s map.
+    pub fn of(shadow: &crate::volume_clouds::CloudShadow) -> Self {
+        Self {
+            origin: shadow.origin,
+            cell_size: shadow.cell_size,
+            plane: shadow.plane,
+            to_sun: shadow.to_sun,
+            enabled: 1,
+            resolution: shadow.resolution,
+            padding: [0; 2],
+        }
+    }
+}
+
 /// The display pass's uniform (WGSL `DisplayParameters`).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
@@ -130,6 +177,9 @@ struct TerrainPass {
     lod: TerrainLod,
     cloud_layers: wgpu::Buffer,
     cloud_layer_capacity: usize,
+    /// The volumetric cloud's shadow map parameters (sun draw) and values.
+    volume_shadow: wgpu::Buffer,
+    volume_shadow_values: wgpu::Buffer,
     /// The terrain lit by the moon (scenes with a moonlit sky): drawn again over the
     /// sunlit terrain with the moonlit tables, added.
     moon: Option<MoonTerrain>,
@@ -143,6 +193,8 @@ struct MoonTerrain {
     uniform: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     cloud_layers: wgpu::Buffer,
+    /// Always disabled: the moon's light is not shadowed by the volume.
+    _volume_shadow: wgpu::Buffer,
 }
 
 /// Every pass of a scene on the GPU.
@@ -559,6 +611,7 @@ impl SceneRenderer {
                 moonlit.as_ref().map(|(moon_luts, _)| moon_luts),
                 terrain,
                 scene.cloud_layers.len(),
+                scene.volume_cloud.is_some(),
             )?),
             None => None,
         };
@@ -721,6 +774,7 @@ impl SceneRenderer {
         moon_luts: Option<&AtmosphereLuts>,
         terrain: &PreparedTerrain,
         cloud_layer_capacity: usize,
+        volume_cloud: bool,
     ) -> Result<TerrainPass, RenderError> {
         // The cloud layers whose shadows fall on the terrain (one unused element when
         // the scene has none: a binding may not be empty).
@@ -786,6 +840,27 @@ impl SceneRenderer {
             })
         };
         let uniform = uniform_buffer("render terrain uniform");
+        // The volume's shadow map: its largest size when the scene has a volume cloud
+        // (the map's extent follows the sun), one unused element otherwise.
+        let shadow_texels = if volume_cloud {
+            (crate::volume_clouds::SHADOW_MAP_MAX_SIDE as usize).pow(2)
+        } else {
+            1
+        };
+        let volume_shadow_values = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render terrain volume shadow map"),
+            size: (shadow_texels * 4) as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let shadow_uniform = |label| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: bytemuck::bytes_of(&VolumeShadowUniform::DISABLED),
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            })
+        };
+        let volume_shadow = shadow_uniform("render terrain volume shadow");
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("render terrain"),
@@ -795,37 +870,48 @@ impl SceneRenderer {
                 storage_read(2, wgpu::ShaderStages::FRAGMENT),
                 storage_read(3, wgpu::ShaderStages::FRAGMENT),
                 storage_read(4, wgpu::ShaderStages::FRAGMENT),
+                uniform_entry(5, wgpu::ShaderStages::FRAGMENT),
+                storage_read(6, wgpu::ShaderStages::FRAGMENT),
             ],
         });
-        let bind_group_with = |uniform: &wgpu::Buffer, cloud_layers: &wgpu::Buffer| {
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("render terrain"),
-                layout: &layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: uniform.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: heights.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: normals.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 3,
-                        resource: horizons.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 4,
-                        resource: cloud_layers.as_entire_binding(),
-                    },
-                ],
-            })
-        };
-        let bind_group = bind_group_with(&uniform, &cloud_layers);
+        let bind_group_with =
+            |uniform: &wgpu::Buffer, cloud_layers: &wgpu::Buffer, volume_shadow: &wgpu::Buffer| {
+                device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("render terrain"),
+                    layout: &layout,
+                    entries: &[
+                        wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: uniform.as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 1,
+                            resource: heights.as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 2,
+                            resource: normals.as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 3,
+                            resource: horizons.as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 4,
+                            resource: cloud_layers.as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 5,
+                            resource: volume_shadow.as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 6,
+                            resource: volume_shadow_values.as_entire_binding(),
+                        },
+                    ],
+                })
+            };
+        let bind_group = bind_group_with(&uniform, &cloud_layers, &volume_shadow);
         let source = crate::composer().compose_module("render::terrain")?;
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("render terrain"),
@@ -907,11 +993,13 @@ impl SceneRenderer {
         let moon = moon_luts.map(|moon_luts| {
             let uniform = uniform_buffer("render moonlit terrain uniform");
             let cloud_layers = layers_buffer("render moonlit terrain cloud layers");
+            let volume_shadow = shadow_uniform("render moonlit terrain volume shadow");
             MoonTerrain {
                 pipeline: make_pipeline(moon_luts, true),
-                bind_group: bind_group_with(&uniform, &cloud_layers),
+                bind_group: bind_group_with(&uniform, &cloud_layers, &volume_shadow),
                 uniform,
                 cloud_layers,
+                _volume_shadow: volume_shadow,
             }
         });
         let (grid, indices) = tile_mesh();
@@ -947,6 +1035,8 @@ impl SceneRenderer {
             lod,
             cloud_layers,
             cloud_layer_capacity,
+            volume_shadow,
+            volume_shadow_values,
             moon,
         })
     }
@@ -1095,6 +1185,27 @@ impl SceneRenderer {
             };
             let uniform = uniform_for(&lighting, &scene.sun_light());
             queue.write_buffer(&pass.uniform, 0, bytemuck::bytes_of(&uniform));
+            // The volume's shadow map (the CPU renderer reads the same values).
+            let shadow = scene.sun_light().volume_shadow;
+            let shadow_uniform = match shadow {
+                Some(map) if (map.values.len() * 4) as u64 <= pass.volume_shadow_values.size() => {
+                    queue.write_buffer(
+                        &pass.volume_shadow_values,
+                        0,
+                        bytemuck::cast_slice(&map.values),
+                    );
+                    VolumeShadowUniform::of(map)
+                }
+                Some(map) => {
+                    return Err(RenderError::InvalidParameter {
+                        field: "clouds.volume",
+                        value: format!("a {}×{} shadow map", map.resolution[0], map.resolution[1]),
+                        reason: "the renderer was built for a scene without a volume cloud",
+                    });
+                }
+                None => VolumeShadowUniform::DISABLED,
+            };
+            queue.write_buffer(&pass.volume_shadow, 0, bytemuck::bytes_of(&shadow_uniform));
             match (&pass.moon, scene.moon_light()) {
                 (Some(moon_pass), Some(moon)) => {
                     let moon_lighting = terrain_lighting_for(scene, terrain, &moon)?;

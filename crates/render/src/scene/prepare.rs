@@ -147,6 +147,9 @@ pub struct Illuminant<'a> {
     pub precomputed: Option<&'a atmos::lut::PrecomputedSky>,
     /// The cloud layers with this light's direction (their shadows).
     pub cloud_layers: &'a [celestial::clouds::CloudLayerUniforms],
+    /// The volumetric cloud's shadow map toward this light (the sun's; the moon's light
+    /// is not shadowed by the volume).
+    pub volume_shadow: Option<&'a crate::volume_clouds::CloudShadow>,
 }
 
 impl std::fmt::Debug for Illuminant<'_> {
@@ -200,6 +203,7 @@ impl PreparedScene {
             segment_model: self.segment_model.as_ref(),
             precomputed: self.precomputed.as_deref(),
             cloud_layers: &self.cloud_layers,
+            volume_shadow: self.volume_cloud.as_ref().and_then(|v| v.shadow.as_ref()),
         }
     }
 
@@ -212,6 +216,7 @@ impl PreparedScene {
             segment_model: moon.segment_model.as_ref(),
             precomputed: moon.precomputed.as_deref(),
             cloud_layers: &moon.cloud_layers,
+            volume_shadow: None,
         })
     }
 
@@ -411,7 +416,13 @@ impl Scene {
             None => None,
         };
         let volume_cloud = match file.clouds.as_ref().and_then(|c| c.volume.as_ref()) {
-            Some(section) => Some(self.volume_cloud(section, &atmosphere, &*sky_model, sun)?),
+            Some(section) => Some(self.volume_cloud(
+                section,
+                &atmosphere,
+                &*sky_model,
+                sun,
+                terrain.is_some(),
+            )?),
             None => None,
         };
         if sky_objects.is_some() {

@@ -6,6 +6,38 @@ use super::*;
 pub fn cases() -> Vec<Case> {
     vec![
         Case {
+            name: "render::volume_shadow_texel",
+            imports: &["render::volume_shadow"],
+            arity: (10, 2),
+            wgsl: "let t = volume_shadow_texel(vec3<f32>(x0, x1, x2), vec3<f32>(x3, x4, x5), x6, vec2<f32>(x7, x8), x9); y0 = t.x; y1 = t.y;",
+            grid: volume_shadow_grid,
+            cpu: |x| {
+                render::volume_clouds::volume_shadow_texel(
+                    [x[0], x[1], x[2]],
+                    [x[3], x[4], x[5]],
+                    x[6],
+                    [x[7], x[8]],
+                    x[9],
+                )
+                .to_vec()
+            },
+            reference: |x| {
+                let t = (x[6] - x[2]) / x[5];
+                vec![
+                    (x[0] + t * x[3] - x[7]) / x[9] - 0.5,
+                    (x[1] + t * x[4] - x[8]) / x[9] - 0.5,
+                ]
+            },
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 4.0,
+                bound: Some(volume_shadow_bound),
+                why: "the subtraction, division and product roundings scaled by the magnitudes they meet (|x|, |t·s|, |origin|: metres over the cell)",
+            },
+        },
+        Case {
             name: "render::tonemap_exposure",
             imports: &["render::tonemap"],
             arity: (4, 3),
@@ -274,4 +306,51 @@ pub fn present_case() -> Case {
                   rounding of an edge are left out)",
         },
     }
+}
+
+/// Terrain points over 60 km (east, north) at 0–4 km, suns 2°–90° at 8 azimuths, the
+/// shadow plane at 1.5 and 3 km, origins and cells of real maps: 10,368 inputs.
+fn volume_shadow_grid() -> Vec<Vec<f64>> {
+    let mut grid = Vec::new();
+    for &elevation in &[2.0f64, 5.0, 15.0, 35.0, 60.0, 89.0] {
+        for k in 0..8 {
+            let azimuth = f64::from(k) * 45.0 + 10.0;
+            let (e, a) = (elevation.to_radians(), azimuth.to_radians());
+            let s = [e.cos() * a.sin(), e.cos() * a.cos(), e.sin()];
+            for &(plane, origin, cell) in &[
+                (1500.0, [-12_000.0, -9_000.0], 50.0),
+                (3000.0, [-40_000.0, 5_000.0], 187.5),
+            ] {
+                for i in 0..6 {
+                    for j in 0..6 {
+                        for &z in &[0.0, 900.0, 2450.0] {
+                            let x = -30_000.0 + 12_000.0 * f64::from(i) + 37.0;
+                            let y = -30_000.0 + 12_000.0 * f64::from(j) - 11.0;
+                            grid.push(vec![
+                                x, y, z, s[0], s[1], s[2], plane, origin[0], origin[1], cell,
+                            ]);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    grid
+}
+
+/// `volume_shadow_texel`'s forward bound (on the f32 inputs): `t = (plane − z)/s_z`
+/// (two roundings), `x + t·s_x` (two), `− origin` (one), `/ cell`
+/// (one), `− ½` (one): each rounding contributes u × the magnitude it meets, over the
+/// cell; doubled.
+fn volume_shadow_bound(x: &[f64]) -> Vec<f64> {
+    let t = ((x[6] - x[2]) / x[5]).abs();
+    let t_bound = t * 4.0 * U + (x[6].abs() + x[2].abs()) / x[5].abs() * 2.0 * U;
+    (0..2)
+        .map(|k| {
+            let s = x[3 + k].abs();
+            let position = x[k].abs() + t * s + x[7 + k].abs();
+            let coordinate = (x[k] + t * x[3 + k] - x[7 + k]).abs() / x[9];
+            2.0 * ((position * 4.0 * U + t_bound * s) / x[9] + coordinate * 3.0 * U + 0.5 * U)
+        })
+        .collect()
 }
