@@ -64,7 +64,14 @@
 //! sweep then cuts each line into blocks of `K` samples: the window of `P` is the rest
 //! of its own block (a fresh sweep per block) plus a prefix of the next block, whose
 //! upper hull is built incrementally and undone point by point as `P` moves back, the
-//! tangent found by binary search (O(n log K) per line).
+//! tangent found by binary search (O(n log K) per line). The next block's part is
+//! searched only when its highest sample, at its nearest distance, could rise above
+//! what the own block gave; its hull is built at the first such search, up to that
+//! window's end.
+//!
+//! Every tangent search starts from the previous texel's tangent point, galloping
+//! (1, 2, 4, … hull points) to bracket the answer before bisecting: the same point as
+//! a bisection of the whole hull, in O(1) where neighbouring texels share it.
 //!
 //! Off the axes and diagonals the viewpoints are texels beside the line, not its
 //! samples, so no sample can be discarded for good: walking back along the line, each
@@ -72,8 +79,14 @@
 //! (monotone chain, amortised O(1)), and the texel's horizon point is its tangent point
 //! on that hull, found by binary search (the positions along the line are linear, so
 //! the hull in `(s, g)` is exact with `s_P` the foot's position). A maximum distance
-//! uses the same blocks as above. When the highest sample that can be in a window
-//! cannot rise above the near field's horizon, the searches are skipped.
+//! uses the same blocks as above. Each part of a window (the whole line ahead; or the
+//! rest of the own block, and the next block's prefix) is searched only when its
+//! highest sample, at its nearest distance, could rise above the near field's horizon
+//! and the other part's; with a maximum distance a part's hull is built only when it
+//! is searched. On the 30 m generator with 2 km relief these tests skip few searches:
+//! the far samples rise above the near field for most texels (about 70 % of the
+//! searches of a 6 km window find a higher tangent), so a maximum distance, which
+//! needs two hulls per window where the unlimited sweep needs one, stays slower.
 //!
 //! Lines are distributed over threads (`std::thread::scope`); every line is computed
 //! the same way whatever the thread count, so the result does not depend on it.
@@ -477,6 +490,22 @@ fn not_lower(g: &[f64], q: usize, a: usize, b: usize) -> bool {
     (g[b] - g[q]) * (a - q) as f64 >= (g[a] - g[q]) * (b - q) as f64
 }
 
+/// Adds sample `p`, left of every point, to the upper hull `hull` (indices along the
+/// line, leftmost last) in the curvature-corrected frame `g`.
+#[inline]
+fn push_left(g: &[f64], hull: &mut Vec<usize>, p: usize) {
+    while hull.len() >= 2 {
+        let t = hull[hull.len() - 1];
+        let s = hull[hull.len() - 2];
+        if (g[t] - g[p]) * (s - p) as f64 <= (g[s] - g[p]) * (t - p) as f64 {
+            hull.pop();
+        } else {
+            break;
+        }
+    }
+    hull.push(p);
+}
+
 /// The hull sweep over one line.
 fn sweep_line(p: &Profile<'_>, max_steps: usize, g: &mut Vec<f64>, out: &mut [f32]) {
     let n = p.h.len();
@@ -496,39 +525,26 @@ fn sweep_line(p: &Profile<'_>, max_steps: usize, g: &mut Vec<f64>, out: &mut [f3
     let mut prefix: Vec<usize> = Vec::new();
     let mut undo_log: Vec<(usize, usize)> = Vec::new(); // (added point, popped count)
     let mut popped: Vec<usize> = Vec::new();
+    let mut prefix_max: Vec<f64> = Vec::new();
     let mut block_start = (n - 1) / block * block;
     loop {
         let block_end = (block_start + block).min(n); // exclusive
-        // Build the upper hull of the whole next-block window prefix, recording undo.
-        prefix.clear();
-        undo_log.clear();
-        popped.clear();
-        let next_last = if block < n {
-            (block_end + block - 1).min(n - 1)
-        } else {
-            0
-        };
         let has_next = block < n && block_end < n;
+        // The next block's running maximum of `g` from its first sample: the bound
+        // that lets a texel skip the search of its window's part in that block.
+        prefix_max.clear();
         if has_next {
-            for j in block_end..=next_last {
-                let mut count = 0;
-                while prefix.len() >= 2 {
-                    let t = prefix[prefix.len() - 1];
-                    let s = prefix[prefix.len() - 2];
-                    // Pop `t` when it is on or below the segment s → j.
-                    if (g[t] - g[s]) * (j - s) as f64 <= (g[j] - g[s]) * (t - s) as f64 {
-                        popped.push(t);
-                        prefix.pop();
-                        count += 1;
-                    } else {
-                        break;
-                    }
-                }
-                prefix.push(j);
-                undo_log.push((j, count));
+            let mut running = f64::NEG_INFINITY;
+            for &x in &g[block_end..(block_end + block).min(n)] {
+                running = running.max(x);
+                prefix_max.push(running);
             }
         }
-        let mut prefix_end = next_last;
+        // The next block's prefix hull is built at the first search, up to that
+        // texel's window end, then undone point by point as the window slides back.
+        let mut prefix_built = false;
+        let mut prefix_end = 0; // the last sample offered to `prefix`
+        let mut tangent = 0; // the last tangent point's position on `prefix`
         hull.clear();
         for k in (block_start..block_end).rev() {
             let mut best = f64::NEG_INFINITY;
@@ -540,9 +556,41 @@ fn sweep_line(p: &Profile<'_>, max_steps: usize, g: &mut Vec<f64>, out: &mut [f3
                 best = best.max(p.tangent(k, j));
             }
             hull.push(k);
-            // Part B: prefix of the next block up to k + K.
+            // Part B: prefix of the next block up to k + K, searched only when its
+            // highest sample, at its nearest distance, could rise above part A's.
             if has_next {
                 let target = (k + max_steps).min(n - 1);
+                let lift = 2.0 * k as f64 * p.step * p.inv_two_r;
+                let (near, far) = ((block_end - k) as f64, (target - k) as f64);
+                let g_max = prefix_max[target - block_end];
+                if !can_rise(best, lift, g_max, g[k], || near * p.step, || far * p.step) {
+                    out[k] = angle_from_tangent(best);
+                    continue;
+                }
+                if !prefix_built {
+                    prefix_built = true;
+                    prefix.clear();
+                    undo_log.clear();
+                    popped.clear();
+                    for j in block_end..=target {
+                        let mut count = 0;
+                        while prefix.len() >= 2 {
+                            let t = prefix[prefix.len() - 1];
+                            let s = prefix[prefix.len() - 2];
+                            // Pop `t` when it is on or below the segment s → j.
+                            if (g[t] - g[s]) * (j - s) as f64 <= (g[j] - g[s]) * (t - s) as f64 {
+                                popped.push(t);
+                                prefix.pop();
+                                count += 1;
+                            } else {
+                                break;
+                            }
+                        }
+                        prefix.push(j);
+                        undo_log.push((j, count));
+                    }
+                    prefix_end = target;
+                }
                 while prefix_end > target {
                     let (added, count) = undo_log.pop().expect("undo log matches prefix");
                     debug_assert_eq!(prefix.last(), Some(&added));
@@ -552,17 +600,12 @@ fn sweep_line(p: &Profile<'_>, max_steps: usize, g: &mut Vec<f64>, out: &mut [f3
                     }
                     prefix_end -= 1;
                 }
-                // Tangent: first i whose successor is not above the line k → prefix[i].
-                let (mut lo, mut hi) = (0usize, prefix.len() - 1);
-                while lo < hi {
-                    let mid = (lo + hi) / 2;
-                    if not_lower(g, k, prefix[mid + 1], prefix[mid]) {
-                        hi = mid;
-                    } else {
-                        lo = mid + 1;
-                    }
-                }
-                best = best.max(p.tangent(k, prefix[lo]));
+                // Tangent: first i whose successor is not above the line k → prefix[i],
+                // searched from the previous texel's.
+                tangent = first_true(prefix.len(), tangent, |i| {
+                    not_lower(g, k, prefix[i + 1], prefix[i])
+                });
+                best = best.max(p.tangent(k, prefix[tangent]));
             }
             out[k] = angle_from_tangent(best);
         }
@@ -571,6 +614,79 @@ fn sweep_line(p: &Profile<'_>, max_steps: usize, g: &mut Vec<f64>, out: &mut [f3
         }
         block_start -= block;
     }
+}
+
+/// The first `i < len` with `pred(i)`, `pred` monotone (false, then true) on
+/// `0..len − 1` and taken as true at `len − 1`: galloping from `guess` (1, 2, 4, …
+/// positions towards the answer), then bisecting the bracket. The same answer as a
+/// bisection of the whole range, in O(1) when the guess is at or next to it.
+#[inline]
+fn first_true(len: usize, guess: usize, pred: impl Fn(usize) -> bool) -> usize {
+    let last = len - 1;
+    let p = |i: usize| i >= last || pred(i);
+    let x = guess.min(last);
+    // The answer lies in [lo, hi] and p(hi) holds.
+    let (mut lo, mut hi);
+    if p(x) {
+        hi = x;
+        lo = 0;
+        let mut step = 1;
+        while hi >= step {
+            let c = hi - step;
+            if p(c) {
+                hi = c;
+                step *= 2;
+            } else {
+                lo = c + 1;
+                break;
+            }
+        }
+    } else {
+        lo = x + 1;
+        let mut step = 1;
+        loop {
+            let c = (lo - 1 + step).min(last);
+            if p(c) {
+                hi = c;
+                break;
+            }
+            lo = c + 1;
+            step *= 2;
+        }
+    }
+    while lo < hi {
+        let mid = (lo + hi) / 2;
+        if p(mid) {
+            hi = mid;
+        } else {
+            lo = mid + 1;
+        }
+    }
+    lo
+}
+
+/// `false` when no sample whose curvature-corrected height is at most `g_max`, at a
+/// distance between `near()` and `far()`, can have a tangent above `best`, seen from
+/// a viewpoint at curvature-corrected height `g_view` whose tangents carry `lift`
+/// (module docs: the tangent is `(g(Q) − g(P)) / d + lift`): `(g_max − g_view) / d`
+/// at the nearest distance bounds the others, at the farthest when it is negative.
+/// Margins of 1e-12 of the magnitudes involved keep the test conservative against
+/// rounding (the tangents themselves are rounded at about 1e-16 of them).
+#[inline]
+fn can_rise(
+    best: f64,
+    lift: f64,
+    g_max: f64,
+    g_view: f64,
+    near: impl Fn() -> f64,
+    far: impl Fn() -> f64,
+) -> bool {
+    let threshold = best - lift - 1e-12 * (best.abs() + lift.abs());
+    let rise = g_max - g_view + 1e-12 * (g_max.abs() + g_view.abs() + 1.0);
+    let d = if rise >= 0.0 { near() } else { far() };
+    // rise / d + lift ≥ best, without the division (d > 0; best = −∞ gives
+    // threshold · d = −∞: search).
+    rise >= threshold * d
 }
 
 /// Steps along each texel's own exact ray before the shared line takes over (off the
@@ -705,19 +821,18 @@ impl Sampler<'_> {
         (g[b] - v.g) * self.distance(v, a) <= (g[a] - v.g) * self.distance(v, b)
     }
 
-    /// The tangent point from `v` on an upper hull given left to right by `at(k)`,
-    /// `k < len` (unimodal: binary search).
-    fn tangent_point(&self, g: &[f64], v: &View, len: usize, at: impl Fn(usize) -> usize) -> usize {
-        let (mut lo, mut hi) = (0usize, len - 1);
-        while lo < hi {
-            let mid = (lo + hi) / 2;
-            if self.not_above(g, v, at(mid), at(mid + 1)) {
-                hi = mid;
-            } else {
-                lo = mid + 1;
-            }
-        }
-        at(lo)
+    /// The position `k < len` of the tangent point from `v` on an upper hull given
+    /// left to right by `at(k)`, searched from position `guess` (the neighbouring
+    /// texel's tangent point, usually the same or next to it; [`first_true`]).
+    fn tangent_point(
+        &self,
+        g: &[f64],
+        v: &View,
+        len: usize,
+        guess: usize,
+        at: impl Fn(usize) -> usize,
+    ) -> usize {
+        first_true(len, guess, |k| self.not_above(g, v, at(k), at(k + 1)))
     }
 
     /// Brute force over line `c` (after [`Sampler::build`]): every sample of each window.
@@ -744,6 +859,87 @@ impl Sampler<'_> {
     fn sweep(&self, sc: &mut LineScratch) {
         let n = self.lines.n_dominant;
         let far = self.max_steps.saturating_sub(NEAR_STEPS);
+        if far > 0 && self.max_steps < n {
+            self.sweep_windowed(sc);
+            return;
+        }
+        sc.out.clear();
+        sc.out.resize(sc.views.len(), NO_HORIZON);
+        let LineScratch {
+            h,
+            g,
+            views,
+            hull,
+            out,
+            ..
+        } = sc;
+        let g = &g[..];
+        hull.clear();
+        let mut next = n; // the next sample to add is next − 1
+        let mut from_right = 0usize; // the last tangent point, counted from the right
+        // The highest curvature-corrected sample added so far (all ahead of the view).
+        let mut g_max = f64::NEG_INFINITY;
+        let last_view = views.last().map_or(0, |v| v.i);
+        for (slot, v) in views.iter().enumerate().rev() {
+            let mut best = self.near_best(v, last_view);
+            let a = v.i + NEAR_STEPS + 1;
+            if far > 0 && a < n {
+                while next > a {
+                    next -= 1;
+                    if !h[next].is_nan() {
+                        push_left(g, hull, next);
+                        g_max = g_max.max(g[next]);
+                    }
+                }
+                // No sample ahead can rise above the near field's horizon: skip the
+                // tangent search (the hull is kept up to date regardless).
+                if self.can_rise(v, best, g_max, a, n - 1) && !hull.is_empty() {
+                    let len = hull.len();
+                    // The guess counts from the right end, which stays put as the
+                    // hull grows to the left.
+                    let guess = len - 1 - from_right.min(len - 1);
+                    let k = self.tangent_point(g, v, len, guess, |k| hull[len - 1 - k]);
+                    from_right = len - 1 - k;
+                    best = best.max(self.tangent_h(h, v, hull[from_right]));
+                }
+            }
+            out[slot] = angle_from_tangent(best);
+        }
+    }
+
+    /// `false` when no sample of `[lo, hi]` (`v.i < lo ≤ hi`) whose curvature-
+    /// corrected height is at most `g_max` (`−∞` when none) can rise, seen from `v`,
+    /// above the tangent `best`: the highest such sample at the nearest distance (at
+    /// the farthest when it lies below `v`) bounds them all. A margin against rounding
+    /// keeps the test conservative; no division.
+    #[inline]
+    fn can_rise(&self, v: &View, best: f64, g_max: f64, lo: usize, hi: usize) -> bool {
+        if g_max == f64::NEG_INFINITY {
+            return false;
+        }
+        let lift = 2.0 * (v.i as f64 * self.lines.step + v.e) * self.inv_two_r;
+        can_rise(
+            best,
+            lift,
+            g_max,
+            v.g,
+            || self.distance(v, lo),
+            || self.distance(v, hi),
+        )
+    }
+
+    /// [`Sampler::sweep`] with a maximum distance shorter than the line: each window
+    /// `[a, b]` (`a = i + NEAR_STEPS + 1`, `b = a + far − 1`, `far = K − NEAR_STEPS`)
+    /// is the rest of its own block of `far` samples (part A) plus a prefix of the
+    /// next block (part B). Each part is searched only when its highest sample, at
+    /// its nearest distance, could rise above what the near field and the other part
+    /// found; its hull is built only then (part A catching up point by point as the
+    /// window slides back, part B built up to `b` at its first search in a block and
+    /// then undone point by point), so a window that cannot beat its near field costs
+    /// two comparisons and no hull work.
+    fn sweep_windowed(&self, sc: &mut LineScratch) {
+        let n = self.lines.n_dominant;
+        let far = self.max_steps - NEAR_STEPS;
         sc.out.clear();
         sc.out.resize(sc.views.len(), NO_HORIZON);
         let LineScratch {
@@ -758,71 +954,68 @@ impl Sampler<'_> {
             out,
         } = sc;
         let g = &g[..];
-        // Adds `p`, left of every point, to the upper hull `hull` (leftmost last).
-        let push_left = |hull: &mut Vec<usize>, p: usize| {
-            while hull.len() >= 2 {
-                let t = hull[hull.len() - 1];
-                let s = hull[hull.len() - 2];
-                if (g[t] - g[p]) * (s - p) as f64 <= (g[s] - g[p]) * (t - p) as f64 {
-                    hull.pop();
-                } else {
-                    break;
-                }
-            }
-            hull.push(p);
-        };
-        // Windows reaching the end of the line: one hull of everything ahead.
-        let unlimited = far == 0 || self.max_steps >= n;
-        hull.clear();
-        let mut next = n; // the next sample to add is next − 1
         let mut block = usize::MAX;
+        let mut next = 0usize; // part A's hull holds the block's samples ≥ next
+        let mut scan = 0usize; // a_max covers the block's samples ≥ scan
+        let mut a_max = f64::NEG_INFINITY;
         let mut prefix_end = 0usize; // samples < prefix_end were offered to `prefix`
-        // The highest curvature-corrected sample that can be in the window: of all
-        // samples added (unlimited) or of the window's two blocks.
-        let mut g_max = f64::NEG_INFINITY;
+        let mut prefix_built = false;
+        // The last tangent points: part A's counted from its right end, part B's
+        // from its left end (the ends that stay put as the hulls change).
+        let (mut from_right, mut from_left) = (0usize, 0usize);
         let last_view = views.last().map_or(0, |v| v.i);
         for (slot, v) in views.iter().enumerate().rev() {
             let mut best = self.near_best(v, last_view);
             let a = v.i + NEAR_STEPS + 1;
-            if far > 0 && a < n {
-                let b = if unlimited {
-                    n - 1
-                } else {
-                    (a + far - 1).min(n - 1)
-                };
-                if unlimited {
+            if a < n {
+                let b = (a + far - 1).min(n - 1);
+                let start = (a / far + 1) * far; // the next block's first sample
+                if a / far != block {
+                    block = a / far;
+                    hull.clear();
+                    next = start.min(n);
+                    scan = next;
+                    a_max = f64::NEG_INFINITY;
+                    prefix_built = false;
+                    // Running maximum of the next block from its first sample
+                    // (`f64::max` skips the NaN outside the map).
+                    prefix_max.clear();
+                    let mut running = f64::NEG_INFINITY;
+                    for &x in &g[start.min(n)..(start + far).min(n)] {
+                        running = running.max(x);
+                        prefix_max.push(running);
+                    }
+                }
+                while scan > a {
+                    scan -= 1;
+                    a_max = a_max.max(g[scan]);
+                }
+                // Part A: the rest of the own block, [a, min(start, n) − 1].
+                if self.can_rise(v, best, a_max, a, start.min(n) - 1) {
                     while next > a {
                         next -= 1;
                         if !h[next].is_nan() {
-                            push_left(hull, next);
-                            g_max = g_max.max(g[next]);
+                            push_left(g, hull, next);
                         }
                     }
-                } else {
-                    if a / far != block {
-                        // A new block: part A restarts, part B is the whole next block.
-                        block = a / far;
-                        hull.clear();
-                        next = ((block + 1) * far).min(n);
+                    if !hull.is_empty() {
+                        let len = hull.len();
+                        let guess = len - 1 - from_right.min(len - 1);
+                        let k = self.tangent_point(g, v, len, guess, |k| hull[len - 1 - k]);
+                        from_right = len - 1 - k;
+                        best = best.max(self.tangent_h(h, v, hull[from_right]));
+                    }
+                }
+                // Part B: the next block's samples [start, b].
+                if b >= start && self.can_rise(v, best, prefix_max[b - start], start, b) {
+                    if prefix_built {
+                        self.shrink_prefix(prefix, undo_log, popped, &mut prefix_end, b);
+                    } else {
+                        prefix_built = true;
                         prefix.clear();
                         undo_log.clear();
                         popped.clear();
-                        let start = (block + 1) * far;
-                        prefix_end = (start + far).min(n);
-                        g_max = g[block * far..prefix_end]
-                            .iter()
-                            .copied()
-                            .filter(|x| !x.is_nan())
-                            .fold(f64::NEG_INFINITY, f64::max);
-                        prefix_max.clear();
-                        let mut running = f64::NEG_INFINITY;
-                        for &x in &g[start.min(prefix_end)..prefix_end] {
-                            if !x.is_nan() {
-                                running = running.max(x);
-                            }
-                            prefix_max.push(running);
-                        }
-                        for j in start..prefix_end {
+                        for j in start..=b {
                             if h[j].is_nan() {
                                 undo_log.push((j, false, 0));
                                 continue;
@@ -843,61 +1036,18 @@ impl Sampler<'_> {
                             prefix.push(j);
                             undo_log.push((j, true, count));
                         }
+                        prefix_end = b + 1;
                     }
-                    while next > a {
-                        next -= 1;
-                        if !h[next].is_nan() {
-                            push_left(hull, next);
-                        }
-                    }
-                }
-                // No sample of the window can rise above the near field's horizon:
-                // skip the tangent searches (the hulls are kept up to date regardless).
-                let s_p = v.i as f64 * self.lines.step + v.e;
-                let lift = 2.0 * s_p * self.inv_two_r;
-                let rise = g_max - v.g;
-                let reach = if rise >= 0.0 {
-                    rise / self.distance(v, a)
-                } else {
-                    rise / self.distance(v, b)
-                };
-                if reach + lift < best {
-                    out[slot] = angle_from_tangent(best);
-                    if !unlimited {
-                        self.shrink_prefix(prefix, undo_log, popped, &mut prefix_end, b);
-                    }
-                    continue;
-                }
-                if !hull.is_empty() {
-                    let len = hull.len();
-                    let j = self.tangent_point(g, v, len, |k| hull[len - 1 - k]);
-                    best = best.max(self.tangent_h(h, v, j));
-                }
-                if !unlimited {
-                    // Part B: the next block's samples up to b, searched only when
-                    // its highest sample, at its nearest distance, could rise above
-                    // what the near field and part A found (the same bound as above,
-                    // on the next block alone: most windows skip the search).
-                    self.shrink_prefix(prefix, undo_log, popped, &mut prefix_end, b);
-                    let start = (block + 1) * far;
-                    if !prefix.is_empty() && b >= start {
-                        let rise = prefix_max[b - start] - v.g;
-                        let reach = if rise >= 0.0 {
-                            rise / self.distance(v, start)
-                        } else {
-                            rise / self.distance(v, b)
-                        };
-                        if reach + lift >= best {
-                            let j = self.tangent_point(g, v, prefix.len(), |k| prefix[k]);
-                            best = best.max(self.tangent_h(h, v, j));
-                        }
+                    if !prefix.is_empty() {
+                        let k = self.tangent_point(g, v, prefix.len(), from_left, |k| prefix[k]);
+                        from_left = k;
+                        best = best.max(self.tangent_h(h, v, prefix[k]));
                     }
                 }
             }
             out[slot] = angle_from_tangent(best);
         }
     }
-
     /// Undoes the prefix hull's additions beyond sample `b`.
     fn shrink_prefix(
         &self,
@@ -1215,4 +1365,27 @@ pub fn bake_azimuths(
         })
         .collect::<Result<Vec<_>, _>>()?;
     Ok(AzimuthHorizonMaps { layers })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::first_true;
+
+    /// The galloping search finds the first true position from every guess, as a
+    /// bisection of the whole range does (the tangent searches rely on it).
+    #[test]
+    fn first_true_from_any_guess_is_the_bisection_answer() {
+        for len in 1..40 {
+            for answer in 0..=len {
+                let expected = answer.min(len - 1);
+                for guess in 0..len + 3 {
+                    let got = first_true(len, guess, |i| {
+                        assert!(i + 1 < len, "pred called past len − 2: {i} (len {len})");
+                        i >= answer
+                    });
+                    assert_eq!(got, expected, "len {len}, answer {answer}, guess {guess}");
+                }
+            }
+        }
+    }
 }

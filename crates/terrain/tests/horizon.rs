@@ -388,6 +388,37 @@ fn sweep_equals_brute_force_on_generated_terrain_with_many_azimuths() {
     }
 }
 
+/// Windows of a maximum distance where the near field hides the far samples (their
+/// searches and hull builds are skipped) and where it does not: terraces rising every
+/// few texels, with noise, for windows of 1 to 40 far samples, every block layout
+/// (the skips and the lazily built hulls must give the brute force's angles).
+#[test]
+fn windowed_sweep_equals_brute_force_where_searches_are_skipped_and_not() {
+    let spacing = 30.0;
+    let noise = random_terrain(61, 47, spacing, 40.0, 7);
+    let hf = Heightfield::from_fn(61, 47, spacing, |x, y| {
+        300.0 * ((3 * x + 2 * y) % 11) as f32 + noise.samples()[y * 61 + x]
+    })
+    .unwrap();
+    for steps in [
+        0.5, 1.0, 4.5, 5.5, 6.5, 7.5, 9.5, 13.5, 17.5, 25.0, 40.0, 60.0,
+    ] {
+        for effective_radius in [None, Some(EFFECTIVE_EARTH_RADIUS)] {
+            let options = HorizonOptions {
+                effective_radius,
+                max_distance: Some(steps * spacing),
+                ..HorizonOptions::default()
+            };
+            let brute = bake_azimuths(&hf, 16, &options, Algorithm::BruteForce).unwrap();
+            let sweep = bake_azimuths(&hf, 16, &options, Algorithm::HullSweep).unwrap();
+            for (b, s) in brute.layers().iter().zip(sweep.layers()) {
+                let d = max_abs_diff(b.angles(), s.angles());
+                assert!(d <= 1e-6, "{steps} steps, azimuth {}: {d}", b.azimuth());
+            }
+        }
+    }
+}
+
 #[test]
 fn single_texel_query_matches_the_bake() {
     let hf = random_terrain(29, 33, 12.0, 200.0, 9);
