@@ -83,10 +83,10 @@
 //! rest of the own block, and the next block's prefix) is searched only when its
 //! highest sample, at its nearest distance, could rise above the near field's horizon
 //! and the other part's; with a maximum distance a part's hull is built only when it
-//! is searched. On the 30 m generator with 2 km relief these tests skip few searches:
-//! the far samples rise above the near field for most texels (about 70 % of the
-//! searches of a 6 km window find a higher tangent), so a maximum distance, which
-//! needs two hulls per window where the unlimited sweep needs one, stays slower.
+//! is searched. On mountainous maps these tests skip few searches (for most texels a
+//! far sample rises above the near field), so a maximum distance, which needs two
+//! hulls and up to two searches per window where the unlimited sweep needs one of
+//! each, costs more than no limit.
 //!
 //! Lines are distributed over threads (`std::thread::scope`); every line is computed
 //! the same way whatever the thread count, so the result does not depend on it.
