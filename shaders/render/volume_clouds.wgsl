@@ -12,6 +12,7 @@
 // Bindings: the LUTs in groups 0 and 1 (atmos::lut_bindings), the composite in group 2.
 #import atmos::aerial_perspective
 #import atmos::frame
+#import render::scene_distance
 
 struct VolumeComposite {
     camera: FrameCamera,
@@ -28,14 +29,6 @@ struct VolumeComposite {
 @group(2) @binding(1) var<storage, read> march: array<vec4<f32>>;
 @group(2) @binding(2) var scene_depth: texture_depth_2d;
 
-// The scene's distance along `view` from its reverse-z depth with an infinite far
-// plane (depth = near / view-space z); the sky (depth 0) is infinitely far.
-fn volume_scene_distance(depth: f32, view: vec3<f32>) -> f32 {
-    if depth <= 0.0 {
-        return 3.0e38;
-    }
-    return composite.near / (depth * dot(view, composite.camera.forward));
-}
 
 @vertex
 fn volume_clouds_vertex(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
@@ -50,7 +43,7 @@ fn volume_clouds_fragment(@builtin(position) position: vec4<f32>) -> @location(0
     let cloud = march[i];
     let depth = march[i + 1u].x;
     let view = frame_view_direction(pixel, composite.camera);
-    let behind = volume_scene_distance(textureLoad(scene_depth, pixel, 0), view);
+    let behind = scene_distance_from_depth(textureLoad(scene_depth, pixel, 0), view, composite.camera.forward, composite.near);
     // The air in front of the cloud from the aerial-perspective volume: the cloud's
     // point is on this pixel's ray, so always on screen, which is the branch atmos'
     // aerial_perspective (and the CPU twin's drop_in) takes within the volume's range

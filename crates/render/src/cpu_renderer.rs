@@ -307,8 +307,9 @@ fn composite_volume_cloud(
         .try_for_each(|(row, pixels)| {
             for (column, pixel) in pixels.iter_mut().enumerate() {
                 let xy = [column as u32, row as u32];
-                let result = march_pixel(cloud, &pinhole, size, xy);
-                if !cloud_in_front(&result, pixel.terrain_distance.unwrap_or(f32::INFINITY)) {
+                let behind = pixel.terrain_distance.unwrap_or(f32::INFINITY);
+                let result = march_pixel(cloud, &pinhole, size, xy, behind);
+                if !cloud_in_front(&result, behind) {
                     continue;
                 }
                 let view = atmos::frame::frame_view_direction(xy, camera);

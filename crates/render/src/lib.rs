@@ -78,6 +78,14 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/clouds.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "render::scene_distance",
+        source: include_str!("../shaders/scene_distance.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::volume_distance",
+        source: include_str!("../shaders/volume_distance.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "render::volume_clouds",
         source: include_str!("../shaders/volume_clouds.wgsl"),
     },
@@ -177,6 +185,7 @@ mod wgsl_tests {
             use crate::gpu::scene::{
                 CloudComposite, DisplayParameters, TerrainUniform, VolumeShadowUniform,
             };
+            use crate::volume_clouds::VolumeDistanceParams;
             let mut twins = twins.to_vec();
             twins.push((
                 skyscape_wgsl::rust_layout!(TerrainUniform {
@@ -200,6 +209,16 @@ mod wgsl_tests {
                     padding2,
                 }),
                 wgsl("render::terrain", "TerrainUniform"),
+            ));
+            twins.push((
+                skyscape_wgsl::rust_layout!(VolumeDistanceParams {
+                    camera,
+                    near,
+                    width,
+                    height,
+                    padding0,
+                }),
+                wgsl("render::volume_distance", "VolumeDistanceParams"),
             ));
             twins.push((
                 skyscape_wgsl::rust_layout!(VolumeShadowUniform {

@@ -34,12 +34,12 @@
 //! `L_behind` is the sky or terrain already drawn. The GPU composite reads the
 //! aerial-perspective volume only (the branch atmos takes for an on-screen point within
 //! its range, 32 km by default; beyond it the GPU clamps to the last slice where the CPU
-//! marches the tables: a cloud farther than the range differs). The cloud is drawn only where
-//! `d` is nearer than the terrain hit (or the pixel shows sky). This treats the cloud as
-//! a surface at its opacity's centroid: a cloud that the terrain cuts through (part in
-//! front of a ridge, part behind it) is drawn whole or not at all per pixel, and the
-//! march integrates density behind the terrain too (the march has no maximum
-//! distance). For a cloud wholly in front of or behind the terrain it is exact.
+//! marches the tables: a cloud farther than the range differs). The march stops at the
+//! terrain: the CPU's at the ray's terrain hit, the GPU's at the distance its terrain
+//! depth gives (`shaders/render/volume_distance.wgsl`, then
+//! `cloudlight::gpu::MarchPass::prepare_limited`), so a ridge standing in the cloud
+//! hides the part behind it and the part in front is drawn. The aerial perspective is
+//! the air's up to the cloud's opacity-weighted depth `d`.
 
 use glam::DVec3;
 
@@ -475,24 +475,27 @@ pub fn pinhole_camera(
 }
 
 /// The march of pixel `pixel` (f32, the twin of `MarchPass`'s pixel): along
-/// [`cloudlight::march::pixel_direction`] of `camera` from its origin.
+/// [`cloudlight::march::pixel_direction`] of `camera` from its origin, up to
+/// `max_distance` metres (the terrain's hit; infinite for the sky).
 pub fn march_pixel(
     cloud: &PreparedVolume,
     camera: &PinholeCamera,
     size: [u32; 2],
     pixel: [u32; 2],
+    max_distance: f32,
 ) -> MarchResult<f32> {
     let [forward, right, up] = camera.basis().map(|v| v.map(|c| c as f32));
     let tan_half = camera.tan_half(size).map(|t| t as f32);
     let origin = camera.origin().map(|c| c as f32);
     let direction = cloudlight::march::pixel_direction(pixel, size, forward, right, up, tan_half);
-    cloudlight::march::march_view_at_pixel(
+    cloudlight::march::march_view_at_pixel_limited(
         &cloud.volume,
         origin,
         direction,
         &cloud.settings,
         &cloud.lighting,
         pixel,
+        max_distance,
     )
 }
 
@@ -532,9 +535,28 @@ pub struct VolumeComposite {
     pub padding0: u32,
 }
 
-/// The GPU side: `cloudlight::gpu::MarchPass` over the scene's pixels (prepared per
-/// frame with [`pinhole_camera`]) and the composite render pass
-/// (`shaders/render/volume_clouds.wgsl`).
+/// The uniform of the distance pass (layout identical to WGSL `VolumeDistanceParams` in
+/// `shaders/render/volume_distance.wgsl`).
+#[cfg(feature = "gpu")]
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct VolumeDistanceParams {
+    /// The scene's camera.
+    pub camera: atmos::frame::FrameCamera,
+    /// The reverse-z projection's near plane (m).
+    pub near: f32,
+    /// Pixels.
+    pub width: u32,
+    /// Pixels.
+    pub height: u32,
+    /// Keeps the struct a multiple of 16 bytes.
+    pub padding0: u32,
+}
+
+/// The GPU side: the terrain's depth turned into a distance per pixel
+/// (`shaders/render/volume_distance.wgsl`), `cloudlight::gpu::MarchPass` over the scene's
+/// pixels limited by it (prepared per frame with [`pinhole_camera`]) and the composite
+/// render pass (`shaders/render/volume_clouds.wgsl`).
 #[cfg(feature = "gpu")]
 #[derive(Debug)]
 pub(crate) struct VolumeCloudPass {
@@ -543,6 +565,11 @@ pub(crate) struct VolumeCloudPass {
     layout: wgpu::BindGroupLayout,
     uniform: wgpu::Buffer,
     bind_group: Option<wgpu::BindGroup>,
+    distance_pipeline: wgpu::ComputePipeline,
+    distance_layout: wgpu::BindGroupLayout,
+    distance_uniform: wgpu::Buffer,
+    /// The distance buffer, its bind group and the dispatch size (after `prepare`).
+    distance: Option<(wgpu::Buffer, wgpu::BindGroup, [u32; 2])>,
 }
 
 #[cfg(feature = "gpu")]
@@ -554,6 +581,67 @@ impl VolumeCloudPass {
         target: wgpu::TextureFormat,
     ) -> Result<Self, crate::RenderError> {
         let march = cloudlight::gpu::MarchPass::new(device)?;
+        let distance_source = crate::composer().compose_module("render::volume_distance")?;
+        let distance_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("render volume distance"),
+            source: wgpu::ShaderSource::Wgsl(distance_source.into()),
+        });
+        let compute = wgpu::ShaderStages::COMPUTE;
+        let distance_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("render volume distance"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: compute,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: compute,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Depth,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2,
+                    visibility: compute,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Storage { read_only: false },
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let distance_pipeline_layout =
+            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("render volume distance"),
+                bind_group_layouts: &[Some(&distance_layout)],
+                immediate_size: 0,
+            });
+        let distance_pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("render volume distance"),
+            layout: Some(&distance_pipeline_layout),
+            module: &distance_module,
+            entry_point: Some("volume_distance_main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        let distance_uniform = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render volume distance uniform"),
+            size: std::mem::size_of::<VolumeDistanceParams>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         let source = crate::composer().compose_module("render::volume_clouds")?;
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("render volume clouds"),
@@ -654,6 +742,10 @@ impl VolumeCloudPass {
             layout,
             uniform,
             bind_group: None,
+            distance_pipeline,
+            distance_layout,
+            distance_uniform,
+            distance: None,
         })
     }
 
@@ -669,7 +761,44 @@ impl VolumeCloudPass {
     ) -> Result<(), crate::RenderError> {
         let camera = &scene.camera;
         let pinhole = pinhole_camera(camera, scene.atmosphere.planet_radius)?;
-        self.march.prepare(
+        let near = scene.near.max(0.01) as f32;
+        queue.write_buffer(
+            &self.distance_uniform,
+            0,
+            bytemuck::bytes_of(&VolumeDistanceParams {
+                camera: *camera,
+                near,
+                width: camera.width,
+                height: camera.height,
+                padding0: 0,
+            }),
+        );
+        let distances = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render volume distances"),
+            size: u64::from(camera.width) * u64::from(camera.height) * 4,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
+        let distance_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("render volume distance"),
+            layout: &self.distance_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: self.distance_uniform.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(depth_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: distances.as_entire_binding(),
+                },
+            ],
+        });
+        // The march stops at the terrain: a ridge cuts the cloud where it stands.
+        self.march.prepare_limited(
             device,
             queue,
             &cloud.volume,
@@ -677,10 +806,16 @@ impl VolumeCloudPass {
             [camera.width, camera.height],
             &cloud.settings,
             &cloud.lighting,
+            Some(&distances),
         )?;
+        self.distance = Some((
+            distances,
+            distance_group,
+            [camera.width.div_ceil(8), camera.height.div_ceil(8)],
+        ));
         let uniform = VolumeComposite {
             camera: *camera,
-            near: scene.near.max(0.01) as f32,
+            near,
             radiance_scale: scene.present.exposure,
             width: camera.width,
             padding0: 0,
@@ -711,13 +846,28 @@ impl VolumeCloudPass {
         Ok(())
     }
 
-    /// Records the march's dispatch (a compute pass of its own, untimed: `MarchPass`
-    /// takes no timestamp writes).
+    /// Records the distance pass (after the terrain has written the depth) and the
+    /// march's dispatch, each a compute pass of its own (the march's timed when
+    /// `march_times` is given).
     pub(crate) fn encode_march(
         &self,
         encoder: &mut wgpu::CommandEncoder,
+        march_times: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), crate::RenderError> {
-        Ok(self.march.encode(encoder)?)
+        let (_, group, groups) = self
+            .distance
+            .as_ref()
+            .ok_or(crate::RenderError::NotPrepared)?;
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("render volume distance"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(&self.distance_pipeline);
+            pass.set_bind_group(0, group, &[]);
+            pass.dispatch_workgroups(groups[0], groups[1], 1);
+        }
+        Ok(self.march.encode_timed(encoder, march_times)?)
     }
 
     /// Draws the composite (one full-screen triangle) into `pass`.

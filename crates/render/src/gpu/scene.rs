@@ -12,8 +12,8 @@
 //!    terrain again lit by the moon through the moonlit tables (additive, depth-equal);
 //! 3. render: the sun, moon, planets and stars, additive, depth-tested behind terrain;
 //! 4. render: the cloud layers, farthest first, hidden where the terrain is nearer;
-//!    then the `[clouds.volume]` cloud: cloudlight's march (a compute pass recorded
-//!    after the LUT bakes) composited where its depth is nearer than the terrain
+//!    then the `[clouds.volume]` cloud: the terrain's depth as a distance per pixel
+//!    and cloudlight's march up to it (two compute passes), composited over the scene
 //!    (`render::volume_clouds`);
 //! 5. compute: the display pass (tone map, sRGB, dither) into RGBA8 pixels.
 //!
@@ -328,13 +328,23 @@ pub fn planned_passes(scene: &PreparedScene) -> Vec<(&'static str, Result<String
         },
     ));
     plan.push((
+        "volume cloud march",
+        match &scene.volume_cloud {
+            Some(_) => Ok(
+                "the terrain's depth as a distance per pixel, then cloudlight's march of \
+                 the [clouds.volume] cloud up to it (a ridge cuts the cloud where it stands)"
+                    .into(),
+            ),
+            None => Err("no [clouds.volume]: no march".into()),
+        },
+    ));
+    plan.push((
         "volume clouds",
         match &scene.volume_cloud {
             Some(cloud) => Ok(format!(
-                "cloudlight's march of the [clouds.volume] cumulus ({}×{}×{} cells, {} of density > 0, grown \
-                 by cloudsim in {} steps; {} view × {} light steps per pixel; the march's \
-                 compute pass is untimed), composited over the scene where its depth is \
-                 nearer than the terrain, through the aerial-perspective table",
+                "the composite of cloudlight's march of the [clouds.volume] cumulus ({}×{}×{} cells, \
+                 {} of density > 0, grown by cloudsim in {} steps; {} view × {} light steps per \
+                 pixel) over the scene, through the aerial-perspective table",
                 cloud.volume.dims()[0],
                 cloud.volume.dims()[1],
                 cloud.volume.dims()[2],
@@ -736,6 +746,7 @@ impl SceneRenderer {
                 labels.push("clouds");
             }
             if scene.volume_cloud.is_some() {
+                labels.push("volume cloud march");
                 labels.push("volume clouds");
             }
             labels.push("display");
@@ -1292,9 +1303,6 @@ impl SceneRenderer {
                 times.and_then(|t| t.compute_writes("moonlit sky LUT bakes")),
             );
         }
-        if let Some(volume) = &self.volume_cloud {
-            volume.encode_march(encoder)?;
-        }
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("render scene"),
@@ -1391,6 +1399,11 @@ impl SceneRenderer {
             pass.draw(0..3, 0..1);
         }
         if let Some(volume) = &self.volume_cloud {
+            // After the terrain: the march stops at its depth.
+            volume.encode_march(
+                encoder,
+                times.and_then(|t| t.compute_writes("volume cloud march")),
+            )?;
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("render volume clouds"),
                 color_attachments: &[Some(wgpu::RenderPassColorAttachment {
