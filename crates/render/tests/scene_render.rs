@@ -733,3 +733,27 @@ fn a_panorama_from_cube_faces_sees_what_the_camera_sees() {
     let e = scene.prepare().unwrap_err();
     assert_eq!(e.field(), Some("output.width"), "{e}");
 }
+
+/// A cubemap's faces share one preparation: `PreparedScene::look_along` gives the same
+/// image as preparing the face's own scene (camera, sky objects and all), bit for bit.
+#[test]
+fn look_along_is_the_face_scene_prepared_again() {
+    let scene = default_scene(48, 27);
+    let forward = [0.6, 0.1, -0.79];
+    let face = render::projection::face_scene(&scene, forward, 24);
+    let expected = render_radiance(&face.prepare().unwrap()).unwrap();
+    let mut prepared = scene.prepare().unwrap();
+    prepared
+        .look_along(
+            DVec3::from_array(forward),
+            std::f64::consts::FRAC_PI_2,
+            24,
+            24,
+        )
+        .unwrap();
+    let got = render_radiance(&prepared).unwrap();
+    assert_eq!(got.len(), expected.len());
+    for (i, (a, b)) in got.iter().zip(&expected).enumerate() {
+        assert_eq!(a, b, "pixel {i}");
+    }
+}

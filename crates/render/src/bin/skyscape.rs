@@ -578,12 +578,12 @@ fn write(
     result.map_err(|e| Failure::Input(format!("writing {}: {e}", path.display())))
 }
 
-/// A cubemap, panorama or fisheye: the six 90° faces of the scene drawn (GPU or CPU),
-/// then placed or resampled (`render::projection`).
+/// A cubemap, panorama or fisheye: the six 90° faces of the scene drawn (GPU or CPU)
+/// from the one preparation (`PreparedScene::look_along` turns its camera), then placed
+/// or resampled (`render::projection`).
 fn render_projected(
     scene: &Scene,
-    view: &PreparedScene,
-    label: &str,
+    view: &mut PreparedScene,
     backends: wgpu::Backends,
     cpu: bool,
 ) -> Result<Rendered, Failure> {
@@ -592,13 +592,21 @@ fn render_projected(
     let side = face_size(output.projection, output.width, output.height);
     let mut faces = Vec::with_capacity(6);
     let mut device = String::new();
+    let camera = view.camera;
+    let objects = view.sky_objects.clone();
     for forward in CUBE_FACES {
-        let face_scene = render::projection::face_scene(scene, forward, side);
-        let prepared = prepare(&face_scene, label)?;
+        view.look_along(
+            glam::DVec3::from_array(forward),
+            std::f64::consts::FRAC_PI_2,
+            side,
+            side,
+        )
+        .map_err(|e| Failure::Runtime(e.to_string()))?;
+        let prepared = &*view;
         let rendered = if cpu {
             None
         } else {
-            match render_gpu(&prepared, backends, true, false) {
+            match render_gpu(prepared, backends, true, false) {
                 Ok(rendered) => Some(rendered),
                 Err(reason) => {
                     eprintln!("skyscape: {reason}; rendering on the CPU reference renderer");
@@ -608,7 +616,7 @@ fn render_projected(
         };
         let rendered = match rendered {
             Some(rendered) => rendered,
-            None => render_cpu(&prepared).map_err(Failure::Runtime)?,
+            None => render_cpu(prepared).map_err(Failure::Runtime)?,
         };
         device = rendered.device;
         faces.push(Face {
@@ -616,12 +624,15 @@ fn render_projected(
             radiance: rendered.radiance.unwrap_or_default(),
         });
     }
+    // The scene's own view again, for the caller.
+    view.camera = camera;
+    view.sky_objects = objects;
     let radiance = assemble(
         output.projection,
         &faces,
         output.width,
         output.height,
-        &view.camera,
+        &camera,
         output.fisheye_fov_deg.to_radians(),
     )
     .map_err(|e| Failure::Runtime(e.to_string()))?;
@@ -702,7 +713,7 @@ fn render_command(args: RenderArgs) -> Result<(), Failure> {
             animation.apply(&mut frame_scene.file, frame);
         }
         let start = std::time::Instant::now();
-        let prepared = prepare(&frame_scene, &name)?;
+        let mut prepared = prepare(&frame_scene, &name)?;
         let projected =
             frame_scene.file.output.projection != render::projection::Projection::Rectilinear;
         let gpu = if args.cpu || projected {
@@ -728,9 +739,7 @@ fn render_command(args: RenderArgs) -> Result<(), Failure> {
         };
         let rendered = match gpu {
             Some(rendered) => rendered,
-            None if projected => {
-                render_projected(&frame_scene, &prepared, &name, backends, args.cpu)?
-            }
+            None if projected => render_projected(&frame_scene, &mut prepared, backends, args.cpu)?,
             None => render_cpu(&prepared).map_err(Failure::Runtime)?,
         };
         let numbered = (frames > 1).then_some(frame);

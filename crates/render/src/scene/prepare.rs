@@ -108,6 +108,9 @@ pub struct PreparedScene {
     /// The `[clouds.volume]` cloud grown, placed and lit (`crate::volume_clouds`);
     /// `None` without the section (then no automaton runs and no march pass is built).
     pub volume_cloud: Option<crate::volume_clouds::PreparedVolume>,
+    /// The placed `celestial` sky (scenes with `[time]` and sky objects): what
+    /// [`PreparedScene::look_along`] redraws the sky objects' frame from.
+    pub celestial_sky: Option<celestial::sky::Sky>,
 }
 
 /// The sky lit by the moon: the scene's atmosphere with the moon's irradiance
@@ -194,6 +197,45 @@ impl MoonlitSky {
 }
 
 impl PreparedScene {
+    /// The same scene seen along world direction `forward` (any length > 0) with a
+    /// vertical field of view `vertical_fov` (radians) into `width × height` pixels:
+    /// the camera and the sky objects' frame change, nothing else is prepared again (a
+    /// cubemap's, panorama's or fisheye's six faces share one preparation).
+    pub fn look_along(
+        &mut self,
+        forward: DVec3,
+        vertical_fov: f64,
+        width: u32,
+        height: u32,
+    ) -> Result<(), crate::RenderError> {
+        let forward = forward.normalize();
+        self.camera = atmos::frame::FrameCamera::look_at(
+            self.camera_position,
+            forward,
+            up_hint(forward),
+            vertical_fov,
+            width,
+            height,
+            self.sun,
+            None,
+        )
+        .map_err(crate::RenderError::Atmosphere)?;
+        if let (Some(sky), Some(frame)) = (&self.celestial_sky, &mut self.sky_objects) {
+            let enu = |v: DVec3| [v.x, -v.z, v.y];
+            let camera = sky.camera(
+                enu(forward),
+                enu(up_hint(forward)),
+                celestial::Angle::from_radians(vertical_fov),
+                width,
+                height,
+            )?;
+            *frame = sky.sky_objects_frame(&camera)?;
+            // Reverse z: the sky is at depth 0, terrain in front of it hides the objects.
+            frame.uniforms.far_depth = 0.0;
+        }
+        Ok(())
+    }
+
     /// The sun as the terrain's light.
     pub fn sun_light(&self) -> Illuminant<'_> {
         Illuminant {
@@ -447,6 +489,7 @@ impl Scene {
             viewer_radius: planet + cam.position[1],
             moonlit,
             volume_cloud,
+            celestial_sky: sky,
         })
     }
 
