@@ -590,23 +590,6 @@ fn precomputed_frame_seconds(
     Ok(frames[frames.len() / 2])
 }
 
-fn slug(label: &str) -> String {
-    label
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() {
-                c.to_ascii_lowercase()
-            } else {
-                '_'
-            }
-        })
-        .collect::<String>()
-        .split('_')
-        .filter(|s| !s.is_empty())
-        .collect::<Vec<_>>()
-        .join("_")
-}
-
 /// Runs the study and writes the report.
 pub fn run(options: &super::Options) -> Result<(), String> {
     let atmosphere = Atmosphere::earth();
@@ -668,7 +651,7 @@ pub fn run(options: &super::Options) -> Result<(), String> {
         let cpu_query = criterion_seconds_per_query(
             rung.model.as_ref(),
             &timed.queries,
-            &slug(&label),
+            &super::slug(&label),
             options.quick,
         )?;
         let mut day = ErrorStats::default();
@@ -1075,7 +1058,7 @@ fn json(rows: &[Row], reference_label: &str) -> String {
             "{{\"rung\":\"{}\",\"setting\":\"{}\",\"slug\":\"{}\",\"day_mean\":{:e},\"day_max\":{:e},\"twilight_mean\":{:e},\"twilight_max\":{:e},\"dark\":{},\"non_finite\":{},\"cpu_setup_s\":{:e},\"cpu_query_s\":{:e},\"gpu_frame_s\":{}}}",
             row.rung,
             row.label,
-            slug(&row.label),
+            super::slug(&row.label),
             row.day.mean(),
             row.day.max(),
             row.twilight.mean(),

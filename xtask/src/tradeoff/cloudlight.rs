@@ -106,25 +106,7 @@ fn criterion_seconds(slug: &str, quick: bool, mut f: impl FnMut()) -> Result<f64
 }
 
 fn slug(parts: &[&str]) -> String {
-    parts
-        .join(" ")
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() {
-                c.to_ascii_lowercase()
-            } else {
-                '_'
-            }
-        })
-        .collect::<String>()
-        .split('_')
-        .filter(|s| !s.is_empty())
-        .collect::<Vec<_>>()
-        .join("_")
-        // criterion keeps at most 64 characters of a benchmark's directory name
-        .chars()
-        .take(64)
-        .collect()
+    super::slug(&parts.join(" "))
 }
 
 /// Runs `f` over `items` on every core, keeping the order.

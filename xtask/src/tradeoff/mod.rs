@@ -69,6 +69,28 @@ pub fn run(args: &[String]) -> ExitCode {
     }
 }
 
+/// A criterion benchmark name from a label: lower-case ASCII words joined by `_`, at
+/// most 64 characters (criterion keeps no more of a benchmark's directory name).
+pub fn slug(label: &str) -> String {
+    label
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '_'
+            }
+        })
+        .collect::<String>()
+        .split('_')
+        .filter(|s| !s.is_empty())
+        .collect::<Vec<_>>()
+        .join("_")
+        .chars()
+        .take(64)
+        .collect()
+}
+
 /// Writes `contents` to `path` (relative to the workspace root), creating folders.
 pub fn write_output(relative: &str, contents: &str) -> Result<std::path::PathBuf, String> {
     let path = crate::workspace_root().join(relative);
