@@ -160,6 +160,18 @@ pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, Rend
         None => None,
     };
     let precomputed = precomputed_frame(&scene.sun_light(), camera, scene.sky_objects.is_none())?;
+    // At night the moon lights the terrain too (the twin of the GPU's second, additive
+    // terrain draw): each hit is shaded by both lights, traced once.
+    let moon_light = match (scene.moon_light(), &scene.terrain) {
+        (Some(moon), Some(terrain)) => Some((
+            terrain_light(scene, terrain, moon)?,
+            precomputed_frame(&moon, camera, false)?,
+        )),
+        _ => None,
+    };
+    let moon = moon_light
+        .as_ref()
+        .map(|(light, tables)| (light, tables.as_ref()));
     let mut out = vec![
         PixelRadiance {
             radiance: [0.0; 3],
@@ -175,35 +187,12 @@ pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, Rend
                     scene,
                     light.as_ref(),
                     precomputed.as_ref(),
+                    moon,
                     [column as u32, row as u32],
                 )?;
             }
             Ok::<(), RenderError>(())
         })?;
-    if let (Some(moon), Some(terrain)) = (scene.moon_light(), &scene.terrain) {
-        // The twin of the GPU's second terrain draw: the terrain lit by the moon, seen
-        // through the moonlit air, added where terrain shows.
-        let moon_light = terrain_light(scene, terrain, moon)?;
-        let moon_tables = precomputed_frame(&moon, camera, false)?;
-        out.par_chunks_mut(width)
-            .enumerate()
-            .try_for_each(|(row, pixels)| {
-                for (column, pixel) in pixels.iter_mut().enumerate() {
-                    if pixel.terrain_distance.is_none() {
-                        continue;
-                    }
-                    let xy = [column as u32, row as u32];
-                    if let Some((view, hit)) = trace_terrain(scene, &moon_light, xy) {
-                        let added =
-                            shade_terrain(scene, &moon_light, moon_tables.as_ref(), view, &hit)?;
-                        for (value, a) in pixel.radiance.iter_mut().zip(added) {
-                            *value += a;
-                        }
-                    }
-                }
-                Ok::<(), RenderError>(())
-            })?;
-    }
     if let Some(moon) = &scene.moonlit {
         // The twin of the GPU's second sky pass: the moonlit sky added where the sky
         // shows (no disc: celestial draws the moon).
@@ -472,10 +461,14 @@ impl atmos::SkyModel for ModelRef<'_> {
     }
 }
 
+/// The moon as a second terrain light and its tables (nights with a moonlit sky).
+type MoonTerrainLight<'a, 'b> = (&'a TerrainLight<'b>, Option<&'a PrecomputedFrame<'b>>);
+
 fn shade_pixel(
     scene: &PreparedScene,
     light: Option<&TerrainLight<'_>>,
     precomputed: Option<&PrecomputedFrame<'_>>,
+    moon: Option<MoonTerrainLight<'_, '_>>,
     pixel: [u32; 2],
 ) -> Result<PixelRadiance, RenderError> {
     let camera = &scene.camera;
@@ -485,7 +478,13 @@ fn shade_pixel(
     if let Some(light) = light
         && let Some((view, hit)) = trace_terrain(scene, light, pixel)
     {
-        let radiance = shade_terrain(scene, light, precomputed, view, &hit)?;
+        let mut radiance = shade_terrain(scene, light, precomputed, view, &hit)?;
+        if let Some((moon_light, moon_tables)) = moon {
+            let added = shade_terrain(scene, moon_light, moon_tables, view, &hit)?;
+            for (value, a) in radiance.iter_mut().zip(added) {
+                *value += a;
+            }
+        }
         return Ok(PixelRadiance {
             radiance,
             terrain_distance: Some(hit.distance as f32),
