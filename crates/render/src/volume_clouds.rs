@@ -773,12 +773,17 @@ impl VolumeCloudPass {
                 padding0: 0,
             }),
         );
-        let distances = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("render volume distances"),
-            size: u64::from(camera.width) * u64::from(camera.height) * 4,
-            usage: wgpu::BufferUsages::STORAGE,
-            mapped_at_creation: false,
-        });
+        // The distance buffer follows the image: kept across frames of one size.
+        let bytes = u64::from(camera.width) * u64::from(camera.height) * 4;
+        let distances = match self.distance.take() {
+            Some((buffer, _, _)) if buffer.size() == bytes => buffer,
+            _ => device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("render volume distances"),
+                size: bytes,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            }),
+        };
         let distance_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("render volume distance"),
             layout: &self.distance_layout,
