@@ -194,60 +194,69 @@ fn params_words(
     ]
 }
 
+/// A march pass's compute pipeline and its one bind group's layout: `bindings[i]` is
+/// binding `i`'s buffer type and minimum size (both passes bind buffers only).
+fn march_pipeline(
+    device: &wgpu::Device,
+    source: &str,
+    label: &str,
+    entry_point: &str,
+    bindings: &[(wgpu::BufferBindingType, Option<u64>)],
+) -> (wgpu::ComputePipeline, wgpu::BindGroupLayout) {
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    let entries: Vec<wgpu::BindGroupLayoutEntry> = bindings
+        .iter()
+        .enumerate()
+        .map(|(binding, &(ty, min))| wgpu::BindGroupLayoutEntry {
+            binding: binding as u32,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty,
+                has_dynamic_offset: false,
+                min_binding_size: min.and_then(wgpu::BufferSize::new),
+            },
+            count: None,
+        })
+        .collect();
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(label),
+        entries: &entries,
+    });
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &[Some(&layout)],
+        immediate_size: 0,
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(entry_point),
+        layout: Some(&pipeline_layout),
+        module: &module,
+        entry_point: Some(entry_point),
+        compilation_options: wgpu::PipelineCompilationOptions::default(),
+        cache: None,
+    });
+    (pipeline, layout)
+}
+
 impl MarchPass {
     /// Builds the pipeline on `device`.
     pub fn new(device: &wgpu::Device) -> Result<Self, MarchGpuError> {
-        let source = compose_march_shader()?;
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("cloudlight::march_pass"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-        let entry = |binding: u32, ty: wgpu::BufferBindingType, min: Option<u64>| {
-            wgpu::BindGroupLayoutEntry {
-                binding,
-                visibility: wgpu::ShaderStages::COMPUTE,
-                ty: wgpu::BindingType::Buffer {
-                    ty,
-                    has_dynamic_offset: false,
-                    min_binding_size: min.and_then(wgpu::BufferSize::new),
-                },
-                count: None,
-            }
-        };
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("cloudlight march"),
-            entries: &[
-                entry(0, wgpu::BufferBindingType::Uniform, Some(PARAMS_BYTES)),
-                entry(
-                    1,
-                    wgpu::BufferBindingType::Storage { read_only: true },
-                    None,
-                ),
-                entry(
-                    2,
-                    wgpu::BufferBindingType::Storage { read_only: false },
-                    None,
-                ),
-                entry(
-                    3,
-                    wgpu::BufferBindingType::Storage { read_only: true },
-                    None,
-                ),
+        use wgpu::BufferBindingType::{Storage, Uniform};
+        let (pipeline, layout) = march_pipeline(
+            device,
+            &compose_march_shader()?,
+            "cloudlight march",
+            "march_main",
+            &[
+                (Uniform, Some(PARAMS_BYTES)),
+                (Storage { read_only: true }, None),
+                (Storage { read_only: false }, None),
+                (Storage { read_only: true }, None),
             ],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("cloudlight march"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("cloudlight::march_main"),
-            layout: Some(&pipeline_layout),
-            module: &module,
-            entry_point: Some("march_main"),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
-            cache: None,
-        });
+        );
         Ok(Self {
             pipeline,
             layout,
@@ -580,56 +589,18 @@ pub struct MarchShellPass {
 impl MarchShellPass {
     /// Builds the pipeline on `device`.
     pub fn new(device: &wgpu::Device) -> Result<Self, MarchGpuError> {
-        let source = compose_march_shell_shader()?;
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("cloudlight::march_shell_pass"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-        let entry = |binding: u32, ty: wgpu::BufferBindingType, min: Option<u64>| {
-            wgpu::BindGroupLayoutEntry {
-                binding,
-                visibility: wgpu::ShaderStages::COMPUTE,
-                ty: wgpu::BindingType::Buffer {
-                    ty,
-                    has_dynamic_offset: false,
-                    min_binding_size: min.and_then(wgpu::BufferSize::new),
-                },
-                count: None,
-            }
-        };
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("cloudlight march shell"),
-            entries: &[
-                entry(
-                    0,
-                    wgpu::BufferBindingType::Uniform,
-                    Some(SHELL_PARAMS_BYTES),
-                ),
-                entry(
-                    1,
-                    wgpu::BufferBindingType::Storage { read_only: false },
-                    None,
-                ),
-                entry(
-                    2,
-                    wgpu::BufferBindingType::Storage { read_only: true },
-                    None,
-                ),
+        use wgpu::BufferBindingType::{Storage, Uniform};
+        let (pipeline, layout) = march_pipeline(
+            device,
+            &compose_march_shell_shader()?,
+            "cloudlight march shell",
+            "march_shell_main",
+            &[
+                (Uniform, Some(SHELL_PARAMS_BYTES)),
+                (Storage { read_only: false }, None),
+                (Storage { read_only: true }, None),
             ],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("cloudlight march shell"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("cloudlight::march_shell_main"),
-            layout: Some(&pipeline_layout),
-            module: &module,
-            entry_point: Some("march_shell_main"),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
-            cache: None,
-        });
+        );
         Ok(Self {
             pipeline,
             layout,
