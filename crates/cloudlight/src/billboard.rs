@@ -90,6 +90,14 @@ pub enum BillboardError {
         /// The value.
         value: f64,
     },
+    /// [`rasterise_limited`]'s depths do not hold one value per pixel.
+    #[error("max_depth has {len} values but the image has {pixels} pixels")]
+    DepthLength {
+        /// Values given.
+        len: usize,
+        /// Pixels of the camera's image.
+        pixels: usize,
+    },
     /// [`Opacity::Density`] needs densities ≤ 1 (alpha = ρ).
     #[error("density[{index}] = {value}: Opacity::Density uses α = ρ and needs ρ ≤ 1")]
     DensityAboveOne {
@@ -611,6 +619,38 @@ pub struct Image<F> {
 /// coverage rule). `rasterise::<f32>` is the GPU pass's twin, `rasterise::<f64>` the
 /// reference.
 pub fn rasterise<F: Real>(billboards: &[Billboard], camera: &Camera, size: SizeRule) -> Image<F> {
+    rasterise_behind(billboards, camera, size, None)
+}
+
+/// [`rasterise`] in front of an opaque scene: `max_depth` holds, per pixel (row-major,
+/// rows from the top), the view depth (metres along the look direction) of the nearest
+/// opaque surface, `F::infinity()` where there is none (the sky). A billboard covers a
+/// pixel only where its view depth `z` (its relative position · the camera's forward, in
+/// `F`, the `z` of [`billboard_screen`]) is strictly less: a mountain in front hides it.
+/// The GPU twin is a depth test `Greater` against a reverse-z depth `near / z`.
+/// `max_depth` shorter or longer than the image is [`BillboardError::DepthLength`].
+pub fn rasterise_limited<F: Real>(
+    billboards: &[Billboard],
+    camera: &Camera,
+    size: SizeRule,
+    max_depth: &[F],
+) -> Result<Image<F>, BillboardError> {
+    let pixels = camera.width() as usize * camera.height() as usize;
+    if max_depth.len() != pixels {
+        return Err(BillboardError::DepthLength {
+            len: max_depth.len(),
+            pixels,
+        });
+    }
+    Ok(rasterise_behind(billboards, camera, size, Some(max_depth)))
+}
+
+fn rasterise_behind<F: Real>(
+    billboards: &[Billboard],
+    camera: &Camera,
+    size: SizeRule,
+    max_depth: Option<&[F]>,
+) -> Image<F> {
     let (width, height) = (camera.width(), camera.height());
     let mut rgba = vec![[F::zero(); 4]; width as usize * height as usize];
     let frame = ScreenFrame::<F>::new(camera, size);
@@ -623,6 +663,7 @@ pub fn rasterise<F: Real>(billboards: &[Billboard], camera: &Camera, size: SizeR
         }
         let colour = b.colour.map(F::of);
         let alpha = F::of(b.alpha);
+        let z = dot(relative, frame.forward);
         // Pixel i's centre i + ½ can lie within the radius only for i in this range.
         let range = |c: F, n: u32| {
             let lo = (c - radius - half).floor().max(F::zero());
@@ -637,9 +678,11 @@ pub fn rasterise<F: Real>(billboards: &[Billboard], camera: &Camera, size: SizeR
                 let dy = F::of(j as f64) + half - cy;
                 let r = (dx * dx + dy * dy).sqrt() / radius;
                 let a = alpha * splat_alpha(r);
-                if a > F::zero() {
+                let index = i as usize + width as usize * j as usize;
+                let hidden = max_depth.is_some_and(|limit| !(z < limit[index]));
+                if a > F::zero() && !hidden {
                     let keep = F::one() - a;
-                    let pixel = &mut rgba[i as usize + width as usize * j as usize];
+                    let pixel = &mut rgba[index];
                     for c in 0..3 {
                         pixel[c] = colour[c] * a + keep * pixel[c];
                     }
@@ -863,6 +906,38 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn limited_rasteriser_hides_billboards_behind_the_surface() {
+        // Two billboards straight ahead at 1000 m and 1050 m (World size 100 m).
+        let cam = camera();
+        let two =
+            CloudVolume::new([1, 2, 1], [-25.0, -25.0, -25.0], 50.0, 0.01, vec![1.0; 2]).unwrap();
+        let s = BillboardSettings {
+            size: SizeRule::World {
+                metres_per_density: 100.0,
+            },
+            ..Default::default()
+        };
+        let b = billboards(&two, &[0.5f32, 1.0], &s, &cam).unwrap();
+        let pixels = 64 * 48;
+        let open = rasterise::<f64>(&b, &cam, s.size);
+        let unlimited =
+            rasterise_limited::<f64>(&b, &cam, s.size, &vec![f64::INFINITY; pixels]).unwrap();
+        assert_eq!(open, unlimited);
+        // A wall at 1025 m: only the nearer billboard (light 0.5) shows.
+        let wall = rasterise_limited::<f64>(&b, &cam, s.size, &vec![1025.0; pixels]).unwrap();
+        let near_only = rasterise::<f64>(&b[1..], &cam, s.size);
+        assert_eq!(b[1].depth, 1000.0);
+        assert_eq!(wall, near_only);
+        // A wall at exactly a billboard's depth hides it (strictly less is drawn).
+        let flush = rasterise_limited::<f32>(&b, &cam, s.size, &vec![1000.0; pixels]).unwrap();
+        assert!(flush.rgba.iter().all(|p| *p == [0.0; 4]));
+        assert_eq!(
+            rasterise_limited::<f32>(&b, &cam, s.size, &[1.0; 3]),
+            Err(BillboardError::DepthLength { len: 3, pixels })
+        );
     }
 
     #[test]
