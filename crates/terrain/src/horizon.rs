@@ -1240,23 +1240,7 @@ pub fn bake_horizon(
     }
     let ids: Vec<i64> = lines.ids().collect();
     let threads = options.thread_count().clamp(1, ids.len());
-    // Contiguous chunks of lines with about equal texel counts.
     let texels_total = hf.width() * hf.height();
-    let mut chunks: Vec<&[i64]> = Vec::with_capacity(threads);
-    {
-        let mut scratch = Vec::new();
-        let mut start = 0;
-        let mut acc = 0;
-        for (i, &c) in ids.iter().enumerate() {
-            lines.texels(c, &mut scratch);
-            acc += scratch.len();
-            if acc * threads >= texels_total * (chunks.len() + 1) && chunks.len() + 1 < threads {
-                chunks.push(&ids[start..=i]);
-                start = i + 1;
-            }
-        }
-        chunks.push(&ids[start..]);
-    }
     let grid = if lines.exact {
         Vec::new()
     } else {
@@ -1268,8 +1252,9 @@ pub fn bake_horizon(
         inv_two_r,
         max_steps,
     };
-    let run_chunk = |chunk: &[i64]| -> Vec<f32> {
-        let mut results = Vec::new();
+    // Solves the lines of `chunk` in order, handing each texel's angle to `emit`
+    // (texel index, angle) in line order.
+    let run_chunk = |chunk: &[i64], emit: &mut dyn FnMut(usize, f32)| {
         if !lines.exact {
             let mut sc = LineScratch::default();
             for &c in chunk {
@@ -1278,9 +1263,11 @@ pub fn bake_horizon(
                     Algorithm::BruteForce => sampler.brute(&mut sc),
                     Algorithm::HullSweep => sampler.sweep(&mut sc),
                 }
-                results.extend_from_slice(&sc.out);
+                for (v, &a) in sc.views.iter().zip(&sc.out) {
+                    emit(v.texel, a);
+                }
             }
-            return results;
+            return;
         }
         let (mut texels, mut h, mut g, mut out) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for &c in chunk {
@@ -1293,35 +1280,53 @@ pub fn bake_horizon(
             out.clear();
             out.resize(texels.len(), 0.0f32);
             solve(&h, &mut g, &mut out);
-            results.extend_from_slice(&out);
+            for (&t, &a) in texels.iter().zip(&out) {
+                emit(t, a);
+            }
         }
-        results
     };
-    let per_chunk: Vec<Vec<f32>> = if chunks.len() == 1 {
-        vec![run_chunk(chunks[0])]
+    let mut angles = vec![NO_HORIZON; texels_total];
+    if threads == 1 {
+        // One worker writes straight into the map.
+        run_chunk(&ids, &mut |t, a| angles[t] = a);
     } else {
-        std::thread::scope(|scope| {
+        // Contiguous chunks of lines with about equal texel counts.
+        let mut chunks: Vec<&[i64]> = Vec::with_capacity(threads);
+        {
+            let mut scratch = Vec::new();
+            let mut start = 0;
+            let mut acc = 0;
+            for (i, &c) in ids.iter().enumerate() {
+                lines.texels(c, &mut scratch);
+                acc += scratch.len();
+                if acc * threads >= texels_total * (chunks.len() + 1) && chunks.len() + 1 < threads
+                {
+                    chunks.push(&ids[start..=i]);
+                    start = i + 1;
+                }
+            }
+            chunks.push(&ids[start..]);
+        }
+        let per_chunk: Vec<Vec<(usize, f32)>> = std::thread::scope(|scope| {
             let handles: Vec<_> = chunks
                 .iter()
-                .map(|&chunk| scope.spawn(move || run_chunk(chunk)))
+                .map(|&chunk| {
+                    let run_chunk = &run_chunk;
+                    scope.spawn(move || {
+                        let mut results = Vec::new();
+                        run_chunk(chunk, &mut |t, a| results.push((t, a)));
+                        results
+                    })
+                })
                 .collect();
             handles
                 .into_iter()
                 .map(|h| h.join().expect("horizon worker panicked"))
                 .collect()
-        })
-    };
-    // Scatter line-ordered results back into the row-major map.
-    let mut angles = vec![NO_HORIZON; texels_total];
-    let mut texels = Vec::new();
-    for (chunk, values) in chunks.iter().zip(&per_chunk) {
-        let mut next = 0;
-        for &c in *chunk {
-            lines.texels(c, &mut texels);
-            for &t in &texels {
-                angles[t] = values[next];
-                next += 1;
-            }
+        });
+        // Scatter the line-ordered results into the row-major map.
+        for &(t, a) in per_chunk.iter().flatten() {
+            angles[t] = a;
         }
     }
     Ok(HorizonMap {
@@ -1358,10 +1363,53 @@ pub fn bake_azimuths(
             "number of azimuths must be in 4..=64",
         ));
     }
-    let layers = (0..count)
-        .map(|k| {
-            let azimuth = k as f64 * std::f64::consts::TAU / count as f64;
-            bake_horizon(hf, azimuth, options, algorithm)
+    options.validate()?;
+    let azimuth = |k: usize| k as f64 * std::f64::consts::TAU / count as f64;
+    let threads = options.thread_count().clamp(1, count);
+    if threads == 1 {
+        let layers = (0..count)
+            .map(|k| bake_horizon(hf, azimuth(k), options, algorithm))
+            .collect::<Result<Vec<_>, _>>()?;
+        return Ok(AzimuthHorizonMaps { layers });
+    }
+    // Whole azimuths are handed out on demand to the workers, each baked on one
+    // thread (no scatter, no per-azimuth start-up of threads); the azimuths off the
+    // axes and diagonals, about twice the work, go first so that the last ones to
+    // finish are short. Every map is computed the same way whatever the thread count.
+    let one = HorizonOptions {
+        threads: NonZeroUsize::new(1),
+        ..*options
+    };
+    let mut order: Vec<usize> = (0..count).collect();
+    order.sort_by_key(|&k| Lines::new(hf.width(), hf.height(), 1.0, azimuth(k)).exact);
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let slots: Vec<std::sync::Mutex<Option<Result<HorizonMap, TerrainError>>>> =
+        (0..count).map(|_| std::sync::Mutex::new(None)).collect();
+    std::thread::scope(|scope| {
+        for _ in 0..threads {
+            scope.spawn(|| {
+                loop {
+                    let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                    let Some(&k) = order.get(i) else {
+                        break;
+                    };
+                    let map = bake_horizon(hf, azimuth(k), &one, algorithm);
+                    // A poisoned lock means another worker panicked; the scope
+                    // re-raises that panic.
+                    if let Ok(mut slot) = slots[k].lock() {
+                        *slot = Some(map);
+                    }
+                }
+            });
+        }
+    });
+    let layers = slots
+        .into_iter()
+        .map(|slot| {
+            slot.into_inner()
+                .ok()
+                .flatten()
+                .expect("every azimuth was baked")
         })
         .collect::<Result<Vec<_>, _>>()?;
     Ok(AzimuthHorizonMaps { layers })
