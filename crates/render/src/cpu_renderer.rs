@@ -274,6 +274,10 @@ pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, Rend
     if let Some(cloud) = &scene.volume_cloud {
         composite_volume_cloud(scene, cloud, precomputed.as_ref(), &mut out)?;
     }
+    if let Some(cloud) = &scene.billboard_cloud {
+        let tables = precomputed.as_ref().map(|p| (p.luts, &p.frame));
+        crate::billboard_clouds::composite_billboards_cpu(scene, cloud, tables, &mut out)?;
+    }
     Ok(out)
 }
 

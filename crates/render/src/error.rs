@@ -30,6 +30,10 @@ pub enum RenderError {
     /// the field and value).
     #[error("cloudlight: {0}")]
     VolumeCloud(#[from] cloudlight::march::MarchError),
+    /// `cloudlight` rejected the billboard cloud's camera or particles (its message
+    /// names the field and value).
+    #[error("cloudlight billboards: {0}")]
+    Billboards(#[from] cloudlight::billboard::BillboardError),
     /// `cloudlight`'s GPU march pass failed (a size beyond the device's limits).
     #[cfg(feature = "gpu")]
     #[error("cloudlight march pass: {0}")]

@@ -211,6 +211,7 @@ pub struct SceneRenderer {
     sky_objects: Option<celestial::gpu::SkyObjectsPass>,
     clouds: Option<CloudPass>,
     volume_cloud: Option<crate::volume_clouds::VolumeCloudPass>,
+    billboard_cloud: Option<crate::billboard_clouds::BillboardCloudPass>,
     hdr: wgpu::Texture,
     hdr_view: wgpu::TextureView,
     depth_view: wgpu::TextureView,
@@ -361,6 +362,7 @@ pub fn planned_passes(scene: &PreparedScene) -> Vec<(&'static str, Result<String
             }
         },
     ));
+    plan.push(("billboard clouds", crate::billboard_clouds::explain(scene)));
     plan.push((
         "display",
         Ok("exposure, 1 − exp(−x), sRGB, dither to RGBA8".into()),
@@ -621,7 +623,7 @@ impl SceneRenderer {
                 moonlit.as_ref().map(|(moon_luts, _)| moon_luts),
                 terrain,
                 scene.cloud_layers.len(),
-                scene.volume_cloud.is_some(),
+                scene.volume_cloud.is_some() || scene.billboard_cloud.is_some(),
             )?),
             None => None,
         };
@@ -640,6 +642,17 @@ impl SceneRenderer {
         let volume_cloud = match &scene.volume_cloud {
             Some(_) => Some(crate::volume_clouds::VolumeCloudPass::new(
                 device, &luts, HDR,
+            )?),
+            None => None,
+        };
+
+        // Only a scene drawing [clouds.volume] as billboards builds their pipeline.
+        let billboard_cloud = match &scene.billboard_cloud {
+            Some(_) => Some(crate::billboard_clouds::BillboardCloudPass::new(
+                device,
+                Some(&luts),
+                HDR,
+                DEPTH,
             )?),
             None => None,
         };
@@ -749,6 +762,9 @@ impl SceneRenderer {
                 labels.push("volume cloud march");
                 labels.push("volume clouds");
             }
+            if scene.billboard_cloud.is_some() {
+                labels.push("billboard clouds");
+            }
             labels.push("display");
             PassTimes::new(device, queue, labels)
         } else {
@@ -766,6 +782,7 @@ impl SceneRenderer {
             sky_objects,
             clouds,
             volume_cloud,
+            billboard_cloud,
             hdr,
             hdr_view,
             depth_view,
@@ -1110,6 +1127,22 @@ impl SceneRenderer {
                 });
             }
         }
+        match (&mut self.billboard_cloud, &scene.billboard_cloud) {
+            (Some(pass), Some(cloud)) => pass.prepare(&self.device, queue, scene, cloud)?,
+            (None, None) => {}
+            (built, _) => {
+                return Err(RenderError::InvalidParameter {
+                    field: "clouds.volume.draw",
+                    value: if built.is_some() {
+                        "march"
+                    } else {
+                        "billboards"
+                    }
+                    .into(),
+                    reason: "differs from the scene the renderer was built for",
+                });
+            }
+        }
         // Every pass writes radiance × the exposure into the half-float target: a night
         // sky's ~1e-7 (the sun's irradiance as unit) would sink into f16's subnormals
         // (below 6.1e-5) and flush; exposed, the image's values are near 1.
@@ -1420,6 +1453,16 @@ impl SceneRenderer {
                 ..Default::default()
             });
             volume.draw(&mut pass, &self.luts)?;
+        }
+        if let Some(billboards) = &self.billboard_cloud {
+            // After the terrain: its depth hides the particles behind it.
+            billboards.encode(
+                encoder,
+                &self.hdr_view,
+                &self.depth_view,
+                Some(&self.luts),
+                times.and_then(|t| t.render_writes("billboard clouds")),
+            )?;
         }
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {

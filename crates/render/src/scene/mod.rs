@@ -246,6 +246,12 @@ pub struct CloudVolumeSection {
     /// ellipsoids filling the grid, a cumulus with a tower).
     #[serde(default)]
     pub ellipsoids: Vec<EllipsoidSection>,
+    /// How the cloud is drawn: `"march"` (default, `crate::volume_clouds`) or
+    /// `"billboards"` (seed 002: lit by slices, `crate::billboard_clouds`).
+    #[serde(default)]
+    pub draw: crate::billboard_clouds::VolumeDraw,
+    /// `[clouds.volume.billboards]`: the billboards' settings (`draw = "billboards"`).
+    pub billboards: Option<crate::billboard_clouds::BillboardsSection>,
 }
 
 /// One `[[clouds.volume.ellipsoids]]`: cloudsim's growth region, in cells.

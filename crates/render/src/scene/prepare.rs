@@ -108,6 +108,9 @@ pub struct PreparedScene {
     /// The `[clouds.volume]` cloud grown, placed and lit (`crate::volume_clouds`);
     /// `None` without the section (then no automaton runs and no march pass is built).
     pub volume_cloud: Option<crate::volume_clouds::PreparedVolume>,
+    /// The `[clouds.volume]` cloud with `draw = "billboards"`, grown and lit by slices
+    /// (`crate::billboard_clouds`); then `volume_cloud` is `None` (no march).
+    pub billboard_cloud: Option<crate::billboard_clouds::PreparedBillboards>,
     /// The placed `celestial` sky (scenes with `[time]` and sky objects): what
     /// [`PreparedScene::look_along`] redraws the sky objects' frame from.
     pub celestial_sky: Option<celestial::sky::Sky>,
@@ -245,7 +248,15 @@ impl PreparedScene {
             segment_model: self.segment_model.as_ref(),
             precomputed: self.precomputed.as_deref(),
             cloud_layers: &self.cloud_layers,
-            volume_shadow: self.volume_cloud.as_ref().and_then(|v| v.shadow.as_ref()),
+            volume_shadow: self
+                .volume_cloud
+                .as_ref()
+                .and_then(|v| v.shadow.as_ref())
+                .or_else(|| {
+                    self.billboard_cloud
+                        .as_ref()
+                        .and_then(|b| b.shadow.as_ref())
+                }),
         }
     }
 
@@ -434,6 +445,7 @@ impl Scene {
 
         if let Some(section) = file.clouds.as_ref().and_then(|c| c.volume.as_ref()) {
             self.check_volume_cloud(section)?;
+            self.check_billboard_cloud(section)?;
         }
         // The expensive parts last, once every cheap check has passed.
         let (sky_model, segment_model, precomputed) = self.models(&atmosphere)?;
@@ -457,7 +469,25 @@ impl Scene {
             Some(sky) => self.moonlit_sky(sky, &atmosphere, sun, &cloud_layers)?,
             None => None,
         };
-        let volume_cloud = match file.clouds.as_ref().and_then(|c| c.volume.as_ref()) {
+        let billboard_cloud = match file.clouds.as_ref().and_then(|c| c.volume.as_ref()) {
+            Some(section) if section.draw == crate::billboard_clouds::VolumeDraw::Billboards => {
+                Some(self.billboard_cloud(
+                    section,
+                    &atmosphere,
+                    &*sky_model,
+                    sun,
+                    cam.near,
+                    terrain.is_some(),
+                )?)
+            }
+            _ => None,
+        };
+        let volume_cloud = match file
+            .clouds
+            .as_ref()
+            .and_then(|c| c.volume.as_ref())
+            .filter(|v| v.draw == crate::billboard_clouds::VolumeDraw::March)
+        {
             Some(section) => Some(self.volume_cloud(
                 section,
                 &atmosphere,
@@ -489,6 +519,7 @@ impl Scene {
             viewer_radius: planet + cam.position[1],
             moonlit,
             volume_cloud,
+            billboard_cloud,
             celestial_sky: sky,
         })
     }

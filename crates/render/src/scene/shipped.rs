@@ -41,6 +41,11 @@ pub const SHIPPED: &[ShippedScene] = &[
         source: include_str!("../../scenes/cumulus.toml"),
     },
     ShippedScene {
+        name: "billboards",
+        description: "a cumulus field grown by cloudsim, lit by slices and drawn as seed 002's billboards over hills",
+        source: include_str!("../../scenes/billboards.toml"),
+    },
+    ShippedScene {
         name: "orbit",
         description: "the planet's limb from 400 km up, the sun just above it",
         source: include_str!("../../scenes/orbit.toml"),

@@ -1,0 +1,693 @@
+//! `[clouds.volume]` drawn as seed 002's billboards (`draw = "billboards"`): `cloudsim`
+//! grows the cumulus (the same growth, grid and placement as the marched cloud,
+//! `crate::volume_clouds`), `cloudlight`'s slice propagation lights every cell toward the
+//! scene's sun, and each cell denser than the threshold becomes a soft splat
+//! (`cloudlight::billboard`), sorted back to front, depth-tested against the terrain and
+//! seen through the aerial perspective. This module owns only the composition: which
+//! camera and sun the particles see, the air in front of each, and where the image meets
+//! the scene.
+//!
+//! # Lighting
+//!
+//! Once per scene: `cloudlight::propagate::propagate::<f32>` (the slices' f32 twin,
+//! physical Beer–Lambert mode with Catmull–Rom resampling by default, or seed 002's
+//! faithful mode) through the grown volume toward the sun. A cell's colour is
+//! `cloudlight::billboard`'s `sun_colour × light` with `sun_colour` = the sun's
+//! irradiance at the cloud's centre through the scene's rung
+//! (`cloudlight::march::atmos_light`: the atmosphere's sun irradiance × the rung's
+//! transmittance toward the sun, what the marched cloud is lit by) / π, the radiance of a
+//! white Lambertian surface facing that sun. Seed 002's billboards have no ambient sky
+//! term and no phase function; neither is added here.
+//!
+//! # Drawing
+//!
+//! Per frame the particles are selected and sorted for the scene's camera
+//! (`cloudlight::billboard::billboards`, the camera rotated into the volume's
+//! east/north/up frame, [`billboard_camera`]). Each particle is seen through the air
+//! between the camera and its centre (`atmos::lut::drop_in::aerial_perspective` on the
+//! precomputed rung, WGSL `aerial_perspective`, else the rung's
+//! `SkyQuery::with_max_distance`): `colour' = colour · T_air + L_air`
+//! ([`billboard_seen_through_air`]), so the premultiplied splat adds
+//! `α · (colour · T_air + L_air)` over `(1 − α)` of what is behind, the marched cloud's
+//! `L_c · T_air + L_air · (1 − T_c)`. A particle covers a pixel only where its view
+//! depth is less than the terrain's: on the CPU `cloudlight::billboard::rasterise_limited`
+//! with the ray-cast terrain's view depth per pixel, on the GPU a depth test `Greater`
+//! of `near / z` against the terrain's reverse-z depth (`shaders/render/billboard_clouds.wgsl`,
+//! which draws cloudlight's instanced quads with `cloudlight::billboard`'s
+//! `billboard_screen` and `splat_alpha`).
+
+use glam::DVec3;
+use serde::Deserialize;
+
+use cloudlight::CloudVolume;
+use cloudlight::billboard::{Billboard, BillboardSettings, Camera, FieldOfView, Opacity, SizeRule};
+use cloudlight::propagate::{SliceMode, SlicePlan};
+
+use crate::RenderError;
+use crate::cpu_renderer::PixelRadiance;
+use crate::scene::{CloudVolumeSection, PreparedScene, Scene, SceneError};
+use crate::volume_clouds::{CloudShadow, world_to_enu};
+
+/// `[clouds.volume] draw`: how the automaton's cloud is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum VolumeDraw {
+    /// Ray-marched by `cloudlight` (seed 003's lighting), `crate::volume_clouds`.
+    #[default]
+    March,
+    /// Seed 002's billboards lit by slices (this module).
+    Billboards,
+}
+
+/// `[clouds.volume.billboards]`: the billboards' settings (with `draw = "billboards"`).
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BillboardsSection {
+    /// A cell becomes a billboard when its density is strictly above this (seed 002:
+    /// 0.3), in [0, 1].
+    #[serde(default = "default_threshold")]
+    pub density_threshold: f64,
+    /// The billboard's world diameter per unit density, metres (default 2.5 cells).
+    /// Exclusive with `seed_k`.
+    pub size_m_per_density: Option<f64>,
+    /// Seed 002's size rule instead: `(k·ρ/d)·ρ` pixels, `k` in pixel·metres (the seed
+    /// used 9500, tuned to its own units: small in metres).
+    pub seed_k: Option<f64>,
+    /// Opacity of a billboard: a slab this many cells thick at the cell's density
+    /// (`1 − exp(−σ_t·ρ·cell·cells)`), > 0.
+    #[serde(default = "default_opacity_cells")]
+    pub opacity_cells: f64,
+    /// The slice propagation's mode: `"physical"` (Beer–Lambert over the true spacing)
+    /// or `"faithful"` (seed 002's attenuation ratio per slice).
+    #[serde(default)]
+    pub slices: SlicesName,
+    /// Faithful mode's light passed by a slice of density 1, in [0, 1].
+    #[serde(default = "default_attenuation_ratio")]
+    pub attenuation_ratio: f64,
+}
+
+impl Default for BillboardsSection {
+    fn default() -> Self {
+        Self {
+            density_threshold: default_threshold(),
+            size_m_per_density: None,
+            seed_k: None,
+            opacity_cells: default_opacity_cells(),
+            slices: SlicesName::default(),
+            attenuation_ratio: default_attenuation_ratio(),
+        }
+    }
+}
+
+/// `[clouds.volume.billboards] slices`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SlicesName {
+    /// `cloudlight::propagate::SliceMode::Physical`.
+    #[default]
+    Physical,
+    /// `cloudlight::propagate::SliceMode::Faithful`.
+    Faithful,
+}
+
+fn default_threshold() -> f64 {
+    0.3
+}
+fn default_opacity_cells() -> f64 {
+    1.0
+}
+fn default_attenuation_ratio() -> f64 {
+    0.9
+}
+
+/// The default billboard diameter per unit density, in cells.
+pub const DEFAULT_CELLS_PER_DENSITY: f64 = 2.5;
+
+/// The scene's billboard cloud, built once per scene.
+#[derive(Debug, Clone)]
+pub struct PreparedBillboards {
+    /// The grown density in the east/north/up frame (as `PreparedVolume::volume`).
+    pub volume: CloudVolume,
+    /// The slices' light at every cell centre, x fastest (`propagate::<f32>`).
+    pub light: Vec<f32>,
+    /// The particles' settings: threshold, size, opacity, the sun's colour (its
+    /// irradiance at the cloud / π), the near plane.
+    pub settings: BillboardSettings,
+    /// The slices' mode.
+    pub slices: SliceMode,
+    /// The automaton steps grown.
+    pub steps: u32,
+    /// Cells denser than the threshold (billboards before the camera's culling).
+    pub dense_cells: usize,
+    /// Its shadow on the terrain (as the marched cloud's, `CloudShadow`).
+    pub shadow: Option<CloudShadow>,
+}
+
+/// The air in front of a particle: `colour · T_air + L_air` per channel (the colour the
+/// premultiplied splat carries, module docs). WGSL twin of the same name in
+/// `shaders/render/billboard_clouds.wgsl`.
+pub fn billboard_seen_through_air(
+    colour: [f32; 3],
+    air_transmittance: [f32; 3],
+    air_radiance: [f32; 3],
+) -> [f32; 3] {
+    std::array::from_fn(|k| colour[k] * air_transmittance[k] + air_radiance[k])
+}
+
+impl Scene {
+    fn billboards_invalid(&self, key: &str, value: String, reason: &str) -> SceneError {
+        self.invalid(
+            &["clouds", "volume", "billboards", key],
+            value,
+            reason.into(),
+        )
+    }
+
+    /// Checks `[clouds.volume]`'s drawing keys (cheap: before anything is built).
+    pub(crate) fn check_billboard_cloud(
+        &self,
+        section: &CloudVolumeSection,
+    ) -> Result<(), SceneError> {
+        let b = match (section.draw, &section.billboards) {
+            (VolumeDraw::March, None) => return Ok(()),
+            (VolumeDraw::March, Some(_)) => {
+                return Err(self.invalid(
+                    &["clouds", "volume", "billboards"],
+                    "a table".into(),
+                    "billboard settings need draw = \"billboards\" in [clouds.volume] \
+                     (draw is \"march\")"
+                        .into(),
+                ));
+            }
+            (VolumeDraw::Billboards, b) => b.unwrap_or_default(),
+        };
+        if !(0.0..=1.0).contains(&b.density_threshold) {
+            return Err(self.billboards_invalid(
+                "density_threshold",
+                b.density_threshold.to_string(),
+                "must be in [0, 1]",
+            ));
+        }
+        if let Some(m) = b.size_m_per_density
+            && !(m.is_finite() && m > 0.0 && m <= 1e5)
+        {
+            return Err(self.billboards_invalid(
+                "size_m_per_density",
+                format!("{m} m"),
+                "must be finite, > 0 m and ≤ 100,000 m",
+            ));
+        }
+        if let Some(k) = b.seed_k {
+            if b.size_m_per_density.is_some() {
+                return Err(self.billboards_invalid(
+                    "seed_k",
+                    k.to_string(),
+                    "give either seed_k (seed 002's size rule) or size_m_per_density, not both",
+                ));
+            }
+            if !(k.is_finite() && k > 0.0) {
+                return Err(self.billboards_invalid(
+                    "seed_k",
+                    k.to_string(),
+                    "must be finite and > 0 (pixel·metres)",
+                ));
+            }
+        }
+        if !(b.opacity_cells.is_finite() && b.opacity_cells > 0.0 && b.opacity_cells <= 1e3) {
+            return Err(self.billboards_invalid(
+                "opacity_cells",
+                b.opacity_cells.to_string(),
+                "must be finite, > 0 and ≤ 1000 cells",
+            ));
+        }
+        if !(0.0..=1.0).contains(&b.attenuation_ratio) {
+            return Err(self.billboards_invalid(
+                "attenuation_ratio",
+                b.attenuation_ratio.to_string(),
+                "must be in [0, 1]",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Grows `[clouds.volume]`'s cloud (`Scene::volume_cloud`: the same automaton,
+    /// placement, sun and shadow) and lights it with the slices, for drawing as
+    /// billboards.
+    pub(crate) fn billboard_cloud(
+        &self,
+        section: &CloudVolumeSection,
+        atmosphere: &atmos::Atmosphere,
+        model: &(dyn atmos::SkyModel + Send + Sync),
+        sun: DVec3,
+        near: f64,
+        shadows_on_terrain: bool,
+    ) -> Result<PreparedBillboards, SceneError> {
+        self.check_billboard_cloud(section)?;
+        let b = section.billboards.unwrap_or_default();
+        let grown = self.volume_cloud(section, atmosphere, model, sun, shadows_on_terrain, None)?;
+        let slices = match b.slices {
+            SlicesName::Physical => SliceMode::Physical,
+            SlicesName::Faithful => SliceMode::Faithful {
+                attenuation_ratio: b.attenuation_ratio,
+            },
+        };
+        let to_sun = world_to_enu(sun.to_array());
+        let plan = SlicePlan::new(&grown.volume, to_sun, slices).map_err(|e| {
+            self.billboards_invalid("slices", format!("{:?}", b.slices), &e.to_string())
+        })?;
+        let light = cloudlight::propagate::propagate::<f32>(&grown.volume, &plan).map_err(|e| {
+            self.billboards_invalid("slices", format!("{:?}", b.slices), &e.to_string())
+        })?;
+        let size = match b.seed_k {
+            Some(k) => SizeRule::Seed { k },
+            None => SizeRule::World {
+                metres_per_density: b
+                    .size_m_per_density
+                    .unwrap_or(DEFAULT_CELLS_PER_DENSITY * section.cell_size_m),
+            },
+        };
+        let irradiance = grown.lighting.sun_irradiance();
+        let settings = BillboardSettings {
+            density_threshold: b.density_threshold,
+            size,
+            opacity: Opacity::Slab {
+                cells: b.opacity_cells,
+            },
+            sun_colour: irradiance.map(|e| f64::from(e) / std::f64::consts::PI),
+            near: billboard_near(near),
+        };
+        settings.validate().map_err(|e| {
+            self.billboards_invalid("density_threshold", b.density_threshold.to_string(), &{
+                e.to_string()
+            })
+        })?;
+        let dense_cells = grown
+            .volume
+            .density()
+            .iter()
+            .filter(|&&d| f64::from(d) > b.density_threshold)
+            .count();
+        Ok(PreparedBillboards {
+            volume: grown.volume,
+            light,
+            settings,
+            slices,
+            steps: grown.steps,
+            dense_cells,
+            shadow: grown.shadow,
+        })
+    }
+}
+
+/// The near plane of the billboards and of the GPU's depth (`near / z`): the scene's,
+/// at least 1 cm (as the volume cloud's composite).
+pub fn billboard_near(near: f64) -> f64 {
+    near.max(0.01)
+}
+
+/// The scene camera as `cloudlight::billboard`'s camera in the volume's frame: its
+/// position less the planet radius up and its basis rotated to east/north/up, the
+/// vertical field of view `2·atan(tan_half_fov_y)`, the image size.
+pub fn billboard_camera(
+    camera: &atmos::frame::FrameCamera,
+    planet_radius: f64,
+) -> Result<Camera, cloudlight::billboard::BillboardError> {
+    let p = camera.position.map(f64::from);
+    let origin = world_to_enu([p[0], p[1] - planet_radius, p[2]]);
+    let forward = world_to_enu(camera.forward.map(f64::from));
+    let up = world_to_enu(camera.up.map(f64::from));
+    Camera::new(
+        DVec3::from(origin),
+        DVec3::from(forward),
+        DVec3::from(up),
+        FieldOfView::from_radians(2.0 * f64::from(camera.tan_half_fov_y).atan()),
+        camera.width,
+        camera.height,
+    )
+}
+
+fn billboard_error(e: cloudlight::billboard::BillboardError) -> RenderError {
+    RenderError::Billboards(e)
+}
+
+/// The particles of `cloud` the scene's camera sees, sorted back to front (their colours
+/// the sun's light, before the air).
+pub fn particles(
+    scene: &PreparedScene,
+    cloud: &PreparedBillboards,
+) -> Result<(Camera, Vec<Billboard>), RenderError> {
+    let camera =
+        billboard_camera(&scene.camera, scene.atmosphere.planet_radius).map_err(billboard_error)?;
+    let particles =
+        cloudlight::billboard::billboards(&cloud.volume, &cloud.light, &cloud.settings, &camera)
+            .map_err(billboard_error)?;
+    Ok((camera, particles))
+}
+
+/// The world offset (x east, y up, z south) of a particle's position relative to the
+/// eye (east/north/up), in f32 as the GPU's instance holds it.
+pub fn world_offset(relative: [f64; 3]) -> [f32; 3] {
+    let r = relative.map(|c| c as f32);
+    [r[0], r[2], -r[1]]
+}
+
+/// The precomputed rung's tables of a frame, as the CPU renderer holds them.
+pub type FrameTables<'a> = (&'a atmos::lut::StaticLuts, &'a atmos::lut::FrameLuts);
+
+/// The twin of the GPU's billboard pass: `cloud`'s particles seen through the air
+/// (the precomputed rung's `tables`, else the segment model), rasterised by
+/// `cloudlight::billboard::rasterise_limited::<f32>` in front of the terrain and
+/// composited over `out`.
+pub fn composite_billboards_cpu(
+    scene: &PreparedScene,
+    cloud: &PreparedBillboards,
+    tables: Option<FrameTables<'_>>,
+    out: &mut [PixelRadiance],
+) -> Result<(), RenderError> {
+    let (camera, mut particles) = particles(scene, cloud)?;
+    for p in &mut particles {
+        let offset = world_offset(p.relative);
+        let (transmittance, radiance) = match tables {
+            Some((luts, frame)) => {
+                let s = atmos::lut::drop_in::aerial_perspective(luts, frame, offset);
+                (s.transmittance, s.radiance)
+            }
+            None => {
+                let v = DVec3::from_array(offset.map(f64::from));
+                let query = atmos::SkyQuery::with_max_distance(
+                    scene.atmosphere.planet_radius,
+                    scene.camera_position,
+                    v.normalize(),
+                    scene.sun,
+                    v.length(),
+                )?;
+                let air = scene.segment_model.evaluate(&query);
+                (
+                    air.transmittance.map(|t| t as f32),
+                    air.radiance.map(|l| l as f32),
+                )
+            }
+        };
+        // The f32 colour the GPU reads, seen through the air in f32.
+        let colour = p.colour.map(|c| c as f32);
+        p.colour = billboard_seen_through_air(colour, transmittance, radiance).map(f64::from);
+    }
+    let frame = &scene.camera;
+    let width = frame.width as usize;
+    let forward = frame.forward;
+    let max_depth: Vec<f32> = out
+        .iter()
+        .enumerate()
+        .map(|(i, pixel)| match pixel.terrain_distance {
+            Some(distance) => {
+                let view = atmos::frame::frame_view_direction(
+                    [(i % width) as u32, (i / width) as u32],
+                    frame,
+                );
+                distance * (view[0] * forward[0] + view[1] * forward[1] + view[2] * forward[2])
+            }
+            None => f32::INFINITY,
+        })
+        .collect();
+    let image = cloudlight::billboard::rasterise_limited::<f32>(
+        &particles,
+        &camera,
+        cloud.settings.size,
+        &max_depth,
+    )
+    .map_err(billboard_error)?;
+    for (pixel, over) in out.iter_mut().zip(&image.rgba) {
+        for (value, c) in pixel.radiance.iter_mut().zip(over) {
+            *value = c + (1.0 - over[3]) * *value;
+        }
+    }
+    Ok(())
+}
+
+/// `skyscape explain`'s line for the billboard pass.
+pub fn explain(scene: &PreparedScene) -> Result<String, String> {
+    match &scene.billboard_cloud {
+        Some(cloud) => {
+            let [nx, ny, nz] = cloud.volume.dims();
+            let drawn = particles(scene, cloud).map_or(0, |(_, p)| p.len());
+            Ok(format!(
+                "seed 002's billboards of the [clouds.volume] cumulus ({nx}×{ny}×{nz} cells grown \
+                 by cloudsim in {} steps, lit on the CPU by cloudlight's {} slice propagation \
+                 toward the sun): {drawn} of {} cells denser than {} drawn back to front, \
+                 depth-tested against the terrain, through the aerial perspective",
+                cloud.steps,
+                match cloud.slices {
+                    SliceMode::Physical => "physical",
+                    SliceMode::Faithful { .. } => "faithful",
+                },
+                cloud.dense_cells,
+                cloud.settings.density_threshold,
+            ))
+        }
+        None => Err(
+            "no [clouds.volume] with draw = \"billboards\": no slice propagation, no billboard \
+             pipeline"
+                .into(),
+        ),
+    }
+}
+
+/// The billboard pass's uniform bytes: `cloudlight::billboard`'s frame (64 bytes), the
+/// near plane, the radiance scale (WGSL `BillboardCloudParams`).
+#[cfg(feature = "gpu")]
+pub fn params_bytes(
+    frame: &cloudlight::billboard::ScreenFrame<f32>,
+    near: f32,
+    radiance_scale: f32,
+) -> [u8; PARAMS_BYTES as usize] {
+    let mut bytes = [0u8; PARAMS_BYTES as usize];
+    bytes[..64].copy_from_slice(&cloudlight::gpu::billboard::frame_bytes(frame));
+    bytes[64..68].copy_from_slice(&near.to_ne_bytes());
+    bytes[68..72].copy_from_slice(&radiance_scale.to_ne_bytes());
+    bytes
+}
+
+#[cfg(feature = "gpu")]
+fn needs_tables() -> RenderError {
+    RenderError::InvalidParameter {
+        field: "clouds.volume.draw",
+        value: "\"billboards\"".into(),
+        reason: "the GPU billboards read the precomputed rung's aerial-perspective tables; \
+                 render this scene with the precomputed rung, or on the CPU (--cpu)",
+    }
+}
+
+/// Bytes of WGSL `BillboardCloudParams`.
+#[cfg(feature = "gpu")]
+pub const PARAMS_BYTES: u64 = 80;
+
+/// The GPU side: cloudlight's instanced quads (`cloudlight::gpu::billboard`'s instance
+/// layout) drawn by `shaders/render/billboard_clouds.wgsl` into the HDR target with the
+/// terrain's depth as a read-only depth attachment (test `Greater`), the LUTs in groups
+/// 0 and 1 for the aerial perspective.
+#[cfg(feature = "gpu")]
+#[derive(Debug)]
+pub(crate) struct BillboardCloudPass {
+    pipeline: wgpu::RenderPipeline,
+    bind_group: wgpu::BindGroup,
+    uniform: wgpu::Buffer,
+    instances: Option<wgpu::Buffer>,
+    count: u32,
+}
+
+#[cfg(feature = "gpu")]
+impl BillboardCloudPass {
+    /// The pipeline for an HDR target of `target` and a depth attachment of `depth`;
+    /// the particles' air is read from the precomputed rung's `luts` (an error without).
+    pub(crate) fn new(
+        device: &wgpu::Device,
+        luts: Option<&atmos::gpu::AtmosphereLuts>,
+        target: wgpu::TextureFormat,
+        depth: wgpu::TextureFormat,
+    ) -> Result<Self, RenderError> {
+        let luts = luts.ok_or_else(needs_tables)?;
+        let source = crate::composer().compose_module("render::billboard_clouds")?;
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("render billboard clouds"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("render billboard clouds"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::VERTEX,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: wgpu::BufferSize::new(PARAMS_BYTES),
+                },
+                count: None,
+            }],
+        });
+        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render billboard clouds uniform"),
+            size: PARAMS_BYTES,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("render billboard clouds"),
+            layout: &layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: uniform.as_entire_binding(),
+            }],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("render billboard clouds"),
+            bind_group_layouts: &[
+                Some(&luts.layouts().uniforms),
+                Some(&luts.layouts().tables),
+                Some(&layout),
+            ],
+            immediate_size: 0,
+        });
+        // Premultiplied "over", as cloudlight's BillboardPass.
+        let over = wgpu::BlendComponent {
+            src_factor: wgpu::BlendFactor::One,
+            dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+            operation: wgpu::BlendOperation::Add,
+        };
+        let attributes = wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4];
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("render billboard clouds"),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("billboard_clouds_vertex"),
+                compilation_options: Default::default(),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: cloudlight::gpu::billboard::INSTANCE_BYTES,
+                    step_mode: wgpu::VertexStepMode::Instance,
+                    attributes: &attributes,
+                })],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: depth,
+                depth_write_enabled: Some(false),
+                depth_compare: Some(wgpu::CompareFunction::Greater),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("billboard_clouds_fragment"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format: target,
+                    blend: Some(wgpu::BlendState {
+                        color: over,
+                        alpha: over,
+                    }),
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        Ok(Self {
+            pipeline,
+            bind_group,
+            uniform,
+            instances: None,
+            count: 0,
+        })
+    }
+
+    /// Selects and sorts the particles for the scene's camera (on the CPU, as the twin
+    /// does) and uploads them and the frame's uniform; the instance buffer is kept while
+    /// it is large enough.
+    pub(crate) fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &PreparedScene,
+        cloud: &PreparedBillboards,
+    ) -> Result<(), RenderError> {
+        let (camera, particles) = particles(scene, cloud)?;
+        let bytes = cloudlight::gpu::billboard::instance_bytes(&particles);
+        let limit = device.limits().max_buffer_size;
+        let count = u32::try_from(particles.len())
+            .ok()
+            .filter(|_| bytes.len() as u64 <= limit)
+            .ok_or_else(|| RenderError::InvalidParameter {
+                field: "clouds.volume.billboards",
+                value: format!("{} billboards ({} bytes)", particles.len(), bytes.len()),
+                reason: "more instance bytes than the device's max_buffer_size",
+            })?;
+        if count > 0 {
+            let fits = self
+                .instances
+                .as_ref()
+                .is_some_and(|b| b.size() >= bytes.len() as u64);
+            if !fits {
+                self.instances = Some(device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("render billboard instances"),
+                    size: bytes.len() as u64,
+                    usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                }));
+            }
+            if let Some(buffer) = &self.instances {
+                queue.write_buffer(buffer, 0, &bytes);
+            }
+        }
+        self.count = count;
+        let frame = cloudlight::billboard::ScreenFrame::<f32>::new(&camera, cloud.settings.size);
+        queue.write_buffer(
+            &self.uniform,
+            0,
+            &params_bytes(&frame, cloud.settings.near as f32, scene.present.exposure),
+        );
+        Ok(())
+    }
+
+    /// Records one render pass drawing the particles over `target`, depth-tested against
+    /// `depth` (read only).
+    pub(crate) fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::TextureView,
+        depth: &wgpu::TextureView,
+        luts: Option<&atmos::gpu::AtmosphereLuts>,
+        timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
+    ) -> Result<(), RenderError> {
+        let luts = luts.ok_or_else(needs_tables)?;
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("render billboard clouds"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: target,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: depth,
+                depth_ops: None,
+                stencil_ops: None,
+            }),
+            timestamp_writes,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        if let (Some(instances), true) = (&self.instances, self.count > 0) {
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(0, luts.uniform_bind_group(), &[]);
+            pass.set_bind_group(1, luts.table_bind_group(), &[]);
+            pass.set_bind_group(2, &self.bind_group, &[]);
+            pass.set_vertex_buffer(0, instances.slice(..));
+            pass.draw(0..6, 0..self.count);
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,327 @@
+//! `[clouds.volume] draw = "billboards"` (seed 002's path: the automaton lit by slices and
+//! drawn as billboards): the keys' errors, only what the scene needs, the golden
+//! properties on the CPU (the sunlit side brighter than the far side; terrain nearer than
+//! the cloud hides it), and the GPU image against the CPU's on the shipped `billboards`
+//! scene at 160×90 (lavapipe in CI).
+
+use render::billboard_clouds::{VolumeDraw, particles};
+use render::scene::{Scene, SceneError};
+
+const VALID: &str = "[camera]\nposition = [0.0, 2.0, 0.0]\nlook_direction = [0.0, 0.2, -1.0]\n\
+                     [sun]\nelevation_deg = 30.0\nazimuth_deg = 180.0\n\
+                     [atmosphere]\nrung = \"closed-form\"\n";
+
+// Line 9 on: the volume section; draw on line 15.
+const VOLUME: &str = "[clouds.volume]\nseed = 3\nsteps = 20\ngrid = [8, 8, 4]\n\
+                      cell_size_m = 100.0\nbase_m = 800.0\ndraw = \"billboards\"\n";
+
+fn parse_error(text: &str) -> SceneError {
+    match Scene::parse(text, ".") {
+        Err(e) => e,
+        Ok(scene) => scene.prepare().unwrap_err(),
+    }
+}
+
+fn shipped(width: u32, height: u32) -> Scene {
+    let path = format!(
+        "{}/../../scenes/billboards.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let mut scene = Scene::open(&path).unwrap();
+    scene.file.output.width = width;
+    scene.file.output.height = height;
+    scene
+}
+
+#[test]
+fn billboard_errors_name_the_key_its_value_and_line() {
+    // A misspelt drawing: serde names the key, the value and the choices, located.
+    let e = parse_error(&format!(
+        "{VALID}{}",
+        VOLUME.replace("draw = \"billboards\"", "draw = \"splats\"")
+    ));
+    let message = e.to_string();
+    assert_eq!(e.location().map(|l| l.line), Some(15), "{message}");
+    assert!(
+        message.contains("splats") && message.contains("billboards"),
+        "{message}"
+    );
+    // Settings without draw = "billboards".
+    let e = parse_error(&format!(
+        "{VALID}{}[clouds.volume.billboards]\ndensity_threshold = 0.5\n",
+        VOLUME.replace("draw = \"billboards\"\n", "")
+    ));
+    assert_eq!(e.field(), Some("clouds.volume.billboards"), "{e}");
+    assert!(e.to_string().contains("draw"), "{e}");
+    // The section starts on line 16: its first key is on line 17.
+    for (key, value, shown) in [
+        ("density_threshold", "1.5", "1.5"),
+        ("size_m_per_density", "-3.0", "-3 m"),
+        ("opacity_cells", "nan", "NaN"),
+        ("attenuation_ratio", "2.0", "2"),
+    ] {
+        let e = parse_error(&format!(
+            "{VALID}{VOLUME}[clouds.volume.billboards]\n{key} = {value}\n"
+        ));
+        let message = e.to_string();
+        let field = format!("clouds.volume.billboards.{key}");
+        assert_eq!(e.field(), Some(field.as_str()), "{message}");
+        assert_eq!(e.location().map(|l| l.line), Some(17), "{message}");
+        assert!(message.contains(shown), "{message}");
+    }
+    let e = parse_error(&format!(
+        "{VALID}{VOLUME}[clouds.volume.billboards]\nsize_m_per_density = 200.0\nseed_k = 9500.0\n"
+    ));
+    assert_eq!(e.field(), Some("clouds.volume.billboards.seed_k"), "{e}");
+    assert!(e.to_string().contains("not both"), "{e}");
+    // Unknown keys and bad modes fail in the parser, located and named.
+    let e = parse_error(&format!(
+        "{VALID}{VOLUME}[clouds.volume.billboards]\nslices = \"exact\"\n"
+    ));
+    assert_eq!(e.location().map(|l| l.line), Some(17), "{e}");
+    assert!(e.to_string().contains("exact"), "{e}");
+    let e = parse_error(&format!(
+        "{VALID}{VOLUME}[clouds.volume.billboards]\ntreshold = 0.3\n"
+    ));
+    assert!(e.to_string().contains("density_threshold"), "{e}");
+}
+
+#[test]
+fn only_the_drawing_asked_for_is_prepared() {
+    let scene = |volume: &str| Scene::parse(&format!("{VALID}{volume}"), ".").unwrap();
+    // draw = "billboards": slices, no march.
+    let prepared = scene(VOLUME).prepare().unwrap();
+    assert!(prepared.volume_cloud.is_none());
+    let cloud = prepared.billboard_cloud.as_ref().unwrap();
+    assert_eq!(cloud.volume.dims(), [8, 8, 4]);
+    assert_eq!(cloud.light.len(), 8 * 8 * 4);
+    assert!(cloud.light.iter().all(|l| (0.0..=1.0).contains(l)));
+    // The default (march): no slices, no billboards.
+    let march = VOLUME.replace("draw = \"billboards\"\n", "");
+    let text = scene(&march);
+    assert_eq!(
+        text.file
+            .clouds
+            .as_ref()
+            .unwrap()
+            .volume
+            .as_ref()
+            .unwrap()
+            .draw,
+        VolumeDraw::March
+    );
+    let prepared = text.prepare().unwrap();
+    assert!(prepared.billboard_cloud.is_none());
+    assert!(prepared.volume_cloud.is_some());
+    // `skyscape explain`'s plan says so, on either side.
+    #[cfg(feature = "gpu")]
+    {
+        let plan = render::gpu::scene::planned_passes(&prepared);
+        let billboards = plan.iter().find(|(name, _)| *name == "billboard clouds");
+        assert!(matches!(billboards, Some((_, Err(_)))), "{plan:?}");
+        let prepared = shipped(64, 36).prepare().unwrap();
+        let plan = render::gpu::scene::planned_passes(&prepared);
+        let billboards = plan.iter().find(|(name, _)| *name == "billboard clouds");
+        assert!(
+            matches!(billboards, Some((_, Ok(reason))) if reason.contains("slice propagation")),
+            "{plan:?}"
+        );
+    }
+}
+
+fn luminance(rgb: [f32; 3]) -> f32 {
+    0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]
+}
+
+/// The sun in the east, the camera south of the cloud looking north: the cloud's east
+/// (right) half is brighter than its west half.
+#[test]
+fn the_sunlit_side_is_brighter_than_the_far_side() {
+    let text = "[camera]\nposition = [0.0, 1000.0, 0.0]\nlook_at = [0.0, 1000.0, -4000.0]\n\
+                vertical_fov_deg = 30.0\n\
+                [sun]\nelevation_deg = 10.0\nazimuth_deg = 90.0\n\
+                [atmosphere]\nrung = \"closed-form\"\n\
+                [clouds.volume]\nseed = 2026\nsteps = 300\ngrid = [24, 24, 12]\n\
+                cell_size_m = 60.0\nbase_m = 640.0\ncentre_m = [0.0, -4000.0]\n\
+                sigma_t_per_density = 0.005\ndraw = \"billboards\"\n\
+                [output]\nwidth = 96\nheight = 64\n";
+    let mut prepared = Scene::parse(text, ".").unwrap().prepare().unwrap();
+    let with = render::cpu_renderer::render_radiance(&prepared).unwrap();
+    prepared.billboard_cloud = None;
+    let without = render::cpu_renderer::render_radiance(&prepared).unwrap();
+    let width = 96;
+    let (mut east, mut west) = (Vec::new(), Vec::new());
+    for (i, (a, b)) in with.iter().zip(&without).enumerate() {
+        assert!(a.radiance.iter().all(|c| c.is_finite() && *c >= 0.0));
+        if (luminance(a.radiance) - luminance(b.radiance)).abs() > 1e-3 * luminance(b.radiance) {
+            let side = if i % width >= width / 2 {
+                &mut east
+            } else {
+                &mut west
+            };
+            side.push(luminance(a.radiance));
+        }
+    }
+    let mean = |v: &[f32]| v.iter().sum::<f32>() / v.len() as f32;
+    eprintln!(
+        "cloud pixels east {} (mean luminance {:.4}), west {} ({:.4})",
+        east.len(),
+        mean(&east),
+        west.len(),
+        mean(&west)
+    );
+    assert!(
+        east.len() > 50 && west.len() > 50,
+        "{} {}",
+        east.len(),
+        west.len()
+    );
+    assert!(
+        mean(&east) > 1.2 * mean(&west),
+        "{} {}",
+        mean(&east),
+        mean(&west)
+    );
+}
+
+/// In the shipped scene the hills in front hide the clouds' feet: every pixel where a
+/// billboard would fall but the terrain is nearer than the nearest billboard is exactly
+/// the image without the cloud; where the cloud is in front it changes the image.
+#[test]
+fn terrain_nearer_than_the_cloud_hides_it() {
+    let (width, height) = (160u32, 90u32);
+    let mut prepared = shipped(width, height).prepare().unwrap();
+    let cloud = prepared.billboard_cloud.clone().unwrap();
+    let (camera, list) = particles(&prepared, &cloud).unwrap();
+    assert!(list.len() > 100, "{}", list.len());
+    let nearest = list.iter().map(|b| b.depth).fold(f64::INFINITY, f64::min) as f32;
+    let open = cloudlight::billboard::rasterise::<f32>(&list, &camera, cloud.settings.size);
+    let with = render::cpu_renderer::render_radiance(&prepared).unwrap();
+    // No particles (densities are ≤ 1), the cloud's shadow on the hills kept.
+    prepared
+        .billboard_cloud
+        .as_mut()
+        .unwrap()
+        .settings
+        .density_threshold = 1.0;
+    let without = render::cpu_renderer::render_radiance(&prepared).unwrap();
+    let forward = prepared.camera.forward;
+    let (mut hidden, mut shown, mut changed) = (0, 0, 0);
+    for (i, (a, b)) in with.iter().zip(&without).enumerate() {
+        if open.rgba[i][3] == 0.0 {
+            assert_eq!(a.radiance, b.radiance, "pixel {i}: no billboard there");
+            continue;
+        }
+        let view = atmos::frame::frame_view_direction(
+            [i as u32 % width, i as u32 / width],
+            &prepared.camera,
+        );
+        let depth = b.terrain_distance.map_or(f32::INFINITY, |d| {
+            d * (view[0] * forward[0] + view[1] * forward[1] + view[2] * forward[2])
+        });
+        if depth < nearest {
+            hidden += 1;
+            assert_eq!(a.radiance, b.radiance, "pixel {i}: terrain in front");
+        } else if depth == f32::INFINITY {
+            shown += 1;
+            changed += usize::from(a.radiance != b.radiance);
+        }
+    }
+    eprintln!(
+        "billboards 160×90: {hidden} pixels hidden by the hills, {shown} over the sky \
+         ({changed} changed)"
+    );
+    assert!(hidden > 10, "{hidden}");
+    assert!(
+        shown > 100 && changed as f64 >= 0.95 * shown as f64,
+        "{changed} of {shown}"
+    );
+}
+
+#[test]
+fn the_billboards_agree_on_the_gpu_and_the_cpu() {
+    let Some(gpu) = skyscape_harness::gpu_or_skip("render::billboard_clouds") else {
+        return;
+    };
+    let (width, height) = (160, 90);
+    let scene = shipped(width, height).prepare().unwrap();
+    let settings = render::gpu::SceneRendererSettings {
+        terrain_error_px: 0.0,
+        timestamps: false,
+    };
+    let mut renderer =
+        render::gpu::SceneRenderer::new(&gpu.device, &gpu.queue, &scene, settings).unwrap();
+    renderer.prepare(&gpu.queue, &scene).unwrap();
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    renderer.encode(&mut encoder).unwrap();
+    gpu.queue.submit([encoder.finish()]);
+    let buffer = renderer.pixel_buffer();
+    let bytes =
+        skyscape_harness::read_buffer(gpu, "scene pixels", buffer, 0, buffer.size()).unwrap();
+    let gpu_image: Vec<u32> = bytemuck::cast_slice(&bytes).to_vec();
+    let cpu_image = render::cpu_renderer::render_cpu(&scene).unwrap().pixels;
+    let within = |lsb| render::tonemap::fraction_within_lsb(&gpu_image, &cpu_image, lsb).unwrap();
+    let shifted = render::tonemap::fraction_within_lsb_of_neighbourhood(
+        &gpu_image,
+        &cpu_image,
+        width as usize,
+        2,
+        1,
+    )
+    .unwrap();
+    // The cloud's own pixels: where the billboards cover the sky (no terrain on the CPU's
+    // ray), away from the terrain's silhouette, which the rasterised mesh and the ray
+    // cast draw differently whatever is in front of it.
+    let cloud = scene.billboard_cloud.as_ref().unwrap();
+    let (camera, list) = particles(&scene, cloud).unwrap();
+    let open = cloudlight::billboard::rasterise::<f32>(&list, &camera, cloud.settings.size);
+    let radiance = render::cpu_renderer::render_radiance(&scene).unwrap();
+    let sky = |x: i64, y: i64| {
+        x < 0
+            || y < 0
+            || x >= i64::from(width)
+            || y >= i64::from(height)
+            || radiance[(y * i64::from(width) + x) as usize]
+                .terrain_distance
+                .is_none()
+    };
+    let (mut cloud_pixels, mut cloud_within) = (0usize, 0usize);
+    let mut worst = 0u32;
+    for y in 0..i64::from(height) {
+        for x in 0..i64::from(width) {
+            let i = (y * i64::from(width) + x) as usize;
+            let clear_of_terrain = (-1..=1).all(|dy| (-1..=1).all(|dx| sky(x + dx, y + dy)));
+            if open.rgba[i][3] < 1e-3 || !clear_of_terrain {
+                continue;
+            }
+            let d = (0..3)
+                .map(|c| {
+                    let code = |p: u32| (p >> (8 * c)) & 255;
+                    code(gpu_image[i]).abs_diff(code(cpu_image[i]))
+                })
+                .max()
+                .unwrap();
+            cloud_pixels += 1;
+            cloud_within += usize::from(d <= 2);
+            worst = worst.max(d);
+        }
+    }
+    let (two, eight) = (within(2), within(8));
+    eprintln!(
+        "billboards 160×90 GPU vs CPU: {:.3} % of pixels within 2 LSB, {:.3} % within 8, \
+         {:.3} % within 2 LSB of the other image's 3×3 neighbourhood; cloud pixels over \
+         the sky {cloud_within} of {cloud_pixels} within 2 LSB, worst {worst} LSB",
+        100.0 * two,
+        100.0 * eight,
+        100.0 * shifted
+    );
+    assert!(
+        two >= 0.96 && eight >= 0.985 && shifted >= 0.975,
+        "{two} {eight} {shifted}"
+    );
+    assert!(cloud_pixels > 100, "{cloud_pixels}");
+    assert!(
+        cloud_within as f64 >= 0.999 * cloud_pixels as f64,
+        "{cloud_within} of {cloud_pixels}, worst {worst}"
+    );
+}
