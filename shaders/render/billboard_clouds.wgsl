@@ -12,6 +12,7 @@
 // Bindings: the LUTs in groups 0 and 1 (atmos::lut_bindings), the parameters in group 2.
 #import atmos::aerial_perspective
 #import cloudlight::billboard
+#import render::billboard_air
 
 struct BillboardCloudParams {
     // The camera (east/north/up basis) and size rule, cloudlight::billboard::ScreenFrame.
@@ -32,12 +33,6 @@ struct BillboardCloudVarying {
     @location(0) @interpolate(flat) centre_radius: vec3<f32>,
     // Scaled radiance seen through the air, and the opacity at the centre.
     @location(1) @interpolate(flat) colour_alpha: vec4<f32>,
-}
-
-// The colour a particle carries once seen through the air in front of it:
-// colour · T_air + L_air. Twin: render::billboard_clouds::billboard_seen_through_air.
-fn billboard_seen_through_air(colour: vec3<f32>, air_transmittance: vec3<f32>, air_radiance: vec3<f32>) -> vec3<f32> {
-    return colour * air_transmittance + air_radiance;
 }
 
 @vertex

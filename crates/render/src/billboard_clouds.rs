@@ -145,7 +145,7 @@ pub struct PreparedBillboards {
 
 /// The air in front of a particle: `colour · T_air + L_air` per channel (the colour the
 /// premultiplied splat carries, module docs). WGSL twin of the same name in
-/// `shaders/render/billboard_clouds.wgsl`.
+/// `shaders/render/billboard_air.wgsl` (parity case `render::billboard_seen_through_air`).
 pub fn billboard_seen_through_air(
     colour: [f32; 3],
     air_transmittance: [f32; 3],

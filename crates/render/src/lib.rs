@@ -16,6 +16,7 @@
 //! ```
 
 pub mod billboard_clouds;
+pub mod billboard_clouds;
 pub mod clouds;
 pub mod cpu_renderer;
 pub mod error;
@@ -89,6 +90,14 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {
         name: "render::volume_clouds",
         source: include_str!("../shaders/volume_clouds.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::billboard_air",
+        source: include_str!("../shaders/billboard_air.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::billboard_clouds",
+        source: include_str!("../shaders/billboard_clouds.wgsl"),
     },
     skyscape_wgsl::Module {
         name: "render::billboard_clouds",

@@ -21,6 +21,7 @@ mod cloudlight_shell_cases;
 mod cloudsim_cases;
 mod common_cases;
 mod integer_references;
+mod render_billboard_cases;
 mod render_cases;
 mod terrain_cases;
 
@@ -368,6 +369,7 @@ pub fn all() -> Vec<Case> {
         atmos_moments_cases::cases(),
         render_cases::cases(),
         vec![render_cases::present_case()],
+        render_billboard_cases::cases(),
         terrain_cases::cases(),
         cloudlight_cases::cases(),
         cloudlight_cases::cone_cases(),
