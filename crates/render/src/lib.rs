@@ -16,7 +16,6 @@
 //! ```
 
 pub mod billboard_clouds;
-pub mod billboard_clouds;
 pub mod clouds;
 pub mod cpu_renderer;
 pub mod error;
@@ -94,10 +93,6 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {
         name: "render::billboard_air",
         source: include_str!("../shaders/billboard_air.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "render::billboard_clouds",
-        source: include_str!("../shaders/billboard_clouds.wgsl"),
     },
     skyscape_wgsl::Module {
         name: "render::billboard_clouds",
