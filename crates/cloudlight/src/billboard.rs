@@ -679,8 +679,8 @@ fn rasterise_behind<F: Real>(
                 let r = (dx * dx + dy * dy).sqrt() / radius;
                 let a = alpha * splat_alpha(r);
                 let index = i as usize + width as usize * j as usize;
-                let hidden = max_depth.is_some_and(|limit| !(z < limit[index]));
-                if a > F::zero() && !hidden {
+                let in_front = max_depth.is_none_or(|limit| z < limit[index]);
+                if a > F::zero() && in_front {
                     let keep = F::one() - a;
                     let pixel = &mut rgba[index];
                     for c in 0..3 {
