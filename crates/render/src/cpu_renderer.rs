@@ -284,7 +284,8 @@ pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, Rend
 /// The twin of the GPU's march and volume-cloud composite (`crate::volume_clouds`):
 /// each pixel's f32 march through the scene's cloud, drawn where its depth is nearer
 /// than the terrain, seen through the air (the precomputed rung's aerial-perspective
-/// table, else the segment model) over what is behind it.
+/// table, else the segment model) over what is behind it. At night the cloud is
+/// marched again lit by the moon and seen through the moonlit air, added.
 fn composite_volume_cloud(
     scene: &PreparedScene,
     cloud: &crate::volume_clouds::PreparedVolume,
@@ -295,6 +296,44 @@ fn composite_volume_cloud(
     let camera = &scene.camera;
     let size = [camera.width, camera.height];
     let pinhole = pinhole_camera(camera, scene.atmosphere.planet_radius)?;
+    let sun = scene.sun_light();
+    let moon = match (&cloud.moon, scene.moon_light()) {
+        (Some(moonlit), Some(light)) => {
+            let tables = precomputed_frame(&light, camera, false)?;
+            Some((moonlit, light, tables))
+        }
+        _ => None,
+    };
+    // The air between the camera and the cloud's depth, lit by `light`.
+    let air = |light: &Illuminant<'_>,
+               tables: Option<&PrecomputedFrame<'_>>,
+               view: [f32; 3],
+               depth: f32|
+     -> Result<([f32; 3], [f32; 3]), RenderError> {
+        Ok(match tables {
+            Some(p) => {
+                let offset = view.map(|v| v * depth);
+                let segment = atmos::lut::drop_in::aerial_perspective(p.luts, &p.frame, offset);
+                (segment.transmittance, segment.radiance)
+            }
+            None => {
+                let view = DVec3::from_array(view.map(f64::from)).normalize();
+                let query = atmos::SkyQuery::with_max_distance(
+                    scene.atmosphere.planet_radius,
+                    scene.camera_position,
+                    view,
+                    light.direction,
+                    f64::from(depth),
+                )
+                .map_err(atmos_error)?;
+                let air = light.segment_model.evaluate(&query);
+                (
+                    air.transmittance.map(|t| t as f32),
+                    air.radiance.map(|l| l as f32),
+                )
+            }
+        })
+    };
     out.par_chunks_mut(camera.width as usize)
         .enumerate()
         .try_for_each(|(row, pixels)| {
@@ -306,31 +345,23 @@ fn composite_volume_cloud(
                     continue;
                 }
                 let view = atmos::frame::frame_view_direction(xy, camera);
-                let (air_transmittance, air_radiance) = match precomputed {
-                    Some(p) => {
-                        let offset = view.map(|v| v * result.depth);
-                        let segment =
-                            atmos::lut::drop_in::aerial_perspective(p.luts, &p.frame, offset);
-                        (segment.transmittance, segment.radiance)
+                let (transmittance, radiance) = air(&sun, precomputed, view, result.depth)?;
+                let mut seen = cloud_through_air(&result, transmittance, radiance);
+                if let Some((moonlit, light, tables)) = &moon {
+                    let lit = crate::volume_clouds::march_pixel_lit(
+                        cloud,
+                        &moonlit.lighting,
+                        &pinhole,
+                        size,
+                        xy,
+                        behind,
+                    );
+                    let (transmittance, radiance) = air(light, tables.as_ref(), view, lit.depth)?;
+                    let added = cloud_through_air(&lit, transmittance, radiance);
+                    for (value, a) in seen.iter_mut().zip(added) {
+                        *value += a;
                     }
-                    None => {
-                        let view = DVec3::from_array(view.map(f64::from)).normalize();
-                        let query = atmos::SkyQuery::with_max_distance(
-                            scene.atmosphere.planet_radius,
-                            scene.camera_position,
-                            view,
-                            scene.sun,
-                            f64::from(result.depth),
-                        )
-                        .map_err(atmos_error)?;
-                        let air = scene.segment_model.evaluate(&query);
-                        (
-                            air.transmittance.map(|t| t as f32),
-                            air.radiance.map(|l| l as f32),
-                        )
-                    }
-                };
-                let seen = cloud_through_air(&result, air_transmittance, air_radiance);
+                }
                 for (value, s) in pixel.radiance.iter_mut().zip(seen) {
                     *value = s + result.transmittance * *value;
                 }
@@ -558,7 +589,7 @@ fn precomputed_frame<'a>(
 }
 
 /// The volumetric cloud's shadow at world point `world` (x east, y up, z south, metres
-/// from the camera's ground point) toward `light` (1 without a volume or for the moon).
+/// from the camera's ground point) toward `light` (1 without its map).
 /// The GPU terrain pass's `volume_cloud_shadow` does the same in f32.
 fn volume_shadow_at(light: &TerrainLight<'_>, world: Vec3) -> f32 {
     light

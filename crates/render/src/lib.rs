@@ -87,6 +87,14 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/volume_distance.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "render::volume_composite",
+        source: include_str!("../shaders/volume_composite.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::volume_air",
+        source: include_str!("../shaders/volume_air.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "render::volume_clouds",
         source: include_str!("../shaders/volume_clouds.wgsl"),
     },

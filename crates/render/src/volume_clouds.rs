@@ -17,8 +17,15 @@
 //! Once per scene, at the grid's centre: the sun's irradiance through the scene's rung
 //! (`cloudlight::march::atmos_light`: the atmosphere's sun irradiance × the rung's
 //! transmittance toward the sun, zero behind the planet) and the ambient sky (atmos'
-//! sky irradiance on a horizontal surface / π). The cloud is lit by the sun only (a
-//! night scene's moon does not light it).
+//! sky irradiance on a horizontal surface / π). At night — when the scene has a moonlit
+//! sky (`PreparedScene::moonlit`: the sun below the horizon, the moon above −2°, the
+//! decision that gives the terrain its second, moonlit draw) — the cloud is marched a
+//! second time with the moon as its light, passed exactly as the sun's is
+//! (`atmos_light` of the moonlit atmosphere, `celestial::MoonLight::atmosphere`, along
+//! the moon's direction: [`MoonlitVolume`]), and the two are added, each seen through
+//! the air its own light scatters; its shadow map along the moon shades the moonlit
+//! terrain. The march is linear in the light, and its transmittance and depth do not
+//! depend on it, so the sum is the cloud lit by both.
 //!
 //! # Compositing
 //!
@@ -31,10 +38,11 @@
 //! between the camera and `d` (the same aerial perspective the terrain gets: for the
 //! precomputed rung the aerial-perspective LUT, `atmos::lut::drop_in`; otherwise a
 //! `SkyQuery::with_max_distance`, `cloudlight::march::apply_aerial_perspective`) and
-//! `L_behind` is the sky or terrain already drawn. The GPU composite reads the
-//! aerial-perspective volume only (the branch atmos takes for an on-screen point within
-//! its range, 32 km by default; beyond it the GPU clamps to the last slice where the CPU
-//! marches the tables: a cloud farther than the range differs). The march stops at the
+//! `L_behind` is the sky or terrain already drawn. Both renderers evaluate the air with
+//! the same function: atmos' `aerial_perspective` (the aerial-perspective volume within
+//! its range, 32 km by default, a march of the tables beyond it), on the CPU
+//! `atmos::lut::drop_in::aerial_perspective`, on the GPU its WGSL twin in a compute pass
+//! per pixel (`shaders/render/volume_air.wgsl`) whose result the composite reads. The march stops at the
 //! terrain: the CPU's at the ray's terrain hit, the GPU's at the distance its terrain
 //! depth gives (`shaders/render/volume_distance.wgsl`, then
 //! `cloudlight::gpu::MarchPass::prepare_limited`), so a ridge standing in the cloud
@@ -79,6 +87,21 @@ pub struct PreparedVolume {
     pub cloudy_cells: usize,
     /// Its shadow on the terrain under the sun (`None` with the sun below 1° or no
     /// terrain in the scene: nothing is computed then).
+    pub shadow: Option<CloudShadow>,
+    /// The cloud lit by the moon: only in scenes with a moonlit sky (the sun down, the
+    /// moon up: `PreparedScene::moonlit`), else `None` and no second march runs.
+    pub moon: Option<MoonlitVolume>,
+}
+
+/// The volume's second light at night: the moon, as [`PreparedVolume::lighting`] is the
+/// sun's (`cloudlight::march::atmos_light` of the moonlit atmosphere along the moon's
+/// direction), and the shadow map along it.
+#[derive(Debug, Clone)]
+pub struct MoonlitVolume {
+    /// The moon and the moonlit ambient sky at the grid's centre, east/north/up.
+    pub lighting: Lighting<f32>,
+    /// Its shadow on the terrain under the moon (`None` with the moon below 1° or no
+    /// terrain in the scene).
     pub shadow: Option<CloudShadow>,
 }
 
@@ -199,7 +222,7 @@ pub fn volume_shadow_texel(
 }
 
 /// `ground_irradiance` takes a sized model; this lends it the scene's boxed one.
-struct ModelRef<'a>(&'a (dyn atmos::SkyModel + Send + Sync));
+pub(crate) struct ModelRef<'a>(pub(crate) &'a (dyn atmos::SkyModel + Send + Sync));
 
 impl atmos::SkyModel for ModelRef<'_> {
     fn label(&self) -> String {
@@ -332,7 +355,8 @@ impl Scene {
         Ok(())
     }
 
-    /// Grows and lights `[clouds.volume]` (checked by [`Scene::check_volume_cloud`]).
+    /// Grows and lights `[clouds.volume]` (checked by [`Scene::check_volume_cloud`]): by
+    /// the sun, and by the moon too when `moonlit` (the scene's moonlit sky) is given.
     pub(crate) fn volume_cloud(
         &self,
         section: &CloudVolumeSection,
@@ -340,6 +364,7 @@ impl Scene {
         model: &(dyn atmos::SkyModel + Send + Sync),
         sun: DVec3,
         shadows_on_terrain: bool,
+        moonlit: Option<&crate::scene::prepare::MoonlitSky>,
     ) -> Result<PreparedVolume, SceneError> {
         self.check_volume_cloud(section)?;
         let invalid =
@@ -420,38 +445,83 @@ impl Scene {
             ..MarchConfig::default()
         })
         .map_err(|e| invalid("view_steps", s.view_steps.to_string(), e.to_string()))?;
-        // The light at the grid's centre (planet-centred: world + planet radius up).
-        let centre = DVec3::new(
-            s.centre_m[0],
-            atmosphere.planet_radius + s.base_m + 0.5 * f64::from(nz) * cell,
-            s.centre_m[1],
-        );
-        let light = cloudlight::march::atmos_light(
-            &ModelRef(model),
-            atmosphere,
-            centre,
-            sun,
-            atmos::ground_irradiance::HemisphereQuadrature::default(),
-        )
-        .map_err(|e| invalid("base_m", deg_free(s.base_m, " m"), e.to_string()))?;
-        let lighting = Lighting::new(
-            world_to_enu(sun.to_array()),
-            light.sun_irradiance,
-            light.ambient_radiance,
-            [0.0, 0.0, 1.0],
-        )
-        .map_err(|e| invalid("base_m", deg_free(s.base_m, " m"), e.to_string()))?;
+        let lighting = self.volume_light(section, model, atmosphere, sun)?;
         // Only a scene with terrain needs the shadow map.
         let shadow = shadows_on_terrain
             .then(|| CloudShadow::new(&volume, world_to_enu(sun.to_array())))
             .flatten();
-        Ok(PreparedVolume {
+        let mut cloud = PreparedVolume {
             volume,
             settings,
             lighting,
             steps: s.steps,
             cloudy_cells,
             shadow,
+            moon: None,
+        };
+        // At night the moon, the terrain's second light, lights the cloud too.
+        if let Some(moon) = moonlit {
+            cloud.moon = Some(self.moonlit_volume(section, &cloud, moon, shadows_on_terrain)?);
+        }
+        Ok(cloud)
+    }
+
+    /// One light of `[clouds.volume]` at the grid's centre: `cloudlight::march::atmos_light`
+    /// of `model` (the sun's rung, or the moon's through the moonlit atmosphere) toward
+    /// unit world direction `toward`, east/north/up.
+    fn volume_light(
+        &self,
+        section: &CloudVolumeSection,
+        model: &(dyn atmos::SkyModel + Send + Sync),
+        atmosphere: &atmos::Atmosphere,
+        toward: DVec3,
+    ) -> Result<Lighting<f32>, SceneError> {
+        let s = section;
+        let invalid = |e: String| self.volume_invalid("base_m", deg_free(s.base_m, " m"), e);
+        // Planet-centred: world + planet radius up.
+        let centre = DVec3::new(
+            s.centre_m[0],
+            atmosphere.planet_radius + s.base_m + 0.5 * f64::from(s.grid[2]) * s.cell_size_m,
+            s.centre_m[1],
+        );
+        let light = cloudlight::march::atmos_light(
+            &ModelRef(model),
+            atmosphere,
+            centre,
+            toward,
+            atmos::ground_irradiance::HemisphereQuadrature::default(),
+        )
+        .map_err(|e| invalid(e.to_string()))?;
+        Lighting::new(
+            world_to_enu(toward.to_array()),
+            light.sun_irradiance,
+            light.ambient_radiance,
+            [0.0, 0.0, 1.0],
+        )
+        .map_err(|e| invalid(e.to_string()))
+    }
+
+    /// At night the moon, the terrain's second light, lights `cloud` too: its light at the
+    /// grid's centre passed as the sun's is (the moonlit atmosphere and rung along the
+    /// moon's direction) and, with terrain, its shadow map along the moon.
+    fn moonlit_volume(
+        &self,
+        section: &CloudVolumeSection,
+        cloud: &PreparedVolume,
+        moon: &crate::scene::prepare::MoonlitSky,
+        shadows_on_terrain: bool,
+    ) -> Result<MoonlitVolume, SceneError> {
+        let toward = moon.direction;
+        Ok(MoonlitVolume {
+            lighting: self.volume_light(
+                section,
+                moon.sky_model.as_ref(),
+                &moon.atmosphere,
+                toward,
+            )?,
+            shadow: shadows_on_terrain
+                .then(|| CloudShadow::new(&cloud.volume, world_to_enu(toward.to_array())))
+                .flatten(),
         })
     }
 }
@@ -484,6 +554,19 @@ pub fn march_pixel(
     pixel: [u32; 2],
     max_distance: f32,
 ) -> MarchResult<f32> {
+    march_pixel_lit(cloud, &cloud.lighting, camera, size, pixel, max_distance)
+}
+
+/// [`march_pixel`] lit by `lighting` (the sun's, [`PreparedVolume::lighting`], or the
+/// moon's, [`MoonlitVolume::lighting`]): the twin of the GPU's march with that light.
+pub fn march_pixel_lit(
+    cloud: &PreparedVolume,
+    lighting: &Lighting<f32>,
+    camera: &PinholeCamera,
+    size: [u32; 2],
+    pixel: [u32; 2],
+    max_distance: f32,
+) -> MarchResult<f32> {
     let [forward, right, up] = camera.basis().map(|v| v.map(|c| c as f32));
     let tan_half = camera.tan_half(size).map(|t| t as f32);
     let origin = camera.origin().map(|c| c as f32);
@@ -493,7 +576,7 @@ pub fn march_pixel(
         origin,
         direction,
         &cloud.settings,
-        &cloud.lighting,
+        lighting,
         pixel,
         max_distance,
     )
@@ -507,7 +590,8 @@ pub fn cloud_in_front(cloud: &MarchResult<f32>, scene_distance: f32) -> bool {
 }
 
 /// The cloud seen through the air: `L_c · T_air + L_air · (1 − T_c)` (module docs); the
-/// caller adds `T_c · L_behind`.
+/// caller adds `T_c · L_behind`. WGSL twin of the same name in
+/// `shaders/render/volume_composite.wgsl`.
 pub fn cloud_through_air(
     cloud: &MarchResult<f32>,
     air_transmittance: [f32; 3],
@@ -531,8 +615,8 @@ pub struct VolumeComposite {
     pub radiance_scale: f32,
     /// The march image's width (pixels).
     pub width: u32,
-    /// Keeps the struct a multiple of 16 bytes.
-    pub padding0: u32,
+    /// 1: the moonlit march is added (night), 0: the sun's only.
+    pub moonlit: u32,
 }
 
 /// The uniform of the distance pass (layout identical to WGSL `VolumeDistanceParams` in
@@ -553,14 +637,45 @@ pub struct VolumeDistanceParams {
     pub padding0: u32,
 }
 
+/// The uniform of the air pass (layout identical to WGSL `VolumeAirParams` in
+/// `shaders/render/volume_air.wgsl`).
+#[cfg(feature = "gpu")]
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct VolumeAirParams {
+    /// Pixels.
+    pub width: u32,
+    /// Pixels.
+    pub height: u32,
+    /// Keeps the struct 16 bytes.
+    pub padding: [u32; 2],
+}
+
+/// One light's march and air pass (the sun's; at night also the moon's).
+#[cfg(feature = "gpu")]
+#[derive(Debug)]
+struct LitMarch {
+    march: cloudlight::gpu::MarchPass,
+    /// `shaders/render/volume_air.wgsl` with this light's tables' layouts.
+    air_pipeline: wgpu::ComputePipeline,
+    /// The air per pixel and its bind group (after `prepare`; kept across frames of one
+    /// size).
+    air: Option<(wgpu::Buffer, wgpu::BindGroup)>,
+}
+
 /// The GPU side: the terrain's depth turned into a distance per pixel
 /// (`shaders/render/volume_distance.wgsl`), `cloudlight::gpu::MarchPass` over the scene's
-/// pixels limited by it (prepared per frame with [`pinhole_camera`]) and the composite
-/// render pass (`shaders/render/volume_clouds.wgsl`).
+/// pixels limited by it (prepared per frame with [`pinhole_camera`]; at night a second
+/// one lit by the moon), the air in front of the cloud per pixel and light
+/// (`shaders/render/volume_air.wgsl`: atmos' `aerial_perspective`, the CPU's function)
+/// and the composite render pass (`shaders/render/volume_clouds.wgsl`).
 #[cfg(feature = "gpu")]
 #[derive(Debug)]
 pub(crate) struct VolumeCloudPass {
-    march: cloudlight::gpu::MarchPass,
+    sun: LitMarch,
+    moon: Option<LitMarch>,
+    air_layout: wgpu::BindGroupLayout,
+    air_uniform: wgpu::Buffer,
     pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
     uniform: wgpu::Buffer,
@@ -573,129 +688,166 @@ pub(crate) struct VolumeCloudPass {
 }
 
 #[cfg(feature = "gpu")]
+fn buffer_entry(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+    ty: wgpu::BufferBindingType,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+#[cfg(feature = "gpu")]
+fn depth_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Depth,
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+#[cfg(feature = "gpu")]
+fn compute_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    entry_point: &str,
+    layouts: &[Option<&wgpu::BindGroupLayout>],
+) -> wgpu::ComputePipeline {
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: layouts,
+        immediate_size: 0,
+    });
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(label),
+        layout: Some(&layout),
+        module,
+        entry_point: Some(entry_point),
+        compilation_options: Default::default(),
+        cache: None,
+    })
+}
+
+#[cfg(feature = "gpu")]
 impl VolumeCloudPass {
-    /// The march pipeline and the composite pipeline (the LUTs' layouts in groups 0, 1).
+    /// The march, air and composite pipelines; `moon_luts`: the moonlit tables when the
+    /// scene's cloud is lit by the moon too ([`PreparedVolume::moon`]).
     pub(crate) fn new(
         device: &wgpu::Device,
         luts: &atmos::gpu::AtmosphereLuts,
+        moon_luts: Option<&atmos::gpu::AtmosphereLuts>,
         target: wgpu::TextureFormat,
     ) -> Result<Self, crate::RenderError> {
-        let march = cloudlight::gpu::MarchPass::new(device)?;
-        let distance_source = crate::composer().compose_module("render::volume_distance")?;
-        let distance_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("render volume distance"),
-            source: wgpu::ShaderSource::Wgsl(distance_source.into()),
-        });
+        use wgpu::BufferBindingType::{Storage, Uniform};
         let compute = wgpu::ShaderStages::COMPUTE;
+        let module = |name: &str, label: &str| -> Result<wgpu::ShaderModule, crate::RenderError> {
+            let source = crate::composer().compose_module(name)?;
+            Ok(device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(label),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            }))
+        };
+        let uniform_buffer = |label: &str, size: usize| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: size as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        let distance_module = module("render::volume_distance", "render volume distance")?;
         let distance_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("render volume distance"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: compute,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: compute,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Depth,
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 2,
-                    visibility: compute,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: false },
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
+                buffer_entry(0, compute, Uniform),
+                depth_entry(1, compute),
+                buffer_entry(2, compute, Storage { read_only: false }),
             ],
         });
-        let distance_pipeline_layout =
-            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("render volume distance"),
-                bind_group_layouts: &[Some(&distance_layout)],
-                immediate_size: 0,
-            });
-        let distance_pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("render volume distance"),
-            layout: Some(&distance_pipeline_layout),
-            module: &distance_module,
-            entry_point: Some("volume_distance_main"),
-            compilation_options: Default::default(),
-            cache: None,
+        let distance_pipeline = compute_pipeline(
+            device,
+            "render volume distance",
+            &distance_module,
+            "volume_distance_main",
+            &[Some(&distance_layout)],
+        );
+        let distance_uniform = uniform_buffer(
+            "render volume distance uniform",
+            std::mem::size_of::<VolumeDistanceParams>(),
+        );
+        // The air per pixel: groups 0 and 1 are the light's tables.
+        let air_module = module("render::volume_air", "render volume air")?;
+        let air_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("render volume air"),
+            entries: &[
+                buffer_entry(0, compute, Uniform),
+                buffer_entry(1, compute, Storage { read_only: true }),
+                buffer_entry(2, compute, Storage { read_only: false }),
+            ],
         });
-        let distance_uniform = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("render volume distance uniform"),
-            size: std::mem::size_of::<VolumeDistanceParams>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let source = crate::composer().compose_module("render::volume_clouds")?;
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("render volume clouds"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
+        let air_uniform = uniform_buffer(
+            "render volume air uniform",
+            std::mem::size_of::<VolumeAirParams>(),
+        );
+        let lit = |luts: &atmos::gpu::AtmosphereLuts,
+                   label: &str|
+         -> Result<LitMarch, crate::RenderError> {
+            Ok(LitMarch {
+                march: cloudlight::gpu::MarchPass::new(device)?,
+                air_pipeline: compute_pipeline(
+                    device,
+                    label,
+                    &air_module,
+                    "volume_air_main",
+                    &[
+                        Some(&luts.layouts().uniforms),
+                        Some(&luts.layouts().tables),
+                        Some(&air_layout),
+                    ],
+                ),
+                air: None,
+            })
+        };
+        let sun = lit(luts, "render volume air")?;
+        let moon = match moon_luts {
+            Some(moon_luts) => Some(lit(moon_luts, "render volume air (moonlit)")?),
+            None => None,
+        };
+        let composite_module = module("render::volume_clouds", "render volume clouds")?;
         let fragment = wgpu::ShaderStages::FRAGMENT;
+        let read = Storage { read_only: true };
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("render volume clouds"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: fragment,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: fragment,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: true },
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 2,
-                    visibility: fragment,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Depth,
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
+                buffer_entry(0, fragment, Uniform),
+                buffer_entry(1, fragment, read),
+                depth_entry(2, fragment),
+                buffer_entry(3, fragment, read),
+                buffer_entry(4, fragment, read),
+                buffer_entry(5, fragment, read),
             ],
         });
-        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("render volume clouds uniform"),
-            size: std::mem::size_of::<VolumeComposite>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let uniform = uniform_buffer(
+            "render volume clouds uniform",
+            std::mem::size_of::<VolumeComposite>(),
+        );
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("render volume clouds"),
-            bind_group_layouts: &[
-                Some(&luts.layouts().uniforms),
-                Some(&luts.layouts().tables),
-                Some(&layout),
-            ],
+            bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
         // dst · T_c + the cloud's own light (premultiplied).
@@ -715,7 +867,7 @@ impl VolumeCloudPass {
             label: Some("render volume clouds"),
             layout: Some(&pipeline_layout),
             vertex: wgpu::VertexState {
-                module: &module,
+                module: &composite_module,
                 entry_point: Some("volume_clouds_vertex"),
                 compilation_options: Default::default(),
                 buffers: &[],
@@ -724,7 +876,7 @@ impl VolumeCloudPass {
             depth_stencil: None,
             multisample: Default::default(),
             fragment: Some(wgpu::FragmentState {
-                module: &module,
+                module: &composite_module,
                 entry_point: Some("volume_clouds_fragment"),
                 compilation_options: Default::default(),
                 targets: &[Some(wgpu::ColorTargetState {
@@ -737,7 +889,10 @@ impl VolumeCloudPass {
             cache: None,
         });
         Ok(Self {
-            march,
+            sun,
+            moon,
+            air_layout,
+            air_uniform,
             pipeline,
             layout,
             uniform,
@@ -749,8 +904,9 @@ impl VolumeCloudPass {
         })
     }
 
-    /// The frame's march (the scene camera as a pinhole camera in the volume's frame,
-    /// one ray per pixel) and the composite's uniform and bind group.
+    /// The frame's marches (the scene camera as a pinhole camera in the volume's frame,
+    /// one ray per pixel; the moon's at night), the air passes' and the composite's
+    /// uniforms and bind groups.
     pub(crate) fn prepare(
         &mut self,
         device: &wgpu::Device,
@@ -762,6 +918,7 @@ impl VolumeCloudPass {
         let camera = &scene.camera;
         let pinhole = pinhole_camera(camera, scene.atmosphere.planet_radius)?;
         let near = scene.near.max(0.01) as f32;
+        let size = [camera.width, camera.height];
         queue.write_buffer(
             &self.distance_uniform,
             0,
@@ -773,17 +930,31 @@ impl VolumeCloudPass {
                 padding0: 0,
             }),
         );
-        // The distance buffer follows the image: kept across frames of one size.
-        let bytes = u64::from(camera.width) * u64::from(camera.height) * 4;
-        let distances = match self.distance.take() {
-            Some((buffer, _, _)) if buffer.size() == bytes => buffer,
+        queue.write_buffer(
+            &self.air_uniform,
+            0,
+            bytemuck::bytes_of(&VolumeAirParams {
+                width: camera.width,
+                height: camera.height,
+                padding: [0; 2],
+            }),
+        );
+        // The distance and air buffers follow the image: kept across frames of one size.
+        let pixels = u64::from(camera.width) * u64::from(camera.height);
+        let storage = |label: &str, bytes: u64, kept: Option<wgpu::Buffer>| match kept {
+            Some(buffer) if buffer.size() == bytes => buffer,
             _ => device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("render volume distances"),
+                label: Some(label),
                 size: bytes,
                 usage: wgpu::BufferUsages::STORAGE,
                 mapped_at_creation: false,
             }),
         };
+        let distances = storage(
+            "render volume distances",
+            pixels * 4,
+            self.distance.take().map(|(buffer, _, _)| buffer),
+        );
         let distance_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("render volume distance"),
             layout: &self.distance_layout,
@@ -802,17 +973,67 @@ impl VolumeCloudPass {
                 },
             ],
         });
-        // The march stops at the terrain: a ridge cuts the cloud where it stands.
-        self.march.prepare_limited(
-            device,
-            queue,
-            &cloud.volume,
-            &pinhole,
-            [camera.width, camera.height],
-            &cloud.settings,
-            &cloud.lighting,
-            Some(&distances),
-        )?;
+        let moon_lighting = match (&self.moon, &cloud.moon) {
+            (Some(_), Some(moon)) => Some(&moon.lighting),
+            (None, None) => None,
+            (built, _) => {
+                return Err(crate::RenderError::InvalidParameter {
+                    field: "clouds.volume",
+                    value: if built.is_some() {
+                        "not lit by the moon"
+                    } else {
+                        "lit by the moon"
+                    }
+                    .into(),
+                    reason: "differs from the scene the renderer was built for",
+                });
+            }
+        };
+        let mut lights = vec![(&mut self.sun, &cloud.lighting)];
+        if let (Some(moon), Some(lighting)) = (self.moon.as_mut(), moon_lighting) {
+            lights.push((moon, lighting));
+        }
+        for (lit, lighting) in lights {
+            // The march stops at the terrain: a ridge cuts the cloud where it stands.
+            lit.march.prepare_limited(
+                device,
+                queue,
+                &cloud.volume,
+                &pinhole,
+                size,
+                &cloud.settings,
+                lighting,
+                Some(&distances),
+            )?;
+            let image = lit
+                .march
+                .image_buffer()
+                .ok_or(crate::RenderError::NotPrepared)?;
+            let air = storage(
+                "render volume air",
+                pixels * 32,
+                lit.air.take().map(|(buffer, _)| buffer),
+            );
+            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("render volume air"),
+                layout: &self.air_layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: self.air_uniform.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: image.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: air.as_entire_binding(),
+                    },
+                ],
+            });
+            lit.air = Some((air, group));
+        }
         self.distance = Some((
             distances,
             distance_group,
@@ -823,13 +1044,23 @@ impl VolumeCloudPass {
             near,
             radiance_scale: scene.present.exposure,
             width: camera.width,
-            padding0: 0,
+            moonlit: u32::from(self.moon.is_some()),
         };
         queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
-        let image = self
-            .march
-            .image_buffer()
-            .ok_or(crate::RenderError::NotPrepared)?;
+        fn buffers(
+            lit: &LitMarch,
+        ) -> Result<(wgpu::BindingResource<'_>, wgpu::BindingResource<'_>), crate::RenderError>
+        {
+            let image = lit
+                .march
+                .image_buffer()
+                .ok_or(crate::RenderError::NotPrepared)?;
+            let (air, _) = lit.air.as_ref().ok_or(crate::RenderError::NotPrepared)?;
+            Ok((image.as_entire_binding(), air.as_entire_binding()))
+        }
+        let (image, air) = buffers(&self.sun)?;
+        // Without the moon its bindings hold the sun's buffers (unread: moonlit = 0).
+        let (moon_image, moon_air) = buffers(self.moon.as_ref().unwrap_or(&self.sun))?;
         self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("render volume clouds"),
             layout: &self.layout,
@@ -840,24 +1071,40 @@ impl VolumeCloudPass {
                 },
                 wgpu::BindGroupEntry {
                     binding: 1,
-                    resource: image.as_entire_binding(),
+                    resource: image,
                 },
                 wgpu::BindGroupEntry {
                     binding: 2,
                     resource: wgpu::BindingResource::TextureView(depth_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: air,
+                },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: moon_image,
+                },
+                wgpu::BindGroupEntry {
+                    binding: 5,
+                    resource: moon_air,
                 },
             ],
         }));
         Ok(())
     }
 
-    /// Records the distance pass (after the terrain has written the depth) and the
-    /// march's dispatch, each a compute pass of its own (the march's timed when
-    /// `march_times` is given).
+    /// Records the distance pass (after the terrain has written the depth), the
+    /// marches (the sun's timed with `march_times`, the moon's with `moon_times`) and
+    /// the air passes with each light's tables (`moon_luts`: the moonlit ones, at night),
+    /// each a compute pass of its own.
     pub(crate) fn encode_march(
         &self,
         encoder: &mut wgpu::CommandEncoder,
+        luts: &atmos::gpu::AtmosphereLuts,
+        moon_luts: Option<&atmos::gpu::AtmosphereLuts>,
         march_times: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        moon_times: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), crate::RenderError> {
         let (_, group, groups) = self
             .distance
@@ -872,24 +1119,65 @@ impl VolumeCloudPass {
             pass.set_bind_group(0, group, &[]);
             pass.dispatch_workgroups(groups[0], groups[1], 1);
         }
-        Ok(self.march.encode_timed(encoder, march_times)?)
+        self.sun.march.encode_timed(encoder, march_times)?;
+        let moon = match (&self.moon, moon_luts) {
+            (Some(moon), Some(moon_luts)) => {
+                moon.march.encode_timed(encoder, moon_times)?;
+                Some((moon, moon_luts))
+            }
+            (None, _) => None,
+            (Some(_), None) => return Err(crate::RenderError::NotPrepared),
+        };
+        for (lit, tables) in std::iter::once((&self.sun, luts)).chain(moon) {
+            let (_, air_group) = lit.air.as_ref().ok_or(crate::RenderError::NotPrepared)?;
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("render volume air"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(&lit.air_pipeline);
+            pass.set_bind_group(0, tables.uniform_bind_group(), &[]);
+            pass.set_bind_group(1, tables.table_bind_group(), &[]);
+            pass.set_bind_group(2, air_group, &[]);
+            pass.dispatch_workgroups(groups[0], groups[1], 1);
+        }
+        Ok(())
     }
 
     /// Draws the composite (one full-screen triangle) into `pass`.
-    pub(crate) fn draw(
-        &self,
-        pass: &mut wgpu::RenderPass<'_>,
-        luts: &atmos::gpu::AtmosphereLuts,
-    ) -> Result<(), crate::RenderError> {
+    pub(crate) fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> Result<(), crate::RenderError> {
         let bind_group = self
             .bind_group
             .as_ref()
             .ok_or(crate::RenderError::NotPrepared)?;
         pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, luts.uniform_bind_group(), &[]);
-        pass.set_bind_group(1, luts.table_bind_group(), &[]);
-        pass.set_bind_group(2, bind_group, &[]);
+        pass.set_bind_group(0, bind_group, &[]);
         pass.draw(0..3, 0..1);
         Ok(())
+    }
+}
+
+/// What `skyscape explain` says of the moonlit march (a pass of the GPU renderer, and
+/// the second march of the CPU's): run when the scene's cloud is lit by the moon.
+pub fn moonlit_march_plan(scene: &crate::scene::PreparedScene) -> Result<String, String> {
+    let Some(cloud) = &scene.volume_cloud else {
+        return Err("no [clouds.volume]: no march".into());
+    };
+    match (&cloud.moon, &scene.moonlit) {
+        (Some(moon), Some(sky)) => Ok(format!(
+            "the [clouds.volume] cloud marched again lit by the moon ({:.1}° up; the terrain's \
+             moonlit draw's light: celestial's MoonLight through atmos), added through the \
+             moonlit air; {}",
+            sky.direction.y.clamp(-1.0, 1.0).asin().to_degrees(),
+            if moon.shadow.is_some() {
+                "its shadow map along the moon shades the moonlit terrain"
+            } else {
+                "no shadow map (no terrain, or the moon below 1°)"
+            }
+        )),
+        _ => Err(
+            "the moon does not light the scene (no [time], or the sun up or the moon \
+                  below −2°, as for the terrain's moonlit draw): the sun's march only"
+                .into(),
+        ),
     }
 }

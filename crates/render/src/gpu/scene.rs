@@ -193,8 +193,9 @@ struct MoonTerrain {
     uniform: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     cloud_layers: wgpu::Buffer,
-    /// Always disabled: the moon's light is not shadowed by the volume.
-    _volume_shadow: wgpu::Buffer,
+    /// The volume's shadow map parameters toward the moon (its values share the sun
+    /// draw's buffer: a scene the moon lights has the sun down, hence no sun map).
+    volume_shadow: wgpu::Buffer,
 }
 
 /// Every pass of a scene on the GPU.
@@ -340,12 +341,18 @@ pub fn planned_passes(scene: &PreparedScene) -> Vec<(&'static str, Result<String
         },
     ));
     plan.push((
+        "moonlit cloud march",
+        crate::volume_clouds::moonlit_march_plan(scene),
+    ));
+    plan.push((
         "volume clouds",
         match &scene.volume_cloud {
             Some(cloud) => Ok(format!(
                 "the composite of cloudlight's march of the [clouds.volume] cumulus ({}×{}×{} cells, \
                  {} of density > 0, grown by cloudsim in {} steps; {} view × {} light steps per \
-                 pixel) over the scene, through the aerial-perspective table",
+                 pixel) over the scene, through atmos' aerial perspective to its depth per pixel \
+                 and light (a compute pass, untimed: the table within its range, a march of the \
+                 tables beyond)",
                 cloud.volume.dims()[0],
                 cloud.volume.dims()[1],
                 cloud.volume.dims()[2],
@@ -640,8 +647,15 @@ impl SceneRenderer {
 
         // Only a scene with [clouds.volume] builds the march and its composite.
         let volume_cloud = match &scene.volume_cloud {
-            Some(_) => Some(crate::volume_clouds::VolumeCloudPass::new(
-                device, &luts, HDR,
+            Some(cloud) => Some(crate::volume_clouds::VolumeCloudPass::new(
+                device,
+                &luts,
+                // At night the moon lights the cloud too: its march and air passes.
+                moonlit
+                    .as_ref()
+                    .filter(|_| cloud.moon.is_some())
+                    .map(|(l, _)| l),
+                HDR,
             )?),
             None => None,
         };
@@ -758,8 +772,11 @@ impl SceneRenderer {
             if !scene.cloud_layers.is_empty() {
                 labels.push("clouds");
             }
-            if scene.volume_cloud.is_some() {
+            if let Some(cloud) = &scene.volume_cloud {
                 labels.push("volume cloud march");
+                if cloud.moon.is_some() {
+                    labels.push("moonlit cloud march");
+                }
                 labels.push("volume clouds");
             }
             if scene.billboard_cloud.is_some() {
@@ -1027,7 +1044,7 @@ impl SceneRenderer {
                 bind_group: bind_group_with(&uniform, &cloud_layers, &volume_shadow),
                 uniform,
                 cloud_layers,
-                _volume_shadow: volume_shadow,
+                volume_shadow,
             }
         });
         let (grid, indices) = tile_mesh();
@@ -1230,7 +1247,10 @@ impl SceneRenderer {
             let uniform = uniform_for(&lighting, &scene.sun_light());
             queue.write_buffer(&pass.uniform, 0, bytemuck::bytes_of(&uniform));
             // The volume's shadow map (the CPU renderer reads the same values).
-            let shadow = scene.sun_light().volume_shadow;
+            let shadow = scene
+                .sun_light()
+                .volume_shadow
+                .or(scene.moon_light().and_then(|moon| moon.volume_shadow));
             let shadow_uniform = match shadow {
                 Some(map) if (map.values.len() * 4) as u64 <= pass.volume_shadow_values.size() => {
                     queue.write_buffer(
@@ -1249,9 +1269,31 @@ impl SceneRenderer {
                 }
                 None => VolumeShadowUniform::DISABLED,
             };
-            queue.write_buffer(&pass.volume_shadow, 0, bytemuck::bytes_of(&shadow_uniform));
+            // (The sun's draw reads the map only when it is the sun's.)
+            let sun_shadow = match scene.sun_light().volume_shadow {
+                Some(_) => shadow_uniform,
+                None => VolumeShadowUniform::DISABLED,
+            };
+            queue.write_buffer(&pass.volume_shadow, 0, bytemuck::bytes_of(&sun_shadow));
             match (&pass.moon, scene.moon_light()) {
                 (Some(moon_pass), Some(moon)) => {
+                    // One light has a map (the moon's only with the sun down): written above.
+                    let moon_shadow = match (moon.volume_shadow, scene.sun_light().volume_shadow) {
+                        (Some(_), None) => shadow_uniform,
+                        (None, _) => VolumeShadowUniform::DISABLED,
+                        (Some(_), Some(_)) => {
+                            return Err(RenderError::InvalidParameter {
+                                field: "clouds.volume",
+                                value: "shadow maps toward the sun and the moon".into(),
+                                reason: "the terrain pass holds one volume shadow map",
+                            });
+                        }
+                    };
+                    queue.write_buffer(
+                        &moon_pass.volume_shadow,
+                        0,
+                        bytemuck::bytes_of(&moon_shadow),
+                    );
                     let moon_lighting = terrain_lighting_for(scene, terrain, &moon)?;
                     let uniform = uniform_for(&moon_lighting, &moon);
                     queue.write_buffer(&moon_pass.uniform, 0, bytemuck::bytes_of(&uniform));
@@ -1435,7 +1477,10 @@ impl SceneRenderer {
             // After the terrain: the march stops at its depth.
             volume.encode_march(
                 encoder,
+                &self.luts,
+                self.moonlit.as_ref().map(|(luts, _)| luts),
                 times.and_then(|t| t.compute_writes("volume cloud march")),
+                times.and_then(|t| t.compute_writes("moonlit cloud march")),
             )?;
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("render volume clouds"),
@@ -1452,7 +1497,7 @@ impl SceneRenderer {
                 timestamp_writes: times.and_then(|t| t.render_writes("volume clouds")),
                 ..Default::default()
             });
-            volume.draw(&mut pass, &self.luts)?;
+            volume.draw(&mut pass)?;
         }
         if let Some(billboards) = &self.billboard_cloud {
             // After the terrain: its depth hides the particles behind it.

@@ -153,8 +153,8 @@ pub struct Illuminant<'a> {
     pub precomputed: Option<&'a atmos::lut::PrecomputedSky>,
     /// The cloud layers with this light's direction (their shadows).
     pub cloud_layers: &'a [celestial::clouds::CloudLayerUniforms],
-    /// The volumetric cloud's shadow map toward this light (the sun's; the moon's light
-    /// is not shadowed by the volume).
+    /// The volumetric cloud's shadow map toward this light (the sun's, or at night the
+    /// moon's: `crate::volume_clouds::MoonlitVolume::shadow`).
     pub volume_shadow: Option<&'a crate::volume_clouds::CloudShadow>,
 }
 
@@ -269,7 +269,11 @@ impl PreparedScene {
             segment_model: moon.segment_model.as_ref(),
             precomputed: moon.precomputed.as_deref(),
             cloud_layers: &moon.cloud_layers,
-            volume_shadow: None,
+            volume_shadow: self
+                .volume_cloud
+                .as_ref()
+                .and_then(|v| v.moon.as_ref())
+                .and_then(|m| m.shadow.as_ref()),
         })
     }
 
@@ -494,6 +498,7 @@ impl Scene {
                 &*sky_model,
                 sun,
                 terrain.is_some(),
+                moonlit.as_ref(),
             )?),
             None => None,
         };

@@ -1,0 +1,361 @@
+//! The volume cloud at night and far away (issue 16): the moon lights `[clouds.volume]`
+//! (a second march with the moon's light, as the terrain's second draw), its shadow map
+//! along the moon shades the moonlit terrain, and a cloud beyond the aerial-perspective
+//! volume's range (32 km) is seen through the same air on the GPU as on the CPU.
+//! GPU parts run on whatever adapter the harness finds (lavapipe in CI).
+
+use render::cpu_renderer::{display_pixels, render_cpu, render_radiance};
+use render::scene::{PreparedScene, Scene};
+use render::volume_clouds::{march_pixel, pinhole_camera};
+
+/// The shipped night (2024-12-15 21:00 UTC, 46.5° N 8° E: the sun 60° down, the full
+/// moon 56° up in the east-south-east) with the camera `camera` and a cumulus
+/// `volume` (TOML lines of `[clouds.volume]`).
+fn night(camera: &str, volume: &str, width: u32, height: u32) -> Scene {
+    let path = format!("{}/../../scenes/night.toml", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).unwrap();
+    let start = text.find("[camera]").unwrap();
+    let end = text.find("[time]").unwrap();
+    let text = format!(
+        "{}[camera]\n{camera}\n{}\n[clouds.volume]\n{volume}\n",
+        &text[..start],
+        &text[end..]
+    );
+    let mut scene = Scene::parse(&text, ".").unwrap();
+    scene.file.output.width = width;
+    scene.file.output.height = height;
+    scene
+}
+
+/// A 3.2 × 3.2 × 1.6 km cumulus (the shipped `cumulus`' automaton) centred at world
+/// `[x, z]`, its base `base` metres up.
+fn cumulus(centre: [f64; 2], base: f64, cell: f64) -> String {
+    format!(
+        "seed = 2026\nsteps = 300\ngrid = [32, 32, 16]\ncell_size_m = {cell:?}\n\
+         base_m = {base:?}\ncentre_m = [{:?}, {:?}]\nsigma_t_per_density = 0.03\n\
+         view_steps = 48\nlight_steps = 8\noctaves = 8\noctave_b = 0.65\n",
+        centre[0], centre[1]
+    )
+}
+
+fn luminance(rgb: [f32; 3]) -> f32 {
+    0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]
+}
+
+/// The scene on the GPU (the harness's adapter), RGBA8; `None` when skipped.
+fn gpu_image(scene: &PreparedScene, what: &str) -> Option<Vec<u32>> {
+    let gpu = skyscape_harness::gpu_or_skip(what)?;
+    let settings = render::gpu::SceneRendererSettings {
+        terrain_error_px: 0.0,
+        timestamps: false,
+    };
+    let mut renderer =
+        render::gpu::SceneRenderer::new(&gpu.device, &gpu.queue, scene, settings).unwrap();
+    renderer.prepare(&gpu.queue, scene).unwrap();
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    renderer.encode(&mut encoder).unwrap();
+    gpu.queue.submit([encoder.finish()]);
+    let buffer = renderer.pixel_buffer();
+    let bytes =
+        skyscape_harness::read_buffer(gpu, "scene pixels", buffer, 0, buffer.size()).unwrap();
+    Some(bytemuck::cast_slice(&bytes).to_vec())
+}
+
+/// The largest difference of two packed RGBA8 pixels over R, G, B (LSB).
+fn lsb(a: u32, b: u32) -> u32 {
+    (0..3)
+        .map(|c| ((a >> (8 * c)) & 255).abs_diff((b >> (8 * c)) & 255))
+        .max()
+        .unwrap()
+}
+
+/// Indices of the pixels where the cloud has opacity (`T < limit`) and is drawn.
+fn cloud_pixels(scene: &PreparedScene, limit: f32) -> Vec<usize> {
+    let cloud = scene.volume_cloud.as_ref().unwrap();
+    let camera = &scene.camera;
+    let pinhole = pinhole_camera(camera, scene.atmosphere.planet_radius).unwrap();
+    let size = [camera.width, camera.height];
+    (0..camera.width * camera.height)
+        .filter(|&i| {
+            let xy = [i % camera.width, i / camera.width];
+            march_pixel(cloud, &pinhole, size, xy, f32::INFINITY).transmittance < limit
+        })
+        .map(|i| i as usize)
+        .collect()
+}
+
+/// Looking west-north-west from the night scene's camera, away from the moon (56° up
+/// behind the camera): the cloud's moonlit face over the night sky.
+const WEST_CAMERA: &str = "position = [-14000.0, 2500.0, 0.0]\n\
+                           look_direction = [-0.852, 0.423, -0.310]\n\
+                           vertical_fov_deg = 40.0\nnear = 1.0\nfar = 120000.0";
+
+#[test]
+fn the_moon_lights_the_volume_cloud() {
+    // The cloud 10 km west-north-west, 3.8 km up.
+    let scene = night(
+        WEST_CAMERA,
+        &cumulus([-23400.0, -3420.0], 3800.0, 100.0),
+        160,
+        90,
+    );
+    let lit = scene.prepare().unwrap();
+    let moon = lit.volume_cloud.as_ref().unwrap().moon.as_ref();
+    assert!(moon.is_some(), "the moon lights the night's cloud");
+    // `skyscape explain` lists the moonlit march and why.
+    let plan = render::gpu::scene::planned_passes(&lit);
+    let moonlit = plan.iter().find(|(name, _)| *name == "moonlit cloud march");
+    assert!(
+        matches!(moonlit, Some((_, Ok(_)))),
+        "explain lists the moonlit march: {moonlit:?}"
+    );
+    let mut dark = scene.clone().prepare().unwrap();
+    dark.volume_cloud.as_mut().unwrap().moon = None;
+    let mut clear_scene = scene.clone();
+    clear_scene.file.clouds = None;
+    let clear = clear_scene.prepare().unwrap();
+    let with = render_radiance(&lit).unwrap();
+    let without_moon = render_radiance(&dark).unwrap();
+    let sky = render_radiance(&clear).unwrap();
+    let opaque = cloud_pixels(&lit, 0.1);
+    let (mut lit_sum, mut dark_sum, mut sky_sum, mut brighter) = (0.0f64, 0.0f64, 0.0f64, 0);
+    for &i in &opaque {
+        let (l, d, s) = (
+            luminance(with[i].radiance),
+            luminance(without_moon[i].radiance),
+            luminance(sky[i].radiance),
+        );
+        assert!(
+            l.is_finite() && l >= d,
+            "pixel {i}: {l} vs {d} without the moon"
+        );
+        lit_sum += f64::from(l);
+        dark_sum += f64::from(d);
+        sky_sum += f64::from(s);
+        brighter += usize::from(l > s);
+    }
+    let n = opaque.len().max(1) as f64;
+    eprintln!(
+        "night cloud 160×90: {} opaque pixels (T < 0.1); mean luminance moonlit {:.4e}, \
+         without the moon {:.4e}, the sky behind {:.4e}; {brighter} of {} brighter than the sky",
+        opaque.len(),
+        lit_sum / n,
+        dark_sum / n,
+        sky_sum / n,
+        opaque.len()
+    );
+    assert!(opaque.len() > 50, "{}", opaque.len());
+    assert!(lit_sum > 3.0 * dark_sum, "moonlit {lit_sum} vs {dark_sum}");
+    assert!(
+        brighter * 10 >= opaque.len() * 9,
+        "{brighter} of {}",
+        opaque.len()
+    );
+
+    // GPU vs CPU (issue 16's metric).
+    let Some(gpu) = gpu_image(&lit, "render::volume_night moon") else {
+        return;
+    };
+    let cpu = render_cpu(&lit).unwrap().pixels;
+    let two = render::tonemap::fraction_within_lsb(&gpu, &cpu, 2).unwrap();
+    let cloudy = cloud_pixels(&lit, 1.0);
+    let within = cloudy.iter().filter(|&&i| lsb(gpu[i], cpu[i]) <= 2).count();
+    let worst = cloudy
+        .iter()
+        .map(|&i| lsb(gpu[i], cpu[i]))
+        .max()
+        .unwrap_or(0);
+    eprintln!(
+        "night cloud 160×90 GPU vs CPU: {:.3} % of pixels within 2 LSB; cloud pixels \
+         {within} of {} within 2 LSB, worst {worst}",
+        100.0 * two,
+        cloudy.len()
+    );
+    assert!(two >= 0.999, "{two}");
+    assert!(
+        within * 1000 >= cloudy.len() * 999,
+        "{within} of {}",
+        cloudy.len()
+    );
+}
+
+#[test]
+fn the_volume_cloud_shadows_the_moonlit_terrain() {
+    // A cloud 3 km up over the range's middle; its moon shadow falls west-north-west.
+    let volume = cumulus([0.0, 0.0], 3000.0, 100.0);
+    let probe = night(WEST_CAMERA, &volume, 32, 18).prepare().unwrap();
+    let moon = probe.moonlit.as_ref().unwrap().direction;
+    let shadow = probe.volume_cloud.as_ref().unwrap().moon.as_ref().unwrap();
+    let map = shadow
+        .shadow
+        .as_ref()
+        .expect("a moonlit cloud over terrain has a shadow map");
+    let darkest = map.values.iter().fold(1.0f32, |m, &v| m.min(v));
+    assert!(darkest < 0.5, "the moon map's darkest texel {darkest}");
+    // Looking down at where the shadow falls: from the cloud's middle (3.8 km) along
+    // −moon to 1.2 km.
+    let reach = (3800.0 - 1200.0) / moon.y;
+    let at = [-moon.x * reach, 1200.0, -moon.z * reach];
+    let camera = format!(
+        "position = [{:.1}, 9000.0, {:.1}]\nlook_at = [{:.1}, {:.1}, {:.1}]\n\
+         vertical_fov_deg = 60.0\nnear = 1.0\nfar = 120000.0",
+        at[0] - 3000.0,
+        at[2] + 2000.0,
+        at[0],
+        at[1],
+        at[2]
+    );
+    let scene = night(&camera, &volume, 96, 54);
+    let mut prepared = scene.prepare().unwrap();
+    let shaded = render_radiance(&prepared).unwrap();
+    let kept = prepared
+        .volume_cloud
+        .as_mut()
+        .unwrap()
+        .moon
+        .as_mut()
+        .unwrap()
+        .shadow
+        .take();
+    assert!(kept.is_some());
+    let unshaded = render_radiance(&prepared).unwrap();
+    let (mut darker, mut terrain, mut worst) = (0, 0, 1.0f32);
+    let (mut in_shadow, mut beside) = ((0.0f64, 0usize), (0.0f64, 0usize));
+    for (a, b) in shaded.iter().zip(&unshaded) {
+        if a.terrain_distance.is_some() {
+            terrain += 1;
+            let (la, lb) = (luminance(a.radiance), luminance(b.radiance));
+            assert!(
+                la <= lb * (1.0 + 1e-6) + 1e-15,
+                "brighter in shadow: {la} vs {lb}"
+            );
+            if la < 0.9 * lb {
+                darker += 1;
+                in_shadow.0 += f64::from(la);
+                in_shadow.1 += 1;
+            } else {
+                beside.0 += f64::from(la);
+                beside.1 += 1;
+            }
+            worst = worst.min(la / lb.max(1e-30));
+        }
+    }
+    eprintln!(
+        "moonlit terrain: {darker} of {terrain} pixels over 10 % darker in the cloud's moon \
+         shadow (darkest ratio {worst:.3}); mean luminance in it {:.3e}, beside it {:.3e}",
+        in_shadow.0 / in_shadow.1.max(1) as f64,
+        beside.0 / beside.1.max(1) as f64
+    );
+    assert!(darker >= 20, "{darker} terrain pixels in the moon shadow");
+    assert!(worst < 0.5, "darkest ratio {worst}");
+    // The GPU's moonlit terrain draw reads the same map.
+    let prepared = scene.prepare().unwrap();
+    let Some(gpu) = gpu_image(&prepared, "render::volume_night shadow") else {
+        return;
+    };
+    let cpu = render_cpu(&prepared).unwrap().pixels;
+    let (mut shadowed, mut agree) = (0usize, 0usize);
+    for (i, (a, b)) in shaded.iter().zip(&unshaded).enumerate() {
+        if a.terrain_distance.is_some() && luminance(a.radiance) < 0.9 * luminance(b.radiance) {
+            shadowed += 1;
+            agree += usize::from(lsb(gpu[i], cpu[i]) <= 2);
+        }
+    }
+    let everywhere = render::tonemap::fraction_within_lsb(&gpu, &cpu, 2).unwrap();
+    eprintln!(
+        "GPU vs CPU over the moon shadow: {agree} of {shadowed} shadowed pixels within 2 LSB; \
+         {:.3} % of all pixels",
+        100.0 * everywhere
+    );
+    assert!(agree * 10 >= shadowed * 9, "{agree} of {shadowed}");
+}
+
+#[test]
+fn a_cloud_beyond_the_aerial_perspective_range_agrees() {
+    // The shipped cumulus' sun and hills; an 8 km cloud 45–55 km north, 1.5 km up.
+    let path = format!("{}/../../scenes/cumulus.toml", env!("CARGO_MANIFEST_DIR"));
+    let mut scene = Scene::open(&path).unwrap();
+    scene.file.output.width = 160;
+    scene.file.output.height = 90;
+    scene.file.camera.position = [0.0, 1500.0, 6500.0];
+    scene.file.camera.look_at = Some([0.0, 3500.0, -45000.0]);
+    let volume = scene.file.clouds.as_mut().unwrap().volume.as_mut().unwrap();
+    volume.cell_size_m = 250.0;
+    volume.base_m = 1500.0;
+    volume.centre_m = [0.0, -45000.0];
+    let prepared = scene.prepare().unwrap();
+    let range = prepared
+        .precomputed
+        .as_ref()
+        .unwrap()
+        .static_luts()
+        .settings
+        .aerial_perspective_range;
+    // Where the cloud is drawn, its depth is past the table's range.
+    let radiance = render_radiance(&prepared).unwrap();
+    let cloud = prepared.volume_cloud.as_ref().unwrap();
+    let camera = &prepared.camera;
+    let size = [camera.width, camera.height];
+    let pinhole = pinhole_camera(camera, prepared.atmosphere.planet_radius).unwrap();
+    let (mut drawn, mut nearest) = (Vec::new(), f32::INFINITY);
+    // The air the old composite read: the table's last slice (clamped), per drawn pixel.
+    let luts = prepared.precomputed.as_ref().unwrap().static_luts();
+    let frame = atmos::lut::FrameLuts::bake(luts, camera);
+    let mut clamped = radiance.iter().map(|p| p.radiance).collect::<Vec<_>>();
+    for (i, pixel) in radiance.iter().enumerate() {
+        let xy = [i as u32 % size[0], i as u32 / size[0]];
+        let behind = pixel.terrain_distance.unwrap_or(f32::INFINITY);
+        let m = march_pixel(cloud, &pinhole, size, xy, behind);
+        if !render::volume_clouds::cloud_in_front(&m, behind) {
+            continue;
+        }
+        drawn.push(i);
+        nearest = nearest.min(m.depth);
+        let view = atmos::frame::frame_view_direction(xy, camera);
+        let offset = view.map(|v| v * m.depth);
+        let exact = atmos::lut::drop_in::aerial_perspective(luts, &frame, offset);
+        let [u, v, _] = atmos::lut::drop_in::frame_screen_position(camera, view);
+        let [l_old, t_old] = atmos::lut::aerial_perspective::lookup_aerial_perspective(
+            &frame.aerial_perspective,
+            &luts.settings,
+            [u, v],
+            m.depth.max(1.0),
+        );
+        for k in 0..3 {
+            clamped[i][k] += m.radiance[k] * (t_old[k] - exact.transmittance[k])
+                + (l_old[k] - exact.radiance[k]) * (1.0 - m.transmittance);
+        }
+    }
+    assert!(drawn.len() > 100, "{} cloud pixels", drawn.len());
+    assert!(
+        nearest > range,
+        "the cloud's nearest depth {nearest} m, range {range} m"
+    );
+    let cpu = render_cpu(&prepared).unwrap().pixels;
+    let old = display_pixels(&clamped, size[0], &prepared.present);
+    let old_within = drawn.iter().filter(|&&i| lsb(old[i], cpu[i]) <= 2).count();
+    let old_worst = drawn.iter().map(|&i| lsb(old[i], cpu[i])).max().unwrap();
+    eprintln!(
+        "far cloud 160×90: {} cloud pixels drawn, depths from {nearest:.0} m (range {range} m); \
+         the table's clamped last slice would put {old_within} of them within 2 LSB of the \
+         CPU, worst {old_worst}",
+        drawn.len()
+    );
+    let Some(gpu) = gpu_image(&prepared, "render::volume_night far") else {
+        return;
+    };
+    let within = drawn.iter().filter(|&&i| lsb(gpu[i], cpu[i]) <= 2).count();
+    let worst = drawn.iter().map(|&i| lsb(gpu[i], cpu[i])).max().unwrap();
+    let two = render::tonemap::fraction_within_lsb(&gpu, &cpu, 2).unwrap();
+    eprintln!(
+        "far cloud 160×90 GPU vs CPU: cloud pixels {within} of {} within 2 LSB, worst {worst}; \
+         {:.3} % of all pixels",
+        drawn.len(),
+        100.0 * two
+    );
+    assert!(
+        within * 1000 >= drawn.len() * 999,
+        "{within} of {}",
+        drawn.len()
+    );
+}
