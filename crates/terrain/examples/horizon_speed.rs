@@ -55,6 +55,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let distances: Vec<Option<f64>> = match std::env::var("HORIZON_SPEED_DISTANCES") {
         Ok(list) => list
             .split(',')
+            .filter(|d| !d.is_empty())
             .map(|d| {
                 if d == "none" {
                     Ok(None)

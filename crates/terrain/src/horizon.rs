@@ -689,6 +689,21 @@ fn can_rise(
     rise >= threshold * d
 }
 
+/// The height at minor position `x` (`0 ≤ x ≤ row.len() − 1`) of a dominant-major row,
+/// linear between the two texels around `x`: [`Lines::height_between`] without its
+/// range checks (`x as i64` truncates to the floor for `x ≥ 0`).
+#[inline(always)]
+fn lerp_row(row: &[f64], x: f64) -> f64 {
+    let m = x as i64 as usize;
+    let f = x - m as i64 as f64;
+    let a = row[m];
+    if f == 0.0 {
+        a
+    } else {
+        a + (row[m + 1] - a) * f
+    }
+}
+
 /// Steps along each texel's own exact ray before the shared line takes over (off the
 /// axes and diagonals): the near field, where a lateral offset of half a texel matters
 /// most, is sampled exactly; beyond it every texel of a line reads the line's samples.
@@ -710,6 +725,8 @@ struct View {
     e: f64,
     /// Curvature-corrected height of the viewpoint, `h − s_P² / (2R)`.
     g: f64,
+    /// The near field's largest tangent ([`Sampler::near_best`]).
+    near: f64,
 }
 
 /// Scratch buffers of one worker for the lines off the axes and diagonals.
@@ -741,39 +758,92 @@ struct Sampler<'a> {
 }
 
 impl Sampler<'_> {
-    /// Fills `sc.h`, `sc.g` and `sc.views` for line `c`.
+    /// Fills `sc.h`, `sc.g` and `sc.views` (with each view's near field,
+    /// [`Sampler::near_best`]) for line `c`.
+    ///
+    /// One forward pass: the near field of a texel reads the grid rows the line has
+    /// just sampled (still in cache); the arithmetic is [`Lines::height_between`]'s and
+    /// [`Sampler::near_best`]'s, operation for operation, so the values are the same.
     fn build(&self, c: i64, sc: &mut LineScratch) {
         let l = self.lines;
-        let (t, step) = (l.slope, l.step);
+        let (t, step, nm) = (l.slope, l.step, l.n_minor);
+        let n = l.n_dominant;
+        let top = (nm - 1) as f64;
         // Projection of a minor offset of one texel on the direction, metres.
         let foot = l.march as f64 * t * step / (1.0 + t * t);
+        let steps = NEAR_STEPS.min(self.max_steps);
+        // Per near step k: minor offset of the texel's own ray, distance, curvature drop.
+        let mut near = [(0.0f64, 0.0f64, 0.0f64); NEAR_STEPS];
+        for (k, slot) in near.iter_mut().enumerate().take(steps) {
+            let k = k + 1;
+            let d = k as f64 * step;
+            *slot = ((l.march * k as i64) as f64 * t, d, d * d * self.inv_two_r);
+        }
+        let row = |u: usize| &self.grid[u * nm..][..nm];
         sc.h.clear();
         sc.g.clear();
         sc.views.clear();
-        for i in 0..l.n_dominant {
+        sc.h.reserve(n);
+        sc.g.reserve(n);
+        let c_f = c as f64;
+        for i in 0..n {
             let u = l.dominant_at(i);
             let exact = u as f64 * t;
-            let h = l
-                .height_between(self.grid, u, c as f64 + exact)
-                .unwrap_or(f64::NAN);
+            let x = c_f + exact;
+            let h = if x >= 0.0 && x <= top {
+                lerp_row(row(u), x)
+            } else {
+                f64::NAN
+            };
             let s = i as f64 * step;
             sc.h.push(h);
             sc.g.push(h - s * s * self.inv_two_r);
             let m = c + l.offsets[u];
-            if m >= 0 && (m as usize) < l.n_minor {
-                let texel = l.texel(u, m as usize);
-                let hp = self.grid[u * l.n_minor + m as usize];
+            if m >= 0 && (m as usize) < nm {
+                let mu = m as usize;
+                let texel = l.texel(u, mu);
+                let hp = row(u)[mu];
                 let e = foot * (l.offsets[u] as f64 - exact);
                 let sp = s + e;
+                let m_f = m as f64;
+                // The near field up to the map's dominant end; the views past the
+                // line's last texel are redone below.
+                let mut q = [f64::NEG_INFINITY; NEAR_STEPS];
+                for (k, &(dx, d, drop)) in near.iter().enumerate().take(steps) {
+                    let j = i + k + 1;
+                    if j >= n {
+                        break;
+                    }
+                    let x = m_f + dx;
+                    if !(x >= 0.0 && x <= top) {
+                        break;
+                    }
+                    q[k] = (lerp_row(row(l.dominant_at(j)), x) - hp - drop) / d;
+                }
+                let mut best = f64::NEG_INFINITY;
+                for q in q {
+                    best = best.max(q);
+                }
                 sc.views.push(View {
                     i,
                     texel,
                     h: hp,
-                    m: m as f64,
+                    m: m_f,
                     e,
                     g: hp - sp * sp * self.inv_two_r,
+                    near: best,
                 });
             }
+        }
+        // The ray stops where its line's texels end ([`Sampler::near_best`]'s `last`).
+        // Past a line's minor end the own ray has left the map too (the line's texel
+        // is within half a texel of it), so only a guard: it redoes the last views.
+        let last = sc.views.last().map_or(0, |v| v.i);
+        for k in (0..sc.views.len()).rev() {
+            if sc.views[k].i + steps <= last {
+                break;
+            }
+            sc.views[k].near = self.near_best(&sc.views[k], last);
         }
     }
 
@@ -839,9 +909,8 @@ impl Sampler<'_> {
     fn brute(&self, sc: &mut LineScratch) {
         let n = self.lines.n_dominant;
         sc.out.clear();
-        let last_view = sc.views.last().map_or(0, |v| v.i);
         for v in &sc.views {
-            let mut best = self.near_best(v, last_view);
+            let mut best = v.near;
             let last = v.i.saturating_add(self.max_steps).min(n - 1);
             for j in v.i + NEAR_STEPS + 1..=last {
                 if !sc.h[j].is_nan() {
@@ -879,9 +948,8 @@ impl Sampler<'_> {
         let mut from_right = 0usize; // the last tangent point, counted from the right
         // The highest curvature-corrected sample added so far (all ahead of the view).
         let mut g_max = f64::NEG_INFINITY;
-        let last_view = views.last().map_or(0, |v| v.i);
         for (slot, v) in views.iter().enumerate().rev() {
-            let mut best = self.near_best(v, last_view);
+            let mut best = v.near;
             let a = v.i + NEAR_STEPS + 1;
             if far > 0 && a < n {
                 while next > a {
@@ -963,9 +1031,8 @@ impl Sampler<'_> {
         // The last tangent points: part A's counted from its right end, part B's
         // from its left end (the ends that stay put as the hulls change).
         let (mut from_right, mut from_left) = (0usize, 0usize);
-        let last_view = views.last().map_or(0, |v| v.i);
         for (slot, v) in views.iter().enumerate().rev() {
-            let mut best = self.near_best(v, last_view);
+            let mut best = v.near;
             let a = v.i + NEAR_STEPS + 1;
             if a < n {
                 let b = (a + far - 1).min(n - 1);
@@ -1417,7 +1484,55 @@ pub fn bake_azimuths(
 
 #[cfg(test)]
 mod tests {
-    use super::first_true;
+    use super::{LineScratch, Lines, NEAR_STEPS, Sampler, first_true};
+    use crate::Heightfield;
+
+    /// The near field computed in [`Sampler::build`]'s forward pass equals
+    /// [`Sampler::near_best`] bit for bit for every view of every line, including the
+    /// views whose ray reaches the line's last texel or leaves the map, and maximum
+    /// distances shorter than the near field.
+    #[test]
+    fn build_near_field_is_near_best() {
+        let (w, h) = (23, 17);
+        let hf = Heightfield::from_fn(w, h, 30.0, |x, y| {
+            let (x, y) = (x as f32, y as f32);
+            // Rough terrain with exact zeros and negative heights.
+            ((x * 1.7 + y * 0.9).sin() * 300.0 + (x * y * 0.37).cos() * 120.0).round() - 60.0
+        })
+        .unwrap();
+        for k in 0..32 {
+            let azimuth = k as f64 * std::f64::consts::TAU / 32.0;
+            let lines = Lines::new(w, h, hf.spacing(), azimuth);
+            if lines.exact {
+                continue;
+            }
+            let grid = lines.dominant_major(&hf);
+            for max_steps in [1, 2, NEAR_STEPS, 7, usize::MAX] {
+                for inv_two_r in [0.0, 0.5 / 6.371e6] {
+                    let sampler = Sampler {
+                        lines: &lines,
+                        grid: &grid,
+                        inv_two_r,
+                        max_steps,
+                    };
+                    let mut sc = LineScratch::default();
+                    for c in lines.ids() {
+                        sampler.build(c, &mut sc);
+                        let last = sc.views.last().map_or(0, |v| v.i);
+                        for v in &sc.views {
+                            let expected = sampler.near_best(v, last);
+                            assert_eq!(
+                                v.near.to_bits(),
+                                expected.to_bits(),
+                                "azimuth {k}/32, K {max_steps}, line {c}, view {}",
+                                v.i
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
 
     /// The galloping search finds the first true position from every guess, as a
     /// bisection of the whole range does (the tangent searches rely on it).
