@@ -271,6 +271,11 @@ pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, Rend
                 }
             });
     }
+    if let Some(shell) = &scene.shell_cloud {
+        // The [clouds.shell] deck (crate::shell_clouds), before the volume cloud.
+        let tables = precomputed.as_ref().map(|p| (p.luts, &p.frame));
+        crate::shell_clouds::composite_shell_cloud(scene, shell, tables, &mut out)?;
+    }
     if let Some(cloud) = &scene.volume_cloud {
         composite_volume_cloud(scene, cloud, precomputed.as_ref(), &mut out)?;
     }

@@ -24,6 +24,7 @@ pub mod gpu;
 pub mod present;
 pub mod projection;
 pub mod scene;
+pub mod shell_clouds;
 pub mod terrain_mesh;
 pub mod terrain_shading;
 pub mod tonemap;

@@ -688,7 +688,7 @@ pub(crate) struct VolumeCloudPass {
 }
 
 #[cfg(feature = "gpu")]
-fn buffer_entry(
+pub(crate) fn buffer_entry(
     binding: u32,
     visibility: wgpu::ShaderStages,
     ty: wgpu::BufferBindingType,
@@ -706,7 +706,7 @@ fn buffer_entry(
 }
 
 #[cfg(feature = "gpu")]
-fn depth_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+pub(crate) fn depth_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility,
@@ -720,7 +720,7 @@ fn depth_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupL
 }
 
 #[cfg(feature = "gpu")]
-fn compute_pipeline(
+pub(crate) fn compute_pipeline(
     device: &wgpu::Device,
     label: &str,
     module: &wgpu::ShaderModule,

@@ -213,6 +213,7 @@ pub struct SceneRenderer {
     clouds: Option<CloudPass>,
     volume_cloud: Option<crate::volume_clouds::VolumeCloudPass>,
     billboard_cloud: Option<crate::billboard_clouds::BillboardCloudPass>,
+    shell_cloud: Option<crate::shell_clouds::ShellCloudPass>,
     hdr: wgpu::Texture,
     hdr_view: wgpu::TextureView,
     depth_view: wgpu::TextureView,
@@ -370,6 +371,7 @@ pub fn planned_passes(scene: &PreparedScene) -> Vec<(&'static str, Result<String
         },
     ));
     plan.push(("billboard clouds", crate::billboard_clouds::explain(scene)));
+    plan.extend(crate::shell_clouds::shell_pass_plans(scene));
     plan.push((
         "display",
         Ok("exposure, 1 − exp(−x), sRGB, dither to RGBA8".into()),
@@ -660,6 +662,12 @@ impl SceneRenderer {
             None => None,
         };
 
+        // Only a scene with [clouds.shell] builds the shell's march and composite.
+        let shell_cloud = match &scene.shell_cloud {
+            Some(_) => Some(crate::shell_clouds::ShellCloudPass::new(device, &luts, HDR)?),
+            None => None,
+        };
+
         // Only a scene drawing [clouds.volume] as billboards builds their pipeline.
         let billboard_cloud = match &scene.billboard_cloud {
             Some(_) => Some(crate::billboard_clouds::BillboardCloudPass::new(
@@ -782,6 +790,10 @@ impl SceneRenderer {
             if scene.billboard_cloud.is_some() {
                 labels.push("billboard clouds");
             }
+            if scene.shell_cloud.is_some() {
+                labels.push("shell cloud march");
+                labels.push("shell clouds");
+            }
             labels.push("display");
             PassTimes::new(device, queue, labels)
         } else {
@@ -800,6 +812,7 @@ impl SceneRenderer {
             clouds,
             volume_cloud,
             billboard_cloud,
+            shell_cloud,
             hdr,
             hdr_view,
             depth_view,
@@ -1144,6 +1157,19 @@ impl SceneRenderer {
                 });
             }
         }
+        match (&mut self.shell_cloud, &scene.shell_cloud) {
+            (Some(pass), Some(cloud)) => {
+                pass.prepare(&self.device, queue, scene, cloud, &self.depth_view)?;
+            }
+            (None, None) => {}
+            (built, _) => {
+                return Err(RenderError::InvalidParameter {
+                    field: "clouds.shell",
+                    value: if built.is_some() { "absent" } else { "given" }.into(),
+                    reason: "differs from the scene the renderer was built for",
+                });
+            }
+        }
         match (&mut self.billboard_cloud, &scene.billboard_cloud) {
             (Some(pass), Some(cloud)) => pass.prepare(&self.device, queue, scene, cloud)?,
             (None, None) => {}
@@ -1472,6 +1498,30 @@ impl SceneRenderer {
             pass.set_pipeline(&clouds.pipeline);
             pass.set_bind_group(0, &clouds.bind_group, &[]);
             pass.draw(0..3, 0..1);
+        }
+        if let Some(shell) = &self.shell_cloud {
+            // After the terrain (the march stops at its depth), before the volume cloud.
+            shell.encode_march(
+                encoder,
+                &self.luts,
+                times.and_then(|t| t.compute_writes("shell cloud march")),
+            )?;
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("render shell clouds"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &self.hdr_view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: times.and_then(|t| t.render_writes("shell clouds")),
+                ..Default::default()
+            });
+            shell.draw(&mut pass)?;
         }
         if let Some(volume) = &self.volume_cloud {
             // After the terrain: the march stops at its depth.

@@ -116,6 +116,19 @@ pub enum SceneError {
         /// celestial's error.
         source: Box<celestial::CelestialError>,
     },
+    /// `cloudlight` rejected a value (the `[clouds.shell]` shell or its march settings:
+    /// `cloudlight::ShellError`, `cloudlight::march::MarchError`).
+    #[error("{}`{field}` = {value}: rejected by cloudlight: {source}", At(*location))]
+    Cloudlight {
+        /// Where.
+        location: Option<Location>,
+        /// Dotted key.
+        field: String,
+        /// The value as typed (with its unit).
+        value: String,
+        /// cloudlight's error, naming its own field.
+        source: Box<dyn std::error::Error + Send + Sync>,
+    },
 }
 
 impl SceneError {
@@ -127,7 +140,8 @@ impl SceneError {
             | Self::Invalid { location, .. }
             | Self::Atmosphere { location, .. }
             | Self::Terrain { location, .. }
-            | Self::Celestial { location, .. } => *location,
+            | Self::Celestial { location, .. }
+            | Self::Cloudlight { location, .. } => *location,
         }
     }
 
@@ -139,7 +153,8 @@ impl SceneError {
             Self::Invalid { field, .. }
             | Self::Atmosphere { field, .. }
             | Self::Terrain { field, .. }
-            | Self::Celestial { field, .. } => Some(field),
+            | Self::Celestial { field, .. }
+            | Self::Cloudlight { field, .. } => Some(field),
         }
     }
 

@@ -196,6 +196,8 @@ pub struct CloudsSection {
     pub layers: Vec<CloudLayerSection>,
     /// A volumetric cloud (`crate::volume_clouds`).
     pub volume: Option<CloudVolumeSection>,
+    /// Seed 003's ray-marched cloud shell (`crate::shell_clouds`).
+    pub shell: Option<crate::shell_clouds::CloudShellSection>,
 }
 
 /// `[clouds.volume]`: a cloud grown by `cloudsim`'s automaton (seed, steps, grid,

@@ -108,6 +108,9 @@ pub struct PreparedScene {
     /// The `[clouds.volume]` cloud grown, placed and lit (`crate::volume_clouds`);
     /// `None` without the section (then no automaton runs and no march pass is built).
     pub volume_cloud: Option<crate::volume_clouds::PreparedVolume>,
+    /// The `[clouds.shell]` shell and its lighting (`crate::shell_clouds`); `None`
+    /// without the section (then no march pass is built, nothing allocated).
+    pub shell_cloud: Option<crate::shell_clouds::PreparedShell>,
     /// The `[clouds.volume]` cloud with `draw = "billboards"`, grown and lit by slices
     /// (`crate::billboard_clouds`); then `volume_cloud` is `None` (no march).
     pub billboard_cloud: Option<crate::billboard_clouds::PreparedBillboards>,
@@ -451,6 +454,9 @@ impl Scene {
             self.check_volume_cloud(section)?;
             self.check_billboard_cloud(section)?;
         }
+        if let Some(section) = file.clouds.as_ref().and_then(|c| c.shell.as_ref()) {
+            self.check_shell_cloud(section, &atmosphere)?;
+        }
         // The expensive parts last, once every cheap check has passed.
         let (sky_model, segment_model, precomputed) = self.models(&atmosphere)?;
         let terrain = self.terrain()?;
@@ -502,6 +508,16 @@ impl Scene {
             )?),
             None => None,
         };
+        let shell_cloud = match file.clouds.as_ref().and_then(|c| c.shell.as_ref()) {
+            Some(section) => Some(self.shell_cloud(
+                section,
+                &atmosphere,
+                &*sky_model,
+                camera_position,
+                sun,
+            )?),
+            None => None,
+        };
         if sky_objects.is_some() {
             // celestial draws the sun's limb-darkened disc: atmos' uniform one is off.
             present.sun_disc_radiance = [0.0; 3];
@@ -525,6 +541,7 @@ impl Scene {
             moonlit,
             volume_cloud,
             billboard_cloud,
+            shell_cloud,
             celestial_sky: sky,
         })
     }

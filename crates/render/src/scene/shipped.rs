@@ -46,6 +46,11 @@ pub const SHIPPED: &[ShippedScene] = &[
         source: include_str!("../../scenes/billboards.toml"),
     },
     ShippedScene {
+        name: "stratocumulus",
+        description: "a deck of stratocumulus over hills seen from a valley: seed 003's ray-marched cloud shell",
+        source: include_str!("../../scenes/stratocumulus.toml"),
+    },
+    ShippedScene {
         name: "orbit",
         description: "the planet's limb from 400 km up, the sun just above it",
         source: include_str!("../../scenes/orbit.toml"),

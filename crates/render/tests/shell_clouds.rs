@@ -1,0 +1,306 @@
+//! `[clouds.shell]`: seed 003's ray-marched cloud shell in a scene. The scene keys'
+//! errors (cloudlight's validation, named by key and line), nothing planned without
+//! the section, the shipped `stratocumulus` scene on the CPU (hills in front of the
+//! deck hide it, the deck in front of hills covers them, every value finite), an
+//! overcast deck hiding the sun, and the GPU image against the CPU's (lavapipe in CI).
+
+use render::scene::{PreparedScene, Scene, SceneError};
+use render::shell_clouds::{march_shell_pixel, shell_camera};
+
+const VALID: &str = "[camera]\nposition = [0.0, 2.0, 0.0]\nlook_direction = [0.0, 0.2, -1.0]\n\
+                     [sun]\nelevation_deg = 30.0\nazimuth_deg = 180.0\n\
+                     [atmosphere]\nrung = \"closed-form\"\n";
+
+// Lines 9 to 15.
+const SHELL: &str = "[clouds.shell]\nbottom_m = 1000.0\ntop_m = 1800.0\ncoverage = 0.4\n\
+                     cloud_type = 0.5\nsigma_t_per_density = 0.04\nview_steps = 8\n";
+
+fn parse_error(text: &str) -> SceneError {
+    match Scene::parse(text, ".") {
+        Err(e) => e,
+        Ok(scene) => scene.prepare().unwrap_err(),
+    }
+}
+
+fn shipped(width: u32, height: u32) -> Scene {
+    let path = format!(
+        "{}/../../scenes/stratocumulus.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let mut scene = Scene::open(&path).unwrap();
+    scene.file.output.width = width;
+    scene.file.output.height = height;
+    scene
+}
+
+#[test]
+fn shell_errors_name_the_key_and_its_line() {
+    let prepared = Scene::parse(&format!("{VALID}{SHELL}"), ".")
+        .unwrap()
+        .prepare()
+        .unwrap();
+    let shell = prepared.shell_cloud.as_ref().unwrap();
+    let r = prepared.atmosphere.planet_radius;
+    assert_eq!(shell.shell.settings().inner_radius, r + 1000.0);
+    assert_eq!(shell.settings.config().view_steps, 8);
+    for (from, to, key, line, shown) in [
+        // cloudlight's ShellError::InnerBelowGround.
+        (
+            "bottom_m = 1000.0",
+            "bottom_m = -100.0",
+            "bottom_m",
+            10,
+            "-100 m",
+        ),
+        // RadiiOrder.
+        ("top_m = 1800.0", "top_m = 900.0", "top_m", 11, "900 m"),
+        // OutOfRange (the weather's coverage_mean).
+        ("coverage = 0.4", "coverage = 1.5", "coverage", 12, "1.5"),
+        (
+            "cloud_type = 0.5",
+            "cloud_type = nan",
+            "cloud_type",
+            13,
+            "NaN",
+        ),
+        // NotPositive.
+        (
+            "sigma_t_per_density = 0.04",
+            "sigma_t_per_density = 0.0",
+            "sigma_t_per_density",
+            14,
+            "0 /m",
+        ),
+        // render's own bound on the cost.
+        (
+            "view_steps = 8",
+            "view_steps = 5000",
+            "view_steps",
+            15,
+            "5000",
+        ),
+    ] {
+        let e = parse_error(&format!("{VALID}{}", SHELL.replace(from, to)));
+        let message = e.to_string();
+        assert_eq!(
+            e.field(),
+            Some(format!("clouds.shell.{key}").as_str()),
+            "{message}"
+        );
+        assert_eq!(e.location().map(|l| l.line), Some(line), "{message}");
+        assert!(message.contains(shown), "{message}");
+    }
+    // cloudlight's typed errors are kept as the source.
+    let e = parse_error(&format!(
+        "{VALID}{}",
+        SHELL.replace("coverage = 0.4", "coverage = 1.5")
+    ));
+    assert!(matches!(e, SceneError::Cloudlight { .. }), "{e}");
+    let source = std::error::Error::source(&e).expect("cloudlight's error is the source");
+    assert!(source.to_string().contains("coverage_mean"), "{source}");
+    for (extra, key) in [
+        ("erosion = 1.0\n", "erosion"),
+        ("weather_cells = 0\n", "weather_cells"),
+        ("octave_b = 2.0\n", "octave_b"),
+        ("light_steps = 0\n", "light_steps"),
+        (
+            "horizon_fade_start_m = 5000.0\nhorizon_fade_end_m = 4000.0\n",
+            "horizon_fade_end_m",
+        ),
+    ] {
+        let e = parse_error(&format!("{VALID}{SHELL}{extra}"));
+        assert_eq!(
+            e.field(),
+            Some(format!("clouds.shell.{key}").as_str()),
+            "{e}"
+        );
+        assert!(e.location().is_some(), "{e}");
+    }
+    // A misspelt key: the nearest one is suggested.
+    let e = parse_error(&format!("{VALID}{SHELL}coverge_contrast = 0.1\n"));
+    assert!(e.to_string().contains("coverage_contrast"), "{e}");
+}
+
+/// Whether `skyscape explain` plans the pass called `name`.
+fn planned(scene: &PreparedScene, name: &str) -> Option<bool> {
+    render::gpu::scene::planned_passes(scene)
+        .into_iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, plan)| plan.is_ok())
+}
+
+/// The shipped deck at 64×36 on the CPU: where a hill is nearer than the deck's bottom
+/// sphere the pixel is exactly the deck-less render; where the deck is in front of a hill
+/// it covers it; cloudy sky pixels differ; every value finite and ≥ 0.
+#[test]
+fn the_shipped_deck_is_hidden_by_hills_in_front_and_covers_hills_behind() {
+    let (width, height) = (64, 36);
+    let scene = shipped(width, height);
+    let cloudy = scene.prepare().unwrap();
+    let mut clear = scene.clone();
+    clear.file.clouds = None;
+    let clear = clear.prepare().unwrap();
+    assert!(clear.shell_cloud.is_none());
+    for name in ["shell cloud march", "shell clouds"] {
+        assert_eq!(planned(&cloudy, name), Some(true), "{name}");
+        assert_eq!(planned(&clear, name), Some(false), "{name}");
+    }
+    let with = render::cpu_renderer::render_radiance(&cloudy).unwrap();
+    let without = render::cpu_renderer::render_radiance(&clear).unwrap();
+    let cloud = cloudy.shell_cloud.as_ref().unwrap();
+    let camera = shell_camera(&cloudy.camera).unwrap();
+    let settings = cloud.shell.settings();
+    let [forward, right, up] = camera.basis();
+    let tan_half = camera.tan_half([width, height]);
+    let (mut hidden, mut covering, mut sky) = (0, 0, 0);
+    for y in 0..height {
+        for x in 0..width {
+            let i = (y * width + x) as usize;
+            assert!(
+                with[i].radiance.iter().all(|v| v.is_finite() && *v >= 0.0),
+                "pixel {x}, {y}: {:?}",
+                with[i].radiance
+            );
+            let direction = cloudlight::march::pixel_direction(
+                [x, y],
+                [width, height],
+                forward,
+                right,
+                up,
+                tan_half,
+            );
+            // Where the ray enters the shell (f64, cloudlight's spans).
+            let spans = cloudlight::shell::shell_ray_spans(
+                camera.origin(),
+                direction,
+                cloudy.atmosphere.planet_radius,
+                settings.inner_radius,
+                settings.outer_radius,
+            );
+            let enter = if spans.count > 0 {
+                spans.spans[0].0
+            } else {
+                f64::INFINITY
+            };
+            let pixel = [x, y];
+            match without[i].terrain_distance {
+                Some(d) if f64::from(d) < enter - 1.0 => {
+                    // The hill is in front of the whole deck: not drawn.
+                    hidden += 1;
+                    assert_eq!(with[i].radiance, without[i].radiance, "pixel {x}, {y}");
+                }
+                Some(d) => {
+                    let m = march_shell_pixel(cloud, &camera, [width, height], pixel, d);
+                    if m.transmittance < 0.9 {
+                        // The deck in front of the hill covers it.
+                        covering += 1;
+                        assert_ne!(with[i].radiance, without[i].radiance, "pixel {x}, {y}");
+                    }
+                }
+                None => {
+                    let m =
+                        march_shell_pixel(cloud, &camera, [width, height], pixel, f32::INFINITY);
+                    if m.transmittance < 0.5 {
+                        sky += 1;
+                        assert_ne!(with[i].radiance, without[i].radiance, "pixel {x}, {y}");
+                    }
+                }
+            }
+        }
+    }
+    eprintln!(
+        "stratocumulus {width}×{height}: {hidden} hill pixels in front of the deck (unchanged), \
+         {covering} hill pixels behind deck cloud (T < 0.9, covered), {sky} sky pixels behind \
+         deck cloud (T < 0.5)"
+    );
+    assert!(
+        hidden > 50 && covering > 0 && sky > 50,
+        "{hidden} {covering} {sky}"
+    );
+}
+
+/// An overcast deck (coverage 1) between the viewer and the sun hides the sun's disc:
+/// the brightest pixel of a view centred on the sun drops by orders of magnitude.
+#[test]
+fn an_overcast_deck_hides_the_sun() {
+    let text = "[camera]\nposition = [0.0, 2.0, 0.0]\n\
+                look_direction = [0.0, 0.8391, -1.0]\nvertical_fov_deg = 4.0\n\
+                [sun]\nelevation_deg = 40.0\nazimuth_deg = 0.0\n\
+                [output]\nwidth = 24\nheight = 16\n";
+    let deck = "[clouds.shell]\nbottom_m = 1000.0\ntop_m = 1800.0\ncoverage = 1.0\n\
+                coverage_contrast = 0.0\ncloud_type = 0.5\ncloud_type_contrast = 0.0\n\
+                view_steps = 8\nlight_steps = 2\nambient_steps = 1\noctaves = 2\n";
+    let brightest = |text: &str| {
+        let scene = Scene::parse(text, ".").unwrap().prepare().unwrap();
+        render::cpu_renderer::render_radiance(&scene)
+            .unwrap()
+            .iter()
+            .map(|p| p.radiance[1])
+            .fold(0.0f32, f32::max)
+    };
+    let clear = brightest(text);
+    let overcast = brightest(&format!("{text}{deck}"));
+    eprintln!("brightest pixel toward the sun: clear {clear:.3e}, under the deck {overcast:.3e}");
+    assert!(overcast < 1e-2 * clear, "{overcast} vs {clear}");
+}
+
+fn gpu_pixels(gpu: &skyscape_harness::GpuContext, scene: &PreparedScene) -> Vec<u32> {
+    let settings = render::gpu::SceneRendererSettings {
+        terrain_error_px: 0.0,
+        timestamps: false,
+    };
+    let mut renderer =
+        render::gpu::SceneRenderer::new(&gpu.device, &gpu.queue, scene, settings).unwrap();
+    renderer.prepare(&gpu.queue, scene).unwrap();
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    renderer.encode(&mut encoder).unwrap();
+    gpu.queue.submit([encoder.finish()]);
+    let buffer = renderer.pixel_buffer();
+    let bytes =
+        skyscape_harness::read_buffer(gpu, "scene pixels", buffer, 0, buffer.size()).unwrap();
+    bytemuck::cast_slice(&bytes).to_vec()
+}
+
+/// The shipped deck at 96×54 on the GPU (`cloudlight::gpu::MarchShellPass` limited by
+/// the terrain's depth, the volume cloud's air and composite passes) and on the CPU.
+#[test]
+fn the_deck_agrees_on_the_gpu_and_the_cpu() {
+    let Some(gpu) = skyscape_harness::gpu_or_skip("render::shell_clouds") else {
+        return;
+    };
+    let (width, height) = (96, 54);
+    let scene = shipped(width, height).prepare().unwrap();
+    let gpu_image = gpu_pixels(gpu, &scene);
+    let cpu_image = render::cpu_renderer::render_cpu(&scene).unwrap().pixels;
+    let within = |lsb| render::tonemap::fraction_within_lsb(&gpu_image, &cpu_image, lsb).unwrap();
+    let cloud = scene.shell_cloud.as_ref().unwrap();
+    let camera = shell_camera(&scene.camera).unwrap();
+    let (mut cloud_pixels, mut cloud_within, mut worst) = (0usize, 0usize, 0u32);
+    for y in 0..height {
+        for x in 0..width {
+            let m = march_shell_pixel(cloud, &camera, [width, height], [x, y], f32::INFINITY);
+            if m.transmittance < 1.0 {
+                let i = (y * width + x) as usize;
+                let d = (0..3)
+                    .map(|c| {
+                        let code = |p: u32| (p >> (8 * c)) & 255;
+                        code(gpu_image[i]).abs_diff(code(cpu_image[i]))
+                    })
+                    .max()
+                    .unwrap();
+                cloud_pixels += 1;
+                cloud_within += usize::from(d <= 2);
+                worst = worst.max(d);
+            }
+        }
+    }
+    let (two, eight) = (within(2), within(8));
+    eprintln!(
+        "stratocumulus {width}×{height} GPU vs CPU: {:.3} % of pixels within 2 LSB, {:.3} % \
+         within 8; deck pixels {cloud_within} of {cloud_pixels} within 2 LSB, worst {worst} LSB",
+        100.0 * two,
+        100.0 * eight
+    );
+    assert!(cloud_pixels > 500, "{cloud_pixels}");
+    assert!(two >= 0.999 && eight >= 0.9995, "{two} {eight}");
+}
