@@ -80,15 +80,21 @@ fn height_at(texel: vec2<u32>) -> f32 {
     return heights[t.x + terrain.map_size.x * t.y];
 }
 
-@vertex
-fn terrain_vertex(@location(0) grid: vec4<u32>, @location(1) tile_origin: vec2<u32>, @location(2) tile_step: u32, @location(3) tile_skirt: f32) -> TerrainVarying {
+// A tile vertex's world position (its grid vertex, tile and skirt: render::terrain_mesh).
+// Twin: render::aerial_vertex's vertex_world (grid vertices).
+fn tile_vertex_world(grid: vec4<u32>, tile_origin: vec2<u32>, tile_step: u32, tile_skirt: f32) -> vec3<f32> {
     let texel = min(tile_origin + grid.xy * tile_step, terrain.map_size - vec2<u32>(1u));
     var elevation = height_at(texel);
     if grid.z != 0u {
         elevation -= tile_skirt;
     }
     let map = vec2<f32>(texel) * terrain.spacing;
-    let world = vec3<f32>(map.x - terrain.map_offset.x, elevation, map.y - terrain.map_offset.y);
+    return vec3<f32>(map.x - terrain.map_offset.x, elevation, map.y - terrain.map_offset.y);
+}
+
+@vertex
+fn terrain_vertex(@location(0) grid: vec4<u32>, @location(1) tile_origin: vec2<u32>, @location(2) tile_step: u32, @location(3) tile_skirt: f32) -> TerrainVarying {
+    let world = tile_vertex_world(grid, tile_origin, tile_step, tile_skirt);
     return TerrainVarying(terrain.view_projection * vec4<f32>(world, 1.0), world);
 }
 
@@ -161,8 +167,11 @@ fn volume_cloud_shadow(world: vec3<f32>) -> f32 {
     return bilinear(volume_shadow_value(i, j), volume_shadow_value(i + 1, j), volume_shadow_value(i, j + 1), volume_shadow_value(i + 1, j + 1), texel.x - f.x, texel.y - f.y);
 }
 
-// Radiance of the terrain at world position `world`, seen from the camera.
-fn terrain_radiance(world: vec3<f32>) -> vec3<f32> {
+// The terrain's own radiance at world position `world`, lit by `light_at_point` (the
+// light's irradiance through the atmosphere there, from the scene's rung) and the sky's
+// irradiance. Rungs without tables call it with their own light and aerial perspective
+// (render::terrain_closed_form, render::terrain_single).
+fn terrain_surface(world: vec3<f32>, light_at_point: vec3<f32>) -> vec3<f32> {
     let map = vec2<f32>(world.x, world.z) + terrain.map_offset;
     let f = texel_footprint(map / terrain.spacing);
     let n = normals[f.index.x] * f.weight.x + normals[f.index.y] * f.weight.y
@@ -183,8 +192,14 @@ fn terrain_radiance(world: vec3<f32>) -> vec3<f32> {
     let albedo = terrain_albedo(terrain.albedo, world.y, normal.z);
     let offset = world - terrain.camera;
     let cloud_shadow = cloud_shadow_at(offset) * volume_cloud_shadow(world);
-    let surface = surface_radiance(normal, normal.z, terrain.sun_enu, albedo, self_shadow, cloud_shadow, sunlight_at(offset), terrain.sky_irradiance);
-    return apply_aerial_perspective(surface, offset);
+    return surface_radiance(normal, normal.z, terrain.sun_enu, albedo, self_shadow, cloud_shadow, light_at_point, terrain.sky_irradiance);
+}
+
+// Radiance of the terrain at world position `world`, seen from the camera (the
+// precomputed rung: the sun and the aerial perspective from its tables).
+fn terrain_radiance(world: vec3<f32>) -> vec3<f32> {
+    let offset = world - terrain.camera;
+    return apply_aerial_perspective(terrain_surface(world, sunlight_at(offset)), offset);
 }
 
 @fragment

@@ -74,6 +74,9 @@ struct TerrainLight<'a> {
     /// spanning the terrain's range, first to last.
     sun_table: Vec<Vec3>,
     elevation_range: [f64; 2],
+    /// The per-vertex aerial perspective's mesh and vertex segments
+    /// (`[terrain] aerial_perspective = "per-vertex"`), `None` per pixel.
+    vertex_aerial: Option<crate::aerial_vertex::VertexAerial>,
 }
 
 /// Elevations at which the sun's transmittance is queried per frame. The terrain is
@@ -486,6 +489,13 @@ fn terrain_light<'a>(
         sun_azimuth: lighting.sun_azimuth,
         sun_table,
         elevation_range: [low, high],
+        vertex_aerial: terrain.aerial_perspective.per_vertex().then(|| {
+            crate::aerial_vertex::VertexAerial::new(
+                scene,
+                terrain,
+                crate::aerial_vertex::TERRAIN_ERROR_PX,
+            )
+        }),
     })
 }
 
@@ -701,6 +711,16 @@ fn shade_terrain(
             Vec3::from_array(sun),
             light.sky_irradiance,
         );
+        if let Some(vertex) = &light.vertex_aerial {
+            let tables = Some((p.luts, &p.frame));
+            let segment = vertex.segment(hit.texel, view, |offset| {
+                crate::aerial_vertex::segment_to(scene, &light.illuminant, tables, offset)
+            })?;
+            return Ok(crate::aerial_vertex::seen_through(
+                surface.to_array(),
+                &segment,
+            ));
+        }
         return Ok(atmos::lut::drop_in::apply_aerial_perspective(
             p.luts,
             &p.frame,
@@ -727,6 +747,15 @@ fn shade_terrain(
         sun_at_point,
         light.sky_irradiance,
     );
+    if let Some(vertex) = &light.vertex_aerial {
+        let segment = vertex.segment(hit.texel, view, |offset| {
+            crate::aerial_vertex::segment_to(scene, &light.illuminant, None, offset)
+        })?;
+        return Ok(crate::aerial_vertex::seen_through(
+            surface.to_array(),
+            &segment,
+        ));
+    }
     let query = atmos::SkyQuery::with_max_distance(
         planet,
         scene.camera_position,

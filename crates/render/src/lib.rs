@@ -15,6 +15,7 @@
 //! # }
 //! ```
 
+pub mod aerial_vertex;
 pub mod billboard_clouds;
 pub mod clouds;
 pub mod cpu_renderer;
@@ -74,6 +75,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {
         name: "render::terrain",
         source: include_str!("../shaders/terrain.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::terrain_aerial_vertex",
+        source: include_str!("../shaders/terrain_aerial_vertex.wgsl"),
     },
     skyscape_wgsl::Module {
         name: "render::clouds",

@@ -53,7 +53,7 @@ pub struct SceneRendererSettings {
 impl Default for SceneRendererSettings {
     fn default() -> Self {
         Self {
-            terrain_error_px: 1.0,
+            terrain_error_px: crate::aerial_vertex::TERRAIN_ERROR_PX,
             timestamps: false,
         }
     }
@@ -282,14 +282,15 @@ pub fn planned_passes(scene: &PreparedScene) -> Vec<(&'static str, Result<String
     ));
     plan.push((
         "terrain",
-        if scene.terrain.is_some() {
+        if let Some(terrain) = &scene.terrain {
+            let aerial = crate::aerial_vertex::plan(terrain.aerial_perspective);
             Ok(if scene.moonlit.is_some() {
-                "instanced quadtree tiles, seed 000's shading, aerial perspective per pixel; \
-                 drawn again lit by the moon through the moonlit tables, added (timed with \
-                 \"terrain\")"
-                    .into()
+                format!(
+                    "instanced quadtree tiles, seed 000's shading, {aerial}; drawn again lit by \
+                     the moon through the moonlit tables, added (timed with \"terrain\")"
+                )
             } else {
-                "instanced quadtree tiles, seed 000's shading, aerial perspective per pixel".into()
+                format!("instanced quadtree tiles, seed 000's shading, {aerial}")
             })
         } else {
             Err("the scene has no [terrain]: no terrain pipeline, no horizon maps".into())
@@ -562,6 +563,7 @@ impl SceneRenderer {
                 reason: "beyond the device's largest texture side",
             });
         }
+        crate::aerial_vertex::check_gpu(scene)?;
         let luts = AtmosphereLuts::new(device, &scene.atmosphere, &Default::default())?;
         let sky = SkyPass::new(
             device,
@@ -970,7 +972,11 @@ impl SceneRenderer {
                 })
             };
         let bind_group = bind_group_with(&uniform, &cloud_layers, &volume_shadow);
-        let source = crate::composer().compose_module("render::terrain")?;
+        // `[terrain] aerial_perspective`: render::terrain per pixel, or its per-vertex
+        // entry points (render::aerial_vertex).
+        let (shader, vertex_entry, fragment_entry) =
+            crate::aerial_vertex::terrain_shader(terrain.aerial_perspective);
+        let source = crate::composer().compose_module(shader)?;
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("render terrain"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
@@ -1008,7 +1014,7 @@ impl SceneRenderer {
                 layout: Some(&pipeline_layout),
                 vertex: wgpu::VertexState {
                     module: &module,
-                    entry_point: Some("terrain_vertex"),
+                    entry_point: Some(vertex_entry),
                     compilation_options: Default::default(),
                     buffers: &[
                         Some(wgpu::VertexBufferLayout {
@@ -1039,7 +1045,7 @@ impl SceneRenderer {
                 multisample: Default::default(),
                 fragment: Some(wgpu::FragmentState {
                     module: &module,
-                    entry_point: Some("terrain_fragment"),
+                    entry_point: Some(fragment_entry),
                     compilation_options: Default::default(),
                     targets: &[Some(target)],
                 }),

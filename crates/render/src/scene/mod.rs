@@ -553,6 +553,9 @@ pub struct TerrainSection {
     pub horizon: HorizonVariant,
     /// Number of azimuths when `horizon = "azimuths"` (terrain accepts 4..=64).
     pub horizon_azimuths: Option<usize>,
+    /// Where the aerial perspective is evaluated: `per-pixel` or `per-vertex` (seed 000).
+    #[serde(default)]
+    pub aerial_perspective: crate::aerial_vertex::AerialPerspective,
 }
 
 /// `[terrain.procedural]`.

@@ -38,6 +38,8 @@ pub struct PreparedTerrain {
     pub horizon: HorizonMaps,
     /// Its colour.
     pub albedo: AlbedoRamp,
+    /// Where its aerial perspective is evaluated (`[terrain] aerial_perspective`).
+    pub aerial_perspective: crate::aerial_vertex::AerialPerspective,
 }
 
 /// The horizon maps of the scene's variant.
@@ -1004,6 +1006,7 @@ impl Scene {
             normals,
             horizon,
             albedo,
+            aerial_perspective: section.aerial_perspective,
         }))
     }
 }

@@ -1,0 +1,448 @@
+//! The terrain's aerial perspective per vertex (seed 000) or per pixel, and the CPU twin
+//! of the per-vertex variant.
+//!
+//! `[terrain] aerial_perspective = "per-pixel"` (the default) evaluates the segment
+//! camera → point (transmittance and in-scatter, atmos' `aerial_perspective`) for every
+//! terrain fragment at its position. `"per-vertex"` evaluates it, as seed 000's vertex
+//! shader does, at the vertices of the GPU's terrain mesh (the quadtree tiles of
+//! [`crate::terrain_mesh`], in the vertex stage of `shaders/render/terrain.wgsl`, the
+//! same WGSL function by `#import`) and lets the rasteriser interpolate it to the
+//! fragments (perspective-correct). A fragment then pays a multiply-add instead of a
+//! lookup in the aerial-perspective volume or, beyond its 32 km range and off screen, a
+//! march through the tables; the price is the interpolation error over a triangle, which
+//! grows with the tile's step (far, coarse tiles).
+//!
+//! The CPU reference renderer ray casts the bilinear heightfield, so it has no triangles
+//! of its own. Its twin of the per-vertex variant ([`VertexAerial`]) selects the tiles
+//! the GPU draws (the same [`TerrainLod::select`] with the camera the GPU renderer
+//! passes and its default error, [`TERRAIN_ERROR_PX`]), finds the tile and triangle
+//! under the ray's hit, evaluates the segment at that triangle's three vertices (world
+//! positions computed in f32 as the vertex shader computes them) and interpolates it
+//! with the barycentric coordinates of the point where the pixel's ray meets the
+//! triangle's plane: what a perspective-correct rasteriser interpolates at that pixel.
+//! Where the two differ:
+//! - the triangle is the one under the bilinear surface's hit, not the first triangle
+//!   along the ray; they differ where the coarse mesh and the bilinear surface part
+//!   (silhouettes, and within a tile's geometric error of them). When the ray meets the
+//!   chosen triangle's plane outside the triangle, the hit's own (vertical) barycentric
+//!   coordinates are used instead;
+//! - skirts (the vertical strips hiding cracks between tiles of different steps) are
+//!   never hit by the ray caster; a GPU pixel showing a skirt interpolates between its
+//!   border vertex and the lowered copy;
+//! - a GPU renderer built with another `terrain_error_px` than [`TERRAIN_ERROR_PX`] draws
+//!   other tiles than the twin assumes.
+
+use std::sync::OnceLock;
+
+use atmos::lut::raymarch::ScatteringSegment;
+use glam::{DVec2, DVec3, Vec3};
+use serde::Deserialize;
+
+use crate::RenderError;
+use crate::scene::prepare::{Illuminant, PreparedScene, PreparedTerrain};
+use crate::terrain_mesh::{TILE_CELLS, TerrainLod, Tile};
+
+/// Where the terrain's aerial perspective is evaluated (`[terrain] aerial_perspective`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum AerialPerspective {
+    /// At every terrain pixel (fragment), at its own position.
+    #[default]
+    PerPixel,
+    /// At the terrain mesh's vertices (seed 000), interpolated across each triangle.
+    PerVertex,
+}
+
+impl AerialPerspective {
+    /// The name as written in a scene file.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::PerPixel => "per-pixel",
+            Self::PerVertex => "per-vertex",
+        }
+    }
+
+    /// The WGSL `override aerial_per_vertex` value of the terrain pipeline.
+    pub fn per_vertex(self) -> bool {
+        self == Self::PerVertex
+    }
+}
+
+/// The terrain pipeline of a variant: the WGSL module and its vertex and fragment entry
+/// points (`render::terrain` per pixel, `render::terrain_aerial_vertex` per vertex).
+pub fn terrain_shader(variant: AerialPerspective) -> (&'static str, &'static str, &'static str) {
+    match variant {
+        AerialPerspective::PerPixel => ("render::terrain", "terrain_vertex", "terrain_fragment"),
+        AerialPerspective::PerVertex => (
+            "render::terrain_aerial_vertex",
+            "terrain_aerial_vertex",
+            "terrain_aerial_fragment",
+        ),
+    }
+}
+
+/// What `skyscape explain` says of a variant.
+pub fn plan(variant: AerialPerspective) -> &'static str {
+    match variant {
+        AerialPerspective::PerPixel => {
+            "aerial perspective per pixel (atmos' aerial_perspective per fragment: the \
+             table within its range on screen, a march of the tables elsewhere)"
+        }
+        AerialPerspective::PerVertex => {
+            "aerial perspective per vertex (seed 000: atmos' aerial_perspective at each tile \
+             vertex, interpolated across the triangles; [terrain] aerial_perspective = \
+             \"per-vertex\")"
+        }
+    }
+}
+
+/// Whether the GPU renderer draws `scene`'s terrain with the variant it asks for: per
+/// vertex needs the precomputed rung's tables (the GPU terrain passes of the rungs
+/// without tables are per pixel), so a scene asking for it with another rung is an
+/// error there rather than a silently different image; the CPU renderer draws every
+/// rung per vertex.
+pub fn check_gpu(scene: &PreparedScene) -> Result<(), RenderError> {
+    match &scene.terrain {
+        Some(terrain)
+            if terrain.aerial_perspective.per_vertex()
+                && scene.rung != crate::scene::Rung::Precomputed =>
+        {
+            Err(RenderError::InvalidParameter {
+                field: "terrain.aerial_perspective",
+                value: format!(
+                    "\"{}\" with rung \"{}\"",
+                    terrain.aerial_perspective.name(),
+                    scene.rung.name()
+                ),
+                reason: "the GPU renderer evaluates it per vertex from the precomputed rung's \
+                         tables only; render this rung per vertex on the CPU (--cpu)",
+            })
+        }
+        _ => Ok(()),
+    }
+}
+
+/// The GPU renderer's default largest projected geometric error of the terrain (pixels):
+/// `SceneRendererSettings::default().terrain_error_px`, and the error with which the
+/// CPU twin of the per-vertex aerial perspective selects its tiles.
+pub const TERRAIN_ERROR_PX: f64 = 1.0;
+
+/// Vertices per tile (the grid only: skirts are never hit by a ray).
+const TILE_VERTICES: usize = ((TILE_CELLS + 1) * (TILE_CELLS + 1)) as usize;
+
+/// The quadtree tiles a GPU renderer (with [`TERRAIN_ERROR_PX`]) draws for `scene`'s
+/// camera: the same call, with the same arguments, as `SceneRenderer::prepare`.
+pub fn selected_tiles(
+    scene: &PreparedScene,
+    terrain: &PreparedTerrain,
+    lod: &TerrainLod,
+    max_error_px: f64,
+) -> Vec<Tile> {
+    let camera = &scene.camera;
+    let eye = scene.camera_position - DVec3::new(0.0, scene.atmosphere.planet_radius, 0.0);
+    let offset = terrain.map_offset();
+    let pixels_per_radian = f64::from(camera.height) / (2.0 * f64::from(camera.tan_half_fov_y));
+    lod.select(
+        [eye.x + offset[0], eye.z + offset[1], eye.y],
+        pixels_per_radian,
+        max_error_px,
+    )
+}
+
+/// The CPU twin of the per-vertex aerial perspective for one frame and one light (see
+/// the module documentation): the tiles drawn, which tile covers each 64-texel block,
+/// and the segment at each tile vertex, evaluated once when a pixel first needs it.
+pub struct VertexAerial {
+    tiles: Vec<Tile>,
+    /// Per block of `TILE_CELLS`² texels (row-major), the index of the tile covering it.
+    blocks: Vec<u32>,
+    blocks_x: usize,
+    map_size: [u32; 2],
+    spacing: f32,
+    map_offset: [f32; 2],
+    /// The camera's world position, f32 (the terrain uniform's `camera`).
+    eye: Vec3,
+    /// The camera's world position, f64 (the ray's origin).
+    eye64: DVec3,
+    /// Heights as the GPU's storage buffer holds them.
+    heights: Vec<f32>,
+    /// `tiles.len() × 65²` segments, row-major per tile.
+    segments: Vec<OnceLock<ScatteringSegment>>,
+}
+
+impl std::fmt::Debug for VertexAerial {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("VertexAerial")
+            .field("tiles", &self.tiles.len())
+            .field(
+                "segments_evaluated",
+                &self.segments.iter().filter(|s| s.get().is_some()).count(),
+            )
+            .finish_non_exhaustive()
+    }
+}
+
+impl VertexAerial {
+    /// The tiles `scene`'s camera selects on `terrain` with `max_error_px`.
+    pub fn new(scene: &PreparedScene, terrain: &PreparedTerrain, max_error_px: f64) -> Self {
+        let hf = &terrain.heightfield;
+        let lod = TerrainLod::new(hf);
+        let tiles = selected_tiles(scene, terrain, &lod, max_error_px);
+        let (width, height) = (hf.width(), hf.height());
+        let cells = TILE_CELLS as usize;
+        let blocks_x = (width - 1).div_ceil(cells);
+        let blocks_y = (height - 1).div_ceil(cells);
+        let mut blocks = vec![0u32; blocks_x * blocks_y];
+        for (k, tile) in tiles.iter().enumerate() {
+            let (bx, by) = (
+                tile.origin[0] as usize / cells,
+                tile.origin[1] as usize / cells,
+            );
+            let step = tile.step as usize;
+            for y in by..(by + step).min(blocks_y) {
+                for x in bx..(bx + step).min(blocks_x) {
+                    blocks[y * blocks_x + x] = k as u32;
+                }
+            }
+        }
+        let offset = terrain.map_offset();
+        let eye64 = scene.camera_position - DVec3::new(0.0, scene.atmosphere.planet_radius, 0.0);
+        let segments = (0..tiles.len() * TILE_VERTICES)
+            .map(|_| OnceLock::new())
+            .collect();
+        Self {
+            tiles,
+            blocks,
+            blocks_x,
+            map_size: [width as u32, height as u32],
+            spacing: hf.spacing() as f32,
+            map_offset: [offset[0] as f32, offset[1] as f32],
+            eye: eye64.as_vec3(),
+            eye64,
+            heights: hf.elevations().iter().map(|&e| e as f32).collect(),
+            segments,
+        }
+    }
+
+    /// The tiles drawn.
+    pub fn tiles(&self) -> &[Tile] {
+        &self.tiles
+    }
+
+    /// The tile whose grid covers the fractional texel position `texel` (column, row).
+    pub fn tile_at(&self, texel: [f64; 2]) -> &Tile {
+        &self.tiles[self.tile_index(texel)]
+    }
+
+    fn tile_index(&self, texel: [f64; 2]) -> usize {
+        let cells = f64::from(TILE_CELLS);
+        let blocks_y = self.blocks.len() / self.blocks_x;
+        let bx = ((texel[0] / cells).floor().max(0.0) as usize).min(self.blocks_x - 1);
+        let by = ((texel[1] / cells).floor().max(0.0) as usize).min(blocks_y - 1);
+        self.blocks[by * self.blocks_x + bx] as usize
+    }
+
+    /// A grid vertex's texel, clamped to the map as the vertex shader clamps it.
+    fn vertex_texel(&self, tile: &Tile, i: u32, j: u32) -> [u32; 2] {
+        [
+            (tile.origin[0] + i * tile.step).min(self.map_size[0] - 1),
+            (tile.origin[1] + j * tile.step).min(self.map_size[1] - 1),
+        ]
+    }
+
+    /// A grid vertex's world position (x east, y up, z south), in f32 as
+    /// `terrain_vertex` computes it.
+    fn vertex_world(&self, texel: [u32; 2]) -> Vec3 {
+        let elevation = self.heights[(texel[0] + self.map_size[0] * texel[1]) as usize];
+        let map = [
+            texel[0] as f32 * self.spacing,
+            texel[1] as f32 * self.spacing,
+        ];
+        Vec3::new(
+            map[0] - self.map_offset[0],
+            elevation,
+            map[1] - self.map_offset[1],
+        )
+    }
+
+    /// The segment camera → the terrain seen along the unit world ray `view` whose
+    /// bilinear-surface hit is at `texel`: the segments at the three vertices of the
+    /// mesh triangle under the hit (`evaluate` maps a vertex's offset from the camera,
+    /// f32 world axes, to its segment), interpolated at the ray's crossing of the
+    /// triangle's plane.
+    pub fn segment<E>(
+        &self,
+        texel: [f64; 2],
+        view: DVec3,
+        evaluate: E,
+    ) -> Result<ScatteringSegment, RenderError>
+    where
+        E: Fn([f32; 3]) -> Result<ScatteringSegment, RenderError>,
+    {
+        let index = self.tile_index(texel);
+        let tile = &self.tiles[index];
+        let step = f64::from(tile.step);
+        let last = TILE_CELLS - 1;
+        let cell = |axis: usize| -> (u32, f64) {
+            let local = (texel[axis] - f64::from(tile.origin[axis])) / step;
+            let mut i = (local.floor().max(0.0) as u32).min(last);
+            let at = |i: u32| {
+                f64::from((tile.origin[axis] + i * tile.step).min(self.map_size[axis] - 1))
+            };
+            // A cell squashed to nothing by the clamp at the map's edge: the one before.
+            if at(i + 1) <= at(i) && i > 0 {
+                i -= 1;
+            }
+            let fraction = ((texel[axis] - at(i)) / (at(i + 1) - at(i))).clamp(0.0, 1.0);
+            (i, fraction)
+        };
+        let ((i, fx), (j, fy)) = (cell(0), cell(1));
+        // The tile's cell (i, j) is drawn as triangles (a, c, b) and (b, c, d) with
+        // a = (i, j), b = (i + 1, j), c = (i, j + 1), d = (i + 1, j + 1)
+        // (terrain_mesh::tile_mesh), split along b–c.
+        let corners: [(u32, u32); 3] = if fx + fy <= 1.0 {
+            [(i, j), (i, j + 1), (i + 1, j)]
+        } else {
+            [(i + 1, j), (i, j + 1), (i + 1, j + 1)]
+        };
+        let vertical = if fx + fy <= 1.0 {
+            [1.0 - fx - fy, fy, fx]
+        } else {
+            [1.0 - fy, 1.0 - fx, fx + fy - 1.0]
+        };
+        let worlds = corners.map(|(i, j)| self.vertex_world(self.vertex_texel(tile, i, j)));
+        let weights =
+            plane_barycentrics(worlds.map(|w| w.as_dvec3()), self.eye64, view).unwrap_or(vertical);
+        let mut out = ScatteringSegment {
+            radiance: [0.0; 3],
+            transmittance: [0.0; 3],
+        };
+        for ((&(i, j), world), weight) in corners.iter().zip(&worlds).zip(weights) {
+            let cell = &self.segments[index * TILE_VERTICES + (j * (TILE_CELLS + 1) + i) as usize];
+            let segment = match cell.get() {
+                Some(segment) => *segment,
+                None => {
+                    let segment = evaluate((*world - self.eye).to_array())?;
+                    *cell.get_or_init(|| segment)
+                }
+            };
+            let weight = weight as f32;
+            for c in 0..3 {
+                out.radiance[c] += weight * segment.radiance[c];
+                out.transmittance[c] += weight * segment.transmittance[c];
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// Barycentric coordinates (of `triangle`'s vertices, in order) of the point where the
+/// ray `origin + t·direction` meets the triangle's plane, when it meets it inside the
+/// triangle (what a perspective-correct rasteriser interpolates at that pixel); `None`
+/// for a ray parallel to the plane or crossing it outside the triangle.
+pub fn plane_barycentrics(
+    triangle: [DVec3; 3],
+    origin: DVec3,
+    direction: DVec3,
+) -> Option<[f64; 3]> {
+    let [a, b, c] = triangle;
+    let normal = (b - a).cross(c - a);
+    let denominator = normal.dot(direction);
+    if denominator.abs() <= 1e-12 * normal.length() * direction.length() {
+        return None;
+    }
+    let point = origin + direction * (normal.dot(a - origin) / denominator);
+    // In the horizontal plane (the terrain is a height field: triangles never stand
+    // vertical), where a point of the plane has the same coordinates.
+    let flat = |p: DVec3| DVec2::new(p.x, p.z);
+    let (a2, b2, c2, p2) = (flat(a), flat(b), flat(c), flat(point));
+    let area = (b2 - a2).perp_dot(c2 - a2);
+    if area == 0.0 {
+        return None;
+    }
+    let wb = (p2 - a2).perp_dot(c2 - a2) / area;
+    let wc = (b2 - a2).perp_dot(p2 - a2) / area;
+    let weights = [1.0 - wb - wc, wb, wc];
+    // Within a rounding of the triangle's edges.
+    weights.iter().all(|&w| w >= -1e-9).then_some(weights)
+}
+
+/// The segment camera → the point `offset` metres from it (world axes) by `light`'s
+/// model: the precomputed rung's tables (`atmos::lut::drop_in::aerial_perspective`, the
+/// twin of the WGSL the vertex stage calls), else the rung's segment model.
+pub fn segment_to(
+    scene: &PreparedScene,
+    light: &Illuminant<'_>,
+    tables: Option<(&atmos::lut::StaticLuts, &atmos::lut::FrameLuts)>,
+    offset: [f32; 3],
+) -> Result<ScatteringSegment, RenderError> {
+    if let Some((luts, frame)) = tables {
+        return Ok(atmos::lut::drop_in::aerial_perspective(luts, frame, offset));
+    }
+    let vector = DVec3::from_array(offset.map(f64::from));
+    let distance = vector.length();
+    if distance <= 0.0 {
+        return Ok(ScatteringSegment {
+            radiance: [0.0; 3],
+            transmittance: [1.0; 3],
+        });
+    }
+    let query = atmos::SkyQuery::with_max_distance(
+        scene.atmosphere.planet_radius,
+        scene.camera_position,
+        vector / distance,
+        light.direction,
+        distance,
+    )
+    .map_err(RenderError::Atmosphere)?;
+    let sample = light.segment_model.evaluate(&query);
+    Ok(ScatteringSegment {
+        radiance: sample.radiance.map(|v| v as f32),
+        transmittance: sample.transmittance.map(|v| v as f32),
+    })
+}
+
+/// A surface radiance seen through `segment`: `surface × transmittance + in-scatter`
+/// (the per-vertex fragment's arithmetic).
+pub fn seen_through(surface: [f32; 3], segment: &ScatteringSegment) -> [f32; 3] {
+    std::array::from_fn(|c| surface[c] * segment.transmittance[c] + segment.radiance[c])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn plane_barycentrics_reproduce_the_crossing_point() {
+        let triangle = [
+            DVec3::new(0.0, 10.0, 0.0),
+            DVec3::new(100.0, 30.0, 0.0),
+            DVec3::new(0.0, 20.0, 100.0),
+        ];
+        let origin = DVec3::new(-50.0, 500.0, -40.0);
+        let target = triangle[0] * 0.2 + triangle[1] * 0.5 + triangle[2] * 0.3;
+        let w = plane_barycentrics(triangle, origin, (target - origin).normalize()).unwrap();
+        for (got, want) in w.iter().zip([0.2, 0.5, 0.3]) {
+            assert!((got - want).abs() < 1e-9, "{w:?}");
+        }
+        // Outside the triangle, or parallel to its plane: none.
+        let outside = triangle[1] * 1.2 - triangle[0] * 0.2;
+        assert!(plane_barycentrics(triangle, origin, (outside - origin).normalize()).is_none());
+        let flat = [DVec3::ZERO, DVec3::X, DVec3::Z];
+        assert!(plane_barycentrics(flat, DVec3::Y, DVec3::X).is_none());
+    }
+
+    #[test]
+    fn the_scene_key_reads_both_variants() {
+        #[derive(Deserialize)]
+        struct Key {
+            aerial_perspective: AerialPerspective,
+        }
+        for variant in [AerialPerspective::PerPixel, AerialPerspective::PerVertex] {
+            let text = format!("aerial_perspective = \"{}\"", variant.name());
+            let key: Key = toml::from_str(&text).unwrap();
+            assert_eq!(key.aerial_perspective, variant);
+        }
+        assert_eq!(AerialPerspective::default(), AerialPerspective::PerPixel);
+    }
+}

@@ -1,0 +1,459 @@
+//! `[terrain] aerial_perspective = "per-vertex"` (seed 000's aerial perspective at the
+//! mesh's vertices, interpolated) against the per-pixel default: the scene key, the GPU
+//! image against its CPU twin (`render::aerial_vertex::VertexAerial`), and the trade
+//! (error and cost) measured by an ignored test:
+//!
+//! ```sh
+//! cargo test --release -p render --test aerial_vertex -- --ignored --nocapture
+//! ```
+
+use render::aerial_vertex::{AerialPerspective, VertexAerial};
+use render::cpu_renderer::render_radiance;
+use render::gpu::{SceneRenderer, SceneRendererSettings};
+use render::scene::{PreparedScene, Scene};
+
+const DEFAULT_SCENE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/default.toml");
+
+fn default_scene(width: u32, height: u32, variant: AerialPerspective) -> PreparedScene {
+    let mut scene = Scene::open(DEFAULT_SCENE).unwrap();
+    scene.file.output.width = width;
+    scene.file.output.height = height;
+    scene.file.terrain.as_mut().unwrap().aerial_perspective = variant;
+    scene.prepare().unwrap()
+}
+
+/// Smooth hills (no ridges, 3 octaves) over 61 km, seen from 1.5 km up over 60 km of
+/// depth: the quadtree draws coarse tiles (up to 8 texels, 960 m, between vertices)
+/// whose geometric error stays under a pixel, so the rasterised mesh and the ray-cast
+/// bilinear surface show the same points and any disagreement is the shading's.
+const SMOOTH_HILLS: &str = r#"
+[camera]
+position = [0.0, 1500.0, 29000.0]
+look_at = [0.0, 400.0, 0.0]
+vertical_fov_deg = 45.0
+[sun]
+elevation_deg = 25.0
+azimuth_deg = 240.0
+[terrain]
+aerial_perspective = "per-vertex"
+[terrain.procedural]
+seed = 3
+size = 513
+cell_size = 120.0
+relief = 900.0
+wavelength = 20000.0
+octaves = 3
+[output]
+width = 160
+height = 90
+exposure = 12.0
+"#;
+
+fn smooth_hills(variant: AerialPerspective) -> PreparedScene {
+    let mut scene = Scene::parse(SMOOTH_HILLS, ".").unwrap();
+    scene.file.terrain.as_mut().unwrap().aerial_perspective = variant;
+    scene.prepare().unwrap()
+}
+
+fn luminance(rgb: [f32; 3]) -> f64 {
+    atmos::ladder::luminance(rgb.map(f64::from))
+}
+
+#[test]
+fn the_scene_key_takes_both_variants_and_names_a_wrong_one() {
+    let scene = Scene::parse(SMOOTH_HILLS, ".").unwrap();
+    assert_eq!(
+        scene.file.terrain.as_ref().unwrap().aerial_perspective,
+        AerialPerspective::PerVertex
+    );
+    let e = Scene::parse(
+        &SMOOTH_HILLS.replace("\"per-vertex\"", "\"per-vertx\""),
+        ".",
+    )
+    .unwrap_err();
+    let message = e.to_string();
+    assert_eq!(e.location().map(|l| l.line), Some(10), "{message}");
+    assert!(message.contains("terrain.aerial_perspective"), "{message}");
+    assert!(message.contains("per-vertx"), "{message}");
+    assert!(message.contains("did you mean `per-vertex`"), "{message}");
+    let e = Scene::parse(&SMOOTH_HILLS.replace("\"per-vertex\"", "3"), ".").unwrap_err();
+    assert!(e.to_string().contains("terrain.aerial_perspective"), "{e}");
+}
+
+#[test]
+fn per_vertex_interpolates_the_per_pixel_segments_on_the_cpu() {
+    let per_pixel = render_radiance(&smooth_hills(AerialPerspective::PerPixel)).unwrap();
+    let per_vertex = render_radiance(&smooth_hills(AerialPerspective::PerVertex)).unwrap();
+    let mut terrain = 0;
+    let mut differ = 0;
+    let mut worst = 0.0f64;
+    for (a, b) in per_pixel.iter().zip(&per_vertex) {
+        assert_eq!(a.terrain_distance, b.terrain_distance, "the same hits");
+        assert!(
+            b.radiance.iter().all(|v| v.is_finite() && *v >= 0.0),
+            "{b:?}"
+        );
+        if a.terrain_distance.is_none() {
+            assert_eq!(a.radiance, b.radiance, "the sky is untouched");
+            continue;
+        }
+        terrain += 1;
+        let (la, lb) = (luminance(a.radiance), luminance(b.radiance));
+        if la != lb {
+            differ += 1;
+        }
+        worst = worst.max((lb - la).abs() / la);
+    }
+    eprintln!("{terrain} terrain pixels, {differ} differ, worst relative luminance {worst:.2e}");
+    assert!(terrain > 160 * 90 / 3, "{terrain}");
+    // Interpolated, not evaluated per pixel: most pixels differ a little.
+    assert!(differ > terrain / 2, "{differ} of {terrain}");
+    assert!(worst < 0.02, "{worst}");
+}
+
+fn gpu_pixels(gpu: &skyscape_harness::GpuContext, scene: &PreparedScene) -> Vec<u32> {
+    // The default settings: the CPU twin selects its tiles with the same error.
+    let mut renderer =
+        SceneRenderer::new(&gpu.device, &gpu.queue, scene, Default::default()).unwrap();
+    renderer.prepare(&gpu.queue, scene).unwrap();
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    renderer.encode(&mut encoder).unwrap();
+    gpu.queue.submit([encoder.finish()]);
+    let buffer = renderer.pixel_buffer();
+    let bytes =
+        skyscape_harness::read_buffer(gpu, "scene pixels", buffer, 0, buffer.size()).unwrap();
+    bytemuck::cast_slice(&bytes).to_vec()
+}
+
+/// Largest difference of any channel, in code values.
+fn lsb(a: u32, b: u32) -> u32 {
+    (0..3)
+        .map(|c| ((a >> (8 * c)) & 255).abs_diff((b >> (8 * c)) & 255))
+        .max()
+        .unwrap()
+}
+
+#[test]
+fn per_vertex_agrees_on_the_gpu_and_the_cpu() {
+    let Some(gpu) = skyscape_harness::gpu_or_skip("render::aerial_vertex") else {
+        return;
+    };
+    // Smooth hills on coarse tiles: rasterisation allows the 99.9 % goal.
+    let scene = smooth_hills(AerialPerspective::PerVertex);
+    let gpu_image = gpu_pixels(gpu, &scene);
+    let cpu_image = render::cpu_renderer::render_cpu(&scene).unwrap().pixels;
+    let two = render::tonemap::fraction_within_lsb(&gpu_image, &cpu_image, 2).unwrap();
+    // The per-pixel GPU image: the per-vertex one differs from it, so the agreement
+    // above is the twin's, not the variants' likeness.
+    let per_pixel = gpu_pixels(gpu, &smooth_hills(AerialPerspective::PerPixel));
+    let changed = gpu_image
+        .iter()
+        .zip(&per_pixel)
+        .filter(|(a, b)| a != b)
+        .count();
+    let worst = gpu_image
+        .iter()
+        .zip(&cpu_image)
+        .map(|(a, b)| lsb(*a, *b))
+        .max()
+        .unwrap();
+    eprintln!(
+        "smooth hills 160×90, per vertex: GPU vs CPU {:.3} % of pixels within 2 LSB (worst {worst}); \
+         {changed} pixels differ from the per-pixel GPU image",
+        100.0 * two
+    );
+    assert!(two >= 0.999, "{two}");
+    assert!(changed > 100, "{changed}");
+
+    // The default scene (ridged, sub-pixel terrain), where the coarse tiles the default
+    // error selects and the bilinear surface show neighbouring points along ridges:
+    // scene_gpu's metric, per vertex no worse than per pixel on the same tiles.
+    let per_pixel = agreement(gpu, &default_scene(160, 90, AerialPerspective::PerPixel));
+    let per_vertex = agreement(gpu, &default_scene(160, 90, AerialPerspective::PerVertex));
+    eprintln!("default 160×90 (terrain_error_px 1), per pixel: {per_pixel}");
+    eprintln!("default 160×90 (terrain_error_px 1), per vertex: {per_vertex}");
+    assert!(
+        per_vertex.two >= per_pixel.two - 0.005,
+        "{per_vertex} vs {per_pixel}"
+    );
+    assert!(
+        per_vertex.eight >= per_pixel.eight - 0.005,
+        "{per_vertex} vs {per_pixel}"
+    );
+    for channel in 0..3 {
+        assert!(
+            per_vertex.signed[channel].abs() <= 0.5 && per_vertex.absolute[channel] <= 1.5,
+            "{per_vertex}"
+        );
+    }
+}
+
+/// scene_gpu's metric of a GPU image against the CPU's.
+struct Agreement {
+    two: f64,
+    eight: f64,
+    shifted: f64,
+    signed: [f64; 3],
+    absolute: [f64; 3],
+}
+
+impl std::fmt::Display for Agreement {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{:.3} % within 2 LSB, {:.3} % within 8, {:.3} % within 2 LSB of the other \
+             image's 3×3 neighbourhood; mean (GPU − CPU) {:.3?} LSB, mean |difference| {:.3?} LSB",
+            100.0 * self.two,
+            100.0 * self.eight,
+            100.0 * self.shifted,
+            self.signed,
+            self.absolute
+        )
+    }
+}
+
+fn agreement(gpu: &skyscape_harness::GpuContext, scene: &PreparedScene) -> Agreement {
+    let gpu_image = gpu_pixels(gpu, scene);
+    let cpu_image = render::cpu_renderer::render_cpu(scene).unwrap().pixels;
+    let width = scene.camera.width as usize;
+    let within = |n| render::tonemap::fraction_within_lsb(&gpu_image, &cpu_image, n).unwrap();
+    let shifted =
+        render::tonemap::fraction_within_lsb_of_neighbourhood(&gpu_image, &cpu_image, width, 2, 1)
+            .unwrap();
+    let mut signed = [0.0f64; 3];
+    let mut absolute = [0.0f64; 3];
+    for (a, b) in gpu_image.iter().zip(&cpu_image) {
+        for channel in 0..3 {
+            let code = |p: u32| f64::from((p >> (8 * channel)) & 255);
+            let difference = code(*a) - code(*b);
+            signed[channel] += difference / gpu_image.len() as f64;
+            absolute[channel] += difference.abs() / gpu_image.len() as f64;
+        }
+    }
+    Agreement {
+        two: within(2),
+        eight: within(8),
+        shifted,
+        signed,
+        absolute,
+    }
+}
+
+/// The trade on the default scene at its 960×540 and on the smooth hills (coarse
+/// tiles) at the same size: the per-vertex error against per pixel (CPU radiance, the
+/// twins of the GPU's passes: the same surface at the same hits, so the difference is
+/// the interpolation's alone), where it is worst, and the cost of each on the CPU
+/// renderer and, with an adapter, of the GPU's terrain pass at 1280×720.
+#[test]
+#[ignore = "a measurement: minutes; prints the figures of docs/scenes.md"]
+fn measure_the_trade() {
+    let sized = |mut scene: Scene, width, height, variant| {
+        scene.file.output.width = width;
+        scene.file.output.height = height;
+        scene.file.terrain.as_mut().unwrap().aerial_perspective = variant;
+        scene.prepare().unwrap()
+    };
+    let scenes = [
+        ("default", Scene::open(DEFAULT_SCENE).unwrap()),
+        ("smooth hills", Scene::parse(SMOOTH_HILLS, ".").unwrap()),
+    ];
+    for (name, scene) in &scenes {
+        let per_pixel = sized(scene.clone(), 960, 540, AerialPerspective::PerPixel);
+        let per_vertex = sized(scene.clone(), 960, 540, AerialPerspective::PerVertex);
+        measure_error_and_cpu_time(name, &per_pixel, &per_vertex);
+    }
+    let Ok(gpu) = skyscape_harness::context() else {
+        eprintln!("no adapter: no GPU timing");
+        return;
+    };
+    for (name, scene) in &scenes {
+        let per_pixel = sized(scene.clone(), 1280, 720, AerialPerspective::PerPixel);
+        let per_vertex = sized(scene.clone(), 1280, 720, AerialPerspective::PerVertex);
+        measure_gpu_time(gpu, name, &per_pixel, &per_vertex);
+    }
+}
+
+fn measure_error_and_cpu_time(
+    name: &str,
+    per_pixel_scene: &PreparedScene,
+    per_vertex_scene: &PreparedScene,
+) {
+    let camera = &per_vertex_scene.camera;
+    let (width, height) = (camera.width, camera.height);
+    // Alternated runs, so that the machine's load drifts over both alike.
+    let mut seconds = [Vec::new(), Vec::new()];
+    let mut images = [None, None];
+    for _ in 0..3 {
+        for (k, scene) in [per_pixel_scene, per_vertex_scene].into_iter().enumerate() {
+            let start = std::time::Instant::now();
+            images[k] = Some(render_radiance(scene).unwrap());
+            seconds[k].push(start.elapsed().as_secs_f64());
+        }
+    }
+    let [per_pixel, per_vertex] = images.map(Option::unwrap);
+    eprintln!(
+        "{name} {width}×{height}, CPU renderer ({} threads), seconds of 3 alternated runs: per \
+         pixel {:.3?}, per vertex {:.3?}",
+        rayon::current_num_threads(),
+        seconds[0],
+        seconds[1]
+    );
+
+    // Where each terrain pixel's hit is and which tile step the GPU draws there.
+    let terrain = per_vertex_scene.terrain.as_ref().unwrap();
+    let mesh = VertexAerial::new(
+        per_vertex_scene,
+        terrain,
+        render::aerial_vertex::TERRAIN_ERROR_PX,
+    );
+    let offset = terrain.map_offset();
+    let spacing = terrain.heightfield.spacing();
+    let eye = per_vertex_scene.camera_position
+        - glam::DVec3::new(0.0, per_vertex_scene.atmosphere.planet_radius, 0.0);
+    let bins: [(&str, f64, f64); 4] = [
+        ("< 5 km", 0.0, 5e3),
+        ("5–15 km", 5e3, 15e3),
+        ("15–32 km", 15e3, 32e3),
+        ("> 32 km", 32e3, f64::INFINITY),
+    ];
+    let mut by_distance = vec![(0usize, 0.0f64, 0.0f64); bins.len()];
+    let mut by_step = std::collections::BTreeMap::<u32, (usize, f64, f64)>::new();
+    let (mut count, mut sum, mut max, mut absolute) = (0usize, 0.0f64, 0.0f64, 0.0f64);
+    let mut worst = (0.0f64, 0.0f64, 0u32, [0u32; 2]);
+    let mut code_values = [0usize; 2];
+    let exposure = per_vertex_scene.present.exposure;
+    let seed = per_vertex_scene.present.dither_seed;
+    for (index, (a, b)) in per_pixel.iter().zip(&per_vertex).enumerate() {
+        let Some(distance) = a.terrain_distance else {
+            continue;
+        };
+        let pixel = [
+            (index % width as usize) as u32,
+            (index / width as usize) as u32,
+        ];
+        let view = atmos::frame::frame_view_direction(pixel, camera);
+        let hit = eye + glam::DVec3::from_array(view.map(f64::from)) * f64::from(distance);
+        let texel = [(hit.x + offset[0]) / spacing, (hit.z + offset[1]) / spacing];
+        let step = mesh.tile_at(texel).step;
+        let (la, lb) = (luminance(a.radiance), luminance(b.radiance));
+        let relative = (lb - la).abs() / la;
+        count += 1;
+        sum += relative;
+        absolute += (lb - la).abs();
+        if relative > max {
+            max = relative;
+            worst = (f64::from(distance), la, step, pixel);
+        }
+        let display = |l: [f32; 3]| {
+            render::tonemap::quantize_srgb8(
+                render::tonemap::tonemap_exposure(l, exposure),
+                pixel,
+                seed,
+            )
+        };
+        let (da, db) = (display(a.radiance), display(b.radiance));
+        let largest = da
+            .iter()
+            .zip(&db)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f32::max);
+        if largest > 0.0 {
+            code_values[0] += 1;
+        }
+        if largest > 2.0 {
+            code_values[1] += 1;
+        }
+        let d = f64::from(distance);
+        for (bin, (_, low, high)) in by_distance.iter_mut().zip(&bins) {
+            if d >= *low && d < *high {
+                bin.0 += 1;
+                bin.1 += relative;
+                bin.2 = bin.2.max(relative);
+            }
+        }
+        let entry = by_step.entry(step).or_insert((0, 0.0, 0.0));
+        entry.0 += 1;
+        entry.1 += relative;
+        entry.2 = entry.2.max(relative);
+    }
+    eprintln!(
+        "{name}: per vertex vs per pixel over {count} terrain pixels ({} tiles): relative \
+         luminance difference mean {:.2e}, max {max:.2e} (at {:.1} km, tile step {}, pixel \
+         {:?}, luminance {:.4}); mean |difference| {:.2e}; after the tone map (exposure \
+         {exposure}) {} pixels ({:.3} %) change, {} by more than 2 code values",
+        mesh.tiles().len(),
+        sum / count as f64,
+        worst.0 / 1e3,
+        worst.2,
+        worst.3,
+        worst.1,
+        absolute / count as f64,
+        code_values[0],
+        100.0 * code_values[0] as f64 / count as f64,
+        code_values[1],
+    );
+    for ((label, _, _), (n, s, m)) in bins.iter().zip(&by_distance) {
+        if *n > 0 {
+            eprintln!(
+                "  {label}: {n} pixels, mean {:.2e}, max {m:.2e}",
+                s / *n as f64
+            );
+        }
+    }
+    for (step, (n, s, m)) in &by_step {
+        eprintln!(
+            "  tile step {step}: {n} pixels, mean {:.2e}, max {m:.2e}",
+            s / *n as f64
+        );
+    }
+}
+
+/// The GPU's terrain pass each way: 5 alternated frames each after a warm-up frame,
+/// the median.
+fn measure_gpu_time(
+    gpu: &skyscape_harness::GpuContext,
+    name: &str,
+    per_pixel: &PreparedScene,
+    per_vertex: &PreparedScene,
+) {
+    let settings = SceneRendererSettings {
+        timestamps: true,
+        ..Default::default()
+    };
+    let scenes = [per_pixel, per_vertex];
+    let mut renderers =
+        scenes.map(|scene| SceneRenderer::new(&gpu.device, &gpu.queue, scene, settings).unwrap());
+    let mut terrain_ms = [Vec::new(), Vec::new()];
+    for frame in 0..6 {
+        for k in 0..2 {
+            let renderer = &mut renderers[k];
+            renderer.prepare(&gpu.queue, scenes[k]).unwrap();
+            let mut encoder = gpu.device.create_command_encoder(&Default::default());
+            renderer.encode(&mut encoder).unwrap();
+            gpu.queue.submit([encoder.finish()]);
+            let buffer = renderer.pixel_buffer();
+            skyscape_harness::read_buffer(gpu, "pixels", buffer, 0, buffer.size()).unwrap();
+            let Some(Ok(seconds)) = renderer.pass_seconds() else {
+                eprintln!("the device has no timestamps");
+                return;
+            };
+            if frame > 0 {
+                let terrain = seconds.iter().find(|(n, _)| *n == "terrain").unwrap().1;
+                terrain_ms[k].push(1e3 * terrain);
+            }
+        }
+    }
+    for (k, label) in ["per pixel", "per vertex"].iter().enumerate() {
+        let mut ms = terrain_ms[k].clone();
+        ms.sort_by(f64::total_cmp);
+        eprintln!(
+            "{name} 1280×720, GPU terrain pass {label}: median {:.2} ms of {:.2?} ({} tiles) on \
+             {} — {}",
+            ms[ms.len() / 2],
+            terrain_ms[k],
+            renderers[k].terrain_tiles(),
+            skyscape_harness::describe_adapter(&gpu.info),
+            skyscape_harness::device_type_label(gpu.info.device_type),
+        );
+    }
+}
