@@ -706,7 +706,10 @@ pub(crate) fn buffer_entry(
 }
 
 #[cfg(feature = "gpu")]
-pub(crate) fn depth_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+pub(crate) fn depth_entry(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility,
@@ -1160,7 +1163,7 @@ impl VolumeCloudPass {
 /// the second march of the CPU's): run when the scene's cloud is lit by the moon.
 pub fn moonlit_march_plan(scene: &crate::scene::PreparedScene) -> Result<String, String> {
     let Some(cloud) = &scene.volume_cloud else {
-        return Err("no [clouds.volume]: no march".into());
+        return Err("no [clouds.volume] to march (none, or draw = \"billboards\")".into());
     };
     match (&cloud.moon, &scene.moonlit) {
         (Some(moon), Some(sky)) => Ok(format!(

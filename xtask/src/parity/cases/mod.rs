@@ -23,6 +23,7 @@ mod common_cases;
 mod integer_references;
 mod render_billboard_cases;
 mod render_cases;
+mod render_volume_cases;
 mod terrain_cases;
 
 /// One WGSL function (or pass) against its twins.
@@ -370,6 +371,7 @@ pub fn all() -> Vec<Case> {
         render_cases::cases(),
         vec![render_cases::present_case()],
         render_billboard_cases::cases(),
+        render_volume_cases::cases(),
         terrain_cases::cases(),
         cloudlight_cases::cases(),
         cloudlight_cases::cone_cases(),
