@@ -762,9 +762,92 @@ struct Sampler<'a> {
     grid: &'a [f64],
     inv_two_r: f64,
     max_steps: usize,
+    /// Every texel's near field, dominant-major ([`Sampler::near_field`]).
+    near: Vec<f64>,
 }
 
-impl Sampler<'_> {
+impl<'a> Sampler<'a> {
+    fn new(lines: &'a Lines, grid: &'a [f64], inv_two_r: f64, max_steps: usize) -> Self {
+        let mut sampler = Self {
+            lines,
+            grid,
+            inv_two_r,
+            max_steps,
+            near: Vec::new(),
+        };
+        sampler.near = sampler.near_field();
+        sampler
+    }
+
+    /// [`Sampler::near_best`] of every texel, dominant-major (`near[u · n_minor + m]`),
+    /// without its stop at the line's last texel (which [`Sampler::build`] applies),
+    /// row by row: step `k` of every texel of row `u` reads row `u ± k` at
+    /// `m + dx_k` (`dx_k = ±k · t`), the same offset for the whole row. Where
+    /// `dx_k` is not within 2^−20 of an integer, `m + dx_k` (rounded) lies strictly
+    /// between `m + ⌊dx_k⌋` and the next integer for every `m < 2^30`, so the two
+    /// texels and the weight need no per-texel floor: contiguous slices the compiler
+    /// vectorises, with `near_best`'s arithmetic operation for operation (the same
+    /// values; the maximum is taken in the same order of `k`).
+    fn near_field(&self) -> Vec<f64> {
+        let l = self.lines;
+        let (n, nm) = (l.n_dominant, l.n_minor);
+        let top = (nm - 1) as f64;
+        let mut near = vec![f64::NEG_INFINITY; n * nm];
+        let m_f: Vec<f64> = (0..nm).map(fl).collect();
+        for k in 1..=NEAR_STEPS.min(self.max_steps) {
+            let dx = (l.march * k as i64) as f64 * l.slope;
+            let d = k as f64 * l.step;
+            let drop = d * d * self.inv_two_r;
+            let q = dx.floor();
+            let w = dx - q;
+            let fast = (1.0 / 1_048_576.0..=1.0 - 1.0 / 1_048_576.0).contains(&w)
+                && nm < 1 << 30
+                && q.abs() < 1e6;
+            let q = q as i64;
+            // Texels m with m + q in [0, nm − 2] (fast path): both texels in the row.
+            let lo = (-q).max(0) as usize;
+            let hi = (nm as i64 - 2 - q).min(nm as i64 - 1);
+            for u in 0..n {
+                let uk = u as i64 + l.march * k as i64;
+                if uk < 0 || uk >= n as i64 {
+                    continue;
+                }
+                let src = &self.grid[uk as usize * nm..][..nm];
+                let own = &self.grid[u * nm..][..nm];
+                let out = &mut near[u * nm..][..nm];
+                if fast {
+                    if hi < lo as i64 {
+                        continue;
+                    }
+                    let hi = hi as usize;
+                    let a0 = (lo as i64 + q) as usize;
+                    let len = hi + 1 - lo;
+                    let iter = out[lo..=hi]
+                        .iter_mut()
+                        .zip(&own[lo..=hi])
+                        .zip(&m_f[lo..=hi])
+                        .zip(&src[a0..a0 + len])
+                        .zip(&src[a0 + 1..a0 + 1 + len]);
+                    for ((((o, &hp), &mf), &a), &b) in iter {
+                        let x = mf + dx;
+                        // `x − ⌊x⌋`: ⌊x⌋ = m + q, exact in f64.
+                        let f = x - (mf + q as f64);
+                        let h = a + (b - a) * f;
+                        *o = o.max((h - hp - drop) / d);
+                    }
+                } else {
+                    for m in 0..nm {
+                        let x = m_f[m] + dx;
+                        if x >= 0.0 && x <= top {
+                            let t = (lerp_row(src, x) - own[m] - drop) / d;
+                            out[m] = out[m].max(t);
+                        }
+                    }
+                }
+            }
+        }
+        near
+    }
     /// Fills `sc.h`, `sc.g` and `sc.views` (with each view's near field,
     /// [`Sampler::near_best`]) for line `c`.
     ///
@@ -779,13 +862,6 @@ impl Sampler<'_> {
         // Projection of a minor offset of one texel on the direction, metres.
         let foot = l.march as f64 * t * step / (1.0 + t * t);
         let steps = NEAR_STEPS.min(self.max_steps);
-        // Per near step k: minor offset of the texel's own ray, distance, curvature drop.
-        let mut near = [(0.0f64, 0.0f64, 0.0f64); NEAR_STEPS];
-        for (k, slot) in near.iter_mut().enumerate().take(steps) {
-            let k = k + 1;
-            let d = k as f64 * step;
-            *slot = ((l.march * k as i64) as f64 * t, d, d * d * self.inv_two_r);
-        }
         let row = |u: usize| &self.grid[u * nm..][..nm];
         sc.h.clear();
         sc.g.clear();
@@ -813,24 +889,6 @@ impl Sampler<'_> {
                 let e = foot * (l.offsets[u] as f64 - exact);
                 let sp = s + e;
                 let m_f = m as f64;
-                // The near field up to the map's dominant end; the views past the
-                // line's last texel are redone below.
-                let mut q = [f64::NEG_INFINITY; NEAR_STEPS];
-                for (k, &(dx, d, drop)) in near.iter().enumerate().take(steps) {
-                    let j = i + k + 1;
-                    if j >= n {
-                        break;
-                    }
-                    let x = m_f + dx;
-                    if !(x >= 0.0 && x <= top) {
-                        break;
-                    }
-                    q[k] = (lerp_row(row(l.dominant_at(j)), x) - hp - drop) / d;
-                }
-                let mut best = f64::NEG_INFINITY;
-                for q in q {
-                    best = best.max(q);
-                }
                 sc.views.push(View {
                     i,
                     texel,
@@ -838,7 +896,7 @@ impl Sampler<'_> {
                     m: m_f,
                     e,
                     g: hp - sp * sp * self.inv_two_r,
-                    near: best,
+                    near: self.near[u * nm + mu],
                 });
             }
         }
@@ -1178,12 +1236,12 @@ pub fn horizon_angle(
     let target = y * hf.width() + x;
     if !lines.exact {
         let grid = lines.dominant_major(hf);
-        let sampler = Sampler {
-            lines: &lines,
-            grid: &grid,
-            inv_two_r: options.inv_two_r(),
-            max_steps: lines.max_steps(options.max_distance),
-        };
+        let sampler = Sampler::new(
+            &lines,
+            &grid,
+            options.inv_two_r(),
+            lines.max_steps(options.max_distance),
+        );
         let mut sc = LineScratch::default();
         sampler.build(c, &mut sc);
         sampler.brute(&mut sc);
@@ -1319,16 +1377,15 @@ pub fn bake_horizon(
     } else {
         lines.dominant_major(hf)
     };
-    let sampler = Sampler {
-        lines: &lines,
-        grid: &grid,
-        inv_two_r,
-        max_steps,
+    let sampler = if lines.exact {
+        None
+    } else {
+        Some(Sampler::new(&lines, &grid, inv_two_r, max_steps))
     };
     // Solves the lines of `chunk` in order, handing each texel's angle to `emit`
     // (texel index, angle) in line order.
     let run_chunk = |chunk: &[i64], emit: &mut dyn FnMut(usize, f32)| {
-        if !lines.exact {
+        if let Some(sampler) = &sampler {
             let mut sc = LineScratch::default();
             for &c in chunk {
                 sampler.build(c, &mut sc);
@@ -1506,8 +1563,20 @@ mod tests {
             ((x * 1.7 + y * 0.9).sin() * 300.0 + (x * y * 0.37).cos() * 120.0).round() - 60.0
         })
         .unwrap();
-        for k in 0..32 {
-            let azimuth = k as f64 * std::f64::consts::TAU / 32.0;
+        // 32 even azimuths, and slopes t = ±1/2, ±1/4 where some step k·t is (about) an
+        // integer: the near field's per-texel path instead of the row-wise one.
+        let mut azimuths: Vec<f64> = (0..32)
+            .map(|k| k as f64 * std::f64::consts::TAU / 32.0)
+            .collect();
+        for t in [0.5f64, 0.25] {
+            azimuths.extend([
+                super::EAST + t.atan(),
+                super::EAST - t.atan(),
+                super::WEST + t.atan(),
+                std::f64::consts::PI - t.atan(),
+            ]);
+        }
+        for (k, &azimuth) in azimuths.iter().enumerate() {
             let lines = Lines::new(w, h, hf.spacing(), azimuth);
             if lines.exact {
                 continue;
@@ -1515,12 +1584,7 @@ mod tests {
             let grid = lines.dominant_major(&hf);
             for max_steps in [1, 2, NEAR_STEPS, 7, usize::MAX] {
                 for inv_two_r in [0.0, 0.5 / 6.371e6] {
-                    let sampler = Sampler {
-                        lines: &lines,
-                        grid: &grid,
-                        inv_two_r,
-                        max_steps,
-                    };
+                    let sampler = Sampler::new(&lines, &grid, inv_two_r, max_steps);
                     let mut sc = LineScratch::default();
                     for c in lines.ids() {
                         sampler.build(c, &mut sc);
@@ -1530,7 +1594,7 @@ mod tests {
                             assert_eq!(
                                 v.near.to_bits(),
                                 expected.to_bits(),
-                                "azimuth {k}/32, K {max_steps}, line {c}, view {}",
+                                "azimuth {k}, K {max_steps}, line {c}, view {}",
                                 v.i
                             );
                         }
