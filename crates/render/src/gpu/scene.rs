@@ -339,7 +339,7 @@ pub fn planned_passes(scene: &PreparedScene) -> Vec<(&'static str, Result<String
                  the [clouds.volume] cloud up to it (a ridge cuts the cloud where it stands)"
                     .into(),
             ),
-            None => Err("no [clouds.volume]: no march".into()),
+            None => Err("no [clouds.volume] to march (none, or draw = \"billboards\")".into()),
         },
     ));
     plan.push((
@@ -367,7 +367,9 @@ pub fn planned_passes(scene: &PreparedScene) -> Vec<(&'static str, Result<String
                 },
             )),
             None => {
-                Err("no [clouds.volume]: no automaton, no march pass, nothing allocated".into())
+                Err("no [clouds.volume] to march (none, or draw = \"billboards\"): no march \
+                     pass, no composite, nothing allocated for it"
+                    .into())
             }
         },
     ));
