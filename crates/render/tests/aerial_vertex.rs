@@ -104,7 +104,19 @@ fn per_vertex_interpolates_the_per_pixel_segments_on_the_cpu() {
         }
         worst = worst.max((lb - la).abs() / la);
     }
-    eprintln!("{terrain} terrain pixels, {differ} differ, worst relative luminance {worst:.2e}");
+    let scene = smooth_hills(AerialPerspective::PerVertex);
+    let mesh = VertexAerial::new(
+        &scene,
+        scene.terrain.as_ref().unwrap(),
+        render::aerial_vertex::TERRAIN_ERROR_PX,
+    );
+    let steps: Vec<u32> = mesh.tiles().iter().map(|t| t.step).collect();
+    // Coarse tiles: the interpolation spans hundreds of metres.
+    assert!(steps.iter().all(|&step| step >= 4), "{steps:?}");
+    eprintln!(
+        "smooth hills 160×90: tiles of steps {steps:?}; {terrain} terrain pixels, {differ} \
+         differ, worst relative luminance {worst:.2e}"
+    );
     assert!(terrain > 160 * 90 / 3, "{terrain}");
     // Interpolated, not evaluated per pixel: most pixels differ a little.
     assert!(differ > terrain / 2, "{differ} of {terrain}");
