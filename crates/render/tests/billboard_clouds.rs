@@ -129,6 +129,49 @@ fn only_the_drawing_asked_for_is_prepared() {
     }
 }
 
+/// The billboards' camera (cloudlight's, in the cloud's east/north/up frame) is the scene
+/// camera: a point on pixel `(i, j)`'s ray (atmos' `frame_view_direction`) lands at
+/// `billboard_screen` `(i + ½, j + ½)` within 1.8·10⁻⁵ px (f32 rays), three cameras.
+#[test]
+fn the_billboard_camera_is_the_scene_camera() {
+    use render::billboard_clouds::billboard_camera;
+    for (look, size) in [
+        ("look_direction = [0.3, 0.2, -1.0]", [160, 90]),
+        ("look_direction = [0.0, 1.0, 0.0]", [64, 48]),
+        ("look_direction = [-1.0, -0.4, 0.2]", [33, 91]),
+    ] {
+        let mut scene = Scene::parse(
+            &VALID.replace("look_direction = [0.0, 0.2, -1.0]", look),
+            ".",
+        )
+        .unwrap();
+        scene.file.output.width = size[0];
+        scene.file.output.height = size[1];
+        let prepared = scene.prepare().unwrap();
+        let frame = &prepared.camera;
+        let camera = billboard_camera(frame, prepared.atmosphere.planet_radius).unwrap();
+        let screen = cloudlight::billboard::ScreenFrame::<f64>::new(
+            &camera,
+            cloudlight::billboard::SizeRule::default(),
+        );
+        let mut worst = 0.0f64;
+        for y in 0..size[1] {
+            for x in 0..size[0] {
+                // The scene's ray through the pixel centre, 1 km out, in east/north/up.
+                let view = atmos::frame::frame_view_direction([x, y], frame).map(f64::from);
+                let relative = [view[0] * 1e3, -view[2] * 1e3, view[1] * 1e3];
+                let [cx, cy, _] =
+                    cloudlight::billboard::billboard_screen(&screen, relative, 1.0f64);
+                worst = worst
+                    .max((cx - (f64::from(x) + 0.5)).abs())
+                    .max((cy - (f64::from(y) + 0.5)).abs());
+            }
+        }
+        eprintln!("{look} {size:?}: largest pixel-centre offset {worst:e} px");
+        assert!(worst < 1e-4, "{look}: {worst}");
+    }
+}
+
 fn luminance(rgb: [f32; 3]) -> f32 {
     0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]
 }
