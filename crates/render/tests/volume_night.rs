@@ -359,3 +359,43 @@ fn a_cloud_beyond_the_aerial_perspective_range_agrees() {
         drawn.len()
     );
 }
+
+/// The moon lights the cloud through any rung: with the closed form the CPU renderer
+/// takes the moon's air from the moonlit segment model (no tables).
+#[test]
+fn the_moon_lights_the_cloud_through_the_closed_form() {
+    let mut scene = night(
+        WEST_CAMERA,
+        &cumulus([-23400.0, -3420.0], 3800.0, 100.0),
+        48,
+        27,
+    );
+    scene.file.atmosphere.rung = render::scene::Rung::ClosedForm;
+    let lit = scene.prepare().unwrap();
+    assert!(lit.precomputed.is_none());
+    let mut dark = scene.prepare().unwrap();
+    dark.volume_cloud.as_mut().unwrap().moon = None;
+    let with = render_radiance(&lit).unwrap();
+    let without = render_radiance(&dark).unwrap();
+    let opaque = cloud_pixels(&lit, 0.1);
+    let mean = |image: &[render::cpu_renderer::PixelRadiance]| {
+        opaque
+            .iter()
+            .map(|&i| f64::from(luminance(image[i].radiance)))
+            .sum::<f64>()
+            / opaque.len().max(1) as f64
+    };
+    let (l, d) = (mean(&with), mean(&without));
+    eprintln!(
+        "closed form, 48×27: {} opaque cloud pixels, mean luminance moonlit {l:.4e}, without \
+         the moon {d:.4e}",
+        opaque.len()
+    );
+    assert!(
+        opaque.len() > 10
+            && with
+                .iter()
+                .all(|p| p.radiance.iter().all(|v| v.is_finite()))
+    );
+    assert!(l > 3.0 * d, "{l} vs {d}");
+}
