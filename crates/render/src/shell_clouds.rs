@@ -106,8 +106,7 @@ pub struct CloudShellSection {
     /// Distance along a view ray where the horizon fade begins, metres.
     #[serde(default = "default_fade_start")]
     pub horizon_fade_start_m: f64,
-    /// Distance where the clouds have faded out, metres (default: the GPU's
-    /// aerial-perspective range, beyond which its composite would differ from the CPU's).
+    /// Distance where the clouds have faded out, metres.
     #[serde(default = "default_fade_end")]
     pub horizon_fade_end_m: f64,
     /// View-march steps per pixel (1..=1024).
@@ -172,11 +171,11 @@ fn default_sigma_t() -> f64 {
 fn default_seed() -> u32 {
     default_shell().seed
 }
-fn default_fade_end() -> f64 {
-    f64::from(atmos::lut::LutSettings::default().aerial_perspective_range)
-}
 fn default_fade_start() -> f64 {
-    0.5 * default_fade_end()
+    default_shell().horizon_fade_start
+}
+fn default_fade_end() -> f64 {
+    default_shell().horizon_fade_end
 }
 fn default_view_steps() -> u32 {
     48
