@@ -86,10 +86,22 @@
 //! is searched. On mountainous maps these tests skip few searches (for most texels a
 //! far sample rises above the near field), so a maximum distance, which needs two
 //! hulls and up to two searches per window where the unlimited sweep needs one of
-//! each, costs more than no limit.
+//! each, costs more than no limit. Counted on the 1024² speed-study map (16
+//! azimuths; `examples/horizon_speed.rs`): off the axes and diagonals the unlimited
+//! sweep searches for 94 % of the texels, a 6 km window for 87 % (own block) + 34 %
+//! (next block), 2 km for 81 % + 41 %; on the axes and diagonals the unlimited sweep
+//! never searches (the viewpoint pops what it hides), a window searches the next
+//! block for 38 % (6 km) and 48 % (2 km) of the texels, and every block's prefix
+//! hull is built and undone besides.
 //!
-//! Lines are distributed over threads (`std::thread::scope`); every line is computed
-//! the same way whatever the thread count, so the result does not depend on it.
+//! The near field of every texel is computed once per azimuth, row by row (step `k`
+//! of a whole row reads one other row at one offset), and looked up as each line is
+//! built.
+//!
+//! [`bake_azimuths`] hands whole azimuths to the threads (`std::thread::scope`), each
+//! baked on one thread; [`bake_horizon`] distributes one azimuth's lines. Every line
+//! is computed the same way whatever the thread count, so the result does not depend
+//! on it.
 
 use std::num::NonZeroUsize;
 
