@@ -7,8 +7,9 @@
 //! through the air up to its transmittance-weighted depth. This module owns only the
 //! section, the frame and the lighting point; the shell, its density and validation are
 //! `cloudlight::CloudShell`'s, the march is `cloudlight::march` (CPU, the f32 twin) and
-//! `cloudlight::gpu::MarchShellPass` (GPU), the composite is the volume cloud's
-//! (`shaders/render/volume_clouds.wgsl`, `render::volume_clouds::cloud_through_air`).
+//! `cloudlight::gpu::MarchShellPass` (GPU), the air and the composite are the volume
+//! cloud's (`shaders/render/volume_air.wgsl`, `shaders/render/volume_clouds.wgsl` with
+//! its moonlit march off; `render::volume_clouds::cloud_through_air` on the CPU).
 //!
 //! # Frame
 //!
@@ -23,7 +24,8 @@
 //!
 //! Once per scene, at the middle of the shell straight above the camera: the sun's
 //! irradiance through the scene's rung and the ambient sky (`cloudlight::march::atmos_light`,
-//! as the volume cloud). The deck's shadow on the terrain is not modelled.
+//! as the volume cloud). The deck's shadow on the terrain is not modelled, nor the
+//! moon's light on it at night.
 //!
 //! # What it costs
 //!
