@@ -81,6 +81,34 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/terrain_aerial_vertex.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "render::sky_rung",
+        source: include_str!("../shaders/sky_rung.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::terrain_rung",
+        source: include_str!("../shaders/terrain_rung.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::terrain_closed_form",
+        source: include_str!("../shaders/terrain_closed_form.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::terrain_single",
+        source: include_str!("../shaders/terrain_single.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::rung_air",
+        source: include_str!("../shaders/rung_air.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::air_closed_form",
+        source: include_str!("../shaders/air_closed_form.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::air_single",
+        source: include_str!("../shaders/air_single.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "render::clouds",
         source: include_str!("../shaders/clouds.wgsl"),
     },

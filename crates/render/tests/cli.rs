@@ -16,7 +16,7 @@ fn compare_without_a_gpu_image_is_an_error() {
     for args in [
         &["render", "--cpu", "--compare"][..],
         &["render", "--rung", "reference", "--compare"][..],
-        &["render", "--rung", "single", "--explain"][..],
+        &["render", "--rung", "reference-spectral", "--explain"][..],
     ] {
         let output = skyscape(args);
         assert_eq!(output.status.code(), Some(2), "{args:?}");

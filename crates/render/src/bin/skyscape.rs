@@ -678,13 +678,20 @@ fn render_command(args: RenderArgs) -> Result<(), Failure> {
         }
     });
     if (args.compare || args.explain)
-        && scene.file.atmosphere.rung != render::scene::Rung::Precomputed
+        && !matches!(
+            scene.file.atmosphere.rung,
+            render::scene::Rung::Precomputed
+                | render::scene::Rung::ClosedForm
+                | render::scene::Rung::ClosedFormVertex
+                | render::scene::Rung::Single
+        )
     {
-        // The other rungs have no GPU passes: comparing would set the CPU image
+        // The reference rungs have no GPU passes: comparing would set the CPU image
         // against itself.
         return Err(Failure::Input(format!(
             "{} needs a GPU image, and rung `{}` renders on the CPU reference renderer only \
-             (the GPU scene renderer draws the precomputed rung)",
+             (the GPU scene renderer draws the closed-form, closed-form-vertex, single and \
+             precomputed rungs)",
             if args.compare {
                 "--compare"
             } else {

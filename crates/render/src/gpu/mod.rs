@@ -9,6 +9,7 @@
 //! * [`timer::PassTimes`]: GPU timestamps per pass.
 
 pub mod present;
+pub mod rungs;
 pub mod scene;
 pub mod timer;
 

@@ -32,7 +32,6 @@ use crate::RenderError;
 use crate::cpu_renderer::{TerrainLighting, terrain_lighting, terrain_lighting_for};
 use crate::gpu::timer::PassTimes;
 use crate::scene::Illuminant;
-use crate::scene::Rung;
 use crate::scene::prepare::{HorizonMaps, PreparedScene, PreparedTerrain};
 use crate::terrain_mesh::{TerrainLod, Tile, tile_mesh};
 use crate::terrain_shading::AlbedoRampUniform;
@@ -205,9 +204,12 @@ pub struct SceneRenderer {
     width: u32,
     height: u32,
     settings: SceneRendererSettings,
-    luts: AtmosphereLuts,
-    sky: SkyPass,
+    /// The precomputed rung's tables and sky pass (`None` for a rung without tables).
+    luts: Option<AtmosphereLuts>,
+    sky: Option<SkyPass>,
     moonlit: Option<(AtmosphereLuts, SkyPass)>,
+    /// The sky and terrain passes of a rung without tables (`super::rungs`).
+    rung: Option<super::rungs::RungPasses>,
     terrain: Option<TerrainPass>,
     sky_objects: Option<celestial::gpu::SkyObjectsPass>,
     clouds: Option<CloudPass>,
@@ -379,6 +381,7 @@ pub fn planned_passes(scene: &PreparedScene) -> Vec<(&'static str, Result<String
         "display",
         Ok("exposure, 1 − exp(−x), sRGB, dither to RGBA8".into()),
     ));
+    super::rungs::adjust_plan(scene, &mut plan);
     plan
 }
 
@@ -548,14 +551,6 @@ impl SceneRenderer {
         scene: &PreparedScene,
         settings: SceneRendererSettings,
     ) -> Result<Self, RenderError> {
-        if scene.rung != Rung::Precomputed {
-            return Err(RenderError::InvalidParameter {
-                field: "atmosphere.rung",
-                value: format!("\"{}\"", scene.rung.name()),
-                reason: "the GPU renderer draws the precomputed rung; render other rungs on \
-                         the CPU (--cpu)",
-            });
-        }
         let (width, height) = (scene.camera.width, scene.camera.height);
         let limit = device.limits().max_texture_dimension_2d;
         if width > limit || height > limit {
@@ -566,17 +561,30 @@ impl SceneRenderer {
             });
         }
         crate::aerial_vertex::check_gpu(scene)?;
-        let luts = AtmosphereLuts::new(device, &scene.atmosphere, &Default::default())?;
-        let sky = SkyPass::new(
-            device,
-            &luts,
-            &SkyPassDescriptor {
-                depth_format: Some(DEPTH),
-                ..SkyPassDescriptor::new(HDR)
-            },
-        )?;
+        // The closed form and single scattering: their own sky and terrain passes, no
+        // tables (`super::rungs`); the reference rungs have none (an error).
+        let rung = super::rungs::RungPasses::new(device, scene, HDR, DEPTH)?;
+        let luts = match rung {
+            Some(_) => None,
+            None => Some(AtmosphereLuts::new(
+                device,
+                &scene.atmosphere,
+                &Default::default(),
+            )?),
+        };
+        let sky = match &luts {
+            Some(luts) => Some(SkyPass::new(
+                device,
+                luts,
+                &SkyPassDescriptor {
+                    depth_format: Some(DEPTH),
+                    ..SkyPassDescriptor::new(HDR)
+                },
+            )?),
+            None => None,
+        };
         // The moonlit sky: a second table set lit by the moon, its sky pass added.
-        let moonlit = match &scene.moonlit {
+        let moonlit = match scene.moonlit.as_ref().filter(|_| luts.is_some()) {
             Some(moon) => {
                 let luts = AtmosphereLuts::new(device, &moon.atmosphere, &Default::default())?;
                 let additive = wgpu::BlendComponent {
@@ -616,11 +624,13 @@ impl SceneRenderer {
                 view_formats: &[],
             })
         };
+        // COPY_DST: a rung without tables copies its terrain's aerial perspective back.
         let hdr = target(
             HDR,
             wgpu::TextureUsages::RENDER_ATTACHMENT
                 | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::COPY_DST,
         );
         // The cloud pass reads the terrain's depth.
         let depth = target(
@@ -632,8 +642,9 @@ impl SceneRenderer {
         let terrain = match &scene.terrain {
             Some(terrain) => Some(Self::terrain_pass(
                 device,
-                &luts,
+                luts.as_ref(),
                 moonlit.as_ref().map(|(moon_luts, _)| moon_luts),
+                rung.as_ref(),
                 terrain,
                 scene.cloud_layers.len(),
                 scene.volume_cloud.is_some() || scene.billboard_cloud.is_some(),
@@ -655,7 +666,8 @@ impl SceneRenderer {
         let volume_cloud = match &scene.volume_cloud {
             Some(cloud) => Some(crate::volume_clouds::VolumeCloudPass::new(
                 device,
-                &luts,
+                luts.as_ref()
+                    .ok_or_else(|| super::rungs::volume_needs_tables(scene.rung))?,
                 // At night the moon lights the cloud too: its march and air passes.
                 moonlit
                     .as_ref()
@@ -668,7 +680,12 @@ impl SceneRenderer {
 
         // Only a scene with [clouds.shell] builds the shell's march and composite.
         let shell_cloud = match &scene.shell_cloud {
-            Some(_) => Some(crate::shell_clouds::ShellCloudPass::new(device, &luts, HDR)?),
+            Some(_) => Some(crate::shell_clouds::ShellCloudPass::new(
+                device,
+                luts.as_ref()
+                    .ok_or_else(|| super::rungs::volume_needs_tables(scene.rung))?,
+                HDR,
+            )?),
             None => None,
         };
 
@@ -676,7 +693,7 @@ impl SceneRenderer {
         let billboard_cloud = match &scene.billboard_cloud {
             Some(_) => Some(crate::billboard_clouds::BillboardCloudPass::new(
                 device,
-                Some(&luts),
+                luts.as_ref(),
                 HDR,
                 DEPTH,
             )?),
@@ -771,8 +788,12 @@ impl SceneRenderer {
             None => None,
         };
         let times = if settings.timestamps {
-            let mut labels = vec!["atmosphere LUT bakes", "sky"];
-            if scene.moonlit.is_some() {
+            let mut labels = match &rung {
+                Some(rung) => rung.timestamp_labels(scene.terrain.is_some()),
+                None => vec!["atmosphere LUT bakes"],
+            };
+            labels.push("sky");
+            if scene.moonlit.is_some() && rung.is_none() {
                 labels.push("moonlit sky LUT bakes");
             }
             if terrain.is_some() {
@@ -811,6 +832,7 @@ impl SceneRenderer {
             luts,
             sky,
             moonlit,
+            rung,
             terrain,
             sky_objects,
             clouds,
@@ -832,8 +854,9 @@ impl SceneRenderer {
 
     fn terrain_pass(
         device: &wgpu::Device,
-        luts: &AtmosphereLuts,
+        luts: Option<&AtmosphereLuts>,
         moon_luts: Option<&AtmosphereLuts>,
+        rung: Option<&super::rungs::RungPasses>,
         terrain: &PreparedTerrain,
         cloud_layer_capacity: usize,
         volume_cloud: bool,
@@ -978,21 +1001,36 @@ impl SceneRenderer {
         // entry points (render::aerial_vertex).
         let (shader, vertex_entry, fragment_entry) =
             crate::aerial_vertex::terrain_shader(terrain.aerial_perspective);
-        let source = crate::composer().compose_module(shader)?;
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("render terrain"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
+        // A rung without tables: its own fragment stage and group 3, the tables' groups
+        // unbound (`super::rungs`; its aerial perspective is per pixel, as on the CPU).
+        let (vertex_entry, fragment_entry) = match rung {
+            Some(rung) => ("terrain_vertex", rung.terrain_fragment()),
+            None => (vertex_entry, fragment_entry),
+        };
+        let module = match rung {
+            Some(rung) => rung.terrain_shader().0.clone(),
+            None => {
+                let source = crate::composer().compose_module(shader)?;
+                device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some("render terrain"),
+                    source: wgpu::ShaderSource::Wgsl(source.into()),
+                })
+            }
+        };
         // `moon`: the additive, depth-equal draw of the moonlit terrain over the sunlit
         // one (the same vertices give the same depths: the clip position is invariant).
-        let make_pipeline = |luts: &AtmosphereLuts, moon: bool| {
+        let make_pipeline = |luts: Option<&AtmosphereLuts>, moon: bool| {
+            let mut groups = vec![
+                luts.map(|l| &l.layouts().uniforms),
+                luts.map(|l| &l.layouts().tables),
+                Some(&layout),
+            ];
+            if let Some(rung) = rung {
+                groups.push(Some(rung.terrain_shader().1));
+            }
             let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some("render terrain"),
-                bind_group_layouts: &[
-                    Some(&luts.layouts().uniforms),
-                    Some(&luts.layouts().tables),
-                    Some(&layout),
-                ],
+                bind_group_layouts: &groups,
                 immediate_size: 0,
             });
             let additive = wgpu::BlendComponent {
@@ -1056,7 +1094,12 @@ impl SceneRenderer {
             })
         };
         let pipeline = make_pipeline(luts, false);
-        let moon = moon_luts.map(|moon_luts| {
+        // The moon's tables, or (a rung without tables) none.
+        let moon_light = match rung {
+            Some(rung) => rung.has_moon().then_some(None),
+            None => moon_luts.map(Some),
+        };
+        let moon = moon_light.map(|moon_luts| {
             let uniform = uniform_buffer("render moonlit terrain uniform");
             let cloud_layers = layers_buffer("render moonlit terrain cloud layers");
             let volume_shadow = shadow_uniform("render moonlit terrain volume shadow");
@@ -1207,6 +1250,8 @@ impl SceneRenderer {
                 );
             }
             (None, None) => {}
+            // A rung without tables draws its moonlit sky itself (prepared below).
+            (None, Some(_)) if self.rung.is_some() => {}
             (built, _) => {
                 return Err(RenderError::InvalidParameter {
                     field: "moonlit sky",
@@ -1215,16 +1260,21 @@ impl SceneRenderer {
                 });
             }
         }
-        self.luts.prepare(queue, camera);
-        self.sky.prepare(
-            queue,
-            &SkyPassParameters::new(
-                &scene.atmosphere,
-                scene.sky_objects.is_none(),
-                radiance_scale,
-                0.0,
-            )?,
-        );
+        if let (Some(luts), Some(sky)) = (&mut self.luts, &mut self.sky) {
+            luts.prepare(queue, camera);
+            sky.prepare(
+                queue,
+                &SkyPassParameters::new(
+                    &scene.atmosphere,
+                    scene.sky_objects.is_none(),
+                    radiance_scale,
+                    0.0,
+                )?,
+            );
+        }
+        if let Some(rung) = &mut self.rung {
+            rung.prepare(&self.device, queue, scene, &self.hdr_view, &self.depth_view)?;
+        }
         queue.write_buffer(
             &self.display_uniform,
             0,
@@ -1396,16 +1446,23 @@ impl SceneRenderer {
         let times = self.times.as_ref();
         // The static bakes once (untimed: per atmosphere, not per frame).
         if self.static_luts_pending {
-            self.luts.encode_static_luts(encoder, None);
+            if let Some(luts) = &self.luts {
+                luts.encode_static_luts(encoder, None);
+            }
             if let Some((luts, _)) = &self.moonlit {
                 luts.encode_static_luts(encoder, None);
             }
             self.static_luts_pending = false;
         }
-        self.luts.encode_frame_luts(
-            encoder,
-            times.and_then(|t| t.compute_writes("atmosphere LUT bakes")),
-        );
+        if let Some(luts) = &self.luts {
+            luts.encode_frame_luts(
+                encoder,
+                times.and_then(|t| t.compute_writes("atmosphere LUT bakes")),
+            );
+        }
+        if let Some(rung) = &self.rung {
+            rung.encode_sky_evaluation(encoder, times)?;
+        }
         if let Some((luts, _)) = &self.moonlit {
             luts.encode_frame_luts(
                 encoder,
@@ -1435,7 +1492,11 @@ impl SceneRenderer {
                 timestamp_writes: times.and_then(|t| t.render_writes("sky")),
                 ..Default::default()
             });
-            self.sky.draw(&mut pass, &self.luts)?;
+            match (&self.sky, &self.luts, &self.rung) {
+                (Some(sky), Some(luts), _) => sky.draw(&mut pass, luts)?,
+                (_, _, Some(rung)) => rung.draw_sky(&mut pass),
+                _ => {}
+            }
             if let Some((luts, moon_sky)) = &self.moonlit {
                 moon_sky.draw(&mut pass, luts)?;
             }
@@ -1464,8 +1525,13 @@ impl SceneRenderer {
                 ..Default::default()
             });
             pass.set_pipeline(&terrain.pipeline);
-            pass.set_bind_group(0, self.luts.uniform_bind_group(), &[]);
-            pass.set_bind_group(1, self.luts.table_bind_group(), &[]);
+            if let Some(luts) = &self.luts {
+                pass.set_bind_group(0, luts.uniform_bind_group(), &[]);
+                pass.set_bind_group(1, luts.table_bind_group(), &[]);
+            }
+            if let Some(rung) = &self.rung {
+                rung.bind_terrain(&mut pass, false);
+            }
             pass.set_bind_group(2, &terrain.bind_group, &[]);
             pass.set_vertex_buffer(0, terrain.grid.slice(..));
             pass.set_vertex_buffer(1, terrain.tiles.slice(..));
@@ -1477,6 +1543,17 @@ impl SceneRenderer {
                 pass.set_bind_group(1, moon_luts.table_bind_group(), &[]);
                 pass.set_bind_group(2, &moon.bind_group, &[]);
                 pass.draw_indexed(0..terrain.index_count, 0, 0..terrain.tile_count);
+            }
+            if let (Some(moon), Some(rung)) = (&terrain.moon, &self.rung) {
+                pass.set_pipeline(&moon.pipeline);
+                rung.bind_terrain(&mut pass, true);
+                pass.set_bind_group(2, &moon.bind_group, &[]);
+                pass.draw_indexed(0..terrain.index_count, 0, 0..terrain.tile_count);
+            }
+            drop(pass);
+            // A rung without tables: the aerial perspective per pixel (compute).
+            if let Some(rung) = &self.rung {
+                rung.encode_air(encoder, &self.hdr, times)?;
             }
         }
         if let Some(objects) = &self.sky_objects {
@@ -1507,11 +1584,11 @@ impl SceneRenderer {
             pass.set_bind_group(0, &clouds.bind_group, &[]);
             pass.draw(0..3, 0..1);
         }
-        if let Some(shell) = &self.shell_cloud {
+        if let (Some(shell), Some(luts)) = (&self.shell_cloud, &self.luts) {
             // After the terrain (the march stops at its depth), before the volume cloud.
             shell.encode_march(
                 encoder,
-                &self.luts,
+                luts,
                 times.and_then(|t| t.compute_writes("shell cloud march")),
             )?;
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -1531,11 +1608,11 @@ impl SceneRenderer {
             });
             shell.draw(&mut pass)?;
         }
-        if let Some(volume) = &self.volume_cloud {
+        if let (Some(volume), Some(luts)) = (&self.volume_cloud, &self.luts) {
             // After the terrain: the march stops at its depth.
             volume.encode_march(
                 encoder,
-                &self.luts,
+                luts,
                 self.moonlit.as_ref().map(|(luts, _)| luts),
                 times.and_then(|t| t.compute_writes("volume cloud march")),
                 times.and_then(|t| t.compute_writes("moonlit cloud march")),
@@ -1563,7 +1640,7 @@ impl SceneRenderer {
                 encoder,
                 &self.hdr_view,
                 &self.depth_view,
-                Some(&self.luts),
+                self.luts.as_ref(),
                 times.and_then(|t| t.render_writes("billboard clouds")),
             )?;
         }

@@ -1,0 +1,940 @@
+//! The GPU passes of the rungs without tables: rung 1, the closed form per pixel
+//! (`closed-form`) or per vertex of seed 000's dome (`closed-form-vertex`), and rung 2,
+//! single scattering (`single`). The precomputed rung keeps `atmos`' tables and sky
+//! pass ([`super::scene`]); the reference rungs (f64, orders of scattering or Monte
+//! Carlo) have no GPU passes and stay on the CPU.
+//!
+//! Per light (the sun, and the moon on a moonlit night):
+//!
+//! * **sky**: `atmos`' frame renderer of the rung ([`atmos::gpu::ClosedFormRenderer`]
+//!   per pixel or per dome vertex, [`atmos::gpu::SingleScatteringRenderer`]) writes
+//!   each pixel's view-ray radiance and transmittance into an
+//!   [`atmos::gpu::FrameOutput`] (a compute pass, timed as "sky evaluation"), then a
+//!   full-screen triangle (`shaders/render/sky_rung.wgsl`, drawn first, depth writes
+//!   off; the moon's added) adds the sun's disc through the transmittance with
+//!   `render::present`'s `present_radiance`, as the CPU renderer does for these rungs;
+//! * **terrain**: the terrain pass with a fragment stage of the rung
+//!   (`shaders/render/terrain_closed_form.wgsl`, `terrain_single.wgsl`: the same
+//!   `terrain_surface` of `render::terrain`, lit by the rung's transmittance from the
+//!   point to the top of the atmosphere, seen through the rung's segment camera → point)
+//!   and the light and the rung's parameters in bind group 3.
+//!
+//! Separate pipelines rather than `override` constants: the closed form and single
+//! scattering read different uniforms (`ClosedFormSkyParameters`,
+//! `AtmosphereParameters`) and the precomputed terrain reads the tables in groups 0
+//! and 1; one shader switching on a constant would bind all of them in every scene
+//! (and make a closed-form scene allocate tables it never reads). Each rung's pipeline
+//! binds what its rung reads, and the precomputed pipeline is unchanged. The single
+//! scattering's sample counts are `override` constants.
+
+use atmos::gpu::{ClosedFormRenderer, EvaluationFrequency, FrameOutput, SingleScatteringRenderer};
+use wgpu::util::DeviceExt as _;
+
+use crate::RenderError;
+use crate::present::PresentParameters;
+use crate::scene::Rung;
+use crate::scene::prepare::PreparedScene;
+
+/// The light of a rung's terrain draw (layout identical to WGSL `RungLight` in
+/// `shaders/render/terrain_rung.wgsl`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct RungLightUniform {
+    /// The camera, planet-centred (m).
+    pub camera_position: [f32; 3],
+    /// The atmosphere's top (m from the planet's centre).
+    pub top_radius: f32,
+    /// Unit direction toward the light.
+    pub direction: [f32; 3],
+    /// The planet's radius (m).
+    pub planet_radius: f32,
+    /// The terrain's lowest and highest elevation (m): the light table's span.
+    pub elevation_range: [f32; 2],
+    /// Alignment.
+    pub padding: [f32; 2],
+}
+
+/// The terrain's aerial-perspective pass of a rung (layout identical to WGSL `RungAir`
+/// in `shaders/render/rung_air.wgsl`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct RungAirUniform {
+    /// The scene camera (its `sun` the sun's direction).
+    pub camera: atmos::frame::FrameCamera,
+    /// Unit direction toward the moon (when `moon` is 1).
+    pub moon_direction: [f32; 3],
+    /// 1: add the moonlit in-scatter.
+    pub moon: u32,
+    /// The reverse-z projection's near plane (m).
+    pub near: f32,
+    /// Multiplies the in-scatter written (the scene's exposure).
+    pub radiance_scale: f32,
+    /// Alignment.
+    pub padding: [f32; 2],
+}
+
+/// Whether `rung` is drawn by these passes (the closed form and single scattering).
+pub fn has_rung_passes(rung: Rung) -> bool {
+    matches!(
+        rung,
+        Rung::ClosedForm | Rung::ClosedFormVertex | Rung::Single
+    )
+}
+
+/// `atmos`' frame renderer of the rung.
+#[derive(Debug)]
+enum SkyRenderer {
+    ClosedForm(ClosedFormRenderer),
+    Single(SingleScatteringRenderer),
+}
+
+impl SkyRenderer {
+    fn new(
+        device: &wgpu::Device,
+        rung: Rung,
+        atmosphere: &atmos::Atmosphere,
+    ) -> Result<Self, RenderError> {
+        Ok(match rung {
+            Rung::ClosedForm => Self::ClosedForm(ClosedFormRenderer::new(
+                device,
+                atmosphere,
+                EvaluationFrequency::PerPixel,
+            )?),
+            Rung::ClosedFormVertex => Self::ClosedForm(ClosedFormRenderer::new(
+                device,
+                atmosphere,
+                EvaluationFrequency::PerVertex(crate::scene::prepare::DOME),
+            )?),
+            Rung::Single => Self::Single(SingleScatteringRenderer::new(
+                device,
+                atmosphere,
+                atmos::single_scattering::SingleScatteringSettings::default(),
+            )?),
+            other => return Err(no_gpu_passes(other)),
+        })
+    }
+
+    fn prepare(
+        &mut self,
+        queue: &wgpu::Queue,
+        camera: &atmos::frame::FrameCamera,
+        output: &FrameOutput,
+    ) -> Result<(), RenderError> {
+        match self {
+            Self::ClosedForm(r) => r.prepare(queue, camera, output)?,
+            Self::Single(r) => r.prepare(queue, camera, output)?,
+        }
+        Ok(())
+    }
+
+    fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), RenderError> {
+        match self {
+            Self::ClosedForm(r) => r.encode(encoder, timestamp_writes)?,
+            Self::Single(r) => r.encode(encoder, timestamp_writes)?,
+        }
+        Ok(())
+    }
+}
+
+/// The error of a rung without GPU passes.
+pub fn no_gpu_passes(rung: Rung) -> RenderError {
+    RenderError::InvalidParameter {
+        field: "atmosphere.rung",
+        value: format!("\"{}\"", rung.name()),
+        reason: "the reference rungs (f64) have no GPU passes; render them on the CPU (--cpu)",
+    }
+}
+
+/// The error of a scene with GPU clouds that read the precomputed rung's tables
+/// (`[clouds.volume]`'s march and composite, `[clouds.shell]`) on a rung without
+/// tables.
+pub fn volume_needs_tables(rung: Rung) -> RenderError {
+    RenderError::InvalidParameter {
+        field: "atmosphere.rung",
+        value: format!("\"{}\"", rung.name()),
+        reason: "the GPU's volume and shell clouds read the precomputed rung's tables; render \
+                 this scene with the precomputed rung, or on the CPU (--cpu)",
+    }
+}
+
+/// The override constants of a rung's aerial-perspective shader (single scattering's
+/// sample counts, those of the CPU's `SingleScatteringSky`).
+fn air_constants(rung: Rung) -> Vec<(&'static str, f64)> {
+    match rung {
+        Rung::Single => {
+            let settings = atmos::single_scattering::SingleScatteringSettings::default();
+            vec![
+                ("view_samples", f64::from(settings.view_samples)),
+                ("light_samples", f64::from(settings.light_samples)),
+            ]
+        }
+        _ => Vec::new(),
+    }
+}
+
+impl AirPass {
+    fn new(
+        device: &wgpu::Device,
+        scene: &PreparedScene,
+        hdr: wgpu::TextureFormat,
+        constants: &[(&'static str, f64)],
+    ) -> Result<Self, RenderError> {
+        let (module_name, entry) = match scene.rung {
+            Rung::Single => ("render::air_single", "air_single"),
+            _ => ("render::air_closed_form", "air_closed_form"),
+        };
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(module_name),
+            source: wgpu::ShaderSource::Wgsl(crate::composer().compose_module(module_name)?.into()),
+        });
+        let compute = wgpu::ShaderStages::COMPUTE;
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("render terrain air (rung)"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    visibility: compute,
+                    ..fragment_uniform(0)
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: compute,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Depth,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    visibility: compute,
+                    ..fragment_texture(2)
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 3,
+                    visibility: compute,
+                    ty: wgpu::BindingType::StorageTexture {
+                        access: wgpu::StorageTextureAccess::WriteOnly,
+                        format: hdr,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let parameters_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("render terrain air parameters (rung)"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    visibility: compute,
+                    ..fragment_uniform(0)
+                },
+                wgpu::BindGroupLayoutEntry {
+                    visibility: compute,
+                    ..fragment_uniform(1)
+                },
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("render terrain air (rung)"),
+            bind_group_layouts: &[Some(&layout), Some(&parameters_layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("render terrain air (rung)"),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some(entry),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants,
+                ..Default::default()
+            },
+            cache: None,
+        });
+        // The rung's parameters for the sun's and the moon's atmospheres (the sun's
+        // twice without a moon: the shader then reads only the first).
+        let parameters = |atmosphere: &atmos::Atmosphere| -> Result<Vec<u8>, RenderError> {
+            Ok(match scene.rung {
+                Rung::Single => bytemuck::bytes_of(&atmosphere.to_uniforms()?).to_vec(),
+                _ => bytemuck::bytes_of(
+                    &atmos::closed_form_sky::ClosedFormSkyParameters::from_atmosphere(atmosphere)?,
+                )
+                .to_vec(),
+            })
+        };
+        let sun = parameters(&scene.atmosphere)?;
+        let moon = match &scene.moonlit {
+            Some(moon) => parameters(&moon.atmosphere)?,
+            None => sun.clone(),
+        };
+        let buffer = |label: &str, contents: &[u8]| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage: wgpu::BufferUsages::UNIFORM,
+            })
+        };
+        let sun = buffer("render terrain air sun parameters", &sun);
+        let moon = buffer("render terrain air moon parameters", &moon);
+        let parameters = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("render terrain air parameters (rung)"),
+            layout: &parameters_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: sun.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: moon.as_entire_binding(),
+                },
+            ],
+        });
+        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render terrain air (rung)"),
+            size: std::mem::size_of::<RungAirUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let scratch = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("render terrain air (rung) target"),
+            size: wgpu::Extent3d {
+                width: scene.camera.width,
+                height: scene.camera.height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: hdr,
+            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        Ok(Self {
+            pipeline,
+            layout,
+            uniform,
+            parameters,
+            scratch_view: scratch.create_view(&Default::default()),
+            scratch,
+            targets: None,
+        })
+    }
+}
+
+/// One light's sky evaluation and draw, and its terrain group.
+#[derive(Debug)]
+struct LightPasses {
+    renderer: SkyRenderer,
+    output: FrameOutput,
+    sky_camera: wgpu::Buffer,
+    sky_present: wgpu::Buffer,
+    sky_group: wgpu::BindGroup,
+    terrain_light: wgpu::Buffer,
+    /// The light's irradiance at `cpu_renderer::SUN_TABLE_SIZE` elevations (filled for
+    /// single scattering).
+    light_table: wgpu::Buffer,
+    terrain_group: wgpu::BindGroup,
+}
+
+impl LightPasses {
+    fn prepare(
+        &mut self,
+        queue: &wgpu::Queue,
+        camera: &atmos::frame::FrameCamera,
+        present: &PresentParameters,
+        light: &RungLightUniform,
+        table: Option<&[[f32; 4]]>,
+    ) -> Result<(), RenderError> {
+        self.renderer.prepare(queue, camera, &self.output)?;
+        if let Some(table) = table {
+            queue.write_buffer(&self.light_table, 0, bytemuck::cast_slice(table));
+        }
+        queue.write_buffer(&self.sky_camera, 0, bytemuck::bytes_of(camera));
+        queue.write_buffer(&self.sky_present, 0, bytemuck::bytes_of(present));
+        queue.write_buffer(&self.terrain_light, 0, bytemuck::bytes_of(light));
+        Ok(())
+    }
+}
+
+/// The sky and terrain passes of a rung without tables (see the module documentation).
+#[derive(Debug)]
+pub struct RungPasses {
+    rung: Rung,
+    sky_pipeline: wgpu::RenderPipeline,
+    moon_sky_pipeline: Option<wgpu::RenderPipeline>,
+    terrain_layout: wgpu::BindGroupLayout,
+    terrain_module: wgpu::ShaderModule,
+    sun: LightPasses,
+    moon: Option<LightPasses>,
+    air: AirPass,
+}
+
+/// The terrain's aerial perspective: a compute pass reading the drawn surface and the
+/// depth, writing `scratch`, copied back into the scene's HDR target.
+#[derive(Debug)]
+struct AirPass {
+    pipeline: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+    uniform: wgpu::Buffer,
+    parameters: wgpu::BindGroup,
+    scratch: wgpu::Texture,
+    scratch_view: wgpu::TextureView,
+    targets: Option<wgpu::BindGroup>,
+}
+
+fn fragment_uniform(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+fn fragment_texture(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+impl RungPasses {
+    /// The passes of `scene`'s rung, or `None` for the precomputed rung (its tables and
+    /// sky pass are the scene renderer's own); an error for the reference rungs.
+    /// `hdr` and `depth` are the scene's targets' formats.
+    pub fn new(
+        device: &wgpu::Device,
+        scene: &PreparedScene,
+        hdr: wgpu::TextureFormat,
+        depth: wgpu::TextureFormat,
+    ) -> Result<Option<Self>, RenderError> {
+        let rung = scene.rung;
+        if rung == Rung::Precomputed {
+            return Ok(None);
+        }
+        if !has_rung_passes(rung) {
+            return Err(no_gpu_passes(rung));
+        }
+        let composer = crate::composer();
+        let sky_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("render sky (rung)"),
+            source: wgpu::ShaderSource::Wgsl(composer.compose_module("render::sky_rung")?.into()),
+        });
+        let terrain_source = match rung {
+            Rung::Single => "render::terrain_single",
+            _ => "render::terrain_closed_form",
+        };
+        let terrain_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(terrain_source),
+            source: wgpu::ShaderSource::Wgsl(composer.compose_module(terrain_source)?.into()),
+        });
+        let sky_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("render sky (rung)"),
+            entries: &[
+                fragment_uniform(0),
+                fragment_uniform(1),
+                fragment_texture(2),
+                fragment_texture(3),
+            ],
+        });
+        let terrain_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("render terrain (rung)"),
+            entries: &[
+                fragment_uniform(0),
+                fragment_uniform(1),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Storage { read_only: true },
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let sky_pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("render sky (rung)"),
+            bind_group_layouts: &[Some(&sky_layout)],
+            immediate_size: 0,
+        });
+        let sky_pipeline = |additive: bool| {
+            let add = wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::One,
+                dst_factor: wgpu::BlendFactor::One,
+                operation: wgpu::BlendOperation::Add,
+            };
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(if additive {
+                    "render moonlit sky (rung)"
+                } else {
+                    "render sky (rung)"
+                }),
+                layout: Some(&sky_pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &sky_module,
+                    entry_point: Some("rung_sky_vertex"),
+                    compilation_options: Default::default(),
+                    buffers: &[],
+                },
+                primitive: wgpu::PrimitiveState::default(),
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: depth,
+                    depth_write_enabled: Some(false),
+                    depth_compare: Some(wgpu::CompareFunction::Always),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &sky_module,
+                    entry_point: Some("rung_sky_fragment"),
+                    compilation_options: Default::default(),
+                    targets: &[Some(wgpu::ColorTargetState {
+                        blend: additive.then_some(wgpu::BlendState {
+                            color: add,
+                            alpha: add,
+                        }),
+                        ..hdr.into()
+                    })],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let (width, height) = (scene.camera.width, scene.camera.height);
+        let light = |atmosphere: &atmos::Atmosphere, label: &str| {
+            let renderer = SkyRenderer::new(device, rung, atmosphere)?;
+            let output = FrameOutput::new(device, width, height)?;
+            let uniform = |what: &str, size: usize| {
+                device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some(&format!("render {label} {what}")),
+                    size: size as u64,
+                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                })
+            };
+            let sky_camera = uniform(
+                "sky camera",
+                std::mem::size_of::<atmos::frame::FrameCamera>(),
+            );
+            let sky_present = uniform("sky parameters", std::mem::size_of::<PresentParameters>());
+            let [radiance, transmittance] = output.bind_group_entries(2);
+            let sky_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("render sky (rung)"),
+                layout: &sky_layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: sky_camera.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: sky_present.as_entire_binding(),
+                    },
+                    radiance,
+                    transmittance,
+                ],
+            });
+            let terrain_light = uniform("terrain light", std::mem::size_of::<RungLightUniform>());
+            // The rung's parameters for this light's atmosphere (fixed per renderer, as
+            // the atmosphere is).
+            let parameters: Vec<u8> = match rung {
+                Rung::Single => bytemuck::bytes_of(&atmosphere.to_uniforms()?).to_vec(),
+                _ => bytemuck::bytes_of(
+                    &atmos::closed_form_sky::ClosedFormSkyParameters::from_atmosphere(atmosphere)?,
+                )
+                .to_vec(),
+            };
+            let parameters = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(&format!("render {label} terrain rung parameters")),
+                contents: &parameters,
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let light_table = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(&format!("render {label} terrain light table")),
+                size: (crate::cpu_renderer::SUN_TABLE_SIZE * 16) as u64,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            let terrain_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("render terrain (rung)"),
+                layout: &terrain_layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: terrain_light.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: parameters.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: light_table.as_entire_binding(),
+                    },
+                ],
+            });
+            Ok::<_, RenderError>(LightPasses {
+                renderer,
+                output,
+                sky_camera,
+                sky_present,
+                sky_group,
+                terrain_light,
+                light_table,
+                terrain_group,
+            })
+        };
+        let sun = light(&scene.atmosphere, "sun")?;
+        let moon = match &scene.moonlit {
+            Some(moon) => Some(light(&moon.atmosphere, "moon")?),
+            None => None,
+        };
+        let air = AirPass::new(device, scene, hdr, &air_constants(rung))?;
+        Ok(Some(Self {
+            rung,
+            sky_pipeline: sky_pipeline(false),
+            moon_sky_pipeline: moon.as_ref().map(|_| sky_pipeline(true)),
+            terrain_layout,
+            terrain_module,
+            sun,
+            moon,
+            air,
+        }))
+    }
+
+    /// The rung drawn.
+    pub fn rung(&self) -> Rung {
+        self.rung
+    }
+
+    /// Whether the moon lights the scene (its sky added, the terrain drawn again).
+    pub fn has_moon(&self) -> bool {
+        self.moon.is_some()
+    }
+
+    /// The terrain pipeline's rung parts: its shader module (vertex `terrain_vertex`,
+    /// fragment [`Self::terrain_fragment`]) and bind group 3's layout.
+    pub fn terrain_shader(&self) -> (&wgpu::ShaderModule, &wgpu::BindGroupLayout) {
+        (&self.terrain_module, &self.terrain_layout)
+    }
+
+    /// The terrain's fragment entry point of the rung.
+    pub fn terrain_fragment(&self) -> &'static str {
+        match self.rung {
+            Rung::Single => "terrain_single_fragment",
+            _ => "terrain_closed_form_fragment",
+        }
+    }
+
+    /// Writes the frame's cameras and lights and binds the rung's outputs; the terrain's
+    /// aerial perspective reads `hdr_view` and `depth_view` (the scene's targets, the
+    /// same every frame) and writes into a texture copied back into the HDR target.
+    pub fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &PreparedScene,
+        hdr_view: &wgpu::TextureView,
+        depth_view: &wgpu::TextureView,
+    ) -> Result<(), RenderError> {
+        let camera = &scene.camera;
+        if self.air.targets.is_none() {
+            self.air.targets = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("render terrain air (rung)"),
+                layout: &self.air.layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: self.air.uniform.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::TextureView(depth_view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: wgpu::BindingResource::TextureView(hdr_view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: wgpu::BindingResource::TextureView(&self.air.scratch_view),
+                    },
+                ],
+            }));
+        }
+        let air = RungAirUniform {
+            camera: *camera,
+            moon_direction: scene
+                .moonlit
+                .as_ref()
+                .map_or([0.0; 3], |moon| moon.direction.as_vec3().to_array()),
+            moon: u32::from(scene.moonlit.is_some()),
+            near: scene.near.max(0.01) as f32,
+            radiance_scale: scene.present.exposure,
+            padding: [0.0; 2],
+        };
+        queue.write_buffer(&self.air.uniform, 0, bytemuck::bytes_of(&air));
+        // The terrain's elevations (the CPU renderer's span for its light table).
+        let range = scene.terrain.as_ref().map_or([0.0, 0.0], |t| {
+            terrain::intersect::HeightfieldTracer::new(&t.heightfield).elevation_range()
+        });
+        let light_uniform =
+            |atmosphere: &atmos::Atmosphere, direction: glam::DVec3| RungLightUniform {
+                camera_position: scene.camera_position.as_vec3().to_array(),
+                top_radius: atmosphere.top_radius as f32,
+                direction: direction.as_vec3().to_array(),
+                planet_radius: atmosphere.planet_radius as f32,
+                elevation_range: range.map(|e| e as f32),
+                padding: [0.0; 2],
+            };
+        // Single scattering's light is tabulated as the CPU renderer tabulates it (the
+        // same function, `light_irradiance_at`, at the same elevations).
+        let rung = self.rung;
+        let table = |light: &crate::scene::Illuminant<'_>| -> Result<_, RenderError> {
+            if rung != Rung::Single || scene.terrain.is_none() {
+                return Ok(None);
+            }
+            let n = crate::cpu_renderer::SUN_TABLE_SIZE;
+            (0..n)
+                .map(|k| {
+                    let elevation = range[0] + (range[1] - range[0]) * k as f64 / (n - 1) as f64;
+                    crate::cpu_renderer::light_irradiance_at(scene, light, elevation)
+                        .map(|e| [e.x, e.y, e.z, 0.0])
+                })
+                .collect::<Result<Vec<_>, _>>()
+                .map(Some)
+        };
+        let sun_table = table(&scene.sun_light())?;
+        self.sun.prepare(
+            queue,
+            camera,
+            &scene.present,
+            &light_uniform(&scene.atmosphere, scene.sun),
+            sun_table.as_deref(),
+        )?;
+        match (&mut self.moon, &scene.moonlit) {
+            (Some(passes), Some(moon)) => {
+                // No disc: celestial draws the moon (the CPU adds the moonlit sky alone).
+                let present = PresentParameters {
+                    sun_disc_radiance: [0.0; 3],
+                    ..scene.present
+                };
+                let moon_table = match scene.moon_light() {
+                    Some(light) => table(&light)?,
+                    None => None,
+                };
+                passes.prepare(
+                    queue,
+                    &moon.camera(camera),
+                    &present,
+                    &light_uniform(&moon.atmosphere, moon.direction),
+                    moon_table.as_deref(),
+                )?;
+            }
+            (None, None) => {}
+            (built, _) => {
+                return Err(RenderError::InvalidParameter {
+                    field: "moonlit sky",
+                    value: if built.is_some() { "off" } else { "on" }.into(),
+                    reason: "differs from the scene the renderer was built for",
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Records the rung's sky evaluation (compute passes, before the scene's render
+    /// pass): the sun's timed as "sky evaluation", the moon's as "moonlit sky
+    /// evaluation".
+    pub fn encode_sky_evaluation(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        times: Option<&super::timer::PassTimes>,
+    ) -> Result<(), RenderError> {
+        self.sun.renderer.encode(
+            encoder,
+            times.and_then(|t| t.compute_writes("sky evaluation")),
+        )?;
+        if let Some(moon) = &self.moon {
+            moon.renderer.encode(
+                encoder,
+                times.and_then(|t| t.compute_writes("moonlit sky evaluation")),
+            )?;
+        }
+        Ok(())
+    }
+
+    /// Records the terrain's aerial perspective (after the terrain's draws, timed as
+    /// "terrain aerial perspective") and copies its result into `hdr`.
+    pub fn encode_air(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        hdr: &wgpu::Texture,
+        times: Option<&super::timer::PassTimes>,
+    ) -> Result<(), RenderError> {
+        let targets = self.air.targets.as_ref().ok_or(RenderError::NotPrepared)?;
+        let size = self.air.scratch.size();
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("render terrain air (rung)"),
+                timestamp_writes: times
+                    .and_then(|t| t.compute_writes("terrain aerial perspective")),
+            });
+            pass.set_pipeline(&self.air.pipeline);
+            pass.set_bind_group(0, targets, &[]);
+            pass.set_bind_group(1, &self.air.parameters, &[]);
+            pass.dispatch_workgroups(size.width.div_ceil(8), size.height.div_ceil(8), 1);
+        }
+        encoder.copy_texture_to_texture(
+            self.air.scratch.as_image_copy(),
+            hdr.as_image_copy(),
+            size,
+        );
+        Ok(())
+    }
+
+    /// Draws the sky (and the moonlit sky, added) into the scene's render pass.
+    pub fn draw_sky(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_pipeline(&self.sky_pipeline);
+        pass.set_bind_group(0, &self.sun.sky_group, &[]);
+        pass.draw(0..3, 0..1);
+        if let (Some(pipeline), Some(moon)) = (&self.moon_sky_pipeline, &self.moon) {
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, &moon.sky_group, &[]);
+            pass.draw(0..3, 0..1);
+        }
+    }
+
+    /// Binds group 3 of a terrain draw: the sun's light, or the moon's.
+    pub fn bind_terrain(&self, pass: &mut wgpu::RenderPass<'_>, moon: bool) {
+        let light = match (&self.moon, moon) {
+            (Some(passes), true) => passes,
+            _ => &self.sun,
+        };
+        pass.set_bind_group(3, &light.terrain_group, &[]);
+    }
+
+    /// The timestamp spans of the rung's passes.
+    pub fn timestamp_labels(&self, terrain: bool) -> Vec<&'static str> {
+        let mut labels = vec!["sky evaluation"];
+        if self.moon.is_some() {
+            labels.push("moonlit sky evaluation");
+        }
+        if terrain {
+            labels.push("terrain aerial perspective");
+        }
+        labels
+    }
+}
+
+/// What `skyscape explain` prints for a rung without tables: the LUT bakes skipped with
+/// the reason, the rung's sky evaluation, the terrain's light (edits `plan` in place).
+pub fn adjust_plan(scene: &PreparedScene, plan: &mut Vec<(&'static str, Result<String, String>)>) {
+    let rung = scene.rung;
+    if !has_rung_passes(rung) {
+        return;
+    }
+    let (model, evaluation) = match rung {
+        Rung::ClosedForm => (
+            "the closed form",
+            "atmos' ClosedFormRenderer, seed 000's closed form per pixel (compute)".to_owned(),
+        ),
+        Rung::ClosedFormVertex => (
+            "the closed form",
+            format!(
+                "atmos' ClosedFormRenderer per vertex of a {}×{} dome, interpolated per pixel \
+                 (compute, two dispatches)",
+                crate::scene::prepare::DOME.rings,
+                crate::scene::prepare::DOME.segments
+            ),
+        ),
+        _ => {
+            let s = atmos::single_scattering::SingleScatteringSettings::default();
+            (
+                "single scattering",
+                format!(
+                    "atmos' SingleScatteringRenderer per pixel, {} view × {} light samples \
+                     (compute)",
+                    s.view_samples, s.light_samples
+                ),
+            )
+        }
+    };
+    let mut adjusted = Vec::with_capacity(plan.len() + 2);
+    for (name, entry) in plan.drain(..) {
+        match name {
+            "atmosphere LUT bakes" => {
+                adjusted.push((
+                    name,
+                    Err(format!(
+                        "rung `{}` has no tables: nothing baked or allocated",
+                        rung.name()
+                    )),
+                ));
+                adjusted.push(("sky evaluation", Ok(evaluation.clone())));
+            }
+            "sky" => adjusted.push((
+                name,
+                Ok(format!(
+                    "{model}'s radiance per pixel with the sun's disc through its \
+                     transmittance, drawn first with depth writes off (seed 000)"
+                )),
+            )),
+            "moonlit sky LUT bakes" => {
+                adjusted.push((name, Err(format!("rung `{}` has no tables", rung.name()))));
+                adjusted.push((
+                    "moonlit sky evaluation",
+                    if scene.moonlit.is_some() {
+                        Ok(format!(
+                            "{model} lit by the moon (celestial's MoonLight), added to the sky"
+                        ))
+                    } else {
+                        Err("no [time], or the sun is up or the moon below −2°".into())
+                    },
+                ));
+            }
+            "terrain" => {
+                let drawn = entry.is_ok();
+                adjusted.push((
+                    name,
+                    entry.map(|what| {
+                        format!(
+                            "{what}; lit through {model}'s transmittance per fragment and by \
+                             its sky's irradiance (once per frame)"
+                        )
+                    }),
+                ));
+                adjusted.push((
+                    "terrain aerial perspective",
+                    if drawn {
+                        Ok(format!(
+                            "{model}'s in-scatter and transmittance of each terrain pixel's \
+                             segment from the camera (compute, reading the depth), copied back"
+                        ))
+                    } else {
+                        Err("no terrain".into())
+                    },
+                ));
+            }
+            _ => adjusted.push((name, entry)),
+        }
+    }
+    *plan = adjusted;
+}

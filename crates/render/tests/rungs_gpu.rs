@@ -1,0 +1,243 @@
+//! The rungs without tables on the GPU (`render::gpu::rungs`): the closed form per
+//! pixel and per dome vertex, and single scattering. Each draws a small scene (sky +
+//! terrain) on the GPU and on the CPU reference renderer: the images agree (the sky
+//! pixel for pixel, the terrain up to the rasteriser-vs-ray-caster gap that
+//! `tests/scene_gpu.rs` measures), the terrain is lit and the zenith blue under every
+//! one of them, and the reference rungs keep their clear error.
+//!
+//! GPU policy: an adapter found → run; none and `SKYSCAPE_REQUIRE_GPU=1` → fail; none →
+//! skip with a visible line.
+
+use render::gpu::{SceneRenderer, SceneRendererSettings};
+use render::scene::{Rung, Scene};
+
+const GPU_RUNGS: [Rung; 3] = [Rung::ClosedForm, Rung::ClosedFormVertex, Rung::Single];
+
+fn shipped(name: &str, width: u32, height: u32, rung: Rung) -> Scene {
+    let path = format!("{}/../../scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+    let mut scene = Scene::open(&path).unwrap();
+    scene.file.output.width = width;
+    scene.file.output.height = height;
+    scene.file.atmosphere.rung = rung;
+    scene
+}
+
+fn gpu_pixels(
+    gpu: &skyscape_harness::GpuContext,
+    scene: &render::scene::PreparedScene,
+) -> Vec<u32> {
+    let settings = SceneRendererSettings {
+        terrain_error_px: 0.0,
+        timestamps: false,
+    };
+    let mut renderer = SceneRenderer::new(&gpu.device, &gpu.queue, scene, settings).unwrap();
+    renderer.prepare(&gpu.queue, scene).unwrap();
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    renderer.encode(&mut encoder).unwrap();
+    gpu.queue.submit([encoder.finish()]);
+    let buffer = renderer.pixel_buffer();
+    let bytes =
+        skyscape_harness::read_buffer(gpu, "rung pixels", buffer, 0, buffer.size()).unwrap();
+    bytemuck::cast_slice(&bytes).to_vec()
+}
+
+fn code(pixel: u32, channel: usize) -> i32 {
+    ((pixel >> (8 * channel)) & 255) as i32
+}
+
+fn within(a: &[u32], b: &[u32], lsb: i32) -> f64 {
+    let close = a
+        .iter()
+        .zip(b)
+        .filter(|(p, q)| (0..3).all(|c| (code(**p, c) - code(**q, c)).abs() <= lsb))
+        .count();
+    close as f64 / a.len().max(1) as f64
+}
+
+/// GPU vs CPU for `name` with each GPU rung at 160×90 (the size of `tests/scene_gpu.rs`;
+/// the precomputed rung first, as the baseline of the rasterisation gap): the whole
+/// image with that test's metric (within 2 and 8 LSB, within 2 LSB of the other image's
+/// 3×3 neighbourhood, mean signed and absolute difference), and the sky pixels (no
+/// terrain hit on the CPU) on their own, where no rasterisation gap applies.
+fn agree(gpu: &skyscape_harness::GpuContext, name: &str) {
+    let (width, height) = (160u32, 90u32);
+    for rung in [Rung::Precomputed].into_iter().chain(GPU_RUNGS) {
+        let scene = shipped(name, width, height, rung).prepare().unwrap();
+        let gpu_image = gpu_pixels(gpu, &scene);
+        let cpu_image = render::cpu_renderer::render_cpu(&scene).unwrap().pixels;
+        let hits = render::cpu_renderer::render_radiance(&scene).unwrap();
+        let (mut sky_gpu, mut sky_cpu) = (Vec::new(), Vec::new());
+        for ((g, c), hit) in gpu_image.iter().zip(&cpu_image).zip(&hits) {
+            if hit.terrain_distance.is_none() {
+                sky_gpu.push(*g);
+                sky_cpu.push(*c);
+            }
+        }
+        let (two, eight) = (
+            within(&gpu_image, &cpu_image, 2),
+            within(&gpu_image, &cpu_image, 8),
+        );
+        let shifted = render::tonemap::fraction_within_lsb_of_neighbourhood(
+            &gpu_image,
+            &cpu_image,
+            width as usize,
+            2,
+            1,
+        )
+        .unwrap();
+        let sky_two = within(&sky_gpu, &sky_cpu, 2);
+        let mut signed = [0.0f64; 3];
+        let mut absolute = [0.0f64; 3];
+        for (a, b) in gpu_image.iter().zip(&cpu_image) {
+            for channel in 0..3 {
+                let difference = f64::from(code(*a, channel) - code(*b, channel));
+                signed[channel] += difference / gpu_image.len() as f64;
+                absolute[channel] += difference.abs() / gpu_image.len() as f64;
+            }
+        }
+        eprintln!(
+            "{name} {} {width}×{height}: {:.3} % of pixels within 2 LSB, {:.3} % within 8, \
+             {:.3} % within 2 LSB of the other image's 3×3 neighbourhood; sky {:.3} % of {} \
+             within 2 LSB; mean difference (GPU − CPU) {signed:.3?} LSB, mean |difference| \
+             {absolute:.3?} LSB",
+            rung.name(),
+            100.0 * two,
+            100.0 * eight,
+            100.0 * shifted,
+            100.0 * sky_two,
+            sky_gpu.len(),
+        );
+        assert!(!sky_gpu.is_empty(), "{name} {}: no sky", rung.name());
+        assert!(sky_two >= 0.999, "{name} {}: sky {sky_two}", rung.name());
+        assert!(
+            two >= 0.96 && eight >= 0.985 && shifted >= 0.975,
+            "{name} {}: {two} {eight} {shifted}",
+            rung.name()
+        );
+        for channel in 0..3 {
+            assert!(
+                signed[channel].abs() <= 0.5 && absolute[channel] <= 1.0,
+                "{name} {}: {signed:?} {absolute:?}",
+                rung.name()
+            );
+        }
+    }
+}
+
+#[test]
+fn every_gpu_rung_agrees_with_the_cpu_on_the_default_scene() {
+    let Some(gpu) = skyscape_harness::gpu_or_skip("render::rungs_gpu default") else {
+        return;
+    };
+    agree(gpu, "default");
+}
+
+#[test]
+fn every_gpu_rung_agrees_with_the_cpu_at_sunset_and_at_night() {
+    let Some(gpu) = skyscape_harness::gpu_or_skip("render::rungs_gpu sunset, night") else {
+        return;
+    };
+    agree(gpu, "sunset");
+    // The moon lights the sky and the terrain: both added by a second draw.
+    agree(gpu, "night");
+}
+
+#[test]
+fn every_gpu_rung_draws_lit_terrain_under_a_blue_zenith() {
+    let Some(gpu) = skyscape_harness::gpu_or_skip("render::rungs_gpu lit terrain") else {
+        return;
+    };
+    for rung in GPU_RUNGS {
+        // Terrain: the default scene's mountains in the afternoon sun.
+        let scene = shipped("default", 96, 54, rung).prepare().unwrap();
+        let image = gpu_pixels(gpu, &scene);
+        let hits = render::cpu_renderer::render_radiance(&scene).unwrap();
+        let terrain: Vec<u32> = image
+            .iter()
+            .zip(&hits)
+            .filter(|(_, hit)| hit.terrain_distance.is_some())
+            .map(|(p, _)| *p)
+            .collect();
+        assert!(
+            terrain.len() > 500,
+            "{}: {} terrain pixels",
+            rung.name(),
+            terrain.len()
+        );
+        let mean = |channel| {
+            terrain
+                .iter()
+                .map(|p| f64::from(code(*p, channel)))
+                .sum::<f64>()
+                / terrain.len() as f64
+        };
+        let brightest = terrain
+            .iter()
+            .map(|p| (0..3).map(|c| code(*p, c)).sum::<i32>())
+            .max()
+            .unwrap_or(0);
+        let black = terrain
+            .iter()
+            .filter(|p| (0..3).all(|c| code(**p, c) <= 2))
+            .count();
+        eprintln!(
+            "{}: {} terrain pixels on the GPU, mean code ({:.1}, {:.1}, {:.1}), brightest sum \
+             {brightest}, {black} black",
+            rung.name(),
+            terrain.len(),
+            mean(0),
+            mean(1),
+            mean(2)
+        );
+        assert!(
+            mean(0) > 20.0 && mean(1) > 20.0 && brightest > 200 && black == 0,
+            "{}: the terrain is dark",
+            rung.name()
+        );
+        // The zenith, between the cumulus.
+        let mut up = shipped("default", 8, 8, rung);
+        up.file.camera.look_at = None;
+        up.file.camera.look_direction = Some([0.0, 1.0, -0.01]);
+        up.file.clouds = None;
+        let up = up.prepare().unwrap();
+        let pixel = gpu_pixels(gpu, &up)[4 * 8 + 4];
+        let [r, g, b] = [code(pixel, 0), code(pixel, 1), code(pixel, 2)];
+        eprintln!("{}: zenith RGBA8 ({r}, {g}, {b})", rung.name());
+        assert!(b > g && g > r, "{}: zenith {r} {g} {b}", rung.name());
+    }
+}
+
+#[test]
+fn the_reference_rungs_keep_their_error_and_the_tables_are_not_baked() {
+    let Some(gpu) = skyscape_harness::gpu_or_skip("render::rungs_gpu reference") else {
+        return;
+    };
+    // The closed form's plan skips the LUT bakes and names its sky evaluation.
+    let scene = shipped("default", 16, 9, Rung::ClosedForm)
+        .prepare()
+        .unwrap();
+    let plan = render::gpu::scene::planned_passes(&scene);
+    let bakes = plan
+        .iter()
+        .find(|(name, _)| *name == "atmosphere LUT bakes")
+        .unwrap();
+    assert!(bakes.1.is_err(), "{plan:?}");
+    assert!(
+        plan.iter()
+            .any(|(name, what)| *name == "sky evaluation" && what.is_ok()),
+        "{plan:?}"
+    );
+    // The reference rungs (f64; preparing one takes 20–40 s, so the check is on the
+    // error `SceneRenderer::new` returns for them) have no GPU passes.
+    for rung in [Rung::Reference, Rung::ReferenceSpectral] {
+        assert!(!render::gpu::rungs::has_rung_passes(rung));
+        let error = render::gpu::rungs::no_gpu_passes(rung).to_string();
+        assert!(
+            error.contains("atmosphere.rung")
+                && error.contains(rung.name())
+                && error.contains("--cpu"),
+            "{error}"
+        );
+    }
+    let _ = gpu;
+}

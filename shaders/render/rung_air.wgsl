@@ -1,0 +1,54 @@
+// The aerial perspective of the terrain for a rung without tables, per pixel in a
+// compute pass over the drawn frame (render::air_closed_form, render::air_single): where
+// the terrain's reverse-z depth shows a surface, the segment camera → surface along the
+// pixel's ray (the CPU's SkyQuery::with_max_distance to the hit) gives the rung's
+// transmittance and in-scatter, and the pixel becomes surface × transmittance +
+// in-scatter (the moon's in-scatter added on a moonlit night; its atmosphere differs
+// from the sun's in irradiance only, so the transmittance is the same). Sky pixels are
+// copied. Bindings in group 0; the rung's parameters in group 1.
+// Twin: render::cpu_renderer's shade_terrain (surface × T + L of the segment model).
+#import atmos::frame
+#import render::scene_distance
+
+// Layout identical to render::gpu::rungs::RungAirUniform.
+struct RungAir {
+    // The scene camera, its `sun` the sun's direction.
+    camera: FrameCamera,
+    // Unit direction toward the moon (when `moon` is 1).
+    moon_direction: vec3<f32>,
+    // 1: add the moonlit in-scatter.
+    moon: u32,
+    // The reverse-z projection's near plane (m).
+    near: f32,
+    // Multiplies the in-scatter written (the HDR target holds radiance × exposure).
+    radiance_scale: f32,
+    padding0: f32,
+    padding1: f32,
+}
+
+@group(0) @binding(0) var<uniform> air: RungAir;
+@group(0) @binding(1) var air_depth: texture_depth_2d;
+@group(0) @binding(2) var air_surface: texture_2d<f32>;
+@group(0) @binding(3) var air_out: texture_storage_2d<rgba16float, write>;
+
+// A pixel's segment: the camera's radius, the view's zenith cosine, the distance to the
+// surface (0: the sky) and the view direction.
+struct AirSegment {
+    r: f32,
+    mu: f32,
+    distance: f32,
+    view: vec3<f32>,
+    up: vec3<f32>,
+}
+
+fn air_segment(pixel: vec2<u32>) -> AirSegment {
+    let depth = textureLoad(air_depth, pixel, 0);
+    let view = frame_view_direction(pixel, air.camera);
+    var distance = 0.0;
+    if depth > 0.0 {
+        distance = scene_distance_from_depth(depth, view, air.camera.forward, air.near);
+    }
+    let r = length(air.camera.position);
+    let up = air.camera.position / r;
+    return AirSegment(r, dot(view, up), distance, view, up);
+}
