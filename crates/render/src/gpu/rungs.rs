@@ -914,10 +914,16 @@ pub fn adjust_plan(scene: &PreparedScene, plan: &mut Vec<(&'static str, Result<S
                 let drawn = entry.is_ok();
                 adjusted.push((
                     name,
-                    entry.map(|what| {
+                    entry.map(|_| {
                         format!(
-                            "{what}; lit through {model}'s transmittance per fragment and by \
-                             its sky's irradiance (once per frame)"
+                            "instanced quadtree tiles, seed 000's shading (render::terrain's \
+                             terrain_surface), lit through {model}'s transmittance to the top \
+                             of the atmosphere and by its sky's irradiance (once per frame){}",
+                            if scene.moonlit.is_some() {
+                                "; drawn again lit by the moon, added (timed with \"terrain\")"
+                            } else {
+                                ""
+                            }
                         )
                     }),
                 ));
