@@ -723,6 +723,9 @@ fn lerp_row(row: &[f64], x: f64) -> f64 {
     }
 }
 
+/// Neighbouring lines built, swept and written together (off the axes and diagonals).
+const LINE_BATCH: usize = 8;
+
 /// Steps along each texel's own exact ray before the shared line takes over (off the
 /// axes and diagonals): the near field, where a lateral offset of half a texel matters
 /// most, is sampled exactly; beyond it every texel of a line reads the line's samples.
@@ -867,6 +870,14 @@ impl<'a> Sampler<'a> {
     /// just sampled (still in cache); the arithmetic is [`Lines::height_between`]'s and
     /// [`Sampler::near_best`]'s, operation for operation, so the values are the same.
     fn build(&self, c: i64, sc: &mut LineScratch) {
+        self.build_batch(&[c], std::slice::from_mut(sc));
+    }
+
+    /// [`Sampler::build`] for consecutive lines `cs` at once (`scs[k]` for `cs[k]`),
+    /// each row of the grid visited once for all of them: neighbouring lines read
+    /// neighbouring texels, so a batch touches each row's memory once instead of once
+    /// per line. Every line's values are computed as on its own.
+    fn build_batch(&self, cs: &[i64], scs: &mut [LineScratch]) {
         let l = self.lines;
         let (t, step, nm) = (l.slope, l.step, l.n_minor);
         let n = l.n_dominant;
@@ -874,53 +885,60 @@ impl<'a> Sampler<'a> {
         // Projection of a minor offset of one texel on the direction, metres.
         let foot = l.march as f64 * t * step / (1.0 + t * t);
         let steps = NEAR_STEPS.min(self.max_steps);
-        let row = |u: usize| &self.grid[u * nm..][..nm];
-        sc.h.clear();
-        sc.g.clear();
-        sc.views.clear();
-        sc.h.reserve(n);
-        sc.g.reserve(n);
-        let c_f = c as f64;
+        for sc in scs.iter_mut() {
+            sc.h.clear();
+            sc.g.clear();
+            sc.views.clear();
+            sc.h.reserve(n);
+            sc.g.reserve(n);
+        }
         for i in 0..n {
             let u = l.dominant_at(i);
+            let row = &self.grid[u * nm..][..nm];
+            let near = &self.near[u * nm..][..nm];
             let exact = fl(u) * t;
-            let x = c_f + exact;
-            let h = if x >= 0.0 && x <= top {
-                lerp_row(row(u), x)
-            } else {
-                f64::NAN
-            };
             let s = fl(i) * step;
-            sc.h.push(h);
-            sc.g.push(h - s * s * self.inv_two_r);
-            let m = c + l.offsets[u];
-            if m >= 0 && (m as usize) < nm {
-                let mu = m as usize;
-                let texel = l.texel(u, mu);
-                let hp = row(u)[mu];
-                let e = foot * (l.offsets[u] as f64 - exact);
-                let sp = s + e;
-                let m_f = m as f64;
-                sc.views.push(View {
-                    i,
-                    texel,
-                    h: hp,
-                    m: m_f,
-                    e,
-                    g: hp - sp * sp * self.inv_two_r,
-                    near: self.near[u * nm + mu],
-                });
+            let drop = s * s * self.inv_two_r;
+            let offset = l.offsets[u];
+            let e = foot * (offset as f64 - exact);
+            let sp = s + e;
+            let drop_p = sp * sp * self.inv_two_r;
+            for (&c, sc) in cs.iter().zip(scs.iter_mut()) {
+                let x = c as f64 + exact;
+                let h = if x >= 0.0 && x <= top {
+                    lerp_row(row, x)
+                } else {
+                    f64::NAN
+                };
+                sc.h.push(h);
+                sc.g.push(h - drop);
+                let m = c + offset;
+                if m >= 0 && (m as usize) < nm {
+                    let mu = m as usize;
+                    let hp = row[mu];
+                    sc.views.push(View {
+                        i,
+                        texel: l.texel(u, mu),
+                        h: hp,
+                        m: m as f64,
+                        e,
+                        g: hp - drop_p,
+                        near: near[mu],
+                    });
+                }
             }
         }
         // The ray stops where its line's texels end ([`Sampler::near_best`]'s `last`).
         // Past a line's minor end the own ray has left the map too (the line's texel
         // is within half a texel of it), so only a guard: it redoes the last views.
-        let last = sc.views.last().map_or(0, |v| v.i);
-        for k in (0..sc.views.len()).rev() {
-            if sc.views[k].i + steps <= last {
-                break;
+        for sc in scs.iter_mut() {
+            let last = sc.views.last().map_or(0, |v| v.i);
+            for k in (0..sc.views.len()).rev() {
+                if sc.views[k].i + steps <= last {
+                    break;
+                }
+                sc.views[k].near = self.near_best(&sc.views[k], last);
             }
-            sc.views[k].near = self.near_best(&sc.views[k], last);
         }
     }
 
@@ -1398,15 +1416,29 @@ pub fn bake_horizon(
     // (texel index, angle) in line order.
     let run_chunk = |chunk: &[i64], emit: &mut dyn FnMut(usize, f32)| {
         if let Some(sampler) = &sampler {
-            let mut sc = LineScratch::default();
-            for &c in chunk {
-                sampler.build(c, &mut sc);
-                match algorithm {
-                    Algorithm::BruteForce => sampler.brute(&mut sc),
-                    Algorithm::HullSweep => sampler.sweep(&mut sc),
+            let mut scs: Vec<LineScratch> =
+                (0..LINE_BATCH).map(|_| LineScratch::default()).collect();
+            let mut cursors = [0usize; LINE_BATCH];
+            for batch in chunk.chunks(LINE_BATCH) {
+                let scs = &mut scs[..batch.len()];
+                sampler.build_batch(batch, scs);
+                for sc in scs.iter_mut() {
+                    match algorithm {
+                        Algorithm::BruteForce => sampler.brute(sc),
+                        Algorithm::HullSweep => sampler.sweep(sc),
+                    }
                 }
-                for (v, &a) in sc.views.iter().zip(&sc.out) {
-                    emit(v.texel, a);
+                // Row by row across the batch: neighbouring texels one after another.
+                cursors.fill(0);
+                for i in 0..lines.n_dominant {
+                    for (sc, cursor) in scs.iter().zip(cursors.iter_mut()) {
+                        if let Some(v) = sc.views.get(*cursor)
+                            && v.i == i
+                        {
+                            emit(v.texel, sc.out[*cursor]);
+                            *cursor += 1;
+                        }
+                    }
                 }
             }
             return;
@@ -1562,10 +1594,11 @@ mod tests {
     use super::{LineScratch, Lines, NEAR_STEPS, Sampler, first_true};
     use crate::Heightfield;
 
-    /// The near field computed in [`Sampler::build`]'s forward pass equals
+    /// The near field looked up by [`Sampler::build`] equals
     /// [`Sampler::near_best`] bit for bit for every view of every line, including the
     /// views whose ray reaches the line's last texel or leaves the map, and maximum
-    /// distances shorter than the near field.
+    /// distances shorter than the near field; and [`Sampler::build_batch`] gives
+    /// every line of a batch exactly what [`Sampler::build`] gives it alone.
     #[test]
     fn build_near_field_is_near_best() {
         let (w, h) = (23, 17);
@@ -1597,7 +1630,29 @@ mod tests {
             for max_steps in [1, 2, NEAR_STEPS, 7, usize::MAX] {
                 for inv_two_r in [0.0, 0.5 / 6.371e6] {
                     let sampler = Sampler::new(&lines, &grid, inv_two_r, max_steps);
+                    // A batch of lines is built as each line on its own.
+                    let ids: Vec<i64> = lines.ids().collect();
+                    let mut batch: Vec<LineScratch> =
+                        (0..5).map(|_| LineScratch::default()).collect();
                     let mut sc = LineScratch::default();
+                    for group in ids.chunks(5) {
+                        sampler.build_batch(group, &mut batch[..group.len()]);
+                        for (&c, b) in group.iter().zip(&batch) {
+                            sampler.build(c, &mut sc);
+                            let bits =
+                                |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+                            assert_eq!(bits(&b.h), bits(&sc.h), "line {c}");
+                            assert_eq!(bits(&b.g), bits(&sc.g), "line {c}");
+                            let key = |v: &super::View| {
+                                (v.i, v.texel, [v.h, v.m, v.e, v.g, v.near].map(f64::to_bits))
+                            };
+                            let (kb, ks): (Vec<_>, Vec<_>) = (
+                                b.views.iter().map(key).collect(),
+                                sc.views.iter().map(key).collect(),
+                            );
+                            assert_eq!(kb, ks, "line {c}");
+                        }
+                    }
                     for c in lines.ids() {
                         sampler.build(c, &mut sc);
                         let last = sc.views.last().map_or(0, |v| v.i);
