@@ -275,9 +275,17 @@ pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, Rend
             });
     }
     if let Some(shell) = &scene.shell_cloud {
-        // The [clouds.shell] deck (crate::shell_clouds), before the volume cloud.
+        // The [clouds.shell] deck (crate::shell_clouds), before the volume cloud; at
+        // night its march lit by the moon is added through the moonlit tables.
         let tables = precomputed.as_ref().map(|p| (p.luts, &p.frame));
-        crate::shell_clouds::composite_shell_cloud(scene, shell, tables, &mut out)?;
+        let moon = match (&shell.moon, scene.moon_light()) {
+            (Some(_), Some(light)) => Some((precomputed_frame(&light, camera, false)?, light)),
+            _ => None,
+        };
+        let moon = moon
+            .as_ref()
+            .map(|(frame, light)| (light, frame.as_ref().map(|p| (p.luts, &p.frame))));
+        crate::shell_clouds::composite_shell_cloud(scene, shell, tables, moon, &mut out)?;
     }
     if let Some(cloud) = &scene.volume_cloud {
         composite_volume_cloud(scene, cloud, precomputed.as_ref(), &mut out)?;

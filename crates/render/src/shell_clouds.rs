@@ -24,8 +24,11 @@
 //!
 //! Once per scene, at the middle of the shell straight above the camera: the sun's
 //! irradiance through the scene's rung and the ambient sky (`cloudlight::march::atmos_light`,
-//! as the volume cloud). The deck's shadow on the terrain is not modelled, nor the
-//! moon's light on it at night.
+//! as the volume cloud). At night (a scene with a moonlit sky: the sun down, the moon
+//! up, when the terrain gets its moonlit draw) the deck is marched a second time lit by
+//! the moon (`atmos_light` of celestial's moonlit atmosphere along the moon, as the
+//! volume cloud's [`crate::volume_clouds::MoonlitVolume`]) and added through the moonlit
+//! air. The deck's shadow on the terrain is not modelled.
 //!
 //! # What it costs
 //!
@@ -205,6 +208,9 @@ pub struct PreparedShell {
     /// The sun and ambient sky at the middle of the shell above the camera, in the
     /// shell's frame.
     pub lighting: Lighting<f32>,
+    /// The moon and the moonlit ambient sky there: only in scenes with a moonlit sky
+    /// (`PreparedScene::moonlit`), else `None` and no second march runs.
+    pub moon: Option<Lighting<f32>>,
 }
 
 /// The `[clouds.shell]` key a cloudlight `ShellError` is about.
@@ -372,7 +378,8 @@ impl Scene {
     }
 
     /// Builds and lights `[clouds.shell]` for a camera at planet-centred
-    /// `camera_position` (m) and the sun along unit `sun` (world frame).
+    /// `camera_position` (m) and the sun along unit `sun` (world frame); at night
+    /// (`moonlit`) lit by the moon too.
     pub(crate) fn shell_cloud(
         &self,
         section: &CloudShellSection,
@@ -380,31 +387,47 @@ impl Scene {
         model: &(dyn atmos::SkyModel + Send + Sync),
         camera_position: DVec3,
         sun: DVec3,
+        moonlit: Option<&crate::scene::prepare::MoonlitSky>,
     ) -> Result<PreparedShell, SceneError> {
         let (shell, settings) = self.check_shell_cloud(section, atmosphere)?;
         // The middle of the shell straight above the camera.
         let middle = atmosphere.planet_radius + 0.5 * (section.bottom_m + section.top_m);
         let point = camera_position.try_normalize().unwrap_or(DVec3::Y) * middle;
-        let light_error = |e: MarchError| self.shell_error(section, "bottom_m", Box::new(e));
-        let light = cloudlight::march::atmos_light(
-            &ModelRef(model),
-            atmosphere,
-            point,
-            sun,
-            atmos::ground_irradiance::HemisphereQuadrature::default(),
-        )
-        .map_err(light_error)?;
-        let lighting = Lighting::new(
-            world_to_enu(sun.to_array()),
-            light.sun_irradiance,
-            light.ambient_radiance,
-            [0.0, 0.0, 1.0],
-        )
-        .map_err(light_error)?;
+        // One light (the sun, or the moon through the moonlit atmosphere) there.
+        let light_at = |model: &(dyn atmos::SkyModel + Send + Sync),
+                        atmosphere: &atmos::Atmosphere,
+                        toward: DVec3| {
+            let light_error = |e: MarchError| self.shell_error(section, "bottom_m", Box::new(e));
+            let light = cloudlight::march::atmos_light(
+                &ModelRef(model),
+                atmosphere,
+                point,
+                toward,
+                atmos::ground_irradiance::HemisphereQuadrature::default(),
+            )
+            .map_err(light_error)?;
+            Lighting::new(
+                world_to_enu(toward.to_array()),
+                light.sun_irradiance,
+                light.ambient_radiance,
+                [0.0, 0.0, 1.0],
+            )
+            .map_err(light_error)
+        };
+        let lighting = light_at(model, atmosphere, sun)?;
+        let moon = match moonlit {
+            Some(moon) => Some(light_at(
+                moon.sky_model.as_ref(),
+                &moon.atmosphere,
+                moon.direction,
+            )?),
+            None => None,
+        };
         Ok(PreparedShell {
             shell,
             settings,
             lighting,
+            moon,
         })
     }
 }
@@ -427,6 +450,19 @@ pub fn march_shell_pixel(
     pixel: [u32; 2],
     max_distance: f32,
 ) -> MarchResult<f32> {
+    march_shell_pixel_lit(cloud, &cloud.lighting, camera, size, pixel, max_distance)
+}
+
+/// [`march_shell_pixel`] lit by `lighting` (the sun's, [`PreparedShell::lighting`], or
+/// the moon's, [`PreparedShell::moon`]).
+pub fn march_shell_pixel_lit(
+    cloud: &PreparedShell,
+    lighting: &Lighting<f32>,
+    camera: &PinholeCamera,
+    size: [u32; 2],
+    pixel: [u32; 2],
+    max_distance: f32,
+) -> MarchResult<f32> {
     let [forward, right, up] = camera.basis().map(|v| v.map(|c| c as f32));
     let tan_half = camera.tan_half(size).map(|t| t as f32);
     let origin = camera.origin().map(|c| c as f32);
@@ -436,19 +472,21 @@ pub fn march_shell_pixel(
         origin,
         direction,
         &cloud.settings,
-        &cloud.lighting,
+        lighting,
         pixel,
         max_distance,
     );
     cloudlight::march::faded(result, cloud.shell.horizon_fade(result.depth))
 }
 
-/// The air between the camera and `depth` metres along unit world `view` under the sun:
-/// its transmittance and in-scattered radiance, from the precomputed rung's
-/// aerial-perspective table when `tables` is given (`atmos::lut::drop_in`, the twin of
-/// the GPU composite's lookup), else from the scene's segment model.
-pub fn sunlit_air(
+/// The air between the camera and `depth` metres along unit world `view` lit by `light`
+/// (the sun, or the moon at night): its transmittance and in-scattered radiance, from
+/// the precomputed rung's aerial-perspective tables of that light when `tables` is given
+/// (`atmos::lut::drop_in::aerial_perspective`, the twin of the GPU's air pass), else
+/// from the light's segment model.
+pub fn air_in_front(
     scene: &crate::scene::PreparedScene,
+    light: &crate::scene::Illuminant<'_>,
     tables: Option<(&atmos::lut::StaticLuts, &atmos::lut::FrameLuts)>,
     view: [f32; 3],
     depth: f32,
@@ -465,10 +503,10 @@ pub fn sunlit_air(
                 scene.atmosphere.planet_radius,
                 scene.camera_position,
                 view,
-                scene.sun,
+                light.direction,
                 f64::from(depth),
             )?;
-            let air = scene.segment_model.evaluate(&query);
+            let air = light.segment_model.evaluate(&query);
             (
                 air.transmittance.map(|t| t as f32),
                 air.radiance.map(|l| l as f32),
@@ -481,11 +519,18 @@ pub fn sunlit_air(
 /// the shell up to the terrain's hit (`PixelRadiance::terrain_distance`; the sky: no
 /// limit), faded toward the horizon, drawn where it has opacity in front of the scene
 /// (`crate::volume_clouds::cloud_in_front`) as `L_c·T_air + L_air·(1 − T_c) + T_c·L`
-/// (`crate::volume_clouds::cloud_through_air`, the air from [`sunlit_air`]).
+/// (`crate::volume_clouds::cloud_through_air`, the air from [`air_in_front`] with the
+/// sun's `tables`). At night (`moon`: the moon's light and its tables) the deck's march
+/// lit by the moon, seen through the moonlit air, is added.
+#[allow(clippy::type_complexity)] // the tables as the CPU renderer holds them
 pub fn composite_shell_cloud(
     scene: &crate::scene::PreparedScene,
     cloud: &PreparedShell,
     tables: Option<(&atmos::lut::StaticLuts, &atmos::lut::FrameLuts)>,
+    moon: Option<(
+        &crate::scene::Illuminant<'_>,
+        Option<(&atmos::lut::StaticLuts, &atmos::lut::FrameLuts)>,
+    )>,
     out: &mut [crate::cpu_renderer::PixelRadiance],
 ) -> Result<(), crate::RenderError> {
     use crate::volume_clouds::{cloud_in_front, cloud_through_air};
@@ -493,6 +538,11 @@ pub fn composite_shell_cloud(
     let camera = &scene.camera;
     let size = [camera.width, camera.height];
     let pinhole = shell_camera(camera)?;
+    let sun = scene.sun_light();
+    let moon = match (&cloud.moon, moon) {
+        (Some(lighting), Some((light, moon_tables))) => Some((lighting, light, moon_tables)),
+        _ => None,
+    };
     out.par_chunks_mut(camera.width as usize)
         .enumerate()
         .try_for_each(|(row, pixels)| {
@@ -504,8 +554,18 @@ pub fn composite_shell_cloud(
                     continue;
                 }
                 let view = atmos::frame::frame_view_direction(xy, camera);
-                let (transmittance, radiance) = sunlit_air(scene, tables, view, result.depth)?;
-                let seen = cloud_through_air(&result, transmittance, radiance);
+                let (transmittance, radiance) =
+                    air_in_front(scene, &sun, tables, view, result.depth)?;
+                let mut seen = cloud_through_air(&result, transmittance, radiance);
+                if let Some((lighting, light, moon_tables)) = &moon {
+                    let lit = march_shell_pixel_lit(cloud, lighting, &pinhole, size, xy, behind);
+                    let (transmittance, radiance) =
+                        air_in_front(scene, light, *moon_tables, view, lit.depth)?;
+                    let added = cloud_through_air(&lit, transmittance, radiance);
+                    for (value, a) in seen.iter_mut().zip(added) {
+                        *value += a;
+                    }
+                }
                 for (value, s) in pixel.radiance.iter_mut().zip(seen) {
                     *value = s + result.transmittance * *value;
                 }
@@ -517,37 +577,48 @@ pub fn composite_shell_cloud(
 /// The GPU side, the volume cloud's passes over the shell's march: the terrain's depth
 /// as a distance per pixel (`shaders/render/volume_distance.wgsl`),
 /// `cloudlight::gpu::MarchShellPass` over the scene's pixels limited by it (prepared per
-/// frame with [`shell_camera`]), the air in front of the deck per pixel
-/// (`shaders/render/volume_air.wgsl`: atmos' `aerial_perspective`, the CPU's function)
-/// and the composite render pass (`shaders/render/volume_clouds.wgsl`, its moonlit
-/// march off). Built only for scenes with `[clouds.shell]`.
+/// frame with [`shell_camera`]; at night a second one lit by the moon), the air in front
+/// of the deck per pixel and light (`shaders/render/volume_air.wgsl`: atmos'
+/// `aerial_perspective`, the CPU's function) and the composite render pass
+/// (`shaders/render/volume_clouds.wgsl`). Built only for scenes with `[clouds.shell]`.
 #[cfg(feature = "gpu")]
 #[derive(Debug)]
 pub(crate) struct ShellCloudPass {
-    march: cloudlight::gpu::MarchShellPass,
+    sun: ShellLit,
+    moon: Option<ShellLit>,
     distance_pipeline: wgpu::ComputePipeline,
     distance_layout: wgpu::BindGroupLayout,
     distance_uniform: wgpu::Buffer,
     /// The distance buffer, its bind group and the dispatch size (after `prepare`).
     distance: Option<(wgpu::Buffer, wgpu::BindGroup, [u32; 2])>,
-    air_pipeline: wgpu::ComputePipeline,
     air_layout: wgpu::BindGroupLayout,
     air_uniform: wgpu::Buffer,
-    /// The air per pixel and its bind group (after `prepare`).
-    air: Option<(wgpu::Buffer, wgpu::BindGroup)>,
     pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
     uniform: wgpu::Buffer,
     bind_group: Option<wgpu::BindGroup>,
 }
 
+/// One light's march of the shell and its air pass (the sun's; at night the moon's).
+#[cfg(feature = "gpu")]
+#[derive(Debug)]
+struct ShellLit {
+    march: cloudlight::gpu::MarchShellPass,
+    /// `shaders/render/volume_air.wgsl` with this light's tables' layouts.
+    air_pipeline: wgpu::ComputePipeline,
+    /// The air per pixel and its bind group (after `prepare`).
+    air: Option<(wgpu::Buffer, wgpu::BindGroup)>,
+}
+
 #[cfg(feature = "gpu")]
 impl ShellCloudPass {
-    /// The march, distance, air and composite pipelines (the sun's tables' layouts in
-    /// the air pass's groups 0 and 1).
+    /// The march, distance, air and composite pipelines (each light's tables' layouts
+    /// in its air pass's groups 0 and 1; `moon_luts`: the moonlit tables when the deck is
+    /// lit by the moon too, [`PreparedShell::moon`]).
     pub(crate) fn new(
         device: &wgpu::Device,
         luts: &atmos::gpu::AtmosphereLuts,
+        moon_luts: Option<&atmos::gpu::AtmosphereLuts>,
         target: wgpu::TextureFormat,
     ) -> Result<Self, crate::RenderError> {
         use crate::volume_clouds::{
@@ -594,17 +665,31 @@ impl ShellCloudPass {
                 buffer_entry(2, compute, Storage { read_only: false }),
             ],
         });
-        let air_pipeline = compute_pipeline(
-            device,
-            "render shell air",
-            &module("render::volume_air")?,
-            "volume_air_main",
-            &[
-                Some(&luts.layouts().uniforms),
-                Some(&luts.layouts().tables),
-                Some(&air_layout),
-            ],
-        );
+        let air_module = module("render::volume_air")?;
+        let lit = |luts: &atmos::gpu::AtmosphereLuts,
+                   label: &str|
+         -> Result<ShellLit, crate::RenderError> {
+            Ok(ShellLit {
+                march: cloudlight::gpu::MarchShellPass::new(device)?,
+                air_pipeline: compute_pipeline(
+                    device,
+                    label,
+                    &air_module,
+                    "volume_air_main",
+                    &[
+                        Some(&luts.layouts().uniforms),
+                        Some(&luts.layouts().tables),
+                        Some(&air_layout),
+                    ],
+                ),
+                air: None,
+            })
+        };
+        let sun = lit(luts, "render shell air")?;
+        let moon = match moon_luts {
+            Some(moon_luts) => Some(lit(moon_luts, "render shell air (moonlit)")?),
+            None => None,
+        };
         let fragment = wgpu::ShaderStages::FRAGMENT;
         let read = Storage { read_only: true };
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -663,7 +748,8 @@ impl ShellCloudPass {
             cache: None,
         });
         Ok(Self {
-            march: cloudlight::gpu::MarchShellPass::new(device)?,
+            sun,
+            moon,
             distance_pipeline,
             distance_layout,
             distance_uniform: uniform_buffer(
@@ -671,13 +757,11 @@ impl ShellCloudPass {
                 std::mem::size_of::<VolumeDistanceParams>(),
             ),
             distance: None,
-            air_pipeline,
             air_layout,
             air_uniform: uniform_buffer(
                 "render shell air uniform",
                 std::mem::size_of::<VolumeAirParams>(),
             ),
-            air: None,
             pipeline,
             layout,
             uniform: uniform_buffer(
@@ -688,8 +772,9 @@ impl ShellCloudPass {
         })
     }
 
-    /// The frame's march (the scene camera in the shell's frame, one ray per pixel up to
-    /// the terrain), the distance, air and composite passes' uniforms and bind groups.
+    /// The frame's marches (the scene camera in the shell's frame, one ray per pixel up
+    /// to the terrain; the moon's at night), the distance, air and composite passes'
+    /// uniforms and bind groups.
     pub(crate) fn prepare(
         &mut self,
         device: &wgpu::Device,
@@ -703,6 +788,22 @@ impl ShellCloudPass {
         let pinhole = shell_camera(camera)?;
         let near = scene.near.max(0.01) as f32;
         let size = [camera.width, camera.height];
+        let moon_lighting = match (&self.moon, &cloud.moon) {
+            (Some(_), Some(lighting)) => Some(lighting),
+            (None, None) => None,
+            (built, _) => {
+                return Err(crate::RenderError::InvalidParameter {
+                    field: "clouds.shell",
+                    value: if built.is_some() {
+                        "not lit by the moon"
+                    } else {
+                        "lit by the moon"
+                    }
+                    .into(),
+                    reason: "differs from the scene the renderer was built for",
+                });
+            }
+        };
         queue.write_buffer(
             &self.distance_uniform,
             0,
@@ -731,7 +832,7 @@ impl ShellCloudPass {
                 near,
                 radiance_scale: scene.present.exposure,
                 width: camera.width,
-                moonlit: 0,
+                moonlit: u32::from(self.moon.is_some()),
             }),
         );
         // The distance and air buffers follow the image: kept across frames of one size.
@@ -759,36 +860,53 @@ impl ShellCloudPass {
                 entry(2, distances.as_entire_binding()),
             ],
         });
-        // The march stops at the terrain: a hill hides the deck behind it.
-        self.march.prepare_limited(
-            device,
-            queue,
-            &cloud.shell,
-            &pinhole,
-            size,
-            &cloud.settings,
-            &cloud.lighting,
-            Some(&distances),
-        )?;
-        let image = self
-            .march
-            .image_buffer()
-            .ok_or(crate::RenderError::NotPrepared)?;
-        let air = storage(
-            "render shell air",
-            pixels * 32,
-            self.air.take().map(|(buffer, _)| buffer),
-        );
-        let air_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("render shell air"),
-            layout: &self.air_layout,
-            entries: &[
-                entry(0, self.air_uniform.as_entire_binding()),
-                entry(1, image.as_entire_binding()),
-                entry(2, air.as_entire_binding()),
-            ],
-        });
-        // The composite's moonlit bindings hold the sun's buffers (unread: moonlit = 0).
+        let mut lights = vec![(&mut self.sun, &cloud.lighting)];
+        if let (Some(moon), Some(lighting)) = (self.moon.as_mut(), moon_lighting) {
+            lights.push((moon, lighting));
+        }
+        for (lit, lighting) in lights {
+            // The march stops at the terrain: a hill hides the deck behind it.
+            lit.march.prepare_limited(
+                device,
+                queue,
+                &cloud.shell,
+                &pinhole,
+                size,
+                &cloud.settings,
+                lighting,
+                Some(&distances),
+            )?;
+            let image = lit
+                .march
+                .image_buffer()
+                .ok_or(crate::RenderError::NotPrepared)?;
+            let air = storage(
+                "render shell air",
+                pixels * 32,
+                lit.air.take().map(|(buffer, _)| buffer),
+            );
+            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("render shell air"),
+                layout: &self.air_layout,
+                entries: &[
+                    entry(0, self.air_uniform.as_entire_binding()),
+                    entry(1, image.as_entire_binding()),
+                    entry(2, air.as_entire_binding()),
+                ],
+            });
+            lit.air = Some((air, group));
+        }
+        fn buffers(lit: &ShellLit) -> Result<(&wgpu::Buffer, &wgpu::Buffer), crate::RenderError> {
+            let image = lit
+                .march
+                .image_buffer()
+                .ok_or(crate::RenderError::NotPrepared)?;
+            let (air, _) = lit.air.as_ref().ok_or(crate::RenderError::NotPrepared)?;
+            Ok((image, air))
+        }
+        let (image, air) = buffers(&self.sun)?;
+        // Without the moon its bindings hold the sun's buffers (unread: moonlit = 0).
+        let (moon_image, moon_air) = buffers(self.moon.as_ref().unwrap_or(&self.sun))?;
         self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("render shell clouds"),
             layout: &self.layout,
@@ -797,11 +915,10 @@ impl ShellCloudPass {
                 entry(1, image.as_entire_binding()),
                 entry(2, wgpu::BindingResource::TextureView(depth_view)),
                 entry(3, air.as_entire_binding()),
-                entry(4, image.as_entire_binding()),
-                entry(5, air.as_entire_binding()),
+                entry(4, moon_image.as_entire_binding()),
+                entry(5, moon_air.as_entire_binding()),
             ],
         }));
-        self.air = Some((air, air_group));
         self.distance = Some((
             distances,
             distance_group,
@@ -810,20 +927,22 @@ impl ShellCloudPass {
         Ok(())
     }
 
-    /// Records the distance pass (after the terrain has written the depth), the march
-    /// (timed with `march_times`) and the air pass with the sun's tables, each a compute
-    /// pass of its own.
+    /// Records the distance pass (after the terrain has written the depth), the marches
+    /// (the sun's timed with `march_times`, the moon's with `moon_times`) and the air
+    /// passes with each light's tables (`moon_luts`: the moonlit ones, at night), each a
+    /// compute pass of its own.
     pub(crate) fn encode_march(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         luts: &atmos::gpu::AtmosphereLuts,
+        moon_luts: Option<&atmos::gpu::AtmosphereLuts>,
         march_times: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        moon_times: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), crate::RenderError> {
         let (_, distance_group, groups) = self
             .distance
             .as_ref()
             .ok_or(crate::RenderError::NotPrepared)?;
-        let (_, air_group) = self.air.as_ref().ok_or(crate::RenderError::NotPrepared)?;
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("render shell distance"),
@@ -833,16 +952,27 @@ impl ShellCloudPass {
             pass.set_bind_group(0, distance_group, &[]);
             pass.dispatch_workgroups(groups[0], groups[1], 1);
         }
-        self.march.encode_timed(encoder, march_times)?;
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("render shell air"),
-            timestamp_writes: None,
-        });
-        pass.set_pipeline(&self.air_pipeline);
-        pass.set_bind_group(0, luts.uniform_bind_group(), &[]);
-        pass.set_bind_group(1, luts.table_bind_group(), &[]);
-        pass.set_bind_group(2, air_group, &[]);
-        pass.dispatch_workgroups(groups[0], groups[1], 1);
+        self.sun.march.encode_timed(encoder, march_times)?;
+        let moon = match (&self.moon, moon_luts) {
+            (Some(moon), Some(moon_luts)) => {
+                moon.march.encode_timed(encoder, moon_times)?;
+                Some((moon, moon_luts))
+            }
+            (None, _) => None,
+            (Some(_), None) => return Err(crate::RenderError::NotPrepared),
+        };
+        for (lit, tables) in std::iter::once((&self.sun, luts)).chain(moon) {
+            let (_, air_group) = lit.air.as_ref().ok_or(crate::RenderError::NotPrepared)?;
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("render shell air"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(&lit.air_pipeline);
+            pass.set_bind_group(0, tables.uniform_bind_group(), &[]);
+            pass.set_bind_group(1, tables.table_bind_group(), &[]);
+            pass.set_bind_group(2, air_group, &[]);
+            pass.dispatch_workgroups(groups[0], groups[1], 1);
+        }
         Ok(())
     }
 
@@ -864,16 +994,16 @@ fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEn
     wgpu::BindGroupEntry { binding, resource }
 }
 
-/// What `skyscape explain` says of the shell's two passes (the march, the composite).
+/// What `skyscape explain` says of the shell's passes (the march, the moon's march at
+/// night, the composite).
 pub fn shell_pass_plans(
     scene: &crate::scene::PreparedScene,
-) -> [(&'static str, Result<String, String>); 2] {
+) -> [(&'static str, Result<String, String>); 3] {
     let Some(cloud) = &scene.shell_cloud else {
+        let none = || Err("no [clouds.shell]: no march".to_string());
         return [
-            (
-                "shell cloud march",
-                Err("no [clouds.shell]: no march".into()),
-            ),
+            ("shell cloud march", none()),
+            ("moonlit shell march", none()),
             (
                 "shell clouds",
                 Err("no [clouds.shell]: no shell, no march pass, nothing allocated".into()),
@@ -899,6 +1029,23 @@ pub fn shell_pass_plans(
                 c.view_steps,
                 light_steps,
             )),
+        ),
+        (
+            "moonlit shell march",
+            if cloud.moon.is_some() {
+                Ok(
+                    "the [clouds.shell] deck marched again lit by the moon (celestial's \
+                     MoonLight through atmos: the terrain's moonlit draw's light), added \
+                     through the moonlit air"
+                        .into(),
+                )
+            } else {
+                Err(
+                    "the moon does not light the scene (no [time], or the sun up or the moon \
+                     below −2°): the sun's march only"
+                        .into(),
+                )
+            },
         ),
         (
             "shell clouds",

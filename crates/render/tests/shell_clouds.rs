@@ -317,3 +317,89 @@ fn the_deck_agrees_on_the_gpu_and_the_cpu() {
     assert!(cloud_pixels > 500, "{cloud_pixels}");
     assert!(two >= 0.999 && eight >= 0.9995, "{two} {eight}");
 }
+
+/// At night (the shipped night scene, the moon up) the moon lights the deck: its second
+/// march, added through the moonlit air, makes the deck's pixels brighter than the sun's
+/// march alone (the sun is down: only its twilight sky lights it then); the GPU agrees.
+#[test]
+fn the_moon_lights_the_deck_at_night() {
+    let (width, height) = (64, 36);
+    let path = format!("{}/../../scenes/night.toml", env!("CARGO_MANIFEST_DIR"));
+    let night = std::fs::read_to_string(path).unwrap();
+    let deck = "[clouds.shell]\nbottom_m = 3500.0\ntop_m = 4300.0\ncoverage = 0.35\n\
+                coverage_contrast = 0.25\ncloud_type = 0.5\ncloud_type_contrast = 0.0\n\
+                shape_period_m = 6000.0\ndetail_period_m = 800.0\nview_steps = 12\n\
+                light_steps = 3\nambient_steps = 1\noctaves = 4\n";
+    let mut scene = Scene::parse(&format!("{night}{deck}"), ".").unwrap();
+    scene.file.output.width = width;
+    scene.file.output.height = height;
+    let mut prepared = scene.prepare().unwrap();
+    assert!(prepared.shell_cloud.as_ref().unwrap().moon.is_some());
+    assert_eq!(planned(&prepared, "moonlit shell march"), Some(true));
+    let gpu = skyscape_harness::gpu_or_skip("render::shell_clouds night").map(|gpu| {
+        let image = gpu_pixels(gpu, &prepared);
+        let cpu = render::cpu_renderer::render_cpu(&prepared).unwrap().pixels;
+        (image, cpu)
+    });
+    let moonlit = render::cpu_renderer::render_radiance(&prepared).unwrap();
+    let cloud = prepared.shell_cloud.as_ref().unwrap();
+    let camera = shell_camera(&prepared.camera).unwrap();
+    let deck: Vec<usize> = (0..width * height)
+        .filter(|&i| {
+            let m = march_shell_pixel(
+                cloud,
+                &camera,
+                [width, height],
+                [i % width, i / width],
+                moonlit[i as usize]
+                    .terrain_distance
+                    .unwrap_or(f32::INFINITY),
+            );
+            m.transmittance < 0.5
+        })
+        .map(|i| i as usize)
+        .collect();
+    prepared.shell_cloud.as_mut().unwrap().moon = None;
+    let sunlit_only = render::cpu_renderer::render_radiance(&prepared).unwrap();
+    let mean = |image: &[render::cpu_renderer::PixelRadiance]| {
+        deck.iter()
+            .map(|&i| f64::from(image[i].radiance[1]))
+            .sum::<f64>()
+            / deck.len() as f64
+    };
+    let (with, without) = (mean(&moonlit), mean(&sunlit_only));
+    eprintln!(
+        "night deck 64×36: {} opaque deck pixels, mean green radiance {with:.3e} with the \
+         moon's march, {without:.3e} without",
+        deck.len()
+    );
+    assert!(
+        deck.len() > 100 && with > 2.0 * without,
+        "{} {with} {without}",
+        deck.len()
+    );
+    if let Some((gpu_image, cpu_image)) = gpu {
+        let two = render::tonemap::fraction_within_lsb(&gpu_image, &cpu_image, 2).unwrap();
+        let deck_within = deck
+            .iter()
+            .filter(|&&i| {
+                (0..3).all(|c| {
+                    let code = |p: u32| (p >> (8 * c)) & 255;
+                    code(gpu_image[i]).abs_diff(code(cpu_image[i])) <= 2
+                })
+            })
+            .count();
+        eprintln!(
+            "night deck 64×36 GPU vs CPU: {:.3} % of pixels within 2 LSB, deck pixels \
+             {deck_within} of {} within 2 LSB",
+            100.0 * two,
+            deck.len()
+        );
+        assert!(two >= 0.99, "{two}");
+        assert!(
+            deck_within * 1000 >= deck.len() * 999,
+            "{deck_within} of {}",
+            deck.len()
+        );
+    }
+}

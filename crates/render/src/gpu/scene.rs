@@ -680,10 +680,12 @@ impl SceneRenderer {
 
         // Only a scene with [clouds.shell] builds the shell's march and composite.
         let shell_cloud = match &scene.shell_cloud {
-            Some(_) => Some(crate::shell_clouds::ShellCloudPass::new(
+            Some(cloud) => Some(crate::shell_clouds::ShellCloudPass::new(
                 device,
                 luts.as_ref()
                     .ok_or_else(|| super::rungs::volume_needs_tables(scene.rung))?,
+                // At night the moon lights the deck too: its march and air passes.
+                moonlit.as_ref().filter(|_| cloud.moon.is_some()).map(|(l, _)| l),
                 HDR,
             )?),
             None => None,
@@ -815,8 +817,11 @@ impl SceneRenderer {
             if scene.billboard_cloud.is_some() {
                 labels.push("billboard clouds");
             }
-            if scene.shell_cloud.is_some() {
+            if let Some(shell) = &scene.shell_cloud {
                 labels.push("shell cloud march");
+                if shell.moon.is_some() {
+                    labels.push("moonlit shell march");
+                }
                 labels.push("shell clouds");
             }
             labels.push("display");
@@ -1589,7 +1594,9 @@ impl SceneRenderer {
             shell.encode_march(
                 encoder,
                 luts,
+                self.moonlit.as_ref().map(|(luts, _)| luts),
                 times.and_then(|t| t.compute_writes("shell cloud march")),
+                times.and_then(|t| t.compute_writes("moonlit shell march")),
             )?;
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("render shell clouds"),

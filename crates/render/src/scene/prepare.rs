@@ -110,12 +110,12 @@ pub struct PreparedScene {
     /// The `[clouds.volume]` cloud grown, placed and lit (`crate::volume_clouds`);
     /// `None` without the section (then no automaton runs and no march pass is built).
     pub volume_cloud: Option<crate::volume_clouds::PreparedVolume>,
-    /// The `[clouds.shell]` shell and its lighting (`crate::shell_clouds`); `None`
-    /// without the section (then no march pass is built, nothing allocated).
-    pub shell_cloud: Option<crate::shell_clouds::PreparedShell>,
     /// The `[clouds.volume]` cloud with `draw = "billboards"`, grown and lit by slices
     /// (`crate::billboard_clouds`); then `volume_cloud` is `None` (no march).
     pub billboard_cloud: Option<crate::billboard_clouds::PreparedBillboards>,
+    /// The `[clouds.shell]` shell and its lighting (`crate::shell_clouds`); `None`
+    /// without the section (then no march pass is built, nothing allocated).
+    pub shell_cloud: Option<crate::shell_clouds::PreparedShell>,
     /// The placed `celestial` sky (scenes with `[time]` and sky objects): what
     /// [`PreparedScene::look_along`] redraws the sky objects' frame from.
     pub celestial_sky: Option<celestial::sky::Sky>,
@@ -517,6 +517,7 @@ impl Scene {
                 &*sky_model,
                 camera_position,
                 sun,
+                moonlit.as_ref(),
             )?),
             None => None,
         };
@@ -540,9 +541,9 @@ impl Scene {
             sky_objects,
             cloud_layers,
             viewer_radius: planet + cam.position[1],
+            billboard_cloud,
             moonlit,
             volume_cloud,
-            billboard_cloud,
             shell_cloud,
             celestial_sky: sky,
         })
