@@ -5,7 +5,19 @@
 //! overcast deck hiding the sun, and the GPU image against the CPU's (lavapipe in CI).
 
 use render::scene::{PreparedScene, Scene, SceneError};
-use render::shell_clouds::{march_shell_pixel, shell_camera};
+use render::shell_clouds::{PreparedShell, march_shell_pixel, shell_camera};
+
+/// The deck unlit: its march gives the same transmittance and depth (they do not depend
+/// on the light) without the light and ambient marches, which the march skips for a
+/// black sun and sky — the tests classify pixels with it at a fifth of the cost.
+fn unlit(cloud: &PreparedShell) -> PreparedShell {
+    let mut cloud = cloud.clone();
+    cloud.lighting =
+        cloudlight::march::Lighting::new([0.0, 0.0, 1.0], [0.0; 3], [0.0; 3], [0.0, 0.0, 1.0])
+            .unwrap();
+    cloud.moon = None;
+    cloud
+}
 
 const VALID: &str = "[camera]\nposition = [0.0, 2.0, 0.0]\nlook_direction = [0.0, 0.2, -1.0]\n\
                      [sun]\nelevation_deg = 30.0\nazimuth_deg = 180.0\n\
@@ -147,7 +159,7 @@ fn hidden_covering_sky(scene: &Scene) -> (usize, usize, usize) {
     }
     let with = render::cpu_renderer::render_radiance(&cloudy).unwrap();
     let without = render::cpu_renderer::render_radiance(&clear).unwrap();
-    let cloud = cloudy.shell_cloud.as_ref().unwrap();
+    let cloud = &unlit(cloudy.shell_cloud.as_ref().unwrap());
     let camera = shell_camera(&cloudy.camera).unwrap();
     let settings = cloud.shell.settings();
     let [forward, right, up] = camera.basis();
@@ -286,7 +298,7 @@ fn the_deck_agrees_on_the_gpu_and_the_cpu() {
     let gpu_image = gpu_pixels(gpu, &scene);
     let cpu_image = render::cpu_renderer::render_cpu(&scene).unwrap().pixels;
     let within = |lsb| render::tonemap::fraction_within_lsb(&gpu_image, &cpu_image, lsb).unwrap();
-    let cloud = scene.shell_cloud.as_ref().unwrap();
+    let cloud = &unlit(scene.shell_cloud.as_ref().unwrap());
     let camera = shell_camera(&scene.camera).unwrap();
     let (mut cloud_pixels, mut cloud_within, mut worst) = (0usize, 0usize, 0u32);
     for y in 0..height {
@@ -342,7 +354,7 @@ fn the_moon_lights_the_deck_at_night() {
         (image, cpu)
     });
     let moonlit = render::cpu_renderer::render_radiance(&prepared).unwrap();
-    let cloud = prepared.shell_cloud.as_ref().unwrap();
+    let cloud = &unlit(prepared.shell_cloud.as_ref().unwrap());
     let camera = shell_camera(&prepared.camera).unwrap();
     let deck: Vec<usize> = (0..width * height)
         .filter(|&i| {
