@@ -3,8 +3,14 @@
 // function the CPU renderer calls, atmos::lut::drop_in::aerial_perspective) between the
 // camera and the cloud's transmittance-weighted depth, for the light whose tables are
 // bound in groups 0 and 1 (the sun's, or at night the moon's). A compute pass: the
-// composite fragment reads its result (calling aerial_perspective in that fragment
-// crashed lavapipe, Mesa 22.3.6).
+// composite fragment reads its result. Calling aerial_perspective in that fragment
+// shader instead crashes lavapipe (Mesa 22.3.6, LLVM 15: SIGSEGV in a libvulkan_lvp
+// worker thread during the draw, not at pipeline creation). Reduced there to a copy of
+// atmos::geometry's ray_sphere_intersect(R + 1000 m, view.y, top radius), its result
+// scaled by 1e-30 into the output: it crashes as written (two data-dependent early
+// returns, then min/max of q and c/q) and runs with the `q == 0` return removed, with
+// min/max replaced by (q, c/q), or with a branch-free intersection; the terrain
+// fragment, which imports the same function, runs. The compute pass runs it on lavapipe.
 #import atmos::aerial_perspective
 
 struct VolumeAirParams {
