@@ -318,6 +318,23 @@ fn measure_error_and_cpu_time(
         terrain,
         render::aerial_vertex::TERRAIN_ERROR_PX,
     );
+    // A second twin whose "segment" is the vertex's offset: interpolated, the point
+    // where the ray crosses the drawn triangle (the GPU fragment's position).
+    let points = VertexAerial::new(
+        per_vertex_scene,
+        terrain,
+        render::aerial_vertex::TERRAIN_ERROR_PX,
+    );
+    let luts = per_vertex_scene.precomputed.as_ref().unwrap().static_luts();
+    let frame = atmos::lut::FrameLuts::bake(
+        luts,
+        &per_vertex_scene
+            .sun_light()
+            .camera(&per_vertex_scene.camera),
+    );
+    let segment_at =
+        |offset: [f32; 3]| atmos::lut::drop_in::aerial_perspective(luts, &frame, offset);
+    let mut image = (0.0f64, 0.0f64);
     let offset = terrain.map_offset();
     let spacing = terrain.heightfield.spacing();
     let eye = per_vertex_scene.camera_position
@@ -347,7 +364,28 @@ fn measure_error_and_cpu_time(
         let hit = eye + glam::DVec3::from_array(view.map(f64::from)) * f64::from(distance);
         let texel = [(hit.x + offset[0]) / spacing, (hit.z + offset[1]) / spacing];
         let step = mesh.tile_at(texel).step;
+        // The CPU images' difference (the twin's triangle and crossing included).
         let (la, lb) = (luminance(a.radiance), luminance(b.radiance));
+        image.0 += (lb - la).abs() / la;
+        image.1 = image.1.max((lb - la).abs() / la);
+        // The interpolation's error: at the crossing, the interpolated segment against
+        // the segment evaluated there (what the GPU's per-pixel fragment evaluates),
+        // applied to the pixel's surface radiance (from the per-pixel image).
+        let view64 = glam::DVec3::from_array(view.map(f64::from)).normalize();
+        let linear = |o: [f32; 3]| {
+            Ok(atmos::lut::raymarch::ScatteringSegment {
+                radiance: o,
+                transmittance: [1.0; 3],
+            })
+        };
+        let crossing = points.segment(texel, view64, linear).unwrap().radiance;
+        let interpolated = mesh.segment(texel, view64, |o| Ok(segment_at(o))).unwrap();
+        let exact = segment_at(crossing);
+        let at_hit = segment_at((hit - eye).as_vec3().to_array());
+        let surface: [f32; 3] =
+            std::array::from_fn(|c| (a.radiance[c] - at_hit.radiance[c]) / at_hit.transmittance[c]);
+        let la = luminance(render::aerial_vertex::seen_through(surface, &exact));
+        let lb = luminance(render::aerial_vertex::seen_through(surface, &interpolated));
         let relative = (lb - la).abs() / la;
         count += 1;
         sum += relative;
@@ -389,8 +427,8 @@ fn measure_error_and_cpu_time(
         entry.2 = entry.2.max(relative);
     }
     eprintln!(
-        "{name}: per vertex vs per pixel over {count} terrain pixels ({} tiles): relative \
-         luminance difference mean {:.2e}, max {max:.2e} (at {:.1} km, tile step {}, pixel \
+        "{name}: per vertex vs per pixel at the same point over {count} terrain pixels ({} \
+         tiles): relative luminance difference mean {:.2e}, max {max:.2e} (at {:.1} km, tile step {}, pixel \
          {:?}, luminance {:.4}); mean |difference| {:.2e}; after the tone map (exposure \
          {exposure}) {} pixels ({:.3} %) change, {} by more than 2 code values",
         mesh.tiles().len(),
@@ -403,6 +441,13 @@ fn measure_error_and_cpu_time(
         code_values[0],
         100.0 * code_values[0] as f64 / count as f64,
         code_values[1],
+    );
+    eprintln!(
+        "{name}: the CPU images (per vertex vs per pixel, the twin's triangle crossing \
+         included): relative luminance difference mean {:.2e}, max {:.2e}; the lines \
+         above and below: the interpolation's error at the crossing",
+        image.0 / count as f64,
+        image.1
     );
     for ((label, _, _), (n, s, m)) in bins.iter().zip(&by_distance) {
         if *n > 0 {
@@ -467,5 +512,74 @@ fn measure_gpu_time(
             skyscape_harness::describe_adapter(&gpu.info),
             skyscape_harness::device_type_label(gpu.info.device_type),
         );
+    }
+}
+
+/// The twin's triangle and weights: with a segment that is the vertex's own offset from
+/// the camera (linear in position), the interpolation returns the point where the
+/// pixel's ray crosses the chosen triangle's plane — on the ray, as far as the bilinear
+/// hit within the mesh's geometric error — for the default scene's edge-clamped 512²
+/// map and the smooth hills' coarse tiles.
+#[test]
+fn the_twin_interpolates_on_the_triangle_under_each_hit() {
+    for (name, scene) in [
+        (
+            "default",
+            default_scene(96, 54, AerialPerspective::PerVertex),
+        ),
+        ("smooth hills", smooth_hills(AerialPerspective::PerVertex)),
+    ] {
+        let terrain = scene.terrain.as_ref().unwrap();
+        let mesh = VertexAerial::new(&scene, terrain, render::aerial_vertex::TERRAIN_ERROR_PX);
+        let offset = terrain.map_offset();
+        let spacing = terrain.heightfield.spacing();
+        let eye =
+            scene.camera_position - glam::DVec3::new(0.0, scene.atmosphere.planet_radius, 0.0);
+        let radiance = render_radiance(&scene).unwrap();
+        let (mut hits, mut on_ray, mut errors) = (0usize, 0usize, Vec::new());
+        for (index, pixel) in radiance.iter().enumerate() {
+            let Some(distance) = pixel.terrain_distance else {
+                continue;
+            };
+            let xy = [
+                (index % scene.camera.width as usize) as u32,
+                (index / scene.camera.width as usize) as u32,
+            ];
+            let view = glam::DVec3::from_array(
+                atmos::frame::frame_view_direction(xy, &scene.camera).map(f64::from),
+            )
+            .normalize();
+            let hit = eye + view * f64::from(distance);
+            let texel = [(hit.x + offset[0]) / spacing, (hit.z + offset[1]) / spacing];
+            let segment = mesh
+                .segment(texel, view, |offset| {
+                    Ok(atmos::lut::raymarch::ScatteringSegment {
+                        radiance: offset,
+                        transmittance: [1.0; 3],
+                    })
+                })
+                .unwrap();
+            let point = glam::DVec3::from_array(segment.radiance.map(f64::from));
+            hits += 1;
+            let along = point.dot(view);
+            if (point - view * along).length() <= 1e-4 * along {
+                on_ray += 1;
+            }
+            errors.push((along - f64::from(distance)).abs() / f64::from(distance));
+        }
+        errors.sort_by(f64::total_cmp);
+        let median = errors[errors.len() / 2];
+        let p99 = errors[errors.len() * 99 / 100];
+        eprintln!(
+            "{name}: {hits} hits, {on_ray} interpolated on the ray; distance to the \
+             interpolated point vs the bilinear hit: median {median:.1e}, p99 {p99:.1e}, \
+             max {:.1e} (relative)",
+            errors[errors.len() - 1]
+        );
+        assert!(
+            on_ray as f64 >= 0.99 * hits as f64,
+            "{name}: {on_ray} of {hits}"
+        );
+        assert!(median < 1e-3 && p99 < 2e-2, "{name}: {median} {p99}");
     }
 }
