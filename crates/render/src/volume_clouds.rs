@@ -706,7 +706,10 @@ pub(crate) fn buffer_entry(
 }
 
 #[cfg(feature = "gpu")]
-pub(crate) fn depth_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+pub(crate) fn depth_entry(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility,
