@@ -685,7 +685,10 @@ impl SceneRenderer {
                 luts.as_ref()
                     .ok_or_else(|| super::rungs::volume_needs_tables(scene.rung))?,
                 // At night the moon lights the deck too: its march and air passes.
-                moonlit.as_ref().filter(|_| cloud.moon.is_some()).map(|(l, _)| l),
+                moonlit
+                    .as_ref()
+                    .filter(|_| cloud.moon.is_some())
+                    .map(|(l, _)| l),
                 HDR,
             )?),
             None => None,
