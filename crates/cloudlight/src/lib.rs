@@ -172,6 +172,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/billboard.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "cloudlight::billboard_quad",
+        source: include_str!("../shaders/billboard_quad.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "cloudlight::billboard_pass",
         source: include_str!("../shaders/billboard_pass.wgsl"),
     },

@@ -1,12 +1,15 @@
 //! [`BillboardPass`]: seed 002's billboards drawn into the caller's colour target
 //! (`shaders/cloudlight/billboard_pass.wgsl`); bring your own device.
 //!
-//! [`BillboardPass::new`] builds the pipeline for a colour format (blending "over" on
-//! premultiplied colour: `One`, `OneMinusSrcAlpha`); [`BillboardPass::prepare`] uploads the
-//! particles (already sorted back to front by [`billboards`](crate::billboard::billboards))
-//! as an instance buffer and the camera as a uniform, and creates the bind group;
-//! [`BillboardPass::encode`] only records one render pass that loads the target and draws
-//! the instances in order. The splat is evaluated analytically in the fragment shader.
+//! [`BillboardPass::new`] builds the pipeline for a colour format ([`billboard_pipeline`]:
+//! blending "over" on premultiplied colour, `One`, `OneMinusSrcAlpha`);
+//! [`BillboardPass::prepare`] uploads the particles (already sorted back to front by
+//! [`billboards`](crate::billboard::billboards)) as an instance buffer and the camera as a
+//! uniform, and creates the bind group; [`BillboardPass::encode`] only records one render
+//! pass that loads the target and draws the instances in order. The splat is evaluated
+//! analytically in the fragment shader (`shaders/cloudlight/billboard_quad.wgsl`, which a
+//! caller's own pass can import with [`instance_layout`], [`billboard_pipeline`],
+//! [`begin_billboard_pass`] and [`draw_billboards`], as `render`'s billboard clouds do).
 //! The CPU twin is [`rasterise::<f32>`](crate::billboard::rasterise).
 
 use crate::billboard::{Billboard, Camera, ScreenFrame, SizeRule};
@@ -78,6 +81,125 @@ pub fn instance_bytes(billboards: &[Billboard]) -> Vec<u8> {
     bytemuck::cast_slice(&floats).to_vec()
 }
 
+/// The instance attributes: `@location(0)` relative position and density,
+/// `@location(1)` colour and alpha (see [`instance_bytes`]).
+const INSTANCE_ATTRIBUTES: [wgpu::VertexAttribute; 2] =
+    wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4];
+
+/// The instance buffer's layout (one instance per billboard, [`INSTANCE_BYTES`] each, as
+/// [`instance_bytes`] writes them): what a vertex stage built on
+/// `cloudlight::billboard_quad` reads.
+pub fn instance_layout() -> wgpu::VertexBufferLayout<'static> {
+    wgpu::VertexBufferLayout {
+        array_stride: INSTANCE_BYTES,
+        step_mode: wgpu::VertexStepMode::Instance,
+        attributes: &INSTANCE_ATTRIBUTES,
+    }
+}
+
+/// What [`billboard_pipeline`] builds a pipeline from: a module whose entry points draw
+/// `cloudlight::billboard_quad`'s quads (this pass's, or a caller's that adds its own
+/// bindings and depth).
+#[derive(Debug)]
+pub struct BillboardPipelineDescriptor<'a> {
+    /// Debug label.
+    pub label: &'a str,
+    /// The pipeline layout (the caller's bind groups).
+    pub layout: &'a wgpu::PipelineLayout,
+    /// The composed shader module.
+    pub module: &'a wgpu::ShaderModule,
+    /// Its vertex entry point (reads [`instance_layout`]).
+    pub vertex_entry: &'a str,
+    /// Its fragment entry point (premultiplied colour).
+    pub fragment_entry: &'a str,
+    /// The colour target's format (blendable).
+    pub target: wgpu::TextureFormat,
+    /// The depth attachment's state, if the pass has one.
+    pub depth_stencil: Option<wgpu::DepthStencilState>,
+}
+
+/// A render pipeline drawing instanced billboard quads (six vertices an instance,
+/// [`instance_layout`]) blended "over" premultiplied colour (`One`,
+/// `OneMinusSrcAlpha`) into `desc.target`.
+pub fn billboard_pipeline(
+    device: &wgpu::Device,
+    desc: &BillboardPipelineDescriptor<'_>,
+) -> wgpu::RenderPipeline {
+    let over = wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::One,
+        dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+        operation: wgpu::BlendOperation::Add,
+    };
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(desc.label),
+        layout: Some(desc.layout),
+        vertex: wgpu::VertexState {
+            module: desc.module,
+            entry_point: Some(desc.vertex_entry),
+            compilation_options: Default::default(),
+            buffers: &[Some(instance_layout())],
+        },
+        primitive: wgpu::PrimitiveState::default(),
+        depth_stencil: desc.depth_stencil.clone(),
+        multisample: wgpu::MultisampleState::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: desc.module,
+            entry_point: Some(desc.fragment_entry),
+            compilation_options: Default::default(),
+            targets: &[Some(wgpu::ColorTargetState {
+                format: desc.target,
+                blend: Some(wgpu::BlendState {
+                    color: over,
+                    alpha: over,
+                }),
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
+/// Begins a render pass labelled `label` that loads and stores `target` (billboards
+/// draw over what is there), with `depth` as its depth attachment if given.
+pub fn begin_billboard_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    target: &wgpu::TextureView,
+    depth: Option<wgpu::RenderPassDepthStencilAttachment<'_>>,
+    timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
+) -> wgpu::RenderPass<'e> {
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view: target,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Load,
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: depth,
+        timestamp_writes,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    })
+}
+
+/// Records the draw of `count` billboards from `instances` (laid out as
+/// [`instance_layout`]) with `pipeline`, whose bind groups the caller has set.
+pub fn draw_billboards(
+    pass: &mut wgpu::RenderPass<'_>,
+    pipeline: &wgpu::RenderPipeline,
+    instances: &wgpu::Buffer,
+    count: u32,
+) {
+    pass.set_pipeline(pipeline);
+    pass.set_vertex_buffer(0, instances.slice(..));
+    pass.draw(0..6, 0..count);
+}
+
 #[derive(Debug)]
 struct Prepared {
     bind_group: wgpu::BindGroup,
@@ -125,44 +247,18 @@ impl BillboardPass {
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let over = wgpu::BlendComponent {
-            src_factor: wgpu::BlendFactor::One,
-            dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
-            operation: wgpu::BlendOperation::Add,
-        };
-        let attributes = wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4];
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("cloudlight billboards"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
+        let pipeline = billboard_pipeline(
+            device,
+            &BillboardPipelineDescriptor {
+                label: "cloudlight billboards",
+                layout: &pipeline_layout,
                 module: &module,
-                entry_point: Some("billboard_vertex"),
-                compilation_options: Default::default(),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: INSTANCE_BYTES,
-                    step_mode: wgpu::VertexStepMode::Instance,
-                    attributes: &attributes,
-                })],
+                vertex_entry: "billboard_vertex",
+                fragment_entry: "billboard_fragment",
+                target: format,
+                depth_stencil: None,
             },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("billboard_fragment"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format,
-                    blend: Some(wgpu::BlendState {
-                        color: over,
-                        alpha: over,
-                    }),
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        );
         Ok(Self {
             pipeline,
             layout,
@@ -261,27 +357,16 @@ impl BillboardPass {
                 camera: prepared.size,
             });
         }
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("cloudlight billboards"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: target,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
+        let mut pass = begin_billboard_pass(
+            encoder,
+            "cloudlight billboards",
+            target,
+            None,
             timestamp_writes,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        );
         if let Some(instances) = &prepared.instances {
-            pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, &prepared.bind_group, &[]);
-            pass.set_vertex_buffer(0, instances.slice(..));
-            pass.draw(0..6, 0..prepared.count);
+            draw_billboards(&mut pass, &self.pipeline, instances, prepared.count);
         }
         Ok(())
     }
