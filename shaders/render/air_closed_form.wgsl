@@ -15,19 +15,14 @@ fn closed_form_air_radiance(s: AirSegment, light: vec3<f32>, params: ClosedFormS
 
 @compute @workgroup_size(8, 8)
 fn air_closed_form(@builtin(global_invocation_id) gid: vec3<u32>) {
-    if gid.x >= air.camera.width || gid.y >= air.camera.height {
+    let p = air_pixel(gid);
+    if !p.has_air {
         return;
     }
-    let surface = textureLoad(air_surface, gid.xy, 0);
-    let s = air_segment(gid.xy);
-    if s.distance <= 0.0 {
-        textureStore(air_out, gid.xy, surface);
-        return;
-    }
-    var radiance = closed_form_air_radiance(s, air.camera.sun, air_sun);
+    var radiance = closed_form_air_radiance(p.segment, air.camera.sun, air_sun);
     if air.moon != 0u {
-        radiance += closed_form_air_radiance(s, air.moon_direction, air_moon);
+        radiance += closed_form_air_radiance(p.segment, air.moon_direction, air_moon);
     }
-    let transmittance = closed_form_sky_transmittance(s.r, s.mu, s.distance, air_sun);
-    textureStore(air_out, gid.xy, vec4<f32>(surface.xyz * transmittance + radiance * air.radiance_scale, 1.0));
+    let s = p.segment;
+    air_store(gid, p, closed_form_sky_transmittance(s.r, s.mu, s.distance, air_sun), radiance);
 }

@@ -16,19 +16,14 @@ fn single_air(s: AirSegment, light: vec3<f32>, atmosphere: AtmosphereParameters)
 
 @compute @workgroup_size(8, 8)
 fn air_single(@builtin(global_invocation_id) gid: vec3<u32>) {
-    if gid.x >= air.camera.width || gid.y >= air.camera.height {
+    let p = air_pixel(gid);
+    if !p.has_air {
         return;
     }
-    let surface = textureLoad(air_surface, gid.xy, 0);
-    let s = air_segment(gid.xy);
-    if s.distance <= 0.0 {
-        textureStore(air_out, gid.xy, surface);
-        return;
-    }
-    let sun = single_air(s, air.camera.sun, air_sun);
+    let sun = single_air(p.segment, air.camera.sun, air_sun);
     var radiance = sun.radiance;
     if air.moon != 0u {
-        radiance += single_air(s, air.moon_direction, air_moon).radiance;
+        radiance += single_air(p.segment, air.moon_direction, air_moon).radiance;
     }
-    textureStore(air_out, gid.xy, vec4<f32>(surface.xyz * sun.transmittance + radiance * air.radiance_scale, 1.0));
+    air_store(gid, p, sun.transmittance, radiance);
 }

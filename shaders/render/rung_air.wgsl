@@ -52,3 +52,34 @@ fn air_segment(pixel: vec2<u32>) -> AirSegment {
     let up = air.camera.position / r;
     return AirSegment(r, dot(view, up), distance, view, up);
 }
+
+// A pixel of the pass: its surface colour (what the terrain pass drew) and its segment;
+// `has_air` is false where the pass has nothing to add (outside the image, or the sky).
+struct AirPixel {
+    surface: vec4<f32>,
+    segment: AirSegment,
+    has_air: bool,
+}
+
+// The pixel `gid` of the pass's dispatch: outside the image, no air; on the sky (a
+// segment of no length), the surface is copied to the output here and there is no air.
+fn air_pixel(gid: vec3<u32>) -> AirPixel {
+    var out: AirPixel;
+    if gid.x >= air.camera.width || gid.y >= air.camera.height {
+        return out;
+    }
+    out.surface = textureLoad(air_surface, gid.xy, 0);
+    out.segment = air_segment(gid.xy);
+    if out.segment.distance <= 0.0 {
+        textureStore(air_out, gid.xy, out.surface);
+        return out;
+    }
+    out.has_air = true;
+    return out;
+}
+
+// Writes the pixel `p` seen through the air: surface × `transmittance` + `radiance`
+// (in-scatter) × the radiance scale.
+fn air_store(gid: vec3<u32>, p: AirPixel, transmittance: vec3<f32>, radiance: vec3<f32>) {
+    textureStore(air_out, gid.xy, vec4<f32>(p.surface.xyz * transmittance + radiance * air.radiance_scale, 1.0));
+}
