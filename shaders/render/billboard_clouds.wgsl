@@ -1,17 +1,19 @@
 // `[clouds.volume]` drawn as seed 002's billboards over the opaque scene: cloudlight's
-// instanced quads (one per particle, sorted back to front on the CPU; instance layout of
-// cloudlight::gpu::billboard), each a pixel wider than its splat's disc so the fragment
-// shader decides coverage at the pixel centre (cloudlight::billboard's billboard_screen
-// and splat_alpha). Each particle is seen through the air between the camera and its
-// centre (atmos' aerial_perspective, per instance in the vertex stage), and sits at the
-// reverse-z depth near / z: the pipeline's depth test (Greater, read-only) against the
-// terrain's depth hides it behind mountains. Premultiplied output, blended "over"
-// (One, OneMinusSrcAlpha). The HDR target holds radiance × exposure: radiance_scale.
+// instanced quads (cloudlight::billboard_quad: one per particle, sorted back to front on
+// the CPU; instance layout of cloudlight::gpu::billboard), each a pixel wider than its
+// splat's disc so the fragment shader decides coverage at the pixel centre
+// (cloudlight::billboard's billboard_screen and splat_alpha). Each particle is seen
+// through the air between the camera and its centre (atmos' aerial_perspective, per
+// instance in the vertex stage), and sits at the reverse-z depth near / z: the
+// pipeline's depth test (Greater, read-only) against the terrain's depth hides it behind
+// mountains. Premultiplied output, blended "over" (One, OneMinusSrcAlpha). The HDR
+// target holds radiance × exposure: radiance_scale.
 // Twin: render::billboard_clouds::composite_billboards_cpu (Rust).
 //
 // Bindings: the LUTs in groups 0 and 1 (atmos::lut_bindings), the parameters in group 2.
 #import atmos::aerial_perspective
 #import cloudlight::billboard
+#import cloudlight::billboard_quad
 #import render::billboard_air
 
 struct BillboardCloudParams {
@@ -27,53 +29,24 @@ struct BillboardCloudParams {
 
 @group(2) @binding(0) var<uniform> params: BillboardCloudParams;
 
-struct BillboardCloudVarying {
-    @builtin(position) position: vec4<f32>,
-    // Centre (pixels) and radius (pixels).
-    @location(0) @interpolate(flat) centre_radius: vec3<f32>,
-    // Scaled radiance seen through the air, and the opacity at the centre.
-    @location(1) @interpolate(flat) colour_alpha: vec4<f32>,
-}
-
 @vertex
 fn billboard_clouds_vertex(
     @builtin(vertex_index) vertex: u32,
     @location(0) relative_density: vec4<f32>,
     @location(1) colour_alpha: vec4<f32>,
-) -> BillboardCloudVarying {
-    var corners = array<vec2<f32>, 6>(
-        vec2<f32>(-1.0, -1.0),
-        vec2<f32>(1.0, -1.0),
-        vec2<f32>(1.0, 1.0),
-        vec2<f32>(-1.0, -1.0),
-        vec2<f32>(1.0, 1.0),
-        vec2<f32>(-1.0, 1.0),
-    );
+) -> BillboardVarying {
     let relative = relative_density.xyz;
     let s = billboard_screen(params.frame, relative, relative_density.w);
     let z = billboard_dot(relative, params.frame.forward);
     // East/north/up to the world frame (x east, y up, z south).
     let air = aerial_perspective(vec3<f32>(relative.x, relative.z, -relative.y));
     let seen = billboard_seen_through_air(colour_alpha.xyz, air.transmittance, air.radiance);
-    var out: BillboardCloudVarying;
-    out.centre_radius = s;
-    out.colour_alpha = vec4<f32>(seen * params.radiance_scale, colour_alpha.w);
-    if s.z > 0.0 {
-        let p = s.xy + corners[vertex] * (s.z + 1.0);
-        let f = params.frame;
-        out.position = vec4<f32>(p.x / f.half_width - 1.0, 1.0 - p.y / f.half_height, params.near / z, 1.0);
-    } else {
-        // No area: nothing drawn.
-        out.position = vec4<f32>(0.0, 0.0, 0.0, 1.0);
-    }
-    return out;
+    // The varying's colour: the scaled radiance seen through the air.
+    let seen_alpha = vec4<f32>(seen * params.radiance_scale, colour_alpha.w);
+    return billboard_quad_vertex(params.frame, s, vertex, params.near / z, seen_alpha);
 }
 
 @fragment
-fn billboard_clouds_fragment(in: BillboardCloudVarying) -> @location(0) vec4<f32> {
-    let dx = in.position.x - in.centre_radius.x;
-    let dy = in.position.y - in.centre_radius.y;
-    let r = sqrt(dx * dx + dy * dy) / in.centre_radius.z;
-    let a = in.colour_alpha.w * splat_alpha(r);
-    return vec4<f32>(in.colour_alpha.xyz * a, a);
+fn billboard_clouds_fragment(in: BillboardVarying) -> @location(0) vec4<f32> {
+    return billboard_quad_fragment(in);
 }

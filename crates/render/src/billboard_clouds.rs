@@ -482,9 +482,14 @@ fn needs_tables() -> RenderError {
 pub const PARAMS_BYTES: u64 = 80;
 
 /// The GPU side: cloudlight's instanced quads (`cloudlight::gpu::billboard`'s instance
-/// layout) drawn by `shaders/render/billboard_clouds.wgsl` into the HDR target with the
+/// layout, pipeline and pass) drawn by `shaders/render/billboard_clouds.wgsl` into the HDR target with the
 /// terrain's depth as a read-only depth attachment (test `Greater`), the LUTs in groups
 /// 0 and 1 for the aerial perspective.
+#[cfg(feature = "gpu")]
+use cloudlight::gpu::billboard::{
+    BillboardPipelineDescriptor, begin_billboard_pass, billboard_pipeline, draw_billboards,
+};
+
 #[cfg(feature = "gpu")]
 #[derive(Debug)]
 pub(crate) struct BillboardCloudPass {
@@ -547,51 +552,24 @@ impl BillboardCloudPass {
             ],
             immediate_size: 0,
         });
-        // Premultiplied "over", as cloudlight's BillboardPass.
-        let over = wgpu::BlendComponent {
-            src_factor: wgpu::BlendFactor::One,
-            dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
-            operation: wgpu::BlendOperation::Add,
-        };
-        let attributes = wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4];
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("render billboard clouds"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
+        let pipeline = billboard_pipeline(
+            device,
+            &BillboardPipelineDescriptor {
+                label: "render billboard clouds",
+                layout: &pipeline_layout,
                 module: &module,
-                entry_point: Some("billboard_clouds_vertex"),
-                compilation_options: Default::default(),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: cloudlight::gpu::billboard::INSTANCE_BYTES,
-                    step_mode: wgpu::VertexStepMode::Instance,
-                    attributes: &attributes,
-                })],
+                vertex_entry: "billboard_clouds_vertex",
+                fragment_entry: "billboard_clouds_fragment",
+                target,
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: depth,
+                    depth_write_enabled: Some(false),
+                    depth_compare: Some(wgpu::CompareFunction::Greater),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
             },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: depth,
-                depth_write_enabled: Some(false),
-                depth_compare: Some(wgpu::CompareFunction::Greater),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("billboard_clouds_fragment"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: target,
-                    blend: Some(wgpu::BlendState {
-                        color: over,
-                        alpha: over,
-                    }),
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        );
         Ok(Self {
             pipeline,
             bind_group,
@@ -660,33 +638,22 @@ impl BillboardCloudPass {
         timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) -> Result<(), RenderError> {
         let luts = luts.ok_or_else(needs_tables)?;
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("render billboard clouds"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: target,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+        let mut pass = begin_billboard_pass(
+            encoder,
+            "render billboard clouds",
+            target,
+            Some(wgpu::RenderPassDepthStencilAttachment {
                 view: depth,
                 depth_ops: None,
                 stencil_ops: None,
             }),
             timestamp_writes,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        );
         if let (Some(instances), true) = (&self.instances, self.count > 0) {
-            pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, luts.uniform_bind_group(), &[]);
             pass.set_bind_group(1, luts.table_bind_group(), &[]);
             pass.set_bind_group(2, &self.bind_group, &[]);
-            pass.set_vertex_buffer(0, instances.slice(..));
-            pass.draw(0..6, 0..self.count);
+            draw_billboards(&mut pass, &self.pipeline, instances, self.count);
         }
         Ok(())
     }
