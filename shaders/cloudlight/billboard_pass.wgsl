@@ -8,13 +8,9 @@
 @group(0) @binding(0) var<uniform> frame: BillboardFrame;
 
 @vertex
-fn billboard_vertex(
-    @builtin(vertex_index) vertex: u32,
-    @location(0) relative_density: vec4<f32>,
-    @location(1) colour_alpha: vec4<f32>,
-) -> BillboardVarying {
-    let s = billboard_screen(frame, relative_density.xyz, relative_density.w);
-    return billboard_quad_vertex(frame, s, vertex, 0.0, colour_alpha);
+fn billboard_vertex(in: BillboardInstance) -> BillboardVarying {
+    let s = billboard_screen(frame, in.relative_density.xyz, in.relative_density.w);
+    return billboard_quad_vertex(frame, s, in.vertex, 0.0, in.colour_alpha);
 }
 
 @fragment

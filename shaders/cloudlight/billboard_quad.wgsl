@@ -7,6 +7,16 @@
 // blends "over" (One, OneMinusSrcAlpha). Twin: cloudlight::billboard::rasterise (Rust).
 #import cloudlight::billboard
 
+// A vertex stage's input: the vertex of the quad and the instance's attributes
+// (cloudlight::gpu::billboard::instance_layout).
+struct BillboardInstance {
+    @builtin(vertex_index) vertex: u32,
+    // Position relative to the eye (m) and density.
+    @location(0) relative_density: vec4<f32>,
+    // Linear RGB and the opacity at the centre.
+    @location(1) colour_alpha: vec4<f32>,
+}
+
 struct BillboardVarying {
     @builtin(position) position: vec4<f32>,
     // Centre (pixels) and radius (pixels).

@@ -30,20 +30,16 @@ struct BillboardCloudParams {
 @group(2) @binding(0) var<uniform> params: BillboardCloudParams;
 
 @vertex
-fn billboard_clouds_vertex(
-    @builtin(vertex_index) vertex: u32,
-    @location(0) relative_density: vec4<f32>,
-    @location(1) colour_alpha: vec4<f32>,
-) -> BillboardVarying {
-    let relative = relative_density.xyz;
-    let s = billboard_screen(params.frame, relative, relative_density.w);
+fn billboard_clouds_vertex(in: BillboardInstance) -> BillboardVarying {
+    let relative = in.relative_density.xyz;
+    let s = billboard_screen(params.frame, relative, in.relative_density.w);
     let z = billboard_dot(relative, params.frame.forward);
     // East/north/up to the world frame (x east, y up, z south).
     let air = aerial_perspective(vec3<f32>(relative.x, relative.z, -relative.y));
-    let seen = billboard_seen_through_air(colour_alpha.xyz, air.transmittance, air.radiance);
+    let seen = billboard_seen_through_air(in.colour_alpha.xyz, air.transmittance, air.radiance);
     // The varying's colour: the scaled radiance seen through the air.
-    let seen_alpha = vec4<f32>(seen * params.radiance_scale, colour_alpha.w);
-    return billboard_quad_vertex(params.frame, s, vertex, params.near / z, seen_alpha);
+    let seen_alpha = vec4<f32>(seen * params.radiance_scale, in.colour_alpha.w);
+    return billboard_quad_vertex(params.frame, s, in.vertex, params.near / z, seen_alpha);
 }
 
 @fragment

@@ -488,6 +488,7 @@ pub const PARAMS_BYTES: u64 = 80;
 #[cfg(feature = "gpu")]
 use cloudlight::gpu::billboard::{
     BillboardPipelineDescriptor, begin_billboard_pass, billboard_pipeline, draw_billboards,
+    uniform_layout,
 };
 
 #[cfg(feature = "gpu")]
@@ -516,19 +517,7 @@ impl BillboardCloudPass {
             label: Some("render billboard clouds"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
         });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("render billboard clouds"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::VERTEX,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: wgpu::BufferSize::new(PARAMS_BYTES),
-                },
-                count: None,
-            }],
-        });
+        let layout = uniform_layout(device, "render billboard clouds", PARAMS_BYTES);
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("render billboard clouds uniform"),
             size: PARAMS_BYTES,

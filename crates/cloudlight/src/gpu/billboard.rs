@@ -8,8 +8,9 @@
 //! uniform, and creates the bind group; [`BillboardPass::encode`] only records one render
 //! pass that loads the target and draws the instances in order. The splat is evaluated
 //! analytically in the fragment shader (`shaders/cloudlight/billboard_quad.wgsl`, which a
-//! caller's own pass can import with [`instance_layout`], [`billboard_pipeline`],
-//! [`begin_billboard_pass`] and [`draw_billboards`], as `render`'s billboard clouds do).
+//! caller's own pass can import with [`instance_layout`], [`uniform_layout`],
+//! [`billboard_pipeline`], [`begin_billboard_pass`] and [`draw_billboards`], as `render`'s
+//! billboard clouds do).
 //! The CPU twin is [`rasterise::<f32>`](crate::billboard::rasterise).
 
 use crate::billboard::{Billboard, Camera, ScreenFrame, SizeRule};
@@ -95,6 +96,25 @@ pub fn instance_layout() -> wgpu::VertexBufferLayout<'static> {
         step_mode: wgpu::VertexStepMode::Instance,
         attributes: &INSTANCE_ATTRIBUTES,
     }
+}
+
+/// The bind group layout of a billboard pass's uniform: one buffer at binding 0, read by
+/// the vertex stage, of at least `bytes` (the frame's 64, or more for a caller's uniform
+/// that begins with the WGSL `BillboardFrame`).
+pub fn uniform_layout(device: &wgpu::Device, label: &str, bytes: u64) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(label),
+        entries: &[wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::VERTEX,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: wgpu::BufferSize::new(bytes),
+            },
+            count: None,
+        }],
+    })
 }
 
 /// What [`billboard_pipeline`] builds a pipeline from: a module whose entry points draw
@@ -229,19 +249,7 @@ impl BillboardPass {
             label: Some("cloudlight::billboard_pass"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
         });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("cloudlight billboards"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::VERTEX,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: wgpu::BufferSize::new(FRAME_BYTES),
-                },
-                count: None,
-            }],
-        });
+        let layout = uniform_layout(device, "cloudlight billboards", FRAME_BYTES);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("cloudlight billboards"),
             bind_group_layouts: &[Some(&layout)],
