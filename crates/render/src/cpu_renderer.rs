@@ -308,11 +308,10 @@ fn composite_volume_cloud(
     precomputed: Option<&PrecomputedFrame<'_>>,
     out: &mut [PixelRadiance],
 ) -> Result<(), RenderError> {
-    use crate::volume_clouds::{cloud_in_front, cloud_through_air, march_pixel, pinhole_camera};
+    use crate::volume_clouds::{composite_marched_cloud, march_pixel_lit, pinhole_camera};
     let camera = &scene.camera;
     let size = [camera.width, camera.height];
     let pinhole = pinhole_camera(camera, scene.atmosphere.planet_radius)?;
-    let sun = scene.sun_light();
     let moon = match (&cloud.moon, scene.moon_light()) {
         (Some(moonlit), Some(light)) => {
             let tables = precomputed_frame(&light, camera, false)?;
@@ -320,70 +319,18 @@ fn composite_volume_cloud(
         }
         _ => None,
     };
-    // The air between the camera and the cloud's depth, lit by `light`.
-    let air = |light: &Illuminant<'_>,
-               tables: Option<&PrecomputedFrame<'_>>,
-               view: [f32; 3],
-               depth: f32|
-     -> Result<([f32; 3], [f32; 3]), RenderError> {
-        Ok(match tables {
-            Some(p) => {
-                let offset = view.map(|v| v * depth);
-                let segment = atmos::lut::drop_in::aerial_perspective(p.luts, &p.frame, offset);
-                (segment.transmittance, segment.radiance)
-            }
-            None => {
-                let view = DVec3::from_array(view.map(f64::from)).normalize();
-                let query = atmos::SkyQuery::with_max_distance(
-                    scene.atmosphere.planet_radius,
-                    scene.camera_position,
-                    view,
-                    light.direction,
-                    f64::from(depth),
-                )
-                .map_err(atmos_error)?;
-                let air = light.segment_model.evaluate(&query);
-                (
-                    air.transmittance.map(|t| t as f32),
-                    air.radiance.map(|l| l as f32),
-                )
-            }
-        })
-    };
-    out.par_chunks_mut(camera.width as usize)
-        .enumerate()
-        .try_for_each(|(row, pixels)| {
-            for (column, pixel) in pixels.iter_mut().enumerate() {
-                let xy = [column as u32, row as u32];
-                let behind = pixel.terrain_distance.unwrap_or(f32::INFINITY);
-                let result = march_pixel(cloud, &pinhole, size, xy, behind);
-                if !cloud_in_front(&result, behind) {
-                    continue;
-                }
-                let view = atmos::frame::frame_view_direction(xy, camera);
-                let (transmittance, radiance) = air(&sun, precomputed, view, result.depth)?;
-                let mut seen = cloud_through_air(&result, transmittance, radiance);
-                if let Some((moonlit, light, tables)) = &moon {
-                    let lit = crate::volume_clouds::march_pixel_lit(
-                        cloud,
-                        &moonlit.lighting,
-                        &pinhole,
-                        size,
-                        xy,
-                        behind,
-                    );
-                    let (transmittance, radiance) = air(light, tables.as_ref(), view, lit.depth)?;
-                    let added = cloud_through_air(&lit, transmittance, radiance);
-                    for (value, a) in seen.iter_mut().zip(added) {
-                        *value += a;
-                    }
-                }
-                for (value, s) in pixel.radiance.iter_mut().zip(seen) {
-                    *value = s + result.transmittance * *value;
-                }
-            }
-            Ok::<(), RenderError>(())
-        })
+    fn tables<'a>(p: Option<&'a PrecomputedFrame<'_>>) -> crate::volume_clouds::AirTables<'a> {
+        p.map(|p| (p.luts, &p.frame))
+    }
+    composite_marched_cloud(
+        scene,
+        &cloud.lighting,
+        tables(precomputed),
+        moon.as_ref()
+            .map(|(moonlit, light, frame)| (&moonlit.lighting, light, tables(frame.as_ref()))),
+        |lighting, xy, behind| march_pixel_lit(cloud, lighting, &pinhole, size, xy, behind),
+        out,
+    )
 }
 
 /// The scene on the CPU, tone-mapped and dithered to RGBA8.

@@ -463,319 +463,91 @@ pub fn march_shell_pixel_lit(
     pixel: [u32; 2],
     max_distance: f32,
 ) -> MarchResult<f32> {
-    let [forward, right, up] = camera.basis().map(|v| v.map(|c| c as f32));
-    let tan_half = camera.tan_half(size).map(|t| t as f32);
-    let origin = camera.origin().map(|c| c as f32);
-    let direction = cloudlight::march::pixel_direction(pixel, size, forward, right, up, tan_half);
-    let result = cloudlight::march::march_view_at_pixel_limited(
+    let result = crate::volume_clouds::march_field_pixel(
         &cloud.shell,
-        origin,
-        direction,
         &cloud.settings,
         lighting,
+        camera,
+        size,
         pixel,
         max_distance,
     );
     cloudlight::march::faded(result, cloud.shell.horizon_fade(result.depth))
 }
 
-/// The air between the camera and `depth` metres along unit world `view` lit by `light`
-/// (the sun, or the moon at night): its transmittance and in-scattered radiance, from
-/// the precomputed rung's aerial-perspective tables of that light when `tables` is given
-/// (`atmos::lut::drop_in::aerial_perspective`, the twin of the GPU's air pass), else
-/// from the light's segment model.
-pub fn air_in_front(
-    scene: &crate::scene::PreparedScene,
-    light: &crate::scene::Illuminant<'_>,
-    tables: Option<(&atmos::lut::StaticLuts, &atmos::lut::FrameLuts)>,
-    view: [f32; 3],
-    depth: f32,
-) -> Result<([f32; 3], [f32; 3]), crate::RenderError> {
-    Ok(match tables {
-        Some((luts, frame)) => {
-            let offset = view.map(|v| v * depth);
-            let segment = atmos::lut::drop_in::aerial_perspective(luts, frame, offset);
-            (segment.transmittance, segment.radiance)
-        }
-        None => {
-            let view = DVec3::from_array(view.map(f64::from)).normalize();
-            let query = atmos::SkyQuery::with_max_distance(
-                scene.atmosphere.planet_radius,
-                scene.camera_position,
-                view,
-                light.direction,
-                f64::from(depth),
-            )?;
-            let air = light.segment_model.evaluate(&query);
-            (
-                air.transmittance.map(|t| t as f32),
-                air.radiance.map(|l| l as f32),
-            )
-        }
-    })
-}
+/// The air in front of the deck: the volume cloud's
+/// ([`crate::volume_clouds::air_in_front`]).
+pub use crate::volume_clouds::air_in_front;
 
 /// The CPU twin of the GPU's shell march and composite: per pixel, the f32 march through
 /// the shell up to the terrain's hit (`PixelRadiance::terrain_distance`; the sky: no
-/// limit), faded toward the horizon, drawn where it has opacity in front of the scene
-/// (`crate::volume_clouds::cloud_in_front`) as `L_c·T_air + L_air·(1 − T_c) + T_c·L`
-/// (`crate::volume_clouds::cloud_through_air`, the air from [`air_in_front`] with the
-/// sun's `tables`). At night (`moon`: the moon's light and its tables) the deck's march
-/// lit by the moon, seen through the moonlit air, is added.
-#[allow(clippy::type_complexity)] // the tables as the CPU renderer holds them
+/// limit), faded toward the horizon, in the volume cloud's composite
+/// (`crate::volume_clouds::composite_marched_cloud`: drawn where it has opacity in front
+/// of the scene, seen through the air of [`air_in_front`] with the sun's `tables`). At
+/// night (`moon`: the moon's light and its tables) the deck's march lit by the moon,
+/// seen through the moonlit air, is added.
 pub fn composite_shell_cloud(
     scene: &crate::scene::PreparedScene,
     cloud: &PreparedShell,
-    tables: Option<(&atmos::lut::StaticLuts, &atmos::lut::FrameLuts)>,
+    tables: crate::volume_clouds::AirTables<'_>,
     moon: Option<(
         &crate::scene::Illuminant<'_>,
-        Option<(&atmos::lut::StaticLuts, &atmos::lut::FrameLuts)>,
+        crate::volume_clouds::AirTables<'_>,
     )>,
     out: &mut [crate::cpu_renderer::PixelRadiance],
 ) -> Result<(), crate::RenderError> {
-    use crate::volume_clouds::{cloud_in_front, cloud_through_air};
-    use rayon::prelude::*;
     let camera = &scene.camera;
     let size = [camera.width, camera.height];
     let pinhole = shell_camera(camera)?;
-    let sun = scene.sun_light();
     let moon = match (&cloud.moon, moon) {
         (Some(lighting), Some((light, moon_tables))) => Some((lighting, light, moon_tables)),
         _ => None,
     };
-    out.par_chunks_mut(camera.width as usize)
-        .enumerate()
-        .try_for_each(|(row, pixels)| {
-            for (column, pixel) in pixels.iter_mut().enumerate() {
-                let xy = [column as u32, row as u32];
-                let behind = pixel.terrain_distance.unwrap_or(f32::INFINITY);
-                let result = march_shell_pixel(cloud, &pinhole, size, xy, behind);
-                if !cloud_in_front(&result, behind) {
-                    continue;
-                }
-                let view = atmos::frame::frame_view_direction(xy, camera);
-                let (transmittance, radiance) =
-                    air_in_front(scene, &sun, tables, view, result.depth)?;
-                let mut seen = cloud_through_air(&result, transmittance, radiance);
-                if let Some((lighting, light, moon_tables)) = &moon {
-                    let lit = march_shell_pixel_lit(cloud, lighting, &pinhole, size, xy, behind);
-                    let (transmittance, radiance) =
-                        air_in_front(scene, light, *moon_tables, view, lit.depth)?;
-                    let added = cloud_through_air(&lit, transmittance, radiance);
-                    for (value, a) in seen.iter_mut().zip(added) {
-                        *value += a;
-                    }
-                }
-                for (value, s) in pixel.radiance.iter_mut().zip(seen) {
-                    *value = s + result.transmittance * *value;
-                }
-            }
-            Ok::<(), crate::RenderError>(())
-        })
+    crate::volume_clouds::composite_marched_cloud(
+        scene,
+        &cloud.lighting,
+        tables,
+        moon,
+        |lighting, xy, behind| march_shell_pixel_lit(cloud, lighting, &pinhole, size, xy, behind),
+        out,
+    )
 }
 
-/// The GPU side, the volume cloud's passes over the shell's march: the terrain's depth
-/// as a distance per pixel (`shaders/render/volume_distance.wgsl`),
-/// `cloudlight::gpu::MarchShellPass` over the scene's pixels limited by it (prepared per
-/// frame with [`shell_camera`]; at night a second one lit by the moon), the air in front
-/// of the deck per pixel and light (`shaders/render/volume_air.wgsl`: atmos'
-/// `aerial_perspective`, the CPU's function) and the composite render pass
-/// (`shaders/render/volume_clouds.wgsl`). Built only for scenes with `[clouds.shell]`.
+/// The GPU side: `cloudlight::gpu::MarchShellPass` over the scene's pixels (prepared per
+/// frame with [`shell_camera`]; at night a second one lit by the moon) in the volume
+/// cloud's passes ([`crate::gpu::cloud_composite::CloudComposite`]: the terrain's depth
+/// as a distance per pixel the march stops at, the air in front of the deck per pixel
+/// and light, the composite render pass `shaders/render/volume_clouds.wgsl`). Built only
+/// for scenes with `[clouds.shell]`.
 #[cfg(feature = "gpu")]
-#[derive(Debug)]
-pub(crate) struct ShellCloudPass {
-    sun: ShellLit,
-    moon: Option<ShellLit>,
-    distance_pipeline: wgpu::ComputePipeline,
-    distance_layout: wgpu::BindGroupLayout,
-    distance_uniform: wgpu::Buffer,
-    /// The distance buffer, its bind group and the dispatch size (after `prepare`).
-    distance: Option<(wgpu::Buffer, wgpu::BindGroup, [u32; 2])>,
-    air_layout: wgpu::BindGroupLayout,
-    air_uniform: wgpu::Buffer,
-    pipeline: wgpu::RenderPipeline,
-    layout: wgpu::BindGroupLayout,
-    uniform: wgpu::Buffer,
-    bind_group: Option<wgpu::BindGroup>,
-}
-
-/// One light's march of the shell and its air pass (the sun's; at night the moon's).
-#[cfg(feature = "gpu")]
-#[derive(Debug)]
-struct ShellLit {
-    march: cloudlight::gpu::MarchShellPass,
-    /// `shaders/render/volume_air.wgsl` with this light's tables' layouts.
-    air_pipeline: wgpu::ComputePipeline,
-    /// The air per pixel and its bind group (after `prepare`).
-    air: Option<(wgpu::Buffer, wgpu::BindGroup)>,
-}
+pub(crate) type ShellCloudPass =
+    crate::gpu::cloud_composite::CloudComposite<cloudlight::gpu::MarchShellPass>;
 
 #[cfg(feature = "gpu")]
 impl ShellCloudPass {
-    /// The march, distance, air and composite pipelines (each light's tables' layouts
-    /// in its air pass's groups 0 and 1; `moon_luts`: the moonlit tables when the deck is
-    /// lit by the moon too, [`PreparedShell::moon`]).
-    pub(crate) fn new(
+    /// The march, distance, air and composite pipelines (`moon_luts`: the moonlit tables
+    /// when the deck is lit by the moon too, [`PreparedShell::moon`]).
+    pub(crate) fn new_shell(
         device: &wgpu::Device,
         luts: &atmos::gpu::AtmosphereLuts,
         moon_luts: Option<&atmos::gpu::AtmosphereLuts>,
         target: wgpu::TextureFormat,
     ) -> Result<Self, crate::RenderError> {
-        use crate::volume_clouds::{
-            VolumeAirParams, VolumeComposite, VolumeDistanceParams, buffer_entry, compute_pipeline,
-            depth_entry,
-        };
-        use wgpu::BufferBindingType::{Storage, Uniform};
-        let compute = wgpu::ShaderStages::COMPUTE;
-        let module = |name: &str| -> Result<wgpu::ShaderModule, crate::RenderError> {
-            let source = crate::composer().compose_module(name)?;
-            Ok(device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(name),
-                source: wgpu::ShaderSource::Wgsl(source.into()),
-            }))
-        };
-        let uniform_buffer = |label: &str, size: usize| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: size as u64,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            })
-        };
-        let distance_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("render shell distance"),
-            entries: &[
-                buffer_entry(0, compute, Uniform),
-                depth_entry(1, compute),
-                buffer_entry(2, compute, Storage { read_only: false }),
-            ],
-        });
-        let distance_pipeline = compute_pipeline(
+        Self::new(
             device,
-            "render shell distance",
-            &module("render::volume_distance")?,
-            "volume_distance_main",
-            &[Some(&distance_layout)],
-        );
-        let air_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("render shell air"),
-            entries: &[
-                buffer_entry(0, compute, Uniform),
-                buffer_entry(1, compute, Storage { read_only: true }),
-                buffer_entry(2, compute, Storage { read_only: false }),
-            ],
-        });
-        let air_module = module("render::volume_air")?;
-        let lit = |luts: &atmos::gpu::AtmosphereLuts,
-                   label: &str|
-         -> Result<ShellLit, crate::RenderError> {
-            Ok(ShellLit {
-                march: cloudlight::gpu::MarchShellPass::new(device)?,
-                air_pipeline: compute_pipeline(
-                    device,
-                    label,
-                    &air_module,
-                    "volume_air_main",
-                    &[
-                        Some(&luts.layouts().uniforms),
-                        Some(&luts.layouts().tables),
-                        Some(&air_layout),
-                    ],
-                ),
-                air: None,
-            })
-        };
-        let sun = lit(luts, "render shell air")?;
-        let moon = match moon_luts {
-            Some(moon_luts) => Some(lit(moon_luts, "render shell air (moonlit)")?),
-            None => None,
-        };
-        let fragment = wgpu::ShaderStages::FRAGMENT;
-        let read = Storage { read_only: true };
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("render shell clouds"),
-            entries: &[
-                buffer_entry(0, fragment, Uniform),
-                buffer_entry(1, fragment, read),
-                depth_entry(2, fragment),
-                buffer_entry(3, fragment, read),
-                buffer_entry(4, fragment, read),
-                buffer_entry(5, fragment, read),
-            ],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("render shell clouds"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let composite = module("render::volume_clouds")?;
-        // dst · T_c + the deck's own light (premultiplied), as the volume cloud's.
-        let blend = wgpu::BlendState {
-            color: wgpu::BlendComponent {
-                src_factor: wgpu::BlendFactor::One,
-                dst_factor: wgpu::BlendFactor::SrcAlpha,
-                operation: wgpu::BlendOperation::Add,
-            },
-            alpha: wgpu::BlendComponent {
-                src_factor: wgpu::BlendFactor::Zero,
-                dst_factor: wgpu::BlendFactor::One,
-                operation: wgpu::BlendOperation::Add,
-            },
-        };
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("render shell clouds"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &composite,
-                entry_point: Some("volume_clouds_vertex"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &composite,
-                entry_point: Some("volume_clouds_fragment"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: target,
-                    blend: Some(blend),
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
-        Ok(Self {
-            sun,
-            moon,
-            distance_pipeline,
-            distance_layout,
-            distance_uniform: uniform_buffer(
-                "render shell distance uniform",
-                std::mem::size_of::<VolumeDistanceParams>(),
-            ),
-            distance: None,
-            air_layout,
-            air_uniform: uniform_buffer(
-                "render shell air uniform",
-                std::mem::size_of::<VolumeAirParams>(),
-            ),
-            pipeline,
-            layout,
-            uniform: uniform_buffer(
-                "render shell clouds uniform",
-                std::mem::size_of::<VolumeComposite>(),
-            ),
-            bind_group: None,
-        })
+            "shell",
+            "clouds.shell",
+            luts,
+            moon_luts,
+            target,
+            || Ok(cloudlight::gpu::MarchShellPass::new(device)?),
+        )
     }
 
     /// The frame's marches (the scene camera in the shell's frame, one ray per pixel up
     /// to the terrain; the moon's at night), the distance, air and composite passes'
     /// uniforms and bind groups.
-    pub(crate) fn prepare(
+    pub(crate) fn prepare_shell(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
@@ -783,215 +555,31 @@ impl ShellCloudPass {
         cloud: &PreparedShell,
         depth_view: &wgpu::TextureView,
     ) -> Result<(), crate::RenderError> {
-        use crate::volume_clouds::{VolumeAirParams, VolumeComposite, VolumeDistanceParams};
         let camera = &scene.camera;
         let pinhole = shell_camera(camera)?;
-        let near = scene.near.max(0.01) as f32;
         let size = [camera.width, camera.height];
-        let moon_lighting = match (&self.moon, &cloud.moon) {
-            (Some(_), Some(lighting)) => Some(lighting),
-            (None, None) => None,
-            (built, _) => {
-                return Err(crate::RenderError::InvalidParameter {
-                    field: "clouds.shell",
-                    value: if built.is_some() {
-                        "not lit by the moon"
-                    } else {
-                        "lit by the moon"
-                    }
-                    .into(),
-                    reason: "differs from the scene the renderer was built for",
-                });
-            }
-        };
-        queue.write_buffer(
-            &self.distance_uniform,
-            0,
-            bytemuck::bytes_of(&VolumeDistanceParams {
-                camera: *camera,
-                near,
-                width: camera.width,
-                height: camera.height,
-                padding0: 0,
-            }),
-        );
-        queue.write_buffer(
-            &self.air_uniform,
-            0,
-            bytemuck::bytes_of(&VolumeAirParams {
-                width: camera.width,
-                height: camera.height,
-                padding: [0; 2],
-            }),
-        );
-        queue.write_buffer(
-            &self.uniform,
-            0,
-            bytemuck::bytes_of(&VolumeComposite {
-                camera: *camera,
-                near,
-                radiance_scale: scene.present.exposure,
-                width: camera.width,
-                moonlit: u32::from(self.moon.is_some()),
-            }),
-        );
-        // The distance and air buffers follow the image: kept across frames of one size.
-        let pixels = u64::from(camera.width) * u64::from(camera.height);
-        let storage = |label: &str, bytes: u64, kept: Option<wgpu::Buffer>| match kept {
-            Some(buffer) if buffer.size() == bytes => buffer,
-            _ => device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: bytes,
-                usage: wgpu::BufferUsages::STORAGE,
-                mapped_at_creation: false,
-            }),
-        };
-        let distances = storage(
-            "render shell distances",
-            pixels * 4,
-            self.distance.take().map(|(buffer, _, _)| buffer),
-        );
-        let distance_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("render shell distance"),
-            layout: &self.distance_layout,
-            entries: &[
-                entry(0, self.distance_uniform.as_entire_binding()),
-                entry(1, wgpu::BindingResource::TextureView(depth_view)),
-                entry(2, distances.as_entire_binding()),
-            ],
-        });
-        let mut lights = vec![(&mut self.sun, &cloud.lighting)];
-        if let (Some(moon), Some(lighting)) = (self.moon.as_mut(), moon_lighting) {
-            lights.push((moon, lighting));
-        }
-        for (lit, lighting) in lights {
-            // The march stops at the terrain: a hill hides the deck behind it.
-            lit.march.prepare_limited(
-                device,
-                queue,
-                &cloud.shell,
-                &pinhole,
-                size,
-                &cloud.settings,
-                lighting,
-                Some(&distances),
-            )?;
-            let image = lit
-                .march
-                .image_buffer()
-                .ok_or(crate::RenderError::NotPrepared)?;
-            let air = storage(
-                "render shell air",
-                pixels * 32,
-                lit.air.take().map(|(buffer, _)| buffer),
-            );
-            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("render shell air"),
-                layout: &self.air_layout,
-                entries: &[
-                    entry(0, self.air_uniform.as_entire_binding()),
-                    entry(1, image.as_entire_binding()),
-                    entry(2, air.as_entire_binding()),
-                ],
-            });
-            lit.air = Some((air, group));
-        }
-        fn buffers(lit: &ShellLit) -> Result<(&wgpu::Buffer, &wgpu::Buffer), crate::RenderError> {
-            let image = lit
-                .march
-                .image_buffer()
-                .ok_or(crate::RenderError::NotPrepared)?;
-            let (air, _) = lit.air.as_ref().ok_or(crate::RenderError::NotPrepared)?;
-            Ok((image, air))
-        }
-        let (image, air) = buffers(&self.sun)?;
-        // Without the moon its bindings hold the sun's buffers (unread: moonlit = 0).
-        let (moon_image, moon_air) = buffers(self.moon.as_ref().unwrap_or(&self.sun))?;
-        self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("render shell clouds"),
-            layout: &self.layout,
-            entries: &[
-                entry(0, self.uniform.as_entire_binding()),
-                entry(1, image.as_entire_binding()),
-                entry(2, wgpu::BindingResource::TextureView(depth_view)),
-                entry(3, air.as_entire_binding()),
-                entry(4, moon_image.as_entire_binding()),
-                entry(5, moon_air.as_entire_binding()),
-            ],
-        }));
-        self.distance = Some((
-            distances,
-            distance_group,
-            [camera.width.div_ceil(8), camera.height.div_ceil(8)],
-        ));
-        Ok(())
+        self.prepare(
+            device,
+            queue,
+            scene,
+            depth_view,
+            &cloud.lighting,
+            cloud.moon.as_ref(),
+            |march, lighting, distances| {
+                // The march stops at the terrain: a hill hides the deck behind it.
+                Ok(march.prepare_limited(
+                    device,
+                    queue,
+                    &cloud.shell,
+                    &pinhole,
+                    size,
+                    &cloud.settings,
+                    lighting,
+                    Some(distances),
+                )?)
+            },
+        )
     }
-
-    /// Records the distance pass (after the terrain has written the depth), the marches
-    /// (the sun's timed with `march_times`, the moon's with `moon_times`) and the air
-    /// passes with each light's tables (`moon_luts`: the moonlit ones, at night), each a
-    /// compute pass of its own.
-    pub(crate) fn encode_march(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        luts: &atmos::gpu::AtmosphereLuts,
-        moon_luts: Option<&atmos::gpu::AtmosphereLuts>,
-        march_times: Option<wgpu::ComputePassTimestampWrites<'_>>,
-        moon_times: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) -> Result<(), crate::RenderError> {
-        let (_, distance_group, groups) = self
-            .distance
-            .as_ref()
-            .ok_or(crate::RenderError::NotPrepared)?;
-        {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("render shell distance"),
-                timestamp_writes: None,
-            });
-            pass.set_pipeline(&self.distance_pipeline);
-            pass.set_bind_group(0, distance_group, &[]);
-            pass.dispatch_workgroups(groups[0], groups[1], 1);
-        }
-        self.sun.march.encode_timed(encoder, march_times)?;
-        let moon = match (&self.moon, moon_luts) {
-            (Some(moon), Some(moon_luts)) => {
-                moon.march.encode_timed(encoder, moon_times)?;
-                Some((moon, moon_luts))
-            }
-            (None, _) => None,
-            (Some(_), None) => return Err(crate::RenderError::NotPrepared),
-        };
-        for (lit, tables) in std::iter::once((&self.sun, luts)).chain(moon) {
-            let (_, air_group) = lit.air.as_ref().ok_or(crate::RenderError::NotPrepared)?;
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("render shell air"),
-                timestamp_writes: None,
-            });
-            pass.set_pipeline(&lit.air_pipeline);
-            pass.set_bind_group(0, tables.uniform_bind_group(), &[]);
-            pass.set_bind_group(1, tables.table_bind_group(), &[]);
-            pass.set_bind_group(2, air_group, &[]);
-            pass.dispatch_workgroups(groups[0], groups[1], 1);
-        }
-        Ok(())
-    }
-
-    /// Draws the composite (one full-screen triangle) into `pass`.
-    pub(crate) fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> Result<(), crate::RenderError> {
-        let bind_group = self
-            .bind_group
-            .as_ref()
-            .ok_or(crate::RenderError::NotPrepared)?;
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, bind_group, &[]);
-        pass.draw(0..3, 0..1);
-        Ok(())
-    }
-}
-
-#[cfg(feature = "gpu")]
-fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEntry<'_> {
-    wgpu::BindGroupEntry { binding, resource }
 }
 
 /// What `skyscape explain` says of the shell's passes (the march, the moon's march at

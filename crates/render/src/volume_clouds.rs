@@ -567,15 +567,38 @@ pub fn march_pixel_lit(
     pixel: [u32; 2],
     max_distance: f32,
 ) -> MarchResult<f32> {
+    march_field_pixel(
+        &cloud.volume,
+        &cloud.settings,
+        lighting,
+        camera,
+        size,
+        pixel,
+        max_distance,
+    )
+}
+
+/// The f32 march of pixel `pixel` through any density field (the volume's, the
+/// shell's): along [`cloudlight::march::pixel_direction`] of `camera` from its origin,
+/// up to `max_distance` metres.
+pub(crate) fn march_field_pixel(
+    field: &impl cloudlight::DensityField<f32>,
+    settings: &MarchSettings,
+    lighting: &Lighting<f32>,
+    camera: &PinholeCamera,
+    size: [u32; 2],
+    pixel: [u32; 2],
+    max_distance: f32,
+) -> MarchResult<f32> {
     let [forward, right, up] = camera.basis().map(|v| v.map(|c| c as f32));
     let tan_half = camera.tan_half(size).map(|t| t as f32);
     let origin = camera.origin().map(|c| c as f32);
     let direction = cloudlight::march::pixel_direction(pixel, size, forward, right, up, tan_half);
     cloudlight::march::march_view_at_pixel_limited(
-        &cloud.volume,
+        field,
         origin,
         direction,
-        &cloud.settings,
+        settings,
         lighting,
         pixel,
         max_distance,
@@ -600,6 +623,95 @@ pub fn cloud_through_air(
     std::array::from_fn(|k| {
         cloud.radiance[k] * air_transmittance[k] + air_radiance[k] * (1.0 - cloud.transmittance)
     })
+}
+
+/// A light's precomputed tables as the CPU renderer holds them (`None`: the light's
+/// segment model).
+pub type AirTables<'a> = Option<(&'a atmos::lut::StaticLuts, &'a atmos::lut::FrameLuts)>;
+
+/// The air between the camera and `depth` metres along unit world `view` lit by `light`
+/// (the sun, or the moon at night): its transmittance and in-scattered radiance, from
+/// the precomputed rung's aerial-perspective tables of that light when `tables` is given
+/// (`atmos::lut::drop_in::aerial_perspective`, the twin of the GPU's air pass), else
+/// from the light's segment model.
+pub fn air_in_front(
+    scene: &crate::scene::PreparedScene,
+    light: &crate::scene::Illuminant<'_>,
+    tables: AirTables<'_>,
+    view: [f32; 3],
+    depth: f32,
+) -> Result<([f32; 3], [f32; 3]), crate::RenderError> {
+    Ok(match tables {
+        Some((luts, frame)) => {
+            let offset = view.map(|v| v * depth);
+            let segment = atmos::lut::drop_in::aerial_perspective(luts, frame, offset);
+            (segment.transmittance, segment.radiance)
+        }
+        None => {
+            let view = DVec3::from_array(view.map(f64::from)).normalize();
+            let query = atmos::SkyQuery::with_max_distance(
+                scene.atmosphere.planet_radius,
+                scene.camera_position,
+                view,
+                light.direction,
+                f64::from(depth),
+            )?;
+            let air = light.segment_model.evaluate(&query);
+            (
+                air.transmittance.map(|t| t as f32),
+                air.radiance.map(|l| l as f32),
+            )
+        }
+    })
+}
+
+/// The CPU twin of the GPU's composite of a marched cloud (the volume's, the shell's):
+/// per pixel `march(lighting, pixel, behind)` up to the terrain's hit
+/// (`PixelRadiance::terrain_distance`; the sky: no limit), drawn where it has opacity in
+/// front of the scene ([`cloud_in_front`]) as `L_c·T_air + L_air·(1 − T_c) + T_c·L`
+/// ([`cloud_through_air`], the air from [`air_in_front`] with the sun's `tables`). At
+/// night (`moon`: the moon's lighting, light and tables) the march lit by the moon,
+/// seen through the moonlit air, is added.
+pub(crate) fn composite_marched_cloud(
+    scene: &crate::scene::PreparedScene,
+    lighting: &Lighting<f32>,
+    tables: AirTables<'_>,
+    moon: Option<(&Lighting<f32>, &crate::scene::Illuminant<'_>, AirTables<'_>)>,
+    march: impl Fn(&Lighting<f32>, [u32; 2], f32) -> MarchResult<f32> + Sync,
+    out: &mut [crate::cpu_renderer::PixelRadiance],
+) -> Result<(), crate::RenderError> {
+    use rayon::prelude::*;
+    let camera = &scene.camera;
+    let sun = scene.sun_light();
+    out.par_chunks_mut(camera.width as usize)
+        .enumerate()
+        .try_for_each(|(row, pixels)| {
+            for (column, pixel) in pixels.iter_mut().enumerate() {
+                let xy = [column as u32, row as u32];
+                let behind = pixel.terrain_distance.unwrap_or(f32::INFINITY);
+                let result = march(lighting, xy, behind);
+                if !cloud_in_front(&result, behind) {
+                    continue;
+                }
+                let view = atmos::frame::frame_view_direction(xy, camera);
+                let (transmittance, radiance) =
+                    air_in_front(scene, &sun, tables, view, result.depth)?;
+                let mut seen = cloud_through_air(&result, transmittance, radiance);
+                if let Some((moon_lighting, light, moon_tables)) = moon {
+                    let lit = march(moon_lighting, xy, behind);
+                    let (transmittance, radiance) =
+                        air_in_front(scene, light, moon_tables, view, lit.depth)?;
+                    let added = cloud_through_air(&lit, transmittance, radiance);
+                    for (value, a) in seen.iter_mut().zip(added) {
+                        *value += a;
+                    }
+                }
+                for (value, s) in pixel.radiance.iter_mut().zip(seen) {
+                    *value = s + result.transmittance * *value;
+                }
+            }
+            Ok::<(), crate::RenderError>(())
+        })
 }
 
 /// The composite pass's uniform (layout identical to WGSL `VolumeComposite`).
@@ -651,41 +763,15 @@ pub struct VolumeAirParams {
     pub padding: [u32; 2],
 }
 
-/// One light's march and air pass (the sun's; at night also the moon's).
+/// The GPU side: `cloudlight::gpu::MarchPass` over the scene's pixels (prepared per
+/// frame with [`pinhole_camera`]; at night a second one lit by the moon) in
+/// [`crate::gpu::cloud_composite::CloudComposite`]'s passes: the terrain's depth as a
+/// distance per pixel the march stops at, the air in front of the cloud per pixel and
+/// light (atmos' `aerial_perspective`, the CPU's function) and the composite render pass
+/// (`shaders/render/volume_clouds.wgsl`).
 #[cfg(feature = "gpu")]
-#[derive(Debug)]
-struct LitMarch {
-    march: cloudlight::gpu::MarchPass,
-    /// `shaders/render/volume_air.wgsl` with this light's tables' layouts.
-    air_pipeline: wgpu::ComputePipeline,
-    /// The air per pixel and its bind group (after `prepare`; kept across frames of one
-    /// size).
-    air: Option<(wgpu::Buffer, wgpu::BindGroup)>,
-}
-
-/// The GPU side: the terrain's depth turned into a distance per pixel
-/// (`shaders/render/volume_distance.wgsl`), `cloudlight::gpu::MarchPass` over the scene's
-/// pixels limited by it (prepared per frame with [`pinhole_camera`]; at night a second
-/// one lit by the moon), the air in front of the cloud per pixel and light
-/// (`shaders/render/volume_air.wgsl`: atmos' `aerial_perspective`, the CPU's function)
-/// and the composite render pass (`shaders/render/volume_clouds.wgsl`).
-#[cfg(feature = "gpu")]
-#[derive(Debug)]
-pub(crate) struct VolumeCloudPass {
-    sun: LitMarch,
-    moon: Option<LitMarch>,
-    air_layout: wgpu::BindGroupLayout,
-    air_uniform: wgpu::Buffer,
-    pipeline: wgpu::RenderPipeline,
-    layout: wgpu::BindGroupLayout,
-    uniform: wgpu::Buffer,
-    bind_group: Option<wgpu::BindGroup>,
-    distance_pipeline: wgpu::ComputePipeline,
-    distance_layout: wgpu::BindGroupLayout,
-    distance_uniform: wgpu::Buffer,
-    /// The distance buffer, its bind group and the dispatch size (after `prepare`).
-    distance: Option<(wgpu::Buffer, wgpu::BindGroup, [u32; 2])>,
-}
+pub(crate) type VolumeCloudPass =
+    crate::gpu::cloud_composite::CloudComposite<cloudlight::gpu::MarchPass>;
 
 #[cfg(feature = "gpu")]
 pub(crate) fn buffer_entry(
@@ -749,168 +835,27 @@ pub(crate) fn compute_pipeline(
 impl VolumeCloudPass {
     /// The march, air and composite pipelines; `moon_luts`: the moonlit tables when the
     /// scene's cloud is lit by the moon too ([`PreparedVolume::moon`]).
-    pub(crate) fn new(
+    pub(crate) fn new_volume(
         device: &wgpu::Device,
         luts: &atmos::gpu::AtmosphereLuts,
         moon_luts: Option<&atmos::gpu::AtmosphereLuts>,
         target: wgpu::TextureFormat,
     ) -> Result<Self, crate::RenderError> {
-        use wgpu::BufferBindingType::{Storage, Uniform};
-        let compute = wgpu::ShaderStages::COMPUTE;
-        let module = |name: &str, label: &str| -> Result<wgpu::ShaderModule, crate::RenderError> {
-            let source = crate::composer().compose_module(name)?;
-            Ok(device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(label),
-                source: wgpu::ShaderSource::Wgsl(source.into()),
-            }))
-        };
-        let uniform_buffer = |label: &str, size: usize| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: size as u64,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            })
-        };
-        let distance_module = module("render::volume_distance", "render volume distance")?;
-        let distance_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("render volume distance"),
-            entries: &[
-                buffer_entry(0, compute, Uniform),
-                depth_entry(1, compute),
-                buffer_entry(2, compute, Storage { read_only: false }),
-            ],
-        });
-        let distance_pipeline = compute_pipeline(
+        Self::new(
             device,
-            "render volume distance",
-            &distance_module,
-            "volume_distance_main",
-            &[Some(&distance_layout)],
-        );
-        let distance_uniform = uniform_buffer(
-            "render volume distance uniform",
-            std::mem::size_of::<VolumeDistanceParams>(),
-        );
-        // The air per pixel: groups 0 and 1 are the light's tables.
-        let air_module = module("render::volume_air", "render volume air")?;
-        let air_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("render volume air"),
-            entries: &[
-                buffer_entry(0, compute, Uniform),
-                buffer_entry(1, compute, Storage { read_only: true }),
-                buffer_entry(2, compute, Storage { read_only: false }),
-            ],
-        });
-        let air_uniform = uniform_buffer(
-            "render volume air uniform",
-            std::mem::size_of::<VolumeAirParams>(),
-        );
-        let lit = |luts: &atmos::gpu::AtmosphereLuts,
-                   label: &str|
-         -> Result<LitMarch, crate::RenderError> {
-            Ok(LitMarch {
-                march: cloudlight::gpu::MarchPass::new(device)?,
-                air_pipeline: compute_pipeline(
-                    device,
-                    label,
-                    &air_module,
-                    "volume_air_main",
-                    &[
-                        Some(&luts.layouts().uniforms),
-                        Some(&luts.layouts().tables),
-                        Some(&air_layout),
-                    ],
-                ),
-                air: None,
-            })
-        };
-        let sun = lit(luts, "render volume air")?;
-        let moon = match moon_luts {
-            Some(moon_luts) => Some(lit(moon_luts, "render volume air (moonlit)")?),
-            None => None,
-        };
-        let composite_module = module("render::volume_clouds", "render volume clouds")?;
-        let fragment = wgpu::ShaderStages::FRAGMENT;
-        let read = Storage { read_only: true };
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("render volume clouds"),
-            entries: &[
-                buffer_entry(0, fragment, Uniform),
-                buffer_entry(1, fragment, read),
-                depth_entry(2, fragment),
-                buffer_entry(3, fragment, read),
-                buffer_entry(4, fragment, read),
-                buffer_entry(5, fragment, read),
-            ],
-        });
-        let uniform = uniform_buffer(
-            "render volume clouds uniform",
-            std::mem::size_of::<VolumeComposite>(),
-        );
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("render volume clouds"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        // dst · T_c + the cloud's own light (premultiplied).
-        let blend = wgpu::BlendState {
-            color: wgpu::BlendComponent {
-                src_factor: wgpu::BlendFactor::One,
-                dst_factor: wgpu::BlendFactor::SrcAlpha,
-                operation: wgpu::BlendOperation::Add,
-            },
-            alpha: wgpu::BlendComponent {
-                src_factor: wgpu::BlendFactor::Zero,
-                dst_factor: wgpu::BlendFactor::One,
-                operation: wgpu::BlendOperation::Add,
-            },
-        };
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("render volume clouds"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &composite_module,
-                entry_point: Some("volume_clouds_vertex"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &composite_module,
-                entry_point: Some("volume_clouds_fragment"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: target,
-                    blend: Some(blend),
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
-        Ok(Self {
-            sun,
-            moon,
-            air_layout,
-            air_uniform,
-            pipeline,
-            layout,
-            uniform,
-            bind_group: None,
-            distance_pipeline,
-            distance_layout,
-            distance_uniform,
-            distance: None,
-        })
+            "volume",
+            "clouds.volume",
+            luts,
+            moon_luts,
+            target,
+            || Ok(cloudlight::gpu::MarchPass::new(device)?),
+        )
     }
 
     /// The frame's marches (the scene camera as a pinhole camera in the volume's frame,
     /// one ray per pixel; the moon's at night), the air passes' and the composite's
     /// uniforms and bind groups.
-    pub(crate) fn prepare(
+    pub(crate) fn prepare_volume(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
@@ -920,242 +865,29 @@ impl VolumeCloudPass {
     ) -> Result<(), crate::RenderError> {
         let camera = &scene.camera;
         let pinhole = pinhole_camera(camera, scene.atmosphere.planet_radius)?;
-        let near = scene.near.max(0.01) as f32;
         let size = [camera.width, camera.height];
-        queue.write_buffer(
-            &self.distance_uniform,
-            0,
-            bytemuck::bytes_of(&VolumeDistanceParams {
-                camera: *camera,
-                near,
-                width: camera.width,
-                height: camera.height,
-                padding0: 0,
-            }),
-        );
-        queue.write_buffer(
-            &self.air_uniform,
-            0,
-            bytemuck::bytes_of(&VolumeAirParams {
-                width: camera.width,
-                height: camera.height,
-                padding: [0; 2],
-            }),
-        );
-        // The distance and air buffers follow the image: kept across frames of one size.
-        let pixels = u64::from(camera.width) * u64::from(camera.height);
-        let storage = |label: &str, bytes: u64, kept: Option<wgpu::Buffer>| match kept {
-            Some(buffer) if buffer.size() == bytes => buffer,
-            _ => device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: bytes,
-                usage: wgpu::BufferUsages::STORAGE,
-                mapped_at_creation: false,
-            }),
-        };
-        let distances = storage(
-            "render volume distances",
-            pixels * 4,
-            self.distance.take().map(|(buffer, _, _)| buffer),
-        );
-        let distance_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("render volume distance"),
-            layout: &self.distance_layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: self.distance_uniform.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(depth_view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: distances.as_entire_binding(),
-                },
-            ],
-        });
-        let moon_lighting = match (&self.moon, &cloud.moon) {
-            (Some(_), Some(moon)) => Some(&moon.lighting),
-            (None, None) => None,
-            (built, _) => {
-                return Err(crate::RenderError::InvalidParameter {
-                    field: "clouds.volume",
-                    value: if built.is_some() {
-                        "not lit by the moon"
-                    } else {
-                        "lit by the moon"
-                    }
-                    .into(),
-                    reason: "differs from the scene the renderer was built for",
-                });
-            }
-        };
-        let mut lights = vec![(&mut self.sun, &cloud.lighting)];
-        if let (Some(moon), Some(lighting)) = (self.moon.as_mut(), moon_lighting) {
-            lights.push((moon, lighting));
-        }
-        for (lit, lighting) in lights {
-            // The march stops at the terrain: a ridge cuts the cloud where it stands.
-            lit.march.prepare_limited(
-                device,
-                queue,
-                &cloud.volume,
-                &pinhole,
-                size,
-                &cloud.settings,
-                lighting,
-                Some(&distances),
-            )?;
-            let image = lit
-                .march
-                .image_buffer()
-                .ok_or(crate::RenderError::NotPrepared)?;
-            let air = storage(
-                "render volume air",
-                pixels * 32,
-                lit.air.take().map(|(buffer, _)| buffer),
-            );
-            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("render volume air"),
-                layout: &self.air_layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: self.air_uniform.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: image.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: air.as_entire_binding(),
-                    },
-                ],
-            });
-            lit.air = Some((air, group));
-        }
-        self.distance = Some((
-            distances,
-            distance_group,
-            [camera.width.div_ceil(8), camera.height.div_ceil(8)],
-        ));
-        let uniform = VolumeComposite {
-            camera: *camera,
-            near,
-            radiance_scale: scene.present.exposure,
-            width: camera.width,
-            moonlit: u32::from(self.moon.is_some()),
-        };
-        queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
-        fn buffers(
-            lit: &LitMarch,
-        ) -> Result<(wgpu::BindingResource<'_>, wgpu::BindingResource<'_>), crate::RenderError>
-        {
-            let image = lit
-                .march
-                .image_buffer()
-                .ok_or(crate::RenderError::NotPrepared)?;
-            let (air, _) = lit.air.as_ref().ok_or(crate::RenderError::NotPrepared)?;
-            Ok((image.as_entire_binding(), air.as_entire_binding()))
-        }
-        let (image, air) = buffers(&self.sun)?;
-        // Without the moon its bindings hold the sun's buffers (unread: moonlit = 0).
-        let (moon_image, moon_air) = buffers(self.moon.as_ref().unwrap_or(&self.sun))?;
-        self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("render volume clouds"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: self.uniform.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: image,
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(depth_view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: air,
-                },
-                wgpu::BindGroupEntry {
-                    binding: 4,
-                    resource: moon_image,
-                },
-                wgpu::BindGroupEntry {
-                    binding: 5,
-                    resource: moon_air,
-                },
-            ],
-        }));
-        Ok(())
-    }
-
-    /// Records the distance pass (after the terrain has written the depth), the
-    /// marches (the sun's timed with `march_times`, the moon's with `moon_times`) and
-    /// the air passes with each light's tables (`moon_luts`: the moonlit ones, at night),
-    /// each a compute pass of its own.
-    pub(crate) fn encode_march(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        luts: &atmos::gpu::AtmosphereLuts,
-        moon_luts: Option<&atmos::gpu::AtmosphereLuts>,
-        march_times: Option<wgpu::ComputePassTimestampWrites<'_>>,
-        moon_times: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) -> Result<(), crate::RenderError> {
-        let (_, group, groups) = self
-            .distance
-            .as_ref()
-            .ok_or(crate::RenderError::NotPrepared)?;
-        {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("render volume distance"),
-                timestamp_writes: None,
-            });
-            pass.set_pipeline(&self.distance_pipeline);
-            pass.set_bind_group(0, group, &[]);
-            pass.dispatch_workgroups(groups[0], groups[1], 1);
-        }
-        self.sun.march.encode_timed(encoder, march_times)?;
-        let moon = match (&self.moon, moon_luts) {
-            (Some(moon), Some(moon_luts)) => {
-                moon.march.encode_timed(encoder, moon_times)?;
-                Some((moon, moon_luts))
-            }
-            (None, _) => None,
-            (Some(_), None) => return Err(crate::RenderError::NotPrepared),
-        };
-        for (lit, tables) in std::iter::once((&self.sun, luts)).chain(moon) {
-            let (_, air_group) = lit.air.as_ref().ok_or(crate::RenderError::NotPrepared)?;
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("render volume air"),
-                timestamp_writes: None,
-            });
-            pass.set_pipeline(&lit.air_pipeline);
-            pass.set_bind_group(0, tables.uniform_bind_group(), &[]);
-            pass.set_bind_group(1, tables.table_bind_group(), &[]);
-            pass.set_bind_group(2, air_group, &[]);
-            pass.dispatch_workgroups(groups[0], groups[1], 1);
-        }
-        Ok(())
-    }
-
-    /// Draws the composite (one full-screen triangle) into `pass`.
-    pub(crate) fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> Result<(), crate::RenderError> {
-        let bind_group = self
-            .bind_group
-            .as_ref()
-            .ok_or(crate::RenderError::NotPrepared)?;
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, bind_group, &[]);
-        pass.draw(0..3, 0..1);
-        Ok(())
+        let moon = cloud.moon.as_ref().map(|moon| &moon.lighting);
+        self.prepare(
+            device,
+            queue,
+            scene,
+            depth_view,
+            &cloud.lighting,
+            moon,
+            |march, lighting, distances| {
+                // The march stops at the terrain: a ridge cuts the cloud where it stands.
+                Ok(march.prepare_limited(
+                    device,
+                    queue,
+                    &cloud.volume,
+                    &pinhole,
+                    size,
+                    &cloud.settings,
+                    lighting,
+                    Some(distances),
+                )?)
+            },
+        )
     }
 }
 

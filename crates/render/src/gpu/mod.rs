@@ -8,6 +8,7 @@
 //!   to RGBA8, for the ladder's image tests;
 //! * [`timer::PassTimes`]: GPU timestamps per pass.
 
+pub(crate) mod cloud_composite;
 pub mod present;
 pub mod rungs;
 pub mod scene;

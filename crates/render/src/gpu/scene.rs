@@ -662,35 +662,33 @@ impl SceneRenderer {
             )?)
         };
 
+        // A marched cloud's tables: the sun's, and at night (`moonlit_cloud`) the moon's,
+        // which light the cloud too (its march and air passes).
+        let cloud_luts = |moonlit_cloud: bool| {
+            let sun = luts
+                .as_ref()
+                .ok_or_else(|| super::rungs::volume_needs_tables(scene.rung))?;
+            let moon = moonlit.as_ref().filter(|_| moonlit_cloud).map(|(l, _)| l);
+            Ok::<_, RenderError>((sun, moon))
+        };
         // Only a scene with [clouds.volume] builds the march and its composite.
         let volume_cloud = match &scene.volume_cloud {
-            Some(cloud) => Some(crate::volume_clouds::VolumeCloudPass::new(
-                device,
-                luts.as_ref()
-                    .ok_or_else(|| super::rungs::volume_needs_tables(scene.rung))?,
-                // At night the moon lights the cloud too: its march and air passes.
-                moonlit
-                    .as_ref()
-                    .filter(|_| cloud.moon.is_some())
-                    .map(|(l, _)| l),
-                HDR,
-            )?),
+            Some(cloud) => {
+                let (luts, moon_luts) = cloud_luts(cloud.moon.is_some())?;
+                Some(crate::volume_clouds::VolumeCloudPass::new_volume(
+                    device, luts, moon_luts, HDR,
+                )?)
+            }
             None => None,
         };
-
         // Only a scene with [clouds.shell] builds the shell's march and composite.
         let shell_cloud = match &scene.shell_cloud {
-            Some(cloud) => Some(crate::shell_clouds::ShellCloudPass::new(
-                device,
-                luts.as_ref()
-                    .ok_or_else(|| super::rungs::volume_needs_tables(scene.rung))?,
-                // At night the moon lights the deck too: its march and air passes.
-                moonlit
-                    .as_ref()
-                    .filter(|_| cloud.moon.is_some())
-                    .map(|(l, _)| l),
-                HDR,
-            )?),
+            Some(cloud) => {
+                let (luts, moon_luts) = cloud_luts(cloud.moon.is_some())?;
+                Some(crate::shell_clouds::ShellCloudPass::new_shell(
+                    device, luts, moon_luts, HDR,
+                )?)
+            }
             None => None,
         };
 
@@ -1205,7 +1203,7 @@ impl SceneRenderer {
         }
         match (&mut self.volume_cloud, &scene.volume_cloud) {
             (Some(pass), Some(cloud)) => {
-                pass.prepare(&self.device, queue, scene, cloud, &self.depth_view)?;
+                pass.prepare_volume(&self.device, queue, scene, cloud, &self.depth_view)?;
             }
             (None, None) => {}
             (built, _) => {
@@ -1218,7 +1216,7 @@ impl SceneRenderer {
         }
         match (&mut self.shell_cloud, &scene.shell_cloud) {
             (Some(pass), Some(cloud)) => {
-                pass.prepare(&self.device, queue, scene, cloud, &self.depth_view)?;
+                pass.prepare_shell(&self.device, queue, scene, cloud, &self.depth_view)?;
             }
             (None, None) => {}
             (built, _) => {
@@ -1594,55 +1592,31 @@ impl SceneRenderer {
         }
         if let (Some(shell), Some(luts)) = (&self.shell_cloud, &self.luts) {
             // After the terrain (the march stops at its depth), before the volume cloud.
-            shell.encode_march(
+            shell.encode(
                 encoder,
+                &self.hdr_view,
                 luts,
                 self.moonlit.as_ref().map(|(luts, _)| luts),
-                times.and_then(|t| t.compute_writes("shell cloud march")),
-                times.and_then(|t| t.compute_writes("moonlit shell march")),
+                super::cloud_composite::CloudTimes {
+                    march: times.and_then(|t| t.compute_writes("shell cloud march")),
+                    moon: times.and_then(|t| t.compute_writes("moonlit shell march")),
+                    composite: times.and_then(|t| t.render_writes("shell clouds")),
+                },
             )?;
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("render shell clouds"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &self.hdr_view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Load,
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: times.and_then(|t| t.render_writes("shell clouds")),
-                ..Default::default()
-            });
-            shell.draw(&mut pass)?;
         }
         if let (Some(volume), Some(luts)) = (&self.volume_cloud, &self.luts) {
             // After the terrain: the march stops at its depth.
-            volume.encode_march(
+            volume.encode(
                 encoder,
+                &self.hdr_view,
                 luts,
                 self.moonlit.as_ref().map(|(luts, _)| luts),
-                times.and_then(|t| t.compute_writes("volume cloud march")),
-                times.and_then(|t| t.compute_writes("moonlit cloud march")),
+                super::cloud_composite::CloudTimes {
+                    march: times.and_then(|t| t.compute_writes("volume cloud march")),
+                    moon: times.and_then(|t| t.compute_writes("moonlit cloud march")),
+                    composite: times.and_then(|t| t.render_writes("volume clouds")),
+                },
             )?;
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("render volume clouds"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &self.hdr_view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Load,
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: times.and_then(|t| t.render_writes("volume clouds")),
-                ..Default::default()
-            });
-            volume.draw(&mut pass)?;
         }
         if let Some(billboards) = &self.billboard_cloud {
             // After the terrain: its depth hides the particles behind it.

@@ -1,0 +1,481 @@
+//! The GPU passes a marched cloud shares, whichever march it is (the volume's
+//! `cloudlight::gpu::MarchPass`, the shell's `cloudlight::gpu::MarchShellPass`): the
+//! terrain's depth as a distance per pixel (`shaders/render/volume_distance.wgsl`), the
+//! air in front of the cloud per pixel and light (`shaders/render/volume_air.wgsl`:
+//! atmos' `aerial_perspective`, the CPU's function) and the composite render pass
+//! (`shaders/render/volume_clouds.wgsl`). Each cloud supplies only its march, prepared
+//! per frame up to the distance buffer.
+
+use crate::volume_clouds::{
+    VolumeAirParams, VolumeComposite, VolumeDistanceParams, buffer_entry, compute_pipeline,
+    depth_entry,
+};
+use cloudlight::march::Lighting;
+
+/// A march whose image the composite reads (one `MarchResult` of 32 bytes per pixel).
+pub(crate) trait CloudMarch {
+    /// The march's output (after its `prepare`).
+    fn image(&self) -> Option<&wgpu::Buffer>;
+    /// Records the march, a compute pass of its own.
+    fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), crate::RenderError>;
+}
+
+/// `CloudMarch` for a cloudlight march pass (its `image_buffer` and `encode_timed`).
+macro_rules! cloud_march {
+    ($pass:ty) => {
+        impl CloudMarch for $pass {
+            fn image(&self) -> Option<&wgpu::Buffer> {
+                self.image_buffer()
+            }
+            fn encode(
+                &self,
+                encoder: &mut wgpu::CommandEncoder,
+                timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+            ) -> Result<(), crate::RenderError> {
+                Ok(self.encode_timed(encoder, timestamp_writes)?)
+            }
+        }
+    };
+}
+cloud_march!(cloudlight::gpu::MarchPass);
+cloud_march!(cloudlight::gpu::MarchShellPass);
+
+/// One light's march and air pass (the sun's; at night also the moon's).
+#[derive(Debug)]
+struct LitMarch<M> {
+    march: M,
+    /// `shaders/render/volume_air.wgsl` with this light's tables' layouts.
+    air_pipeline: wgpu::ComputePipeline,
+    /// The air per pixel and its bind group (after `prepare`; kept across frames of one
+    /// size).
+    air: Option<(wgpu::Buffer, wgpu::BindGroup)>,
+}
+
+/// The timestamp writes of one cloud's passes (each `None` when untimed).
+pub(crate) struct CloudTimes<'a> {
+    /// The sun's march.
+    pub march: Option<wgpu::ComputePassTimestampWrites<'a>>,
+    /// The moon's march (at night).
+    pub moon: Option<wgpu::ComputePassTimestampWrites<'a>>,
+    /// The composite render pass.
+    pub composite: Option<wgpu::RenderPassTimestampWrites<'a>>,
+}
+
+/// The distance, air and composite passes over a cloud's marches (module docs).
+#[derive(Debug)]
+pub(crate) struct CloudComposite<M> {
+    /// "volume" or "shell": the passes' labels ("render volume air", ...).
+    name: &'static str,
+    /// The scene's section, named when the scene's moon differs from the built one's.
+    field: &'static str,
+    sun: LitMarch<M>,
+    moon: Option<LitMarch<M>>,
+    distance_pipeline: wgpu::ComputePipeline,
+    distance_layout: wgpu::BindGroupLayout,
+    distance_uniform: wgpu::Buffer,
+    /// The distance buffer, its bind group and the dispatch size (after `prepare`).
+    distance: Option<(wgpu::Buffer, wgpu::BindGroup, [u32; 2])>,
+    air_layout: wgpu::BindGroupLayout,
+    air_uniform: wgpu::Buffer,
+    pipeline: wgpu::RenderPipeline,
+    layout: wgpu::BindGroupLayout,
+    uniform: wgpu::Buffer,
+    bind_group: Option<wgpu::BindGroup>,
+}
+
+fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry { binding, resource }
+}
+
+impl<M: CloudMarch> CloudComposite<M> {
+    /// The distance, air and composite pipelines and the marches `march` builds (the
+    /// sun's; the moon's when `moon_luts`, the moonlit tables, are given), each light's
+    /// tables' layouts in its air pass's groups 0 and 1. `name` labels the passes,
+    /// `field` is the scene section named in `prepare`'s errors.
+    pub(crate) fn new(
+        device: &wgpu::Device,
+        name: &'static str,
+        field: &'static str,
+        luts: &atmos::gpu::AtmosphereLuts,
+        moon_luts: Option<&atmos::gpu::AtmosphereLuts>,
+        target: wgpu::TextureFormat,
+        march: impl Fn() -> Result<M, crate::RenderError>,
+    ) -> Result<Self, crate::RenderError> {
+        use wgpu::BufferBindingType::{Storage, Uniform};
+        let compute = wgpu::ShaderStages::COMPUTE;
+        let module =
+            |module: &str, label: &str| -> Result<wgpu::ShaderModule, crate::RenderError> {
+                let source = crate::composer().compose_module(module)?;
+                Ok(device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some(label),
+                    source: wgpu::ShaderSource::Wgsl(source.into()),
+                }))
+            };
+        let uniform_buffer = |label: &str, size: usize| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: size as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        let distance_label = format!("render {name} distance");
+        let distance_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(&distance_label),
+            entries: &[
+                buffer_entry(0, compute, Uniform),
+                depth_entry(1, compute),
+                buffer_entry(2, compute, Storage { read_only: false }),
+            ],
+        });
+        let distance_pipeline = compute_pipeline(
+            device,
+            &distance_label,
+            &module("render::volume_distance", &distance_label)?,
+            "volume_distance_main",
+            &[Some(&distance_layout)],
+        );
+        let distance_uniform = uniform_buffer(
+            &format!("{distance_label} uniform"),
+            std::mem::size_of::<VolumeDistanceParams>(),
+        );
+        // The air per pixel: groups 0 and 1 are the light's tables.
+        let air_label = format!("render {name} air");
+        let air_module = module("render::volume_air", &air_label)?;
+        let air_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(&air_label),
+            entries: &[
+                buffer_entry(0, compute, Uniform),
+                buffer_entry(1, compute, Storage { read_only: true }),
+                buffer_entry(2, compute, Storage { read_only: false }),
+            ],
+        });
+        let air_uniform = uniform_buffer(
+            &format!("{air_label} uniform"),
+            std::mem::size_of::<VolumeAirParams>(),
+        );
+        let lit = |luts: &atmos::gpu::AtmosphereLuts,
+                   label: &str|
+         -> Result<LitMarch<M>, crate::RenderError> {
+            Ok(LitMarch {
+                march: march()?,
+                air_pipeline: compute_pipeline(
+                    device,
+                    label,
+                    &air_module,
+                    "volume_air_main",
+                    &[
+                        Some(&luts.layouts().uniforms),
+                        Some(&luts.layouts().tables),
+                        Some(&air_layout),
+                    ],
+                ),
+                air: None,
+            })
+        };
+        let sun = lit(luts, &air_label)?;
+        let moon = match moon_luts {
+            Some(moon_luts) => Some(lit(moon_luts, &format!("{air_label} (moonlit)"))?),
+            None => None,
+        };
+        let label = format!("render {name} clouds");
+        let composite_module = module("render::volume_clouds", &label)?;
+        let fragment = wgpu::ShaderStages::FRAGMENT;
+        let read = Storage { read_only: true };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(&label),
+            entries: &[
+                buffer_entry(0, fragment, Uniform),
+                buffer_entry(1, fragment, read),
+                depth_entry(2, fragment),
+                buffer_entry(3, fragment, read),
+                buffer_entry(4, fragment, read),
+                buffer_entry(5, fragment, read),
+            ],
+        });
+        let uniform = uniform_buffer(
+            &format!("{label} uniform"),
+            std::mem::size_of::<VolumeComposite>(),
+        );
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(&label),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        // dst · T_c + the cloud's own light (premultiplied).
+        let blend = wgpu::BlendState {
+            color: wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::One,
+                dst_factor: wgpu::BlendFactor::SrcAlpha,
+                operation: wgpu::BlendOperation::Add,
+            },
+            alpha: wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::Zero,
+                dst_factor: wgpu::BlendFactor::One,
+                operation: wgpu::BlendOperation::Add,
+            },
+        };
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(&label),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &composite_module,
+                entry_point: Some("volume_clouds_vertex"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &composite_module,
+                entry_point: Some("volume_clouds_fragment"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format: target,
+                    blend: Some(blend),
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        Ok(Self {
+            name,
+            field,
+            sun,
+            moon,
+            distance_pipeline,
+            distance_layout,
+            distance_uniform,
+            distance: None,
+            air_layout,
+            air_uniform,
+            pipeline,
+            layout,
+            uniform,
+            bind_group: None,
+        })
+    }
+
+    /// The frame's distance, air and composite uniforms and bind groups, and the marches
+    /// prepared by `prepare_march` (each march with its light: the sun's `lighting`, the
+    /// moon's `moon_lighting` when the cloud was built moonlit, and the distance buffer
+    /// it stops at: the terrain cuts the cloud where it stands).
+    #[allow(clippy::too_many_arguments)] // the frame's resources and the two lights
+    pub(crate) fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &crate::scene::PreparedScene,
+        depth_view: &wgpu::TextureView,
+        lighting: &Lighting<f32>,
+        moon_lighting: Option<&Lighting<f32>>,
+        mut prepare_march: impl FnMut(
+            &mut M,
+            &Lighting<f32>,
+            &wgpu::Buffer,
+        ) -> Result<(), crate::RenderError>,
+    ) -> Result<(), crate::RenderError> {
+        let name = self.name;
+        if self.moon.is_some() != moon_lighting.is_some() {
+            return Err(crate::RenderError::InvalidParameter {
+                field: self.field,
+                value: if self.moon.is_some() {
+                    "not lit by the moon"
+                } else {
+                    "lit by the moon"
+                }
+                .into(),
+                reason: "differs from the scene the renderer was built for",
+            });
+        }
+        let camera = &scene.camera;
+        let near = scene.near.max(0.01) as f32;
+        queue.write_buffer(
+            &self.distance_uniform,
+            0,
+            bytemuck::bytes_of(&VolumeDistanceParams {
+                camera: *camera,
+                near,
+                width: camera.width,
+                height: camera.height,
+                padding0: 0,
+            }),
+        );
+        queue.write_buffer(
+            &self.air_uniform,
+            0,
+            bytemuck::bytes_of(&VolumeAirParams {
+                width: camera.width,
+                height: camera.height,
+                padding: [0; 2],
+            }),
+        );
+        queue.write_buffer(
+            &self.uniform,
+            0,
+            bytemuck::bytes_of(&VolumeComposite {
+                camera: *camera,
+                near,
+                radiance_scale: scene.present.exposure,
+                width: camera.width,
+                moonlit: u32::from(self.moon.is_some()),
+            }),
+        );
+        // The distance and air buffers follow the image: kept across frames of one size.
+        let pixels = u64::from(camera.width) * u64::from(camera.height);
+        let storage = |label: &str, bytes: u64, kept: Option<wgpu::Buffer>| match kept {
+            Some(buffer) if buffer.size() == bytes => buffer,
+            _ => device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: bytes,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            }),
+        };
+        let distances = storage(
+            &format!("render {name} distances"),
+            pixels * 4,
+            self.distance.take().map(|(buffer, _, _)| buffer),
+        );
+        let distance_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(&format!("render {name} distance")),
+            layout: &self.distance_layout,
+            entries: &[
+                entry(0, self.distance_uniform.as_entire_binding()),
+                entry(1, wgpu::BindingResource::TextureView(depth_view)),
+                entry(2, distances.as_entire_binding()),
+            ],
+        });
+        let air_label = format!("render {name} air");
+        let mut lights = vec![(&mut self.sun, lighting)];
+        if let (Some(moon), Some(lighting)) = (self.moon.as_mut(), moon_lighting) {
+            lights.push((moon, lighting));
+        }
+        for (lit, lighting) in lights {
+            prepare_march(&mut lit.march, lighting, &distances)?;
+            let image = lit.march.image().ok_or(crate::RenderError::NotPrepared)?;
+            let air = storage(
+                &air_label,
+                pixels * 32,
+                lit.air.take().map(|(buffer, _)| buffer),
+            );
+            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(&air_label),
+                layout: &self.air_layout,
+                entries: &[
+                    entry(0, self.air_uniform.as_entire_binding()),
+                    entry(1, image.as_entire_binding()),
+                    entry(2, air.as_entire_binding()),
+                ],
+            });
+            lit.air = Some((air, group));
+        }
+        fn buffers<M: CloudMarch>(
+            lit: &LitMarch<M>,
+        ) -> Result<(&wgpu::Buffer, &wgpu::Buffer), crate::RenderError> {
+            let image = lit.march.image().ok_or(crate::RenderError::NotPrepared)?;
+            let (air, _) = lit.air.as_ref().ok_or(crate::RenderError::NotPrepared)?;
+            Ok((image, air))
+        }
+        let (image, air) = buffers(&self.sun)?;
+        // Without the moon its bindings hold the sun's buffers (unread: moonlit = 0).
+        let (moon_image, moon_air) = buffers(self.moon.as_ref().unwrap_or(&self.sun))?;
+        self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(&format!("render {name} clouds")),
+            layout: &self.layout,
+            entries: &[
+                entry(0, self.uniform.as_entire_binding()),
+                entry(1, image.as_entire_binding()),
+                entry(2, wgpu::BindingResource::TextureView(depth_view)),
+                entry(3, air.as_entire_binding()),
+                entry(4, moon_image.as_entire_binding()),
+                entry(5, moon_air.as_entire_binding()),
+            ],
+        }));
+        self.distance = Some((
+            distances,
+            distance_group,
+            [camera.width.div_ceil(8), camera.height.div_ceil(8)],
+        ));
+        Ok(())
+    }
+
+    /// Records the distance pass (after the terrain has written the depth), the marches,
+    /// the air passes with each light's tables (`moon_luts`: the moonlit ones, at night),
+    /// each a compute pass of its own, then the composite (one full-screen triangle) over
+    /// `target`.
+    pub(crate) fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::TextureView,
+        luts: &atmos::gpu::AtmosphereLuts,
+        moon_luts: Option<&atmos::gpu::AtmosphereLuts>,
+        times: CloudTimes<'_>,
+    ) -> Result<(), crate::RenderError> {
+        let name = self.name;
+        let (_, distance_group, groups) = self
+            .distance
+            .as_ref()
+            .ok_or(crate::RenderError::NotPrepared)?;
+        let bind_group = self
+            .bind_group
+            .as_ref()
+            .ok_or(crate::RenderError::NotPrepared)?;
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some(&format!("render {name} distance")),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(&self.distance_pipeline);
+            pass.set_bind_group(0, distance_group, &[]);
+            pass.dispatch_workgroups(groups[0], groups[1], 1);
+        }
+        self.sun.march.encode(encoder, times.march)?;
+        let moon = match (&self.moon, moon_luts) {
+            (Some(moon), Some(moon_luts)) => {
+                moon.march.encode(encoder, times.moon)?;
+                Some((moon, moon_luts))
+            }
+            (None, _) => None,
+            (Some(_), None) => return Err(crate::RenderError::NotPrepared),
+        };
+        let air_label = format!("render {name} air");
+        for (lit, tables) in std::iter::once((&self.sun, luts)).chain(moon) {
+            let (_, air_group) = lit.air.as_ref().ok_or(crate::RenderError::NotPrepared)?;
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some(&air_label),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(&lit.air_pipeline);
+            pass.set_bind_group(0, tables.uniform_bind_group(), &[]);
+            pass.set_bind_group(1, tables.table_bind_group(), &[]);
+            pass.set_bind_group(2, air_group, &[]);
+            pass.dispatch_workgroups(groups[0], groups[1], 1);
+        }
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(&format!("render {name} clouds")),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: target,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes: times.composite,
+            ..Default::default()
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, bind_group, &[]);
+        pass.draw(0..3, 0..1);
+        Ok(())
+    }
+}
