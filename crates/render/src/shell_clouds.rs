@@ -545,7 +545,7 @@ impl ShellCloudPass {
     }
 
     /// The frame's marches (the scene camera in the shell's frame, one ray per pixel up
-    /// to the terrain; the moon's at night), the distance, air and composite passes'
+    /// to `distance`'s buffer; the moon's at night), the air and composite passes'
     /// uniforms and bind groups.
     pub(crate) fn prepare_shell(
         &mut self,
@@ -553,6 +553,7 @@ impl ShellCloudPass {
         queue: &wgpu::Queue,
         scene: &crate::scene::PreparedScene,
         cloud: &PreparedShell,
+        distance: &crate::gpu::cloud_composite::CloudDistance,
         depth_view: &wgpu::TextureView,
     ) -> Result<(), crate::RenderError> {
         let camera = &scene.camera;
@@ -562,6 +563,7 @@ impl ShellCloudPass {
             device,
             queue,
             scene,
+            distance,
             depth_view,
             &cloud.lighting,
             cloud.moon.as_ref(),

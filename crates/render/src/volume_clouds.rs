@@ -853,14 +853,15 @@ impl VolumeCloudPass {
     }
 
     /// The frame's marches (the scene camera as a pinhole camera in the volume's frame,
-    /// one ray per pixel; the moon's at night), the air passes' and the composite's
-    /// uniforms and bind groups.
+    /// one ray per pixel up to `distance`'s buffer; the moon's at night), the air passes'
+    /// and the composite's uniforms and bind groups.
     pub(crate) fn prepare_volume(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         scene: &crate::scene::PreparedScene,
         cloud: &PreparedVolume,
+        distance: &crate::gpu::cloud_composite::CloudDistance,
         depth_view: &wgpu::TextureView,
     ) -> Result<(), crate::RenderError> {
         let camera = &scene.camera;
@@ -871,6 +872,7 @@ impl VolumeCloudPass {
             device,
             queue,
             scene,
+            distance,
             depth_view,
             &cloud.lighting,
             moon,

@@ -1,7 +1,8 @@
 //! The GPU passes a marched cloud shares, whichever march it is (the volume's
 //! `cloudlight::gpu::MarchPass`, the shell's `cloudlight::gpu::MarchShellPass`): the
-//! terrain's depth as a distance per pixel (`shaders/render/volume_distance.wgsl`), the
-//! air in front of the cloud per pixel and light (`shaders/render/volume_air.wgsl`:
+//! terrain's depth as a distance per pixel ([`CloudDistance`],
+//! `shaders/render/volume_distance.wgsl`: once a frame, for every cloud of the scene),
+//! the air in front of the cloud per pixel and light (`shaders/render/volume_air.wgsl`:
 //! atmos' `aerial_perspective`, the CPU's function) and the composite render pass
 //! (`shaders/render/volume_clouds.wgsl`). Each cloud supplies only its march, prepared
 //! per frame up to the distance buffer.
@@ -74,11 +75,8 @@ pub(crate) struct CloudComposite<M> {
     field: &'static str,
     sun: LitMarch<M>,
     moon: Option<LitMarch<M>>,
-    distance_pipeline: wgpu::ComputePipeline,
-    distance_layout: wgpu::BindGroupLayout,
-    distance_uniform: wgpu::Buffer,
-    /// The distance buffer, its bind group and the dispatch size (after `prepare`).
-    distance: Option<(wgpu::Buffer, wgpu::BindGroup, [u32; 2])>,
+    /// The air passes' dispatch size (after `prepare`).
+    groups: Option<[u32; 2]>,
     air_layout: wgpu::BindGroupLayout,
     air_uniform: wgpu::Buffer,
     pipeline: wgpu::RenderPipeline,
@@ -92,7 +90,7 @@ fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEn
 }
 
 impl<M: CloudMarch> CloudComposite<M> {
-    /// The distance, air and composite pipelines and the marches `march` builds (the
+    /// The air and composite pipelines and the marches `march` builds (the
     /// sun's; the moon's when `moon_luts`, the moonlit tables, are given), each light's
     /// tables' layouts in its air pass's groups 0 and 1. `name` labels the passes,
     /// `field` is the scene section named in `prepare`'s errors.
@@ -123,26 +121,6 @@ impl<M: CloudMarch> CloudComposite<M> {
                 mapped_at_creation: false,
             })
         };
-        let distance_label = format!("render {name} distance");
-        let distance_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some(&distance_label),
-            entries: &[
-                buffer_entry(0, compute, Uniform),
-                depth_entry(1, compute),
-                buffer_entry(2, compute, Storage { read_only: false }),
-            ],
-        });
-        let distance_pipeline = compute_pipeline(
-            device,
-            &distance_label,
-            &module("render::volume_distance", &distance_label)?,
-            "volume_distance_main",
-            &[Some(&distance_layout)],
-        );
-        let distance_uniform = uniform_buffer(
-            &format!("{distance_label} uniform"),
-            std::mem::size_of::<VolumeDistanceParams>(),
-        );
         // The air per pixel: groups 0 and 1 are the light's tables.
         let air_label = format!("render {name} air");
         let air_module = module("render::volume_air", &air_label)?;
@@ -249,10 +227,7 @@ impl<M: CloudMarch> CloudComposite<M> {
             field,
             sun,
             moon,
-            distance_pipeline,
-            distance_layout,
-            distance_uniform,
-            distance: None,
+            groups: None,
             air_layout,
             air_uniform,
             pipeline,
@@ -262,16 +237,17 @@ impl<M: CloudMarch> CloudComposite<M> {
         })
     }
 
-    /// The frame's distance, air and composite uniforms and bind groups, and the marches
-    /// prepared by `prepare_march` (each march with its light: the sun's `lighting`, the
-    /// moon's `moon_lighting` when the cloud was built moonlit, and the distance buffer
-    /// it stops at: the terrain cuts the cloud where it stands).
+    /// The frame's air and composite uniforms and bind groups, and the marches prepared
+    /// by `prepare_march` (each march with its light: the sun's `lighting`, the moon's
+    /// `moon_lighting` when the cloud was built moonlit, and `distance`'s buffer it stops
+    /// at: the terrain cuts the cloud where it stands; `distance` prepared this frame).
     #[allow(clippy::too_many_arguments)] // the frame's resources and the two lights
     pub(crate) fn prepare(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         scene: &crate::scene::PreparedScene,
+        distance: &CloudDistance,
         depth_view: &wgpu::TextureView,
         lighting: &Lighting<f32>,
         moon_lighting: Option<&Lighting<f32>>,
@@ -297,17 +273,6 @@ impl<M: CloudMarch> CloudComposite<M> {
         let camera = &scene.camera;
         let near = scene.near.max(0.01) as f32;
         queue.write_buffer(
-            &self.distance_uniform,
-            0,
-            bytemuck::bytes_of(&VolumeDistanceParams {
-                camera: *camera,
-                near,
-                width: camera.width,
-                height: camera.height,
-                padding0: 0,
-            }),
-        );
-        queue.write_buffer(
             &self.air_uniform,
             0,
             bytemuck::bytes_of(&VolumeAirParams {
@@ -327,7 +292,7 @@ impl<M: CloudMarch> CloudComposite<M> {
                 moonlit: u32::from(self.moon.is_some()),
             }),
         );
-        // The distance and air buffers follow the image: kept across frames of one size.
+        // The air buffers follow the image: kept across frames of one size.
         let pixels = u64::from(camera.width) * u64::from(camera.height);
         let storage = |label: &str, bytes: u64, kept: Option<wgpu::Buffer>| match kept {
             Some(buffer) if buffer.size() == bytes => buffer,
@@ -338,27 +303,17 @@ impl<M: CloudMarch> CloudComposite<M> {
                 mapped_at_creation: false,
             }),
         };
-        let distances = storage(
-            &format!("render {name} distances"),
-            pixels * 4,
-            self.distance.take().map(|(buffer, _, _)| buffer),
-        );
-        let distance_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some(&format!("render {name} distance")),
-            layout: &self.distance_layout,
-            entries: &[
-                entry(0, self.distance_uniform.as_entire_binding()),
-                entry(1, wgpu::BindingResource::TextureView(depth_view)),
-                entry(2, distances.as_entire_binding()),
-            ],
-        });
+        let (distances, _, groups) = distance
+            .distance
+            .as_ref()
+            .ok_or(crate::RenderError::NotPrepared)?;
         let air_label = format!("render {name} air");
         let mut lights = vec![(&mut self.sun, lighting)];
         if let (Some(moon), Some(lighting)) = (self.moon.as_mut(), moon_lighting) {
             lights.push((moon, lighting));
         }
         for (lit, lighting) in lights {
-            prepare_march(&mut lit.march, lighting, &distances)?;
+            prepare_march(&mut lit.march, lighting, distances)?;
             let image = lit.march.image().ok_or(crate::RenderError::NotPrepared)?;
             let air = storage(
                 &air_label,
@@ -398,16 +353,11 @@ impl<M: CloudMarch> CloudComposite<M> {
                 entry(5, moon_air.as_entire_binding()),
             ],
         }));
-        self.distance = Some((
-            distances,
-            distance_group,
-            [camera.width.div_ceil(8), camera.height.div_ceil(8)],
-        ));
+        self.groups = Some(*groups);
         Ok(())
     }
 
-    /// Records the distance pass (after the terrain has written the depth), the marches,
-    /// the air passes with each light's tables (`moon_luts`: the moonlit ones, at night),
+    /// Records the marches (after [`CloudDistance::encode`]), the air passes with each light's tables (`moon_luts`: the moonlit ones, at night),
     /// each a compute pass of its own, then the composite (one full-screen triangle) over
     /// `target`.
     pub(crate) fn encode(
@@ -419,23 +369,11 @@ impl<M: CloudMarch> CloudComposite<M> {
         times: CloudTimes<'_>,
     ) -> Result<(), crate::RenderError> {
         let name = self.name;
-        let (_, distance_group, groups) = self
-            .distance
-            .as_ref()
-            .ok_or(crate::RenderError::NotPrepared)?;
+        let groups = self.groups.ok_or(crate::RenderError::NotPrepared)?;
         let bind_group = self
             .bind_group
             .as_ref()
             .ok_or(crate::RenderError::NotPrepared)?;
-        {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some(&format!("render {name} distance")),
-                timestamp_writes: None,
-            });
-            pass.set_pipeline(&self.distance_pipeline);
-            pass.set_bind_group(0, distance_group, &[]);
-            pass.dispatch_workgroups(groups[0], groups[1], 1);
-        }
         self.sun.march.encode(encoder, times.march)?;
         let moon = match (&self.moon, moon_luts) {
             (Some(moon), Some(moon_luts)) => {
@@ -476,6 +414,125 @@ impl<M: CloudMarch> CloudComposite<M> {
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, bind_group, &[]);
         pass.draw(0..3, 0..1);
+        Ok(())
+    }
+}
+
+/// The terrain's depth as a distance per pixel (`shaders/render/volume_distance.wgsl`):
+/// the buffer every marched cloud of the scene stops at, computed once a frame for all.
+#[derive(Debug)]
+pub(crate) struct CloudDistance {
+    pipeline: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+    uniform: wgpu::Buffer,
+    /// The distance buffer, its bind group and the dispatch size (after `prepare`).
+    distance: Option<(wgpu::Buffer, wgpu::BindGroup, [u32; 2])>,
+}
+
+impl CloudDistance {
+    /// The distance pipeline and its uniform.
+    pub(crate) fn new(device: &wgpu::Device) -> Result<Self, crate::RenderError> {
+        use wgpu::BufferBindingType::{Storage, Uniform};
+        let compute = wgpu::ShaderStages::COMPUTE;
+        let label = "render cloud distance";
+        let source = crate::composer().compose_module("render::volume_distance")?;
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(label),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(label),
+            entries: &[
+                buffer_entry(0, compute, Uniform),
+                depth_entry(1, compute),
+                buffer_entry(2, compute, Storage { read_only: false }),
+            ],
+        });
+        let pipeline = compute_pipeline(
+            device,
+            label,
+            &module,
+            "volume_distance_main",
+            &[Some(&layout)],
+        );
+        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render cloud distance uniform"),
+            size: std::mem::size_of::<VolumeDistanceParams>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Ok(Self {
+            pipeline,
+            layout,
+            uniform,
+            distance: None,
+        })
+    }
+
+    /// The frame's uniform, buffer (kept across frames of one size) and bind group over
+    /// the terrain's `depth_view`.
+    pub(crate) fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &crate::scene::PreparedScene,
+        depth_view: &wgpu::TextureView,
+    ) {
+        let camera = &scene.camera;
+        queue.write_buffer(
+            &self.uniform,
+            0,
+            bytemuck::bytes_of(&VolumeDistanceParams {
+                camera: *camera,
+                near: scene.near.max(0.01) as f32,
+                width: camera.width,
+                height: camera.height,
+                padding0: 0,
+            }),
+        );
+        let bytes = u64::from(camera.width) * u64::from(camera.height) * 4;
+        let distances = match self.distance.take() {
+            Some((buffer, _, _)) if buffer.size() == bytes => buffer,
+            _ => device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("render cloud distances"),
+                size: bytes,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            }),
+        };
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("render cloud distance"),
+            layout: &self.layout,
+            entries: &[
+                entry(0, self.uniform.as_entire_binding()),
+                entry(1, wgpu::BindingResource::TextureView(depth_view)),
+                entry(2, distances.as_entire_binding()),
+            ],
+        });
+        self.distance = Some((
+            distances,
+            group,
+            [camera.width.div_ceil(8), camera.height.div_ceil(8)],
+        ));
+    }
+
+    /// Records the distance pass (after the terrain has written the depth, before the
+    /// clouds' marches), a compute pass of its own.
+    pub(crate) fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+    ) -> Result<(), crate::RenderError> {
+        let (_, group, groups) = self
+            .distance
+            .as_ref()
+            .ok_or(crate::RenderError::NotPrepared)?;
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("render cloud distance"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, group, &[]);
+        pass.dispatch_workgroups(groups[0], groups[1], 1);
         Ok(())
     }
 }

@@ -216,6 +216,9 @@ pub struct SceneRenderer {
     volume_cloud: Option<crate::volume_clouds::VolumeCloudPass>,
     billboard_cloud: Option<crate::billboard_clouds::BillboardCloudPass>,
     shell_cloud: Option<crate::shell_clouds::ShellCloudPass>,
+    /// The terrain's distance per pixel the marched clouds stop at (with a volume or a
+    /// shell cloud): one pass a frame for both.
+    cloud_distance: Option<super::cloud_composite::CloudDistance>,
     hdr: wgpu::Texture,
     hdr_view: wgpu::TextureView,
     depth_view: wgpu::TextureView,
@@ -691,6 +694,11 @@ impl SceneRenderer {
             }
             None => None,
         };
+        let cloud_distance = if volume_cloud.is_some() || shell_cloud.is_some() {
+            Some(super::cloud_composite::CloudDistance::new(device)?)
+        } else {
+            None
+        };
 
         // Only a scene drawing [clouds.volume] as billboards builds their pipeline.
         let billboard_cloud = match &scene.billboard_cloud {
@@ -845,6 +853,7 @@ impl SceneRenderer {
             volume_cloud,
             billboard_cloud,
             shell_cloud,
+            cloud_distance,
             hdr,
             hdr_view,
             depth_view,
@@ -1201,9 +1210,21 @@ impl SceneRenderer {
                 });
             }
         }
+        if let Some(distance) = &mut self.cloud_distance {
+            distance.prepare(&self.device, queue, scene, &self.depth_view);
+        }
+        let distance = self.cloud_distance.as_ref();
         match (&mut self.volume_cloud, &scene.volume_cloud) {
             (Some(pass), Some(cloud)) => {
-                pass.prepare_volume(&self.device, queue, scene, cloud, &self.depth_view)?;
+                let distance = distance.ok_or(RenderError::NotPrepared)?;
+                pass.prepare_volume(
+                    &self.device,
+                    queue,
+                    scene,
+                    cloud,
+                    distance,
+                    &self.depth_view,
+                )?;
             }
             (None, None) => {}
             (built, _) => {
@@ -1216,7 +1237,15 @@ impl SceneRenderer {
         }
         match (&mut self.shell_cloud, &scene.shell_cloud) {
             (Some(pass), Some(cloud)) => {
-                pass.prepare_shell(&self.device, queue, scene, cloud, &self.depth_view)?;
+                let distance = distance.ok_or(RenderError::NotPrepared)?;
+                pass.prepare_shell(
+                    &self.device,
+                    queue,
+                    scene,
+                    cloud,
+                    distance,
+                    &self.depth_view,
+                )?;
             }
             (None, None) => {}
             (built, _) => {
@@ -1589,6 +1618,10 @@ impl SceneRenderer {
             pass.set_pipeline(&clouds.pipeline);
             pass.set_bind_group(0, &clouds.bind_group, &[]);
             pass.draw(0..3, 0..1);
+        }
+        if let Some(distance) = &self.cloud_distance {
+            // After the terrain (the marches stop at its depth), once for both clouds.
+            distance.encode(encoder)?;
         }
         if let (Some(shell), Some(luts)) = (&self.shell_cloud, &self.luts) {
             // After the terrain (the march stops at its depth), before the volume cloud.
