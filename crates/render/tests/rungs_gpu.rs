@@ -8,50 +8,17 @@
 //! GPU policy: an adapter found → run; none and `SKYSCAPE_REQUIRE_GPU=1` → fail; none →
 //! skip with a visible line.
 
-use render::gpu::{SceneRenderer, SceneRendererSettings};
+mod common;
+
+use common::{Agreement, code, cpu_pixels, gpu_pixels};
 use render::scene::{Rung, Scene};
 
 const GPU_RUNGS: [Rung; 3] = [Rung::ClosedForm, Rung::ClosedFormVertex, Rung::Single];
 
 fn shipped(name: &str, width: u32, height: u32, rung: Rung) -> Scene {
-    let path = format!("{}/../../scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));
-    let mut scene = Scene::open(&path).unwrap();
-    scene.file.output.width = width;
-    scene.file.output.height = height;
+    let mut scene = common::shipped(name, width, height);
     scene.file.atmosphere.rung = rung;
     scene
-}
-
-fn gpu_pixels(
-    gpu: &skyscape_harness::GpuContext,
-    scene: &render::scene::PreparedScene,
-) -> Vec<u32> {
-    let settings = SceneRendererSettings {
-        terrain_error_px: 0.0,
-        timestamps: false,
-    };
-    let mut renderer = SceneRenderer::new(&gpu.device, &gpu.queue, scene, settings).unwrap();
-    renderer.prepare(&gpu.queue, scene).unwrap();
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    renderer.encode(&mut encoder).unwrap();
-    gpu.queue.submit([encoder.finish()]);
-    let buffer = renderer.pixel_buffer();
-    let bytes =
-        skyscape_harness::read_buffer(gpu, "rung pixels", buffer, 0, buffer.size()).unwrap();
-    bytemuck::cast_slice(&bytes).to_vec()
-}
-
-fn code(pixel: u32, channel: usize) -> i32 {
-    ((pixel >> (8 * channel)) & 255) as i32
-}
-
-fn within(a: &[u32], b: &[u32], lsb: i32) -> f64 {
-    let close = a
-        .iter()
-        .zip(b)
-        .filter(|(p, q)| (0..3).all(|c| (code(**p, c) - code(**q, c)).abs() <= lsb))
-        .count();
-    close as f64 / a.len().max(1) as f64
 }
 
 /// GPU vs CPU for `name` with each GPU rung at 160×90 (the size of `tests/scene_gpu.rs`;
@@ -64,7 +31,7 @@ fn agree(gpu: &skyscape_harness::GpuContext, name: &str) {
     for rung in [Rung::Precomputed].into_iter().chain(GPU_RUNGS) {
         let scene = shipped(name, width, height, rung).prepare().unwrap();
         let gpu_image = gpu_pixels(gpu, &scene);
-        let cpu_image = render::cpu_renderer::render_cpu(&scene).unwrap().pixels;
+        let cpu_image = cpu_pixels(&scene);
         let hits = render::cpu_renderer::render_radiance(&scene).unwrap();
         let (mut sky_gpu, mut sky_cpu) = (Vec::new(), Vec::new());
         for ((g, c), hit) in gpu_image.iter().zip(&cpu_image).zip(&hits) {
@@ -73,60 +40,42 @@ fn agree(gpu: &skyscape_harness::GpuContext, name: &str) {
                 sky_cpu.push(*c);
             }
         }
-        let (two, eight) = (
-            within(&gpu_image, &cpu_image, 2),
-            within(&gpu_image, &cpu_image, 8),
-        );
-        let shifted = render::tonemap::fraction_within_lsb_of_neighbourhood(
-            &gpu_image,
-            &cpu_image,
-            width as usize,
-            2,
-            1,
-        )
-        .unwrap();
-        let sky_two = within(&sky_gpu, &sky_cpu, 2);
-        let mut signed = [0.0f64; 3];
-        let mut absolute = [0.0f64; 3];
-        for (a, b) in gpu_image.iter().zip(&cpu_image) {
-            for channel in 0..3 {
-                let difference = f64::from(code(*a, channel) - code(*b, channel));
-                signed[channel] += difference / gpu_image.len() as f64;
-                absolute[channel] += difference.abs() / gpu_image.len() as f64;
-            }
-        }
+        let agreement = Agreement::of(&gpu_image, &cpu_image, width as usize);
+        let sky_two = render::tonemap::fraction_within_lsb(&sky_gpu, &sky_cpu, 2).unwrap();
         eprintln!(
             "{name} {} {width}×{height}: {:.3} % of pixels within 2 LSB, {:.3} % within 8, \
              {:.3} % within 2 LSB of the other image's 3×3 neighbourhood; sky {:.3} % of {} \
-             within 2 LSB; mean difference (GPU − CPU) {signed:.3?} LSB, mean |difference| \
-             {absolute:.3?} LSB",
+             within 2 LSB; mean difference (GPU − CPU) {:.3?} LSB, mean |difference| \
+             {:.3?} LSB",
             rung.name(),
-            100.0 * two,
-            100.0 * eight,
-            100.0 * shifted,
+            100.0 * agreement.two,
+            100.0 * agreement.eight,
+            100.0 * agreement.shifted,
             100.0 * sky_two,
             sky_gpu.len(),
+            agreement.signed,
+            agreement.absolute,
         );
         assert!(!sky_gpu.is_empty(), "{name} {}: no sky", rung.name());
         assert!(sky_two >= 0.999, "{name} {}: sky {sky_two}", rung.name());
         assert!(
-            two >= 0.96 && eight >= 0.985 && shifted >= 0.975,
-            "{name} {}: {two} {eight} {shifted}",
-            rung.name()
+            agreement.close(),
+            "{name} {}: {}",
+            rung.name(),
+            agreement.fractions()
         );
-        for channel in 0..3 {
-            assert!(
-                signed[channel].abs() <= 0.5 && absolute[channel] <= 1.0,
-                "{name} {}: {signed:?} {absolute:?}",
-                rung.name()
-            );
-        }
+        assert!(
+            agreement.unbiased(1.0),
+            "{name} {}: {}",
+            rung.name(),
+            agreement.biases()
+        );
     }
 }
 
 #[test]
 fn every_gpu_rung_agrees_with_the_cpu_on_the_default_scene() {
-    let Some(gpu) = skyscape_harness::gpu_or_skip("render::rungs_gpu default") else {
+    let Some(gpu) = common::gpu_or_skip("render::rungs_gpu default") else {
         return;
     };
     agree(gpu, "default");
@@ -134,7 +83,7 @@ fn every_gpu_rung_agrees_with_the_cpu_on_the_default_scene() {
 
 #[test]
 fn every_gpu_rung_agrees_with_the_cpu_at_sunset_and_at_night() {
-    let Some(gpu) = skyscape_harness::gpu_or_skip("render::rungs_gpu sunset, night") else {
+    let Some(gpu) = common::gpu_or_skip("render::rungs_gpu sunset, night") else {
         return;
     };
     agree(gpu, "sunset");
@@ -144,7 +93,7 @@ fn every_gpu_rung_agrees_with_the_cpu_at_sunset_and_at_night() {
 
 #[test]
 fn every_gpu_rung_draws_lit_terrain_under_a_blue_zenith() {
-    let Some(gpu) = skyscape_harness::gpu_or_skip("render::rungs_gpu lit terrain") else {
+    let Some(gpu) = common::gpu_or_skip("render::rungs_gpu lit terrain") else {
         return;
     };
     for rung in GPU_RUNGS {
@@ -173,7 +122,7 @@ fn every_gpu_rung_draws_lit_terrain_under_a_blue_zenith() {
         };
         let brightest = terrain
             .iter()
-            .map(|p| (0..3).map(|c| code(*p, c)).sum::<i32>())
+            .map(|p| (0..3).map(|c| code(*p, c)).sum::<u32>())
             .max()
             .unwrap_or(0);
         let black = terrain
@@ -209,7 +158,7 @@ fn every_gpu_rung_draws_lit_terrain_under_a_blue_zenith() {
 
 #[test]
 fn the_reference_rungs_keep_their_error_and_the_tables_are_not_baked() {
-    let Some(gpu) = skyscape_harness::gpu_or_skip("render::rungs_gpu reference") else {
+    let Some(gpu) = common::gpu_or_skip("render::rungs_gpu reference") else {
         return;
     };
     // The closed form's plan skips the LUT bakes and names its sky evaluation.

@@ -1,0 +1,186 @@
+//! Shared by the render integration tests (`mod common;` in each): the GPU adapter
+//! policy, the shipped scenes, the GPU and CPU renders and scene_gpu's agreement metric
+//! of a GPU image against the CPU's. Not every test binary uses every helper.
+//!
+//! GPU policy: an adapter found → run; none and `SKYSCAPE_REQUIRE_GPU=1` → fail; none →
+//! skip with a visible line (`skyscape_harness::gpu_or_skip`, which also creates the
+//! device once per test binary).
+
+#![allow(dead_code)]
+
+use render::gpu::{SceneRenderer, SceneRendererSettings};
+use render::scene::{PreparedScene, Scene, SceneError};
+use skyscape_harness::GpuContext;
+
+/// The harness's device when an adapter is found; `None` (after a visible `SKIPPED`
+/// line) when none is and `SKYSCAPE_REQUIRE_GPU` is not `1`; a panic when it is.
+pub fn gpu_or_skip(what: &str) -> Option<&'static GpuContext> {
+    skyscape_harness::gpu_or_skip(what)
+}
+
+/// The path of the shipped scene `name` (`scenes/<name>.toml`).
+pub fn scene_path(name: &str) -> String {
+    format!("{}/../../scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The smallest valid scene on the closed-form rung (8 lines: a section appended to it
+/// starts on line 9).
+pub const VALID: &str = "[camera]\nposition = [0.0, 2.0, 0.0]\nlook_direction = [0.0, 0.2, -1.0]\n\
+                         [sun]\nelevation_deg = 30.0\nazimuth_deg = 180.0\n\
+                         [atmosphere]\nrung = \"closed-form\"\n";
+
+/// The shipped scene `name` drawn at `width`×`height`.
+pub fn shipped(name: &str, width: u32, height: u32) -> Scene {
+    let mut scene = Scene::open(scene_path(name)).unwrap();
+    scene.file.output.width = width;
+    scene.file.output.height = height;
+    scene
+}
+
+/// The error of parsing `text`, or else of preparing it.
+pub fn parse_error(text: &str) -> SceneError {
+    match Scene::parse(text, ".") {
+        Err(e) => e,
+        Ok(scene) => scene.prepare().unwrap_err(),
+    }
+}
+
+/// The renderer's settings the CPU comparisons use: every terrain tile at full
+/// resolution (the CPU ray casts the full heightfield), no timestamps.
+pub fn exact_settings() -> SceneRendererSettings {
+    SceneRendererSettings {
+        terrain_error_px: 0.0,
+        timestamps: false,
+    }
+}
+
+/// `scene` on the GPU with `settings`, RGBA8 packed as `u32`.
+pub fn gpu_pixels_with(
+    gpu: &GpuContext,
+    scene: &PreparedScene,
+    settings: SceneRendererSettings,
+) -> Vec<u32> {
+    let mut renderer = SceneRenderer::new(&gpu.device, &gpu.queue, scene, settings).unwrap();
+    renderer.prepare(&gpu.queue, scene).unwrap();
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    renderer.encode(&mut encoder).unwrap();
+    gpu.queue.submit([encoder.finish()]);
+    let buffer = renderer.pixel_buffer();
+    let bytes =
+        skyscape_harness::read_buffer(gpu, "scene pixels", buffer, 0, buffer.size()).unwrap();
+    bytemuck::cast_slice(&bytes).to_vec()
+}
+
+/// `scene` on the GPU with [`exact_settings`], RGBA8 packed as `u32`.
+pub fn gpu_pixels(gpu: &GpuContext, scene: &PreparedScene) -> Vec<u32> {
+    gpu_pixels_with(gpu, scene, exact_settings())
+}
+
+/// `scene` on the CPU reference renderer, RGBA8 packed as `u32`.
+pub fn cpu_pixels(scene: &PreparedScene) -> Vec<u32> {
+    render::cpu_renderer::render_cpu(scene).unwrap().pixels
+}
+
+/// Channel `channel` (0 R, 1 G, 2 B) of a packed RGBA8 pixel.
+pub fn code(pixel: u32, channel: usize) -> u32 {
+    (pixel >> (8 * channel)) & 255
+}
+
+/// The largest difference of two packed RGBA8 pixels over R, G, B (LSB).
+pub fn lsb(a: u32, b: u32) -> u32 {
+    (0..3)
+        .map(|c| code(a, c).abs_diff(code(b, c)))
+        .max()
+        .unwrap()
+}
+
+/// The pixels `indices` of two images: how many, how many within 2 LSB ([`lsb`]) and
+/// the worst difference.
+pub fn within_two_over(
+    gpu_image: &[u32],
+    cpu_image: &[u32],
+    indices: impl IntoIterator<Item = usize>,
+) -> (usize, usize, u32) {
+    let (mut count, mut within, mut worst) = (0usize, 0usize, 0u32);
+    for i in indices {
+        let d = lsb(gpu_image[i], cpu_image[i]);
+        count += 1;
+        within += usize::from(d <= 2);
+        worst = worst.max(d);
+    }
+    (count, within, worst)
+}
+
+/// scene_gpu's metric of a GPU image against the CPU's: the fractions of pixels within
+/// 2 and 8 LSB, within 2 LSB of the other image's 3×3 neighbourhood, and the mean
+/// signed (GPU − CPU) and absolute differences per channel (LSB).
+pub struct Agreement {
+    pub two: f64,
+    pub eight: f64,
+    pub shifted: f64,
+    pub signed: [f64; 3],
+    pub absolute: [f64; 3],
+}
+
+impl Agreement {
+    /// The metric of `gpu_image` against `cpu_image`, `width` pixels a row.
+    pub fn of(gpu_image: &[u32], cpu_image: &[u32], width: usize) -> Self {
+        let within = |n| render::tonemap::fraction_within_lsb(gpu_image, cpu_image, n).unwrap();
+        let shifted = render::tonemap::fraction_within_lsb_of_neighbourhood(
+            gpu_image, cpu_image, width, 2, 1,
+        )
+        .unwrap();
+        let mut signed = [0.0f64; 3];
+        let mut absolute = [0.0f64; 3];
+        for (a, b) in gpu_image.iter().zip(cpu_image) {
+            for channel in 0..3 {
+                let difference = f64::from(code(*a, channel)) - f64::from(code(*b, channel));
+                signed[channel] += difference / gpu_image.len() as f64;
+                absolute[channel] += difference.abs() / gpu_image.len() as f64;
+            }
+        }
+        Self {
+            two: within(2),
+            eight: within(8),
+            shifted,
+            signed,
+            absolute,
+        }
+    }
+
+    /// Most pixels within 2 LSB, nearly all within 8 (scene_gpu's thresholds).
+    pub fn close(&self) -> bool {
+        self.two >= 0.96 && self.eight >= 0.985 && self.shifted >= 0.975
+    }
+
+    /// The three fractions as the assertions print them: `two eight shifted`.
+    pub fn fractions(&self) -> String {
+        format!("{} {} {}", self.two, self.eight, self.shifted)
+    }
+
+    /// The mean differences as the assertions print them: `signed absolute`.
+    pub fn biases(&self) -> String {
+        format!("{:?} {:?}", self.signed, self.absolute)
+    }
+
+    /// No bias: every channel's mean signed difference within ±0.5 LSB and its mean
+    /// absolute difference at most `absolute` LSB.
+    pub fn unbiased(&self, absolute: f64) -> bool {
+        (0..3).all(|c| self.signed[c].abs() <= 0.5 && self.absolute[c] <= absolute)
+    }
+}
+
+impl std::fmt::Display for Agreement {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{:.3} % within 2 LSB, {:.3} % within 8, {:.3} % within 2 LSB of the other \
+             image's 3×3 neighbourhood; mean (GPU − CPU) {:.3?} LSB, mean |difference| {:.3?} LSB",
+            100.0 * self.two,
+            100.0 * self.eight,
+            100.0 * self.shifted,
+            self.signed,
+            self.absolute
+        )
+    }
+}
