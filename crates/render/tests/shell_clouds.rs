@@ -4,6 +4,9 @@
 //! deck hide it, the deck in front of hills covers them, every value finite), an
 //! overcast deck hiding the sun, and the GPU image against the CPU's (lavapipe in CI).
 
+mod common;
+
+use common::{VALID, cpu_pixels, gpu_pixels, lsb, parse_error, within_two_over};
 use render::scene::{PreparedScene, Scene, SceneError};
 use render::shell_clouds::{PreparedShell, march_shell_pixel, shell_camera};
 
@@ -19,30 +22,12 @@ fn unlit(cloud: &PreparedShell) -> PreparedShell {
     cloud
 }
 
-const VALID: &str = "[camera]\nposition = [0.0, 2.0, 0.0]\nlook_direction = [0.0, 0.2, -1.0]\n\
-                     [sun]\nelevation_deg = 30.0\nazimuth_deg = 180.0\n\
-                     [atmosphere]\nrung = \"closed-form\"\n";
-
 // Lines 9 to 15.
 const SHELL: &str = "[clouds.shell]\nbottom_m = 1000.0\ntop_m = 1800.0\ncoverage = 0.4\n\
                      cloud_type = 0.5\nsigma_t_per_density = 0.04\nview_steps = 8\n";
 
-fn parse_error(text: &str) -> SceneError {
-    match Scene::parse(text, ".") {
-        Err(e) => e,
-        Ok(scene) => scene.prepare().unwrap_err(),
-    }
-}
-
 fn shipped(width: u32, height: u32) -> Scene {
-    let path = format!(
-        "{}/../../scenes/stratocumulus.toml",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let mut scene = Scene::open(&path).unwrap();
-    scene.file.output.width = width;
-    scene.file.output.height = height;
-    scene
+    common::shipped("stratocumulus", width, height)
 }
 
 #[test]
@@ -269,56 +254,30 @@ fn an_overcast_deck_hides_the_sun() {
     assert!(overcast < 1e-2 * clear, "{overcast} vs {clear}");
 }
 
-fn gpu_pixels(gpu: &skyscape_harness::GpuContext, scene: &PreparedScene) -> Vec<u32> {
-    let settings = render::gpu::SceneRendererSettings {
-        terrain_error_px: 0.0,
-        timestamps: false,
-    };
-    let mut renderer =
-        render::gpu::SceneRenderer::new(&gpu.device, &gpu.queue, scene, settings).unwrap();
-    renderer.prepare(&gpu.queue, scene).unwrap();
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    renderer.encode(&mut encoder).unwrap();
-    gpu.queue.submit([encoder.finish()]);
-    let buffer = renderer.pixel_buffer();
-    let bytes =
-        skyscape_harness::read_buffer(gpu, "scene pixels", buffer, 0, buffer.size()).unwrap();
-    bytemuck::cast_slice(&bytes).to_vec()
-}
-
 /// The shipped deck at 96×54 on the GPU (`cloudlight::gpu::MarchShellPass` limited by
 /// the terrain's depth, the volume cloud's air and composite passes) and on the CPU.
 #[test]
 fn the_deck_agrees_on_the_gpu_and_the_cpu() {
-    let Some(gpu) = skyscape_harness::gpu_or_skip("render::shell_clouds") else {
+    let Some(gpu) = common::gpu_or_skip("render::shell_clouds") else {
         return;
     };
     let (width, height) = (96, 54);
     let scene = shipped(width, height).prepare().unwrap();
     let gpu_image = gpu_pixels(gpu, &scene);
-    let cpu_image = render::cpu_renderer::render_cpu(&scene).unwrap().pixels;
+    let cpu_image = cpu_pixels(&scene);
     let within = |lsb| render::tonemap::fraction_within_lsb(&gpu_image, &cpu_image, lsb).unwrap();
     let cloud = &unlit(scene.shell_cloud.as_ref().unwrap());
     let camera = shell_camera(&scene.camera).unwrap();
-    let (mut cloud_pixels, mut cloud_within, mut worst) = (0usize, 0usize, 0u32);
+    let mut deck = Vec::new();
     for y in 0..height {
         for x in 0..width {
             let m = march_shell_pixel(cloud, &camera, [width, height], [x, y], f32::INFINITY);
             if m.transmittance < 1.0 {
-                let i = (y * width + x) as usize;
-                let d = (0..3)
-                    .map(|c| {
-                        let code = |p: u32| (p >> (8 * c)) & 255;
-                        code(gpu_image[i]).abs_diff(code(cpu_image[i]))
-                    })
-                    .max()
-                    .unwrap();
-                cloud_pixels += 1;
-                cloud_within += usize::from(d <= 2);
-                worst = worst.max(d);
+                deck.push((y * width + x) as usize);
             }
         }
     }
+    let (cloud_pixels, cloud_within, worst) = within_two_over(&gpu_image, &cpu_image, deck);
     let (two, eight) = (within(2), within(8));
     eprintln!(
         "stratocumulus {width}×{height} GPU vs CPU: {:.3} % of pixels within 2 LSB, {:.3} % \
@@ -336,8 +295,7 @@ fn the_deck_agrees_on_the_gpu_and_the_cpu() {
 #[test]
 fn the_moon_lights_the_deck_at_night() {
     let (width, height) = (64, 36);
-    let path = format!("{}/../../scenes/night.toml", env!("CARGO_MANIFEST_DIR"));
-    let night = std::fs::read_to_string(path).unwrap();
+    let night = std::fs::read_to_string(common::scene_path("night")).unwrap();
     let deck = "[clouds.shell]\nbottom_m = 3500.0\ntop_m = 4300.0\ncoverage = 0.35\n\
                 coverage_contrast = 0.25\ncloud_type = 0.5\ncloud_type_contrast = 0.0\n\
                 shape_period_m = 6000.0\ndetail_period_m = 800.0\nview_steps = 12\n\
@@ -348,9 +306,9 @@ fn the_moon_lights_the_deck_at_night() {
     let mut prepared = scene.prepare().unwrap();
     assert!(prepared.shell_cloud.as_ref().unwrap().moon.is_some());
     assert_eq!(planned(&prepared, "moonlit shell march"), Some(true));
-    let gpu = skyscape_harness::gpu_or_skip("render::shell_clouds night").map(|gpu| {
+    let gpu = common::gpu_or_skip("render::shell_clouds night").map(|gpu| {
         let image = gpu_pixels(gpu, &prepared);
-        let cpu = render::cpu_renderer::render_cpu(&prepared).unwrap().pixels;
+        let cpu = cpu_pixels(&prepared);
         (image, cpu)
     });
     let moonlit = render::cpu_renderer::render_radiance(&prepared).unwrap();
@@ -394,12 +352,7 @@ fn the_moon_lights_the_deck_at_night() {
         let two = render::tonemap::fraction_within_lsb(&gpu_image, &cpu_image, 2).unwrap();
         let deck_within = deck
             .iter()
-            .filter(|&&i| {
-                (0..3).all(|c| {
-                    let code = |p: u32| (p >> (8 * c)) & 255;
-                    code(gpu_image[i]).abs_diff(code(cpu_image[i])) <= 2
-                })
-            })
+            .filter(|&&i| lsb(gpu_image[i], cpu_image[i]) <= 2)
             .count();
         eprintln!(
             "night deck 64×36 GPU vs CPU: {:.3} % of pixels within 2 LSB, deck pixels \

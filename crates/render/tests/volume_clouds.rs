@@ -3,29 +3,17 @@
 //! cloud's foot, no NaN), the march's pixel rays against atmos' frame rays, and the GPU
 //! image against the CPU's on the shipped scene's 160×90 (lavapipe in CI).
 
-use render::scene::{Scene, SceneError};
-use render::volume_clouds::{march_pixel, pinhole_camera, world_to_enu};
+mod common;
 
-const VALID: &str = "[camera]\nposition = [0.0, 2.0, 0.0]\nlook_direction = [0.0, 0.2, -1.0]\n\
-                     [sun]\nelevation_deg = 30.0\nazimuth_deg = 180.0\n\
-                     [atmosphere]\nrung = \"closed-form\"\n";
+use common::{Agreement, VALID, cpu_pixels, gpu_pixels, lsb, parse_error, within_two_over};
+use render::scene::Scene;
+use render::volume_clouds::{march_pixel, pinhole_camera, world_to_enu};
 
 const VOLUME: &str = "[clouds.volume]\nseed = 3\nsteps = 20\ngrid = [8, 8, 4]\n\
                       cell_size_m = 100.0\nbase_m = 800.0\nsigma_t_per_density = 0.03\n";
 
-fn parse_error(text: &str) -> SceneError {
-    match Scene::parse(text, ".") {
-        Err(e) => e,
-        Ok(scene) => scene.prepare().unwrap_err(),
-    }
-}
-
 fn shipped(width: u32, height: u32) -> Scene {
-    let path = format!("{}/../../scenes/cumulus.toml", env!("CARGO_MANIFEST_DIR"));
-    let mut scene = Scene::open(&path).unwrap();
-    scene.file.output.width = width;
-    scene.file.output.height = height;
-    scene
+    common::shipped("cumulus", width, height)
 }
 
 #[test]
@@ -236,73 +224,38 @@ fn the_shipped_cumulus_is_lit_hidden_by_the_hills_in_front_and_finite() {
 
 #[test]
 fn the_cumulus_agrees_on_the_gpu_and_the_cpu() {
-    let Some(gpu) = skyscape_harness::gpu_or_skip("render::volume_clouds") else {
+    let Some(gpu) = common::gpu_or_skip("render::volume_clouds") else {
         return;
     };
     let (width, height) = (160, 90);
     let scene = shipped(width, height).prepare().unwrap();
-    let settings = render::gpu::SceneRendererSettings {
-        terrain_error_px: 0.0,
-        timestamps: false,
-    };
-    let mut renderer =
-        render::gpu::SceneRenderer::new(&gpu.device, &gpu.queue, &scene, settings).unwrap();
-    renderer.prepare(&gpu.queue, &scene).unwrap();
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    renderer.encode(&mut encoder).unwrap();
-    gpu.queue.submit([encoder.finish()]);
-    let buffer = renderer.pixel_buffer();
-    let bytes =
-        skyscape_harness::read_buffer(gpu, "scene pixels", buffer, 0, buffer.size()).unwrap();
-    let gpu_image: Vec<u32> = bytemuck::cast_slice(&bytes).to_vec();
-    let cpu_image = render::cpu_renderer::render_cpu(&scene).unwrap().pixels;
+    let gpu_image = gpu_pixels(gpu, &scene);
+    let cpu_image = cpu_pixels(&scene);
     // The metric of tests/scene_gpu.rs (docs/scenes.md), and the cloud's own pixels
     // (every one within 2 LSB on lavapipe: 402 of 402, worst 1).
-    let within = |lsb| render::tonemap::fraction_within_lsb(&gpu_image, &cpu_image, lsb).unwrap();
-    let shifted = render::tonemap::fraction_within_lsb_of_neighbourhood(
-        &gpu_image,
-        &cpu_image,
-        width as usize,
-        2,
-        1,
-    )
-    .unwrap();
+    let agreement = Agreement::of(&gpu_image, &cpu_image, width as usize);
     let cloud = scene.volume_cloud.as_ref().unwrap();
     let pinhole = pinhole_camera(&scene.camera, scene.atmosphere.planet_radius).unwrap();
-    let (mut cloud_pixels, mut cloud_within) = (0usize, 0usize);
-    let mut worst = 0u32;
+    let mut drawn = Vec::new();
     for y in 0..height {
         for x in 0..width {
             if march_pixel(cloud, &pinhole, [width, height], [x, y], f32::INFINITY).transmittance
                 < 1.0
             {
-                let i = (y * width + x) as usize;
-                let d = (0..3)
-                    .map(|c| {
-                        let code = |p: u32| (p >> (8 * c)) & 255;
-                        code(gpu_image[i]).abs_diff(code(cpu_image[i]))
-                    })
-                    .max()
-                    .unwrap();
-                cloud_pixels += 1;
-                cloud_within += usize::from(d <= 2);
-                worst = worst.max(d);
+                drawn.push((y * width + x) as usize);
             }
         }
     }
-    let (two, eight) = (within(2), within(8));
+    let (cloud_pixels, cloud_within, worst) = within_two_over(&gpu_image, &cpu_image, drawn);
     eprintln!(
         "cumulus 160×90 GPU vs CPU: {:.3} % of pixels within 2 LSB, {:.3} % within 8, \
          {:.3} % within 2 LSB of the other image's 3×3 neighbourhood; cloud pixels \
          {cloud_within} of {cloud_pixels} within 2 LSB, worst {worst} LSB",
-        100.0 * two,
-        100.0 * eight,
-        100.0 * shifted
+        100.0 * agreement.two,
+        100.0 * agreement.eight,
+        100.0 * agreement.shifted,
     );
-    assert!(
-        two >= 0.96 && eight >= 0.985 && shifted >= 0.975,
-        "{two} {eight} {shifted}"
-    );
+    assert!(agreement.close(), "{}", agreement.fractions());
     assert!(cloud_pixels > 100, "{cloud_pixels}");
     assert!(
         cloud_within as f64 >= 0.99 * cloud_pixels as f64,
@@ -382,33 +335,14 @@ fn the_volume_cloud_shadows_the_terrain() {
     assert!(darker > 0, "no terrain pixel in the cloud's shadow");
     // The GPU terrain pass reads the same map: its shadowed pixels agree with the CPU's.
     prepared = scene.prepare().unwrap();
-    if let Some(gpu) = skyscape_harness::gpu_or_skip("render::volume_clouds shadow") {
-        let settings = render::gpu::SceneRendererSettings {
-            terrain_error_px: 0.0,
-            timestamps: false,
-        };
-        let mut renderer =
-            render::gpu::SceneRenderer::new(&gpu.device, &gpu.queue, &prepared, settings).unwrap();
-        renderer.prepare(&gpu.queue, &prepared).unwrap();
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        renderer.encode(&mut encoder).unwrap();
-        gpu.queue.submit([encoder.finish()]);
-        let buffer = renderer.pixel_buffer();
-        let bytes =
-            skyscape_harness::read_buffer(gpu, "scene pixels", buffer, 0, buffer.size()).unwrap();
-        let gpu_image: Vec<u32> = bytemuck::cast_slice(&bytes).to_vec();
-        let cpu_image = render::cpu_renderer::render_cpu(&prepared).unwrap().pixels;
+    if let Some(gpu) = common::gpu_or_skip("render::volume_clouds shadow") {
+        let gpu_image = gpu_pixels(gpu, &prepared);
+        let cpu_image = cpu_pixels(&prepared);
         let (mut shadowed, mut agree) = (0usize, 0usize);
         for (i, (a, b)) in shaded.iter().zip(&unshaded).enumerate() {
             if a.terrain_distance.is_some() && luminance(a.radiance) < 0.9 * luminance(b.radiance) {
                 shadowed += 1;
-                let d = (0..3)
-                    .map(|c| {
-                        ((gpu_image[i] >> (8 * c)) & 255).abs_diff((cpu_image[i] >> (8 * c)) & 255)
-                    })
-                    .max()
-                    .unwrap();
-                agree += usize::from(d <= 2);
+                agree += usize::from(lsb(gpu_image[i], cpu_image[i]) <= 2);
             }
         }
         let everywhere = render::tonemap::fraction_within_lsb(&gpu_image, &cpu_image, 2).unwrap();
@@ -458,24 +392,11 @@ fn the_terrain_cuts_the_cloud_where_it_stands() {
         w * h
     );
     assert!(cut > 0, "no pixel where the terrain cuts the cloud");
-    let Some(gpu) = skyscape_harness::gpu_or_skip("render::volume_clouds cut") else {
+    let Some(gpu) = common::gpu_or_skip("render::volume_clouds cut") else {
         return;
     };
-    let settings = render::gpu::SceneRendererSettings {
-        terrain_error_px: 0.0,
-        timestamps: false,
-    };
-    let mut renderer =
-        render::gpu::SceneRenderer::new(&gpu.device, &gpu.queue, &prepared, settings).unwrap();
-    renderer.prepare(&gpu.queue, &prepared).unwrap();
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    renderer.encode(&mut encoder).unwrap();
-    gpu.queue.submit([encoder.finish()]);
-    let buffer = renderer.pixel_buffer();
-    let bytes =
-        skyscape_harness::read_buffer(gpu, "scene pixels", buffer, 0, buffer.size()).unwrap();
-    let gpu_image: Vec<u32> = bytemuck::cast_slice(&bytes).to_vec();
-    let cpu_image = render::cpu_renderer::render_cpu(&prepared).unwrap().pixels;
+    let gpu_image = gpu_pixels(gpu, &prepared);
+    let cpu_image = cpu_pixels(&prepared);
     let two = render::tonemap::fraction_within_lsb(&gpu_image, &cpu_image, 2).unwrap();
     let eight = render::tonemap::fraction_within_lsb(&gpu_image, &cpu_image, 8).unwrap();
     eprintln!(

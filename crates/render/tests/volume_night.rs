@@ -4,6 +4,9 @@
 //! volume's range (32 km) is seen through the same air on the GPU as on the CPU.
 //! GPU parts run on whatever adapter the harness finds (lavapipe in CI).
 
+mod common;
+
+use common::lsb;
 use render::cpu_renderer::{display_pixels, render_cpu, render_radiance};
 use render::scene::{PreparedScene, Scene};
 use render::volume_clouds::{march_pixel, pinhole_camera};
@@ -12,8 +15,7 @@ use render::volume_clouds::{march_pixel, pinhole_camera};
 /// moon 56° up in the east-south-east) with the camera `camera` and a cumulus
 /// `volume` (TOML lines of `[clouds.volume]`).
 fn night(camera: &str, volume: &str, width: u32, height: u32) -> Scene {
-    let path = format!("{}/../../scenes/night.toml", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).unwrap();
+    let text = std::fs::read_to_string(common::scene_path("night")).unwrap();
     let start = text.find("[camera]").unwrap();
     let end = text.find("[time]").unwrap();
     let text = format!(
@@ -44,29 +46,8 @@ fn luminance(rgb: [f32; 3]) -> f32 {
 
 /// The scene on the GPU (the harness's adapter), RGBA8; `None` when skipped.
 fn gpu_image(scene: &PreparedScene, what: &str) -> Option<Vec<u32>> {
-    let gpu = skyscape_harness::gpu_or_skip(what)?;
-    let settings = render::gpu::SceneRendererSettings {
-        terrain_error_px: 0.0,
-        timestamps: false,
-    };
-    let mut renderer =
-        render::gpu::SceneRenderer::new(&gpu.device, &gpu.queue, scene, settings).unwrap();
-    renderer.prepare(&gpu.queue, scene).unwrap();
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    renderer.encode(&mut encoder).unwrap();
-    gpu.queue.submit([encoder.finish()]);
-    let buffer = renderer.pixel_buffer();
-    let bytes =
-        skyscape_harness::read_buffer(gpu, "scene pixels", buffer, 0, buffer.size()).unwrap();
-    Some(bytemuck::cast_slice(&bytes).to_vec())
-}
-
-/// The largest difference of two packed RGBA8 pixels over R, G, B (LSB).
-fn lsb(a: u32, b: u32) -> u32 {
-    (0..3)
-        .map(|c| ((a >> (8 * c)) & 255).abs_diff((b >> (8 * c)) & 255))
-        .max()
-        .unwrap()
+    let gpu = common::gpu_or_skip(what)?;
+    Some(common::gpu_pixels(gpu, scene))
 }
 
 /// Indices of the pixels where the cloud has opacity (`T < limit`) and is drawn.
@@ -273,10 +254,7 @@ fn the_volume_cloud_shadows_the_moonlit_terrain() {
 #[test]
 fn a_cloud_beyond_the_aerial_perspective_range_agrees() {
     // The shipped cumulus' sun and hills; an 8 km cloud 45–55 km north, 1.5 km up.
-    let path = format!("{}/../../scenes/cumulus.toml", env!("CARGO_MANIFEST_DIR"));
-    let mut scene = Scene::open(&path).unwrap();
-    scene.file.output.width = 160;
-    scene.file.output.height = 90;
+    let mut scene = common::shipped("cumulus", 160, 90);
     scene.file.camera.position = [0.0, 1500.0, 6500.0];
     scene.file.camera.look_at = Some([0.0, 3500.0, -45000.0]);
     let volume = scene.file.clouds.as_mut().unwrap().volume.as_mut().unwrap();
