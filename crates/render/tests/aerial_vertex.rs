@@ -7,6 +7,9 @@
 //! cargo test --release -p render --test aerial_vertex -- --ignored --nocapture
 //! ```
 
+mod common;
+
+use common::{Agreement, cpu_pixels, lsb};
 use render::aerial_vertex::{AerialPerspective, VertexAerial};
 use render::cpu_renderer::render_radiance;
 use render::gpu::{SceneRenderer, SceneRendererSettings};
@@ -125,35 +128,18 @@ fn per_vertex_interpolates_the_per_pixel_segments_on_the_cpu() {
 
 fn gpu_pixels(gpu: &skyscape_harness::GpuContext, scene: &PreparedScene) -> Vec<u32> {
     // The default settings: the CPU twin selects its tiles with the same error.
-    let mut renderer =
-        SceneRenderer::new(&gpu.device, &gpu.queue, scene, Default::default()).unwrap();
-    renderer.prepare(&gpu.queue, scene).unwrap();
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    renderer.encode(&mut encoder).unwrap();
-    gpu.queue.submit([encoder.finish()]);
-    let buffer = renderer.pixel_buffer();
-    let bytes =
-        skyscape_harness::read_buffer(gpu, "scene pixels", buffer, 0, buffer.size()).unwrap();
-    bytemuck::cast_slice(&bytes).to_vec()
-}
-
-/// Largest difference of any channel, in code values.
-fn lsb(a: u32, b: u32) -> u32 {
-    (0..3)
-        .map(|c| ((a >> (8 * c)) & 255).abs_diff((b >> (8 * c)) & 255))
-        .max()
-        .unwrap()
+    common::gpu_pixels_with(gpu, scene, Default::default())
 }
 
 #[test]
 fn per_vertex_agrees_on_the_gpu_and_the_cpu() {
-    let Some(gpu) = skyscape_harness::gpu_or_skip("render::aerial_vertex") else {
+    let Some(gpu) = common::gpu_or_skip("render::aerial_vertex") else {
         return;
     };
     // Smooth hills on coarse tiles: rasterisation allows the 99.9 % goal.
     let scene = smooth_hills(AerialPerspective::PerVertex);
     let gpu_image = gpu_pixels(gpu, &scene);
-    let cpu_image = render::cpu_renderer::render_cpu(&scene).unwrap().pixels;
+    let cpu_image = cpu_pixels(&scene);
     let two = render::tonemap::fraction_within_lsb(&gpu_image, &cpu_image, 2).unwrap();
     // The per-pixel GPU image: the per-vertex one differs from it, so the agreement
     // above is the twin's, not the variants' likeness.
@@ -192,63 +178,14 @@ fn per_vertex_agrees_on_the_gpu_and_the_cpu() {
         per_vertex.eight >= per_pixel.eight - 0.005,
         "{per_vertex} vs {per_pixel}"
     );
-    for channel in 0..3 {
-        assert!(
-            per_vertex.signed[channel].abs() <= 0.5 && per_vertex.absolute[channel] <= 1.5,
-            "{per_vertex}"
-        );
-    }
+    assert!(per_vertex.unbiased(1.5), "{per_vertex}");
 }
 
-/// scene_gpu's metric of a GPU image against the CPU's.
-struct Agreement {
-    two: f64,
-    eight: f64,
-    shifted: f64,
-    signed: [f64; 3],
-    absolute: [f64; 3],
-}
-
-impl std::fmt::Display for Agreement {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "{:.3} % within 2 LSB, {:.3} % within 8, {:.3} % within 2 LSB of the other \
-             image's 3×3 neighbourhood; mean (GPU − CPU) {:.3?} LSB, mean |difference| {:.3?} LSB",
-            100.0 * self.two,
-            100.0 * self.eight,
-            100.0 * self.shifted,
-            self.signed,
-            self.absolute
-        )
-    }
-}
-
+/// scene_gpu's metric of `scene` on the GPU against the CPU.
 fn agreement(gpu: &skyscape_harness::GpuContext, scene: &PreparedScene) -> Agreement {
     let gpu_image = gpu_pixels(gpu, scene);
-    let cpu_image = render::cpu_renderer::render_cpu(scene).unwrap().pixels;
-    let width = scene.camera.width as usize;
-    let within = |n| render::tonemap::fraction_within_lsb(&gpu_image, &cpu_image, n).unwrap();
-    let shifted =
-        render::tonemap::fraction_within_lsb_of_neighbourhood(&gpu_image, &cpu_image, width, 2, 1)
-            .unwrap();
-    let mut signed = [0.0f64; 3];
-    let mut absolute = [0.0f64; 3];
-    for (a, b) in gpu_image.iter().zip(&cpu_image) {
-        for channel in 0..3 {
-            let code = |p: u32| f64::from((p >> (8 * channel)) & 255);
-            let difference = code(*a) - code(*b);
-            signed[channel] += difference / gpu_image.len() as f64;
-            absolute[channel] += difference.abs() / gpu_image.len() as f64;
-        }
-    }
-    Agreement {
-        two: within(2),
-        eight: within(8),
-        shifted,
-        signed,
-        absolute,
-    }
+    let cpu_image = cpu_pixels(scene);
+    Agreement::of(&gpu_image, &cpu_image, scene.camera.width as usize)
 }
 
 /// The trade on the default scene at its 960×540 and on the smooth hills (coarse

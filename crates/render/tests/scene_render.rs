@@ -1,17 +1,15 @@
 //! Golden properties (not golden images) of scenes rendered by the CPU reference
 //! renderer, and the scene file's errors. Small sizes: these run in debug builds.
 
+mod common;
+
+use common::parse_error;
 use glam::DVec3;
 use render::cpu_renderer::{PixelRadiance, render_cpu, render_radiance};
 use render::scene::{Scene, SceneError};
 
-const DEFAULT_SCENE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/default.toml");
-
 fn default_scene(width: u32, height: u32) -> Scene {
-    let mut scene = Scene::open(DEFAULT_SCENE).unwrap();
-    scene.file.output.width = width;
-    scene.file.output.height = height;
-    scene
+    common::shipped("default", width, height)
 }
 
 fn luminance(rgb: [f32; 3]) -> f64 {
@@ -181,13 +179,6 @@ fn at_sunset_east_faces_are_darker_than_west_faces() {
         );
     }
     let _ = std::fs::remove_dir_all(&folder);
-}
-
-fn parse_error(text: &str) -> SceneError {
-    match Scene::parse(text, ".") {
-        Err(e) => e,
-        Ok(scene) => scene.prepare().unwrap_err(),
-    }
 }
 
 const VALID: &str = "[camera]\nposition = [0.0, 2.0, 0.0]\nlook_direction = [0.0, 0.2, -1.0]\n\
