@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{Agreement, VALID, cpu_pixels, gpu_pixels, lsb, parse_error, within_two_over};
+use common::{VALID, compare, lsb, parse_error, within_two_over};
 use render::billboard_clouds::{VolumeDraw, particles};
 use render::scene::Scene;
 
@@ -273,9 +273,7 @@ fn the_billboards_agree_on_the_gpu_and_the_cpu() {
     };
     let (width, height) = (160, 90);
     let scene = shipped(width, height).prepare().unwrap();
-    let gpu_image = gpu_pixels(gpu, &scene);
-    let cpu_image = cpu_pixels(&scene);
-    let agreement = Agreement::of(&gpu_image, &cpu_image, width as usize);
+    let (gpu_image, cpu_image, agreement) = compare(gpu, &scene);
     // The cloud's own pixels: where the billboards cover the sky (no terrain on the CPU's
     // ray), away from the terrain's silhouette, which the rasterised mesh and the ray
     // cast draw differently whatever is in front of it.

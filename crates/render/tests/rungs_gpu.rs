@@ -10,7 +10,7 @@
 
 mod common;
 
-use common::{Agreement, code, cpu_pixels, gpu_pixels};
+use common::{code, compare, gpu_pixels};
 use render::scene::{Rung, Scene};
 
 const GPU_RUNGS: [Rung; 3] = [Rung::ClosedForm, Rung::ClosedFormVertex, Rung::Single];
@@ -30,8 +30,7 @@ fn agree(gpu: &skyscape_harness::GpuContext, name: &str) {
     let (width, height) = (160u32, 90u32);
     for rung in [Rung::Precomputed].into_iter().chain(GPU_RUNGS) {
         let scene = shipped(name, width, height, rung).prepare().unwrap();
-        let gpu_image = gpu_pixels(gpu, &scene);
-        let cpu_image = cpu_pixels(&scene);
+        let (gpu_image, cpu_image, agreement) = compare(gpu, &scene);
         let hits = render::cpu_renderer::render_radiance(&scene).unwrap();
         let (mut sky_gpu, mut sky_cpu) = (Vec::new(), Vec::new());
         for ((g, c), hit) in gpu_image.iter().zip(&cpu_image).zip(&hits) {
@@ -40,7 +39,6 @@ fn agree(gpu: &skyscape_harness::GpuContext, name: &str) {
                 sky_cpu.push(*c);
             }
         }
-        let agreement = Agreement::of(&gpu_image, &cpu_image, width as usize);
         let sky_two = render::tonemap::fraction_within_lsb(&sky_gpu, &sky_cpu, 2).unwrap();
         eprintln!(
             "{name} {} {width}×{height}: {:.3} % of pixels within 2 LSB, {:.3} % within 8, \

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{Agreement, cpu_pixels, gpu_pixels, shipped};
+use common::{compare, shipped};
 
 #[test]
 fn every_shipped_scene_agrees_on_the_gpu_and_the_cpu() {
@@ -18,15 +18,13 @@ fn every_shipped_scene_agrees_on_the_gpu_and_the_cpu() {
 
 fn agree(gpu: &skyscape_harness::GpuContext, name: &str) {
     let scene = shipped(name, 160, 90).prepare().unwrap();
-    let gpu_image = gpu_pixels(gpu, &scene);
-    let cpu_image = cpu_pixels(&scene);
     // Rasterised triangles and the ray-cast bilinear surface hit neighbouring points
     // of terrain finer than a pixel (60 m texels, ~130 m pixels at 14 km here), so
     // single pixels of ridged terrain differ by tens of code values either way. The
     // metric: most pixels within 2 LSB, nearly all within 8, and no bias — the mean
     // signed and absolute differences over the image stay below a code value, which a
     // shading mismatch between the twins would not.
-    let agreement = Agreement::of(&gpu_image, &cpu_image, 160);
+    let (_, _, agreement) = compare(gpu, &scene);
     eprintln!(
         "{name} 160×90: {:.3} % of pixels within 2 LSB, {:.3} % within 8, \
          {:.3} % within 2 LSB of a pixel in the other image's 3×3 neighbourhood; \

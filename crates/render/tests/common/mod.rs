@@ -81,6 +81,14 @@ pub fn cpu_pixels(scene: &PreparedScene) -> Vec<u32> {
     render::cpu_renderer::render_cpu(scene).unwrap().pixels
 }
 
+/// `scene` on the GPU ([`gpu_pixels`]) and on the CPU, and their [`Agreement`].
+pub fn compare(gpu: &GpuContext, scene: &PreparedScene) -> (Vec<u32>, Vec<u32>, Agreement) {
+    let gpu_image = gpu_pixels(gpu, scene);
+    let cpu_image = cpu_pixels(scene);
+    let agreement = Agreement::of(&gpu_image, &cpu_image, scene.camera.width as usize);
+    (gpu_image, cpu_image, agreement)
+}
+
 /// Channel `channel` (0 R, 1 G, 2 B) of a packed RGBA8 pixel.
 pub fn code(pixel: u32, channel: usize) -> u32 {
     (pixel >> (8 * channel)) & 255
