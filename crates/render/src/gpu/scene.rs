@@ -473,11 +473,6 @@ impl CloudPass {
                 },
             ],
         });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("render clouds"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
         // Premultiplied: the fragment's colour is the layers' own light, its alpha the
         // fraction of the scene they hide.
         let blend = wgpu::BlendState {
@@ -488,31 +483,15 @@ impl CloudPass {
             },
             alpha: wgpu::BlendComponent::OVER,
         };
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("render clouds"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("clouds_vertex"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("clouds_fragment"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: HDR,
-                    blend: Some(blend),
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let pipeline = super::cloud_composite::fullscreen_pipeline(
+            device,
+            "render clouds",
+            &layout,
+            &module,
+            ["clouds_vertex", "clouds_fragment"],
+            HDR,
+            blend,
+        );
         Ok(Self {
             pipeline,
             uniform,
@@ -1213,48 +1192,29 @@ impl SceneRenderer {
         if let Some(distance) = &mut self.cloud_distance {
             distance.prepare(&self.device, queue, scene, &self.depth_view);
         }
+        // The marched clouds: each stops at the distance prepared above.
+        let (device, depth) = (&self.device, &self.depth_view);
         let distance = self.cloud_distance.as_ref();
+        let differs = |field: &'static str, built: bool| RenderError::InvalidParameter {
+            field,
+            value: if built { "absent" } else { "given" }.into(),
+            reason: "differs from the scene the renderer was built for",
+        };
         match (&mut self.volume_cloud, &scene.volume_cloud) {
             (Some(pass), Some(cloud)) => {
                 let distance = distance.ok_or(RenderError::NotPrepared)?;
-                pass.prepare_volume(
-                    &self.device,
-                    queue,
-                    scene,
-                    cloud,
-                    distance,
-                    &self.depth_view,
-                )?;
+                pass.prepare_volume(device, queue, scene, cloud, distance, depth)?;
             }
             (None, None) => {}
-            (built, _) => {
-                return Err(RenderError::InvalidParameter {
-                    field: "clouds.volume",
-                    value: if built.is_some() { "absent" } else { "given" }.into(),
-                    reason: "differs from the scene the renderer was built for",
-                });
-            }
+            (built, _) => return Err(differs("clouds.volume", built.is_some())),
         }
         match (&mut self.shell_cloud, &scene.shell_cloud) {
             (Some(pass), Some(cloud)) => {
                 let distance = distance.ok_or(RenderError::NotPrepared)?;
-                pass.prepare_shell(
-                    &self.device,
-                    queue,
-                    scene,
-                    cloud,
-                    distance,
-                    &self.depth_view,
-                )?;
+                pass.prepare_shell(device, queue, scene, cloud, distance, depth)?;
             }
             (None, None) => {}
-            (built, _) => {
-                return Err(RenderError::InvalidParameter {
-                    field: "clouds.shell",
-                    value: if built.is_some() { "absent" } else { "given" }.into(),
-                    reason: "differs from the scene the renderer was built for",
-                });
-            }
+            (built, _) => return Err(differs("clouds.shell", built.is_some())),
         }
         match (&mut self.billboard_cloud, &scene.billboard_cloud) {
             (Some(pass), Some(cloud)) => pass.prepare(&self.device, queue, scene, cloud)?,
@@ -1600,24 +1560,14 @@ impl SceneRenderer {
             )?;
         }
         if let Some(clouds) = &self.clouds {
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("render clouds"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &self.hdr_view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Load,
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: times.and_then(|t| t.render_writes("clouds")),
-                ..Default::default()
-            });
-            pass.set_pipeline(&clouds.pipeline);
-            pass.set_bind_group(0, &clouds.bind_group, &[]);
-            pass.draw(0..3, 0..1);
+            super::cloud_composite::draw_fullscreen(
+                encoder,
+                "render clouds",
+                &self.hdr_view,
+                times.and_then(|t| t.render_writes("clouds")),
+                &clouds.pipeline,
+                &clouds.bind_group,
+            );
         }
         if let Some(distance) = &self.cloud_distance {
             // After the terrain (the marches stop at its depth), once for both clouds.
