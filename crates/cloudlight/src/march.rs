@@ -488,7 +488,11 @@ pub fn light_optical_depth<F: Real>(
     }
 }
 
-fn ambient_visibility<F: Real>(
+/// The ambient sky's visibility at `p`: `e^{−τ_up}`, `τ_up` the optical depth from `p`
+/// to the field's last exit along unit `up` by `steps` midpoint steps (0 steps, or `p`
+/// already at the exit: 1). The march's `V_amb` (module docs); also the visibility of the
+/// sky from a billboard particle ([`crate::billboard::particle_radiance`]).
+pub fn ambient_visibility<F: Real>(
     field: &impl DensityField<F>,
     p: [F; 3],
     up: [F; 3],

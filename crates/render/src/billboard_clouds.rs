@@ -11,13 +11,25 @@
 //!
 //! Once per scene: `cloudlight::propagate::propagate::<f32>` (the slices' f32 twin,
 //! physical Beer–Lambert mode with Catmull–Rom resampling by default, or seed 002's
-//! faithful mode) through the grown volume toward the sun. A cell's colour is
-//! `cloudlight::billboard`'s `sun_colour × light` with `sun_colour` = the sun's
-//! irradiance at the cloud's centre through the scene's rung
-//! (`cloudlight::march::atmos_light`: the atmosphere's sun irradiance × the rung's
-//! transmittance toward the sun, what the marched cloud is lit by) / π, the radiance of a
-//! white Lambertian surface facing that sun. Seed 002's billboards have no ambient sky
-//! term and no phase function; neither is added here.
+//! faithful mode) through the grown volume toward the sun gives every cell its
+//! transmittance `T` toward the sun. The light is the marched cloud's
+//! (`crate::volume_clouds`, `PreparedVolume::lighting`), at the grid's centre: the
+//! sun's irradiance `E` through the scene's rung (`cloudlight::march::atmos_light`: the
+//! atmosphere's sun irradiance × the rung's transmittance toward the sun) and the
+//! ambient sky radiance `L_amb` (atmos' sky irradiance on a horizontal surface / π).
+//! Each drawn cell's sky visibility `V_amb` is the march's
+//! (`cloudlight::march::ambient_visibility`: `e^{−τ}` straight up, the march's
+//! `ambient_steps` midpoint steps). Per frame a particle's colour is
+//! `cloudlight::billboard::particle_radiance`: `albedo · (E · P(τ, cos θ) + L_amb ·
+//! V_amb)` with `P` the march's `octave_scattering` of `τ = −ln T` (its dual-lobe
+//! Henyey–Greenstein phase and `[clouds.volume]`'s octaves, 8 by default; one octave is
+//! `T · p(cos θ)`, Dobashi 2000's single scattering; seed 002 itself had `E · T` alone)
+//! and the march's albedo, `θ` between the view ray to the particle and the sun. At night — when the scene has a
+//! moonlit sky (`PreparedScene::moonlit`, as the marched cloud) — the slices run a
+//! second time toward the moon and the moon's term and its moonlit ambient sky are
+//! added ([`MoonlitBillboards`]); its shadow map along the moon shades the moonlit
+//! terrain. The particle's colour is computed on the CPU for both renderers (the
+//! particles are selected and sorted there per frame): the GPU's instances carry it.
 //!
 //! # Drawing
 //!
@@ -29,7 +41,10 @@
 //! `SkyQuery::with_max_distance`): `colour' = colour · T_air + L_air`
 //! ([`billboard_seen_through_air`]), so the premultiplied splat adds
 //! `α · (colour · T_air + L_air)` over `(1 − α)` of what is behind, the marched cloud's
-//! `L_c · T_air + L_air · (1 − T_c)`. A particle covers a pixel only where its view
+//! `L_c · T_air + L_air · (1 − T_c)`. The air is the sun's only: at night the moonlit
+//! air in front of a particle is not added (the marched cloud adds it; the GPU pass
+//! binds one light's tables), so a particle hides `α` of the moonlit air between it and
+//! the camera. A particle covers a pixel only where its view
 //! depth is less than the terrain's: on the CPU `cloudlight::billboard::rasterise_limited`
 //! with the ray-cast terrain's view depth per pixel, on the GPU a depth test `Greater`
 //! of `near / z` against the terrain's reverse-z depth (`shaders/render/billboard_clouds.wgsl`,
@@ -40,7 +55,11 @@ use glam::DVec3;
 use serde::Deserialize;
 
 use cloudlight::CloudVolume;
-use cloudlight::billboard::{Billboard, BillboardSettings, Camera, FieldOfView, Opacity, SizeRule};
+use cloudlight::billboard::{
+    Billboard, BillboardSettings, Camera, FieldOfView, Opacity, ParticleLight, ParticleScattering,
+    SizeRule,
+};
+use cloudlight::march::Lighting;
 use cloudlight::propagate::{SliceMode, SlicePlan};
 
 use crate::RenderError;
@@ -141,6 +160,31 @@ pub struct PreparedBillboards {
     pub dense_cells: usize,
     /// Its shadow on the terrain (as the marched cloud's, `CloudShadow`).
     pub shadow: Option<CloudShadow>,
+    /// The sun and the ambient sky at the grid's centre, east/north/up (the marched
+    /// cloud's `PreparedVolume::lighting`).
+    pub lighting: Lighting<f32>,
+    /// The ambient sky's visibility at every cell centre denser than the threshold
+    /// (`cloudlight::march::ambient_visibility`), x fastest; 0 at the cells not drawn.
+    pub ambient_visibility: Vec<f32>,
+    /// The particles' albedo and phase: the march's (`ParticleScattering::of_march`).
+    pub scattering: ParticleScattering,
+    /// The cloud lit by the moon too: only in scenes with a moonlit sky
+    /// (`PreparedScene::moonlit`), else `None` and no second propagation runs.
+    pub moon: Option<MoonlitBillboards>,
+}
+
+/// The billboards' second light at night: the moon, as the sun is
+/// ([`PreparedBillboards::lighting`] and `light`), from the marched cloud's
+/// `MoonlitVolume`.
+#[derive(Debug, Clone)]
+pub struct MoonlitBillboards {
+    /// The moon and the moonlit ambient sky at the grid's centre, east/north/up.
+    pub lighting: Lighting<f32>,
+    /// The slices' light toward the moon at every cell centre, x fastest.
+    pub light: Vec<f32>,
+    /// Its shadow on the terrain under the moon (`None` with the moon below 1° or no
+    /// terrain in the scene).
+    pub shadow: Option<CloudShadow>,
 }
 
 /// The air in front of a particle: `colour · T_air + L_air` per channel (the colour the
@@ -233,6 +277,7 @@ impl Scene {
     /// Grows `[clouds.volume]`'s cloud (`Scene::volume_cloud`: the same automaton,
     /// placement, sun and shadow) and lights it with the slices, for drawing as
     /// billboards.
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn billboard_cloud(
         &self,
         section: &CloudVolumeSection,
@@ -241,23 +286,37 @@ impl Scene {
         sun: DVec3,
         near: f64,
         shadows_on_terrain: bool,
+        moonlit: Option<&crate::scene::prepare::MoonlitSky>,
     ) -> Result<PreparedBillboards, SceneError> {
         self.check_billboard_cloud(section)?;
         let b = section.billboards.unwrap_or_default();
-        let grown = self.volume_cloud(section, atmosphere, model, sun, shadows_on_terrain, None)?;
+        // The marched cloud's growth, placement, lights (the moon's at night) and shadows.
+        let grown =
+            self.volume_cloud(section, atmosphere, model, sun, shadows_on_terrain, moonlit)?;
         let slices = match b.slices {
             SlicesName::Physical => SliceMode::Physical,
             SlicesName::Faithful => SliceMode::Faithful {
                 attenuation_ratio: b.attenuation_ratio,
             },
         };
-        let to_sun = world_to_enu(sun.to_array());
-        let plan = SlicePlan::new(&grown.volume, to_sun, slices).map_err(|e| {
-            self.billboards_invalid("slices", format!("{:?}", b.slices), &e.to_string())
-        })?;
-        let light = cloudlight::propagate::propagate::<f32>(&grown.volume, &plan).map_err(|e| {
-            self.billboards_invalid("slices", format!("{:?}", b.slices), &e.to_string())
-        })?;
+        let propagate = |toward: [f32; 3]| {
+            let plan =
+                SlicePlan::new(&grown.volume, toward.map(f64::from), slices).map_err(|e| {
+                    self.billboards_invalid("slices", format!("{:?}", b.slices), &e.to_string())
+                })?;
+            cloudlight::propagate::propagate::<f32>(&grown.volume, &plan).map_err(|e| {
+                self.billboards_invalid("slices", format!("{:?}", b.slices), &e.to_string())
+            })
+        };
+        let light = propagate(grown.lighting.sun_direction())?;
+        let moon = match grown.moon {
+            Some(moon) => Some(MoonlitBillboards {
+                light: propagate(moon.lighting.sun_direction())?,
+                lighting: moon.lighting,
+                shadow: moon.shadow,
+            }),
+            None => None,
+        };
         let size = match b.seed_k {
             Some(k) => SizeRule::Seed { k },
             None => SizeRule::World {
@@ -266,14 +325,15 @@ impl Scene {
                     .unwrap_or(DEFAULT_CELLS_PER_DENSITY * section.cell_size_m),
             },
         };
-        let irradiance = grown.lighting.sun_irradiance();
         let settings = BillboardSettings {
             density_threshold: b.density_threshold,
             size,
             opacity: Opacity::Slab {
                 cells: b.opacity_cells,
             },
-            sun_colour: irradiance.map(|e| f64::from(e) / std::f64::consts::PI),
+            // Seed 002's colour (the light alone): `particles` replaces it with
+            // `particle_radiance`.
+            sun_colour: [1.0; 3],
             near: billboard_near(near),
         };
         settings.validate().map_err(|e| {
@@ -287,7 +347,17 @@ impl Scene {
             .iter()
             .filter(|&&d| f64::from(d) > b.density_threshold)
             .count();
+        let ambient_visibility = sky_visibility(
+            &grown.volume,
+            &grown.lighting,
+            &grown.settings,
+            b.density_threshold,
+        );
         Ok(PreparedBillboards {
+            ambient_visibility,
+            scattering: ParticleScattering::of_march(&grown.settings),
+            lighting: grown.lighting,
+            moon,
             volume: grown.volume,
             light,
             settings,
@@ -297,6 +367,35 @@ impl Scene {
             shadow: grown.shadow,
         })
     }
+}
+
+/// The ambient sky's visibility at the centre of every cell of `volume` denser than
+/// `threshold` (0 at the others): the march's (`cloudlight::march::ambient_visibility`
+/// along `lighting`'s up with `settings`' ambient steps), x fastest.
+fn sky_visibility(
+    volume: &CloudVolume,
+    lighting: &Lighting<f32>,
+    settings: &cloudlight::march::MarchSettings,
+    threshold: f64,
+) -> Vec<f32> {
+    let [nx, ny, _] = volume.dims().map(|n| n as usize);
+    let origin = volume.origin();
+    let voxel = volume.voxel_size();
+    let steps = settings.config().ambient_steps;
+    volume
+        .density()
+        .iter()
+        .enumerate()
+        .map(|(cell, &rho)| {
+            if f64::from(rho) <= threshold {
+                return 0.0;
+            }
+            let index = [cell % nx, (cell / nx) % ny, cell / (nx * ny)];
+            let centre: [f32; 3] =
+                std::array::from_fn(|a| (origin[a] + (index[a] as f64 + 0.5) * voxel) as f32);
+            cloudlight::march::ambient_visibility::<f32>(volume, centre, lighting.up(), steps)
+        })
+        .collect()
 }
 
 /// The near plane of the billboards and of the GPU's depth (`near / z`): the scene's,
@@ -330,17 +429,47 @@ fn billboard_error(e: cloudlight::billboard::BillboardError) -> RenderError {
     RenderError::Billboards(e)
 }
 
-/// The particles of `cloud` the scene's camera sees, sorted back to front (their colours
-/// the sun's light, before the air).
+/// The particles of `cloud` the scene's camera sees, sorted back to front, their colours
+/// the light they scatter toward the eye before the air
+/// (`cloudlight::billboard::particle_radiance`: the sun's, the moon's at night, and the
+/// ambient sky's).
 pub fn particles(
     scene: &PreparedScene,
     cloud: &PreparedBillboards,
 ) -> Result<(Camera, Vec<Billboard>), RenderError> {
     let camera =
         billboard_camera(&scene.camera, scene.atmosphere.planet_radius).map_err(billboard_error)?;
-    let particles =
+    let mut particles =
         cloudlight::billboard::billboards(&cloud.volume, &cloud.light, &cloud.settings, &camera)
             .map_err(billboard_error)?;
+    let light = |lighting: &Lighting<f32>, transmittance: f32| ParticleLight {
+        direction: lighting.sun_direction().map(f64::from),
+        irradiance: lighting.sun_irradiance().map(f64::from),
+        transmittance: f64::from(transmittance),
+    };
+    let mut ambient = cloud.lighting.ambient_radiance().map(f64::from);
+    if let Some(moon) = &cloud.moon {
+        let add = moon.lighting.ambient_radiance();
+        for (a, m) in ambient.iter_mut().zip(add) {
+            *a += f64::from(m);
+        }
+    }
+    for p in &mut particles {
+        let r = DVec3::from_array(p.relative);
+        let view = (r / r.length()).to_array();
+        let sun = light(&cloud.lighting, cloud.light[p.cell]);
+        let (lights, count) = match &cloud.moon {
+            Some(moon) => ([sun, light(&moon.lighting, moon.light[p.cell])], 2),
+            None => ([sun; 2], 1),
+        };
+        p.colour = cloudlight::billboard::particle_radiance(
+            view,
+            &lights[..count],
+            ambient,
+            f64::from(cloud.ambient_visibility[p.cell]),
+            &cloud.scattering,
+        );
+    }
     Ok((camera, particles))
 }
 
@@ -433,12 +562,18 @@ pub fn explain(scene: &PreparedScene) -> Result<String, String> {
             Ok(format!(
                 "seed 002's billboards of the [clouds.volume] cumulus ({nx}×{ny}×{nz} cells grown \
                  by cloudsim in {} steps, lit on the CPU by cloudlight's {} slice propagation \
-                 toward the sun): {drawn} of {} cells denser than {} drawn back to front, \
-                 depth-tested against the terrain, through the aerial perspective",
+                 toward the sun{}, the march's phase and octaves and the ambient sky): \
+                 {drawn} of {} cells denser than {} drawn back to front, depth-tested against \
+                 the terrain, through the aerial perspective",
                 cloud.steps,
                 match cloud.slices {
                     SliceMode::Physical => "physical",
                     SliceMode::Faithful { .. } => "faithful",
+                },
+                if cloud.moon.is_some() {
+                    " and again toward the moon (a moonlit sky)"
+                } else {
+                    ""
                 },
                 cloud.dense_cells,
                 cloud.settings.density_threshold,

@@ -278,7 +278,13 @@ impl PreparedScene {
                 .volume_cloud
                 .as_ref()
                 .and_then(|v| v.moon.as_ref())
-                .and_then(|m| m.shadow.as_ref()),
+                .and_then(|m| m.shadow.as_ref())
+                .or_else(|| {
+                    self.billboard_cloud
+                        .as_ref()
+                        .and_then(|b| b.moon.as_ref())
+                        .and_then(|m| m.shadow.as_ref())
+                }),
         })
     }
 
@@ -490,6 +496,7 @@ impl Scene {
                     sun,
                     cam.near,
                     terrain.is_some(),
+                    moonlit.as_ref(),
                 )?)
             }
             _ => None,
