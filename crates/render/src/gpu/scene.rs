@@ -1146,6 +1146,11 @@ impl SceneRenderer {
 
     /// Writes the frame's uniforms: the LUTs' camera, the sky pass's sun disc, the
     /// terrain's view and lighting and its tiles, the display's exposure.
+    ///
+    /// Everything that depends on the view is written here, so one renderer draws any
+    /// number of frames of its scene: a panorama's six faces are the scene turned by
+    /// `PreparedScene::look_along` and prepared again (same size), each bit for bit the
+    /// face a renderer built for it draws (`tests/panorama_gpu.rs`).
     pub fn prepare(
         &mut self,
         queue: &wgpu::Queue,
