@@ -41,10 +41,10 @@
 //! `SkyQuery::with_max_distance`): `colour' = colour · T_air + L_air`
 //! ([`billboard_seen_through_air`]), so the premultiplied splat adds
 //! `α · (colour · T_air + L_air)` over `(1 − α)` of what is behind, the marched cloud's
-//! `L_c · T_air + L_air · (1 − T_c)`. The air is the sun's only: at night the moonlit
-//! air in front of a particle is not added (the marched cloud adds it; the GPU pass
-//! binds one light's tables), so a particle hides `α` of the moonlit air between it and
-//! the camera. A particle covers a pixel only where its view
+//! `L_c · T_air + L_air · (1 − T_c)`. At night the moonlit air in front of each particle
+//! is added to `L_air` ([`moonlit_air`]: the moon's segment model, computed on the CPU
+//! for both renderers and read by the GPU's vertex stage per instance; the sun's air
+//! comes from the tables). A particle covers a pixel only where its view
 //! depth is less than the terrain's: on the CPU `cloudlight::billboard::rasterise_limited`
 //! with the ray-cast terrain's view depth per pixel, on the GPU a depth test `Greater`
 //! of `near / z` against the terrain's reverse-z depth (`shaders/render/billboard_clouds.wgsl`,
@@ -480,6 +480,40 @@ pub fn world_offset(relative: [f64; 3]) -> [f32; 3] {
     [r[0], r[2], -r[1]]
 }
 
+/// At night (the cloud lit by the moon and the scene's moonlit sky), the moonlit air in
+/// front of each particle: its in-scattered radiance between the camera and the
+/// particle's centre from the moon's segment model (`SkyQuery::with_max_distance`,
+/// f32), the same values for both renderers (the GPU's vertex stage adds them to the
+/// sun's air, the CPU twin likewise). `None` otherwise.
+pub fn moonlit_air(
+    scene: &PreparedScene,
+    cloud: &PreparedBillboards,
+    particles: &[Billboard],
+) -> Result<Option<Vec<[f32; 3]>>, RenderError> {
+    let (Some(_), Some(moon)) = (&cloud.moon, scene.moon_light()) else {
+        return Ok(None);
+    };
+    particles
+        .iter()
+        .map(|p| {
+            let v = DVec3::from_array(world_offset(p.relative).map(f64::from));
+            let query = atmos::SkyQuery::with_max_distance(
+                scene.atmosphere.planet_radius,
+                scene.camera_position,
+                v.normalize(),
+                moon.direction,
+                v.length(),
+            )?;
+            Ok(moon
+                .segment_model
+                .evaluate(&query)
+                .radiance
+                .map(|l| l as f32))
+        })
+        .collect::<Result<Vec<_>, RenderError>>()
+        .map(Some)
+}
+
 /// The precomputed rung's tables of a frame, as the CPU renderer holds them.
 pub type FrameTables<'a> = (&'a atmos::lut::StaticLuts, &'a atmos::lut::FrameLuts);
 
@@ -494,7 +528,8 @@ pub fn composite_billboards_cpu(
     out: &mut [PixelRadiance],
 ) -> Result<(), RenderError> {
     let (camera, mut particles) = particles(scene, cloud)?;
-    for p in &mut particles {
+    let moon_air = moonlit_air(scene, cloud, &particles)?;
+    for (i, p) in particles.iter_mut().enumerate() {
         let offset = world_offset(p.relative);
         let (transmittance, radiance) = match tables {
             Some((luts, frame)) => {
@@ -516,6 +551,11 @@ pub fn composite_billboards_cpu(
                     air.radiance.map(|l| l as f32),
                 )
             }
+        };
+        // At night the moonlit air is added to the sun's, as the GPU's vertex stage does.
+        let radiance = match &moon_air {
+            Some(air) => std::array::from_fn(|k| radiance[k] + air[i][k]),
+            None => radiance,
         };
         // The f32 colour the GPU reads, seen through the air in f32.
         let colour = p.colour.map(|c| c as f32);
@@ -588,18 +628,54 @@ pub fn explain(scene: &PreparedScene) -> Result<String, String> {
 }
 
 /// The billboard pass's uniform bytes: `cloudlight::billboard`'s frame (64 bytes), the
-/// near plane, the radiance scale (WGSL `BillboardCloudParams`).
+/// near plane, the radiance scale, whether the moonlit air is added (WGSL
+/// `BillboardCloudParams`).
 #[cfg(feature = "gpu")]
 pub fn params_bytes(
     frame: &cloudlight::billboard::ScreenFrame<f32>,
     near: f32,
     radiance_scale: f32,
+    moonlit: bool,
 ) -> [u8; PARAMS_BYTES as usize] {
     let mut bytes = [0u8; PARAMS_BYTES as usize];
     bytes[..64].copy_from_slice(&cloudlight::gpu::billboard::frame_bytes(frame));
     bytes[64..68].copy_from_slice(&near.to_ne_bytes());
     bytes[68..72].copy_from_slice(&radiance_scale.to_ne_bytes());
+    bytes[72..76].copy_from_slice(&u32::from(moonlit).to_ne_bytes());
     bytes
+}
+
+/// The billboard pass's group 2: the uniform (vertex stage) and the moonlit air per
+/// instance (a read-only storage buffer of `vec4<f32>`).
+#[cfg(feature = "gpu")]
+fn params_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::VERTEX,
+        ty,
+        count: None,
+    };
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("render billboard clouds"),
+        entries: &[
+            entry(
+                0,
+                wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: wgpu::BufferSize::new(PARAMS_BYTES),
+                },
+            ),
+            entry(
+                1,
+                wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Storage { read_only: true },
+                    has_dynamic_offset: false,
+                    min_binding_size: wgpu::BufferSize::new(16),
+                },
+            ),
+        ],
+    })
 }
 
 #[cfg(feature = "gpu")]
@@ -610,6 +686,39 @@ fn needs_tables() -> RenderError {
         reason: "the GPU billboards read the precomputed rung's aerial-perspective tables; \
                  render this scene with the precomputed rung, or on the CPU (--cpu)",
     }
+}
+
+#[cfg(feature = "gpu")]
+fn moon_air_buffer(device: &wgpu::Device, size: u64) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("render billboard moonlit air"),
+        size,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
+#[cfg(feature = "gpu")]
+fn params_bind_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    uniform: &wgpu::Buffer,
+    moon_air: &wgpu::Buffer,
+) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("render billboard clouds"),
+        layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: uniform.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: moon_air.as_entire_binding(),
+            },
+        ],
+    })
 }
 
 /// Bytes of WGSL `BillboardCloudParams`.
@@ -623,15 +732,17 @@ pub const PARAMS_BYTES: u64 = 80;
 #[cfg(feature = "gpu")]
 use cloudlight::gpu::billboard::{
     BillboardPipelineDescriptor, begin_billboard_pass, billboard_pipeline, draw_billboards,
-    uniform_layout,
 };
 
 #[cfg(feature = "gpu")]
 #[derive(Debug)]
 pub(crate) struct BillboardCloudPass {
     pipeline: wgpu::RenderPipeline,
+    layout: wgpu::BindGroupLayout,
     bind_group: wgpu::BindGroup,
     uniform: wgpu::Buffer,
+    /// The moonlit air per instance (16 bytes, unread, without a moonlit sky).
+    moon_air: wgpu::Buffer,
     instances: Option<wgpu::Buffer>,
     count: u32,
 }
@@ -652,21 +763,15 @@ impl BillboardCloudPass {
             label: Some("render billboard clouds"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
         });
-        let layout = uniform_layout(device, "render billboard clouds", PARAMS_BYTES);
+        let layout = params_layout(device);
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("render billboard clouds uniform"),
             size: PARAMS_BYTES,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("render billboard clouds"),
-            layout: &layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: uniform.as_entire_binding(),
-            }],
-        });
+        let moon_air = moon_air_buffer(device, 16);
+        let bind_group = params_bind_group(device, &layout, &uniform, &moon_air);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("render billboard clouds"),
             bind_group_layouts: &[
@@ -696,8 +801,10 @@ impl BillboardCloudPass {
         );
         Ok(Self {
             pipeline,
+            layout,
             bind_group,
             uniform,
+            moon_air,
             instances: None,
             count: 0,
         })
@@ -742,11 +849,32 @@ impl BillboardCloudPass {
             }
         }
         self.count = count;
+        let moon_air = moonlit_air(scene, cloud, &particles)?;
+        if let Some(air) = &moon_air
+            && !air.is_empty()
+        {
+            let bytes: Vec<u8> = air
+                .iter()
+                .flat_map(|l| [l[0], l[1], l[2], 0.0])
+                .flat_map(f32::to_ne_bytes)
+                .collect();
+            if self.moon_air.size() < bytes.len() as u64 {
+                self.moon_air = moon_air_buffer(device, bytes.len() as u64);
+                self.bind_group =
+                    params_bind_group(device, &self.layout, &self.uniform, &self.moon_air);
+            }
+            queue.write_buffer(&self.moon_air, 0, &bytes);
+        }
         let frame = cloudlight::billboard::ScreenFrame::<f32>::new(&camera, cloud.settings.size);
         queue.write_buffer(
             &self.uniform,
             0,
-            &params_bytes(&frame, cloud.settings.near as f32, scene.present.exposure),
+            &params_bytes(
+                &frame,
+                cloud.settings.near as f32,
+                scene.present.exposure,
+                moon_air.is_some(),
+            ),
         );
         Ok(())
     }

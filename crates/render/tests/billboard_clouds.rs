@@ -544,35 +544,26 @@ fn the_moon_lights_the_billboards() {
     assert_eq!(moon.light.len(), cloud.light.len());
     let (camera, list) = particles(&lit, &cloud).unwrap();
     let open = cloudlight::billboard::rasterise::<f32>(&list, &camera, cloud.settings.size);
-    // What is not drawn (README "Not done"): the moonlit air in front of each particle
-    // (the moon's segment model), against the particle's own light seen through the air.
-    let moon_light = lit.moon_light().unwrap();
-    let (mut own, mut moon_air) = (0.0f64, 0.0f64);
-    for p in &list {
-        let offset = render::billboard_clouds::world_offset(p.relative).map(f64::from);
-        let v = glam::DVec3::from_array(offset);
-        let query = atmos::SkyQuery::with_max_distance(
-            lit.atmosphere.planet_radius,
-            lit.camera_position,
-            v.normalize(),
-            moon_light.direction,
-            v.length(),
-        )
-        .unwrap();
-        let air = moon_light.segment_model.evaluate(&query);
-        let seen: [f64; 3] = std::array::from_fn(|k| p.colour[k] * air.transmittance[k]);
-        own += f64::from(luminance(seen.map(|c| c as f32)));
-        moon_air += f64::from(luminance(air.radiance.map(|c| c as f32)));
-    }
+    // The moonlit air in front of each particle (drawn by both renderers), against the
+    // particle's own light.
+    let air = render::billboard_clouds::moonlit_air(&lit, &cloud, &list)
+        .unwrap()
+        .expect("the moonlit air at night");
+    assert_eq!(air.len(), list.len());
+    let own: f64 = list
+        .iter()
+        .map(|p| f64::from(luminance(p.colour.map(|c| c as f32))))
+        .sum();
+    let moon_air: f64 = air.iter().map(|l| f64::from(luminance(*l))).sum();
     eprintln!(
-        "night billboards: the moonlit air in front of the {} particles (not drawn) has mean \
-         luminance {:.3e}, {:.1} % of their own light through the air ({:.3e})",
+        "night billboards: the moonlit air in front of the {} particles has mean luminance \
+         {:.3e}, {:.1} % of their own light ({:.3e})",
         list.len(),
         moon_air / list.len() as f64,
         100.0 * moon_air / own,
         own / list.len() as f64
     );
-    assert!(moon_air.is_finite() && own > 0.0);
+    assert!(moon_air > 0.0 && moon_air.is_finite() && own > 0.0);
     let with = render::cpu_renderer::render_radiance(&lit).unwrap();
     let gpu_images = common::gpu_or_skip("render::billboard_clouds night")
         .map(|gpu| (common::gpu_pixels(gpu, &lit), common::cpu_pixels(&lit)));
