@@ -104,3 +104,47 @@ fn one_renderer_draws_every_face_as_a_renderer_built_for_it() {
         );
     }
 }
+
+/// `skyscape render --projection … --compare`: the GPU's projection (six faces from one
+/// renderer) against the CPU's six faces resampled the same way — not against the
+/// scene camera's rectilinear view. A closed-form sky, cheap to prepare.
+#[test]
+fn the_cli_compares_a_projection_with_the_cpus_projection() {
+    if common::gpu_or_skip("panorama_gpu cli").is_none() {
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("skyscape-panorama-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("sky.toml");
+    std::fs::write(&scene, common::VALID).unwrap();
+    for (projection, width, height) in [("cubemap", "96", "16"), ("equirectangular", "64", "32")] {
+        let out = dir.join(format!("{projection}.png"));
+        let output = std::process::Command::new(env!("CARGO_BIN_EXE_skyscape"))
+            .args([
+                "render",
+                scene.to_str().unwrap(),
+                "--projection",
+                projection,
+            ])
+            .args(["--width", width, "--height", height, "--compare", "-o"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        let stdout = String::from_utf8_lossy(&output.stdout);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(output.status.success(), "{projection}: {stdout}{stderr}");
+        assert!(
+            stdout.contains("(six 16×16 faces)") && !stdout.contains("CPU reference renderer (six"),
+            "{projection}: the faces are drawn on the GPU: {stdout}"
+        );
+        let within = stdout
+            .split("--compare: ")
+            .nth(1)
+            .and_then(|rest| rest.split(' ').next())
+            .and_then(|percent| percent.parse::<f64>().ok())
+            .unwrap_or_else(|| panic!("{projection}: no --compare line: {stdout}"));
+        println!("{projection}: {within} % of pixels within 2 LSB of the CPU's {projection}");
+        assert!(within >= 99.0, "{projection}: {stdout}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

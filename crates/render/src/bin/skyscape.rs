@@ -585,18 +585,25 @@ fn render_projected(
     scene: &Scene,
     view: &mut PreparedScene,
     backends: wgpu::Backends,
-    cpu: bool,
+    on: FacesOn,
 ) -> Result<Rendered, Failure> {
     use render::projection::{assemble, face_size};
     let output = &scene.file.output;
     let side = face_size(output.projection, output.width, output.height);
     let camera = view.camera;
     let objects = view.sky_objects.clone();
-    let gpu = if cpu {
+    let gpu = if on == FacesOn::Cpu {
         None
     } else {
         match gpu_faces(view, backends, side) {
             Ok(faces) => Some(faces),
+            Err(reason) if on == FacesOn::Gpu => {
+                view.camera = camera;
+                view.sky_objects = objects;
+                return Err(Failure::Runtime(format!(
+                    "--compare needs a GPU image: {reason}"
+                )));
+            }
             Err(reason) => {
                 eprintln!("skyscape: {reason}; rendering on the CPU reference renderer");
                 None
@@ -626,6 +633,17 @@ fn render_projected(
         device: format!("{device} (six {side}×{side} faces)"),
         pass_seconds: Vec::new(),
     })
+}
+
+/// Where a projection's six faces are drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum FacesOn {
+    /// The CPU reference renderer.
+    Cpu,
+    /// The GPU, or the CPU (with a line on stderr) when no GPU renders them.
+    GpuOrCpu,
+    /// The GPU only (`--compare`).
+    Gpu,
 }
 
 /// Turns `view` along the cube face `forward`: a 90° square of `side` pixels.
@@ -797,7 +815,14 @@ fn render_command(args: RenderArgs) -> Result<(), Failure> {
         };
         let rendered = match gpu {
             Some(rendered) => rendered,
-            None if projected => render_projected(&frame_scene, &mut prepared, backends, args.cpu)?,
+            None if projected => {
+                let on = match (args.cpu, args.compare) {
+                    (true, _) => FacesOn::Cpu,
+                    (false, true) => FacesOn::Gpu,
+                    (false, false) => FacesOn::GpuOrCpu,
+                };
+                render_projected(&frame_scene, &mut prepared, backends, on)?
+            }
             None => render_cpu(&prepared).map_err(Failure::Runtime)?,
         };
         let numbered = (frames > 1).then_some(frame);
@@ -825,7 +850,13 @@ fn render_command(args: RenderArgs) -> Result<(), Failure> {
             print_passes(&prepared, &rendered);
         }
         if args.compare {
-            let cpu = render_cpu(&prepared).map_err(Failure::Runtime)?;
+            // A projection against the CPU's six faces resampled the same way, not
+            // against the scene camera's rectilinear view.
+            let cpu = if projected {
+                render_projected(&frame_scene, &mut prepared, backends, FacesOn::Cpu)?
+            } else {
+                render_cpu(&prepared).map_err(Failure::Runtime)?
+            };
             let within =
                 |lsb| render::tonemap::fraction_within_lsb(&rendered.pixels, &cpu.pixels, lsb);
             match (within(2), within(0)) {
