@@ -53,10 +53,11 @@ struct TerrainUniform {
 // The scene's cloud layers (celestial::clouds), casting shadows on the terrain.
 @group(2) @binding(4) var<storage, read> cloud_layers: array<CloudLayerUniforms>;
 
-// The volumetric cloud's shadow map (render::volume_clouds::CloudShadow, layout
-// identical to VolumeShadowUniform): texel (0, 0)'s corner east/north, the texel edge,
-// the plane's altitude, the direction toward the light (east/north/up), whether a map is
-// bound (0: no volume, or the moon's draw), the texels east × north.
+// One marched cloud's shadow map (render::volume_clouds::CloudShadow, layout identical
+// to VolumeShadowUniform): texel (0, 0)'s corner east/north, the texel edge, the plane's
+// altitude, the direction toward the light (east/north/up), whether a map is bound (0:
+// no such cloud, or none toward this draw's light), the texels east × north, where its
+// values start in volume_shadow_values.
 struct VolumeShadowUniform {
     origin: vec2<f32>,
     cell_size: f32,
@@ -64,10 +65,14 @@ struct VolumeShadowUniform {
     to_sun: vec3<f32>,
     enabled: u32,
     resolution: vec2<u32>,
-    padding: vec2<u32>,
+    offset: u32,
+    padding: u32,
 }
-@group(2) @binding(5) var<uniform> volume_shadow: VolumeShadowUniform;
-// Transmittance toward the sun per texel, east fastest (one element when none).
+// The marched clouds' shadow maps: [0] the volume's (or its billboards'), [1] the
+// [clouds.shell] deck's; the terrain reads their product.
+@group(2) @binding(5) var<uniform> volume_shadow: array<VolumeShadowUniform, 2>;
+// Transmittance toward the light per texel, east fastest, each map's from its offset
+// (one element when none).
 @group(2) @binding(6) var<storage, read> volume_shadow_values: array<f32>;
 
 struct TerrainVarying {
@@ -145,26 +150,32 @@ fn cloud_shadow_at(offset: vec3<f32>) -> f32 {
     return shadow;
 }
 
-fn volume_shadow_value(x: i32, y: i32) -> f32 {
-    let size = vec2<i32>(volume_shadow.resolution);
+fn volume_shadow_value(map: VolumeShadowUniform, x: i32, y: i32) -> f32 {
+    let size = vec2<i32>(map.resolution);
     if x < 0 || y < 0 || x >= size.x || y >= size.y {
         return 1.0;
     }
-    return volume_shadow_values[u32(x + size.x * y)];
+    return volume_shadow_values[map.offset + u32(x + size.x * y)];
 }
 
-// The volumetric cloud's shadow at world position `world` (x east, y up, z south).
-// Twin: render::volume_clouds::CloudShadow::at (the same map, bilinear between texel
-// centres with cloudlight's bilinear, 1 outside it).
-fn volume_cloud_shadow(world: vec3<f32>) -> f32 {
-    if volume_shadow.enabled == 0u {
+// One cloud's shadow at world position `world` (x east, y up, z south). Twin:
+// render::volume_clouds::CloudShadow::at (the same map, bilinear between texel centres
+// with cloudlight's bilinear, 1 outside it).
+fn shadow_map_at(map: VolumeShadowUniform, world: vec3<f32>) -> f32 {
+    if map.enabled == 0u {
         return 1.0;
     }
-    let texel = volume_shadow_texel(vec3<f32>(world.x, -world.z, world.y), volume_shadow.to_sun, volume_shadow.plane, volume_shadow.origin, volume_shadow.cell_size);
+    let texel = volume_shadow_texel(vec3<f32>(world.x, -world.z, world.y), map.to_sun, map.plane, map.origin, map.cell_size);
     let f = floor(texel);
     let i = i32(f.x);
     let j = i32(f.y);
-    return bilinear(volume_shadow_value(i, j), volume_shadow_value(i + 1, j), volume_shadow_value(i, j + 1), volume_shadow_value(i + 1, j + 1), texel.x - f.x, texel.y - f.y);
+    return bilinear(volume_shadow_value(map, i, j), volume_shadow_value(map, i + 1, j), volume_shadow_value(map, i, j + 1), volume_shadow_value(map, i + 1, j + 1), texel.x - f.x, texel.y - f.y);
+}
+
+// The marched clouds' shadow at `world`: the volume's times the shell's. Twin:
+// render::cpu_renderer's volume_shadow_at.
+fn volume_cloud_shadow(world: vec3<f32>) -> f32 {
+    return shadow_map_at(volume_shadow[0], world) * shadow_map_at(volume_shadow[1], world);
 }
 
 // The terrain's own radiance at world position `world`, lit by `light_at_point` (the

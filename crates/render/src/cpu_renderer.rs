@@ -558,14 +558,15 @@ fn precomputed_frame<'a>(
     }))
 }
 
-/// The volumetric cloud's shadow at world point `world` (x east, y up, z south, metres
-/// from the camera's ground point) toward `light` (1 without its map).
-/// The GPU terrain pass's `volume_cloud_shadow` does the same in f32.
+/// The marched clouds' shadow at world point `world` (x east, y up, z south, metres
+/// from the camera's ground point) toward `light`: the volume's map times the shell's
+/// (each 1 without its map). The GPU terrain pass's `volume_cloud_shadow` does the same
+/// in f32, in the same order.
 fn volume_shadow_at(light: &TerrainLight<'_>, world: Vec3) -> f32 {
-    light
-        .illuminant
-        .volume_shadow
-        .map_or(1.0, |shadow| shadow.at([world.x, -world.z, world.y]))
+    let at = |map: Option<&crate::volume_clouds::CloudShadow>| {
+        map.map_or(1.0, |shadow| shadow.at([world.x, -world.z, world.y]))
+    };
+    at(light.illuminant.volume_shadow) * at(light.illuminant.shell_shadow)
 }
 
 /// Bilinear weights and the four texels around a fractional texel position.

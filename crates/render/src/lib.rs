@@ -279,6 +279,7 @@ mod wgsl_tests {
                     to_sun,
                     enabled,
                     resolution,
+                    offset,
                     padding,
                 }),
                 wgsl("render::terrain", "VolumeShadowUniform"),

@@ -28,13 +28,26 @@
 //! up, when the terrain gets its moonlit draw) the deck is marched a second time lit by
 //! the moon (`atmos_light` of celestial's moonlit atmosphere along the moon, as the
 //! volume cloud's [`crate::volume_clouds::MoonlitVolume`]) and added through the moonlit
-//! air. The deck's shadow on the terrain is not modelled.
+//! air.
+//!
+//! # Shadow on the terrain
+//!
+//! Over a scene's terrain the deck shades it as the volume cloud does: cloudlight's
+//! shadow map of the shell's density field toward each light that is up ([`shell_shadow`],
+//! [`crate::volume_clouds::CloudShadow::over`]), baked once on the CPU at prepare, on the
+//! plane of the shell's base over the heightfield's extent swept along the light. Both
+//! renderers read the same values with the same bilinear lookup (`CloudShadow::at`, the
+//! terrain pass's `shadow_map_at`) and multiply the terrain's direct light by it times
+//! the volume cloud's map (the terrain pass holds one map per marched cloud:
+//! `crate::gpu::cloud_shadow`). At night the map is the moon's.
 //!
 //! # What it costs
 //!
-//! Nothing without the section: no shell, no march pipeline, no buffer. The GPU pass
-//! evaluates the noise procedurally per sample (cloudlight's `MarchShellPass` has no
-//! baked-noise variant), so there is no noise bake either.
+//! Nothing without the section: no shell, no march pipeline, no buffer, no shadow map.
+//! The GPU pass evaluates the noise procedurally per sample (cloudlight's
+//! `MarchShellPass` has no baked-noise variant), so there is no noise bake either. The
+//! shadow map is [`SHADOW_SIDE`]² texels × [`SHADOW_STEPS`] noise samples on the CPU
+//! (its time is [`PreparedShell::shadow_seconds`], printed by `skyscape explain`).
 
 use glam::DVec3;
 use serde::Deserialize;
@@ -47,7 +60,7 @@ use cloudlight::shell::{ProceduralWeather, WeatherMap};
 use cloudlight::{CloudShell, ShellError, ShellSettings};
 
 use crate::scene::{Scene, SceneError};
-use crate::volume_clouds::{ModelRef, world_to_enu};
+use crate::volume_clouds::{CloudShadow, ModelRef, world_to_enu};
 
 /// The most view-march steps per pixel.
 pub const MAX_VIEW_STEPS: u32 = 1024;
@@ -57,6 +70,12 @@ pub const MAX_LIGHT_STEPS: u32 = 256;
 pub const MAX_AMBIENT_STEPS: u32 = 64;
 /// The most multiple-scattering octaves.
 pub const MAX_OCTAVES: u32 = 8;
+/// Texels along the longer side of the deck's shadow map ([`shell_shadow`]): 125 m
+/// texels over the shipped scene's 16 km, 6 per period of its 800 m detail noise.
+pub const SHADOW_SIDE: u32 = 128;
+/// Midpoint steps of the deck's shadow map per span toward the light: 78 m steps
+/// through the shipped 800 m deck under a 40° sun.
+pub const SHADOW_STEPS: u32 = 16;
 
 /// `[clouds.shell]`: seed 003's procedural cloud shell (`cloudlight::CloudShell`)
 /// between two altitudes, its coverage and cloud type from cloudlight's procedural
@@ -211,6 +230,14 @@ pub struct PreparedShell {
     /// The moon and the moonlit ambient sky there: only in scenes with a moonlit sky
     /// (`PreparedScene::moonlit`), else `None` and no second march runs.
     pub moon: Option<Lighting<f32>>,
+    /// The deck's shadow on the terrain toward the sun ([`shell_shadow`]): `None` in a
+    /// scene without terrain or with the sun below 1°, and nothing is baked then.
+    pub shadow: Option<CloudShadow>,
+    /// Its shadow toward the moon, in scenes the moon lights (`None` otherwise, or with
+    /// the moon below 1°).
+    pub moon_shadow: Option<CloudShadow>,
+    /// Seconds the shadow maps took to bake on this machine's CPU (0 without one).
+    pub shadow_seconds: f64,
 }
 
 /// The `[clouds.shell]` key a cloudlight `ShellError` is about.
@@ -379,7 +406,9 @@ impl Scene {
 
     /// Builds and lights `[clouds.shell]` for a camera at planet-centred
     /// `camera_position` (m) and the sun along unit `sun` (world frame); at night
-    /// (`moonlit`) lit by the moon too.
+    /// (`moonlit`) lit by the moon too. Over `terrain` it bakes the deck's shadow maps
+    /// ([`shell_shadow`]) toward each light.
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn shell_cloud(
         &self,
         section: &CloudShellSection,
@@ -388,6 +417,7 @@ impl Scene {
         camera_position: DVec3,
         sun: DVec3,
         moonlit: Option<&crate::scene::prepare::MoonlitSky>,
+        terrain: Option<&crate::scene::prepare::PreparedTerrain>,
     ) -> Result<PreparedShell, SceneError> {
         let (shell, settings) = self.check_shell_cloud(section, atmosphere)?;
         // The middle of the shell straight above the camera.
@@ -423,13 +453,76 @@ impl Scene {
             )?),
             None => None,
         };
+        // The shadow maps: only over terrain, only toward a light that is up.
+        let started = std::time::Instant::now();
+        let shadow_toward = |toward: DVec3| terrain.and_then(|t| shell_shadow(&shell, t, toward));
+        let shadow = shadow_toward(sun);
+        let moon_shadow = moonlit.and_then(|moon| shadow_toward(moon.direction));
+        let shadow_seconds = if shadow.is_some() || moon_shadow.is_some() {
+            started.elapsed().as_secs_f64()
+        } else {
+            0.0
+        };
         Ok(PreparedShell {
             shell,
             settings,
             lighting,
             moon,
+            shadow,
+            moon_shadow,
+            shadow_seconds,
         })
     }
+}
+
+/// The deck's shadow on `terrain` toward unit world direction `toward` (the sun, or the
+/// moon at night), or `None` with the light below 1° (as the volume's,
+/// [`CloudShadow::new`]): cloudlight's shadow map of the shell's density field
+/// ([`CloudShadow::over`], `shadow_map::<f32, _>`, [`SHADOW_STEPS`] midpoint steps per
+/// span) on the plane of the shell's base altitude, over the heightfield's extent swept
+/// along the light to that plane from its lowest and highest points ([`SHADOW_SIDE`]
+/// texels along its longer side, none finer than the heightfield's). Every terrain point below the base reads its exact
+/// transmittance up to the map's sampling (clear air between it and the plane); a peak
+/// standing in the deck reads the whole column above the base along the light, the deck
+/// below it included (a darker shadow than the truth there). The plane is flat and the
+/// shell's base a sphere: at `d` metres from the camera's ground point the plane lies
+/// `d²/2R` inside the deck (5 m at 8 km), where the march starts a few metres in.
+pub fn shell_shadow(
+    shell: &cloudlight::CloudShell,
+    terrain: &crate::scene::prepare::PreparedTerrain,
+    toward: DVec3,
+) -> Option<CloudShadow> {
+    let to_light = world_to_enu(toward.to_array());
+    if to_light[2] < 1f64.to_radians().sin() {
+        return None;
+    }
+    let planet = shell.planet_radius();
+    let plane = shell.settings().inner_radius - planet;
+    let hf = &terrain.heightfield;
+    let [half_east, half_south] = terrain.map_offset();
+    let (low, high) = hf
+        .elevations()
+        .into_iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), h| {
+            (lo.min(h), hi.max(h))
+        });
+    // A point at altitude h meets the plane (plane − h)/l_z along the light (capped at
+    // 100 km as the volume's sweep).
+    let sweep = |h: f64| ((plane - h) / to_light[2]).clamp(-1e5, 1e5);
+    let (near, far) = (sweep(high), sweep(low));
+    let lo =
+        [0, 1].map(|a| -[half_east, half_south][a] + (near * to_light[a]).min(far * to_light[a]));
+    let hi =
+        [0, 1].map(|a| [half_east, half_south][a] + (near * to_light[a]).max(far * to_light[a]));
+    let longer = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+    CloudShadow::over(
+        shell,
+        [lo, hi],
+        hf.spacing().max(longer / f64::from(SHADOW_SIDE)),
+        [plane, planet],
+        to_light,
+        SHADOW_STEPS,
+    )
 }
 
 /// The scene camera as a pinhole camera in the shell's planet-centred frame (module
@@ -584,14 +677,18 @@ impl ShellCloudPass {
     }
 }
 
-/// What `skyscape explain` says of the shell's passes (the march, the moon's march at
-/// night, the composite).
+/// What `skyscape explain` says of the shell's steps (the shadow maps' bake at prepare,
+/// the march, the moon's march at night, the composite).
 pub fn shell_pass_plans(
     scene: &crate::scene::PreparedScene,
-) -> [(&'static str, Result<String, String>); 3] {
+) -> [(&'static str, Result<String, String>); 4] {
     let Some(cloud) = &scene.shell_cloud else {
         let none = || Err("no [clouds.shell]: no march".to_string());
         return [
+            (
+                "shell cloud shadow",
+                Err("no [clouds.shell]: no shadow map baked".into()),
+            ),
             ("shell cloud march", none()),
             ("moonlit shell march", none()),
             (
@@ -608,6 +705,7 @@ pub fn shell_pass_plans(
         LightMarch::Cone { .. } => 7,
     };
     [
+        ("shell cloud shadow", shell_shadow_plan(cloud)),
         (
             "shell cloud march",
             Ok(format!(
@@ -646,4 +744,33 @@ pub fn shell_pass_plans(
             ),
         ),
     ]
+}
+
+/// What `skyscape explain` says of the deck's shadow maps: baked at prepare (measured
+/// here), or why none is.
+fn shell_shadow_plan(cloud: &PreparedShell) -> Result<String, String> {
+    let maps: Vec<String> = [("the sun", &cloud.shadow), ("the moon", &cloud.moon_shadow)]
+        .into_iter()
+        .filter_map(|(light, map)| {
+            map.as_ref().map(|m| {
+                format!(
+                    "toward {light} {}×{} texels of {:.0} m",
+                    m.resolution[0], m.resolution[1], m.cell_size
+                )
+            })
+        })
+        .collect();
+    if maps.is_empty() {
+        return Err(
+            "no [terrain] under the deck, or no light above 1°: no shadow map baked".into(),
+        );
+    }
+    Ok(format!(
+        "cloudlight's shadow map of the deck over the terrain on the plane of its base \
+         ({}; {} steps per texel), baked on the CPU at prepare in {:.2} s (measured), read \
+         by the terrain pass times the volume's",
+        maps.join(", "),
+        SHADOW_STEPS,
+        cloud.shadow_seconds
+    ))
 }

@@ -154,22 +154,71 @@ impl CloudShadow {
             o[0] + f64::from(nx) * size + sx.max(0.0),
             o[1] + f64::from(ny) * size + sy.max(0.0),
         ];
-        let cell = size
+        Self::over(
+            volume,
+            [lo, hi],
+            size,
+            [o[2], 0.0],
+            to_sun,
+            SHADOW_MAP_STEPS,
+        )
+    }
+
+    /// The shadow map of any density field (the volume's, the shell's: cloudlight's
+    /// `shadow_map::<f32, _>`, rows in parallel) on the plane at altitude `plane[0]` (metres) covering the
+    /// east/north rectangle `footprint = [lo, hi]` (metres), in square texels no smaller
+    /// than `finest` metres and at most [`SHADOW_MAP_MAX_SIDE`] a side, `steps` midpoint
+    /// samples per span toward unit `to_sun` (east/north/up). `plane[1]` is the field's
+    /// frame's height of altitude 0 (0 for the volume's frame, the planet's radius for
+    /// the shell's planet-centred one): the map's texels are at `plane[0] + plane[1]` in
+    /// the field's frame and at altitude `plane[0]` in [`CloudShadow::at`]'s.
+    pub fn over<D: cloudlight::DensityField<f32> + Sync + ?Sized>(
+        field: &D,
+        footprint: [[f64; 2]; 2],
+        finest: f64,
+        plane: [f64; 2],
+        to_sun: [f64; 3],
+        steps: u32,
+    ) -> Option<Self> {
+        let [lo, hi] = footprint;
+        let cell = finest
             .max((hi[0] - lo[0]) / f64::from(SHADOW_MAP_MAX_SIDE))
             .max((hi[1] - lo[1]) / f64::from(SHADOW_MAP_MAX_SIDE));
         let resolution = [
             (((hi[0] - lo[0]) / cell).ceil() as u32).clamp(1, SHADOW_MAP_MAX_SIDE),
             (((hi[1] - lo[1]) / cell).ceil() as u32).clamp(1, SHADOW_MAP_MAX_SIDE),
         ];
-        let grid = cloudlight::shadow_map::ShadowGrid::new(lo, cell, resolution, o[2]).ok()?;
-        let plan =
-            cloudlight::shadow_map::ShadowMapPlan::new(grid, to_sun, SHADOW_MAP_STEPS).ok()?;
-        let values = cloudlight::shadow_map::shadow_map::<f32, _>(volume, &plan);
+        let grid =
+            cloudlight::shadow_map::ShadowGrid::new(lo, cell, resolution, plane[0] + plane[1])
+                .ok()?;
+        let plan = cloudlight::shadow_map::ShadowMapPlan::new(grid, to_sun, steps).ok()?;
+        // cloudlight's `shadow_map::<f32, _>`, its rows across threads: the same texels,
+        // the same values.
+        let values = {
+            use cloudlight::shadow_map::{shadow_texel, shadow_texel_centre};
+            use rayon::prelude::*;
+            let (origin, cell, ground) = (
+                grid.origin().map(|c| c as f32),
+                grid.cell_size() as f32,
+                grid.ground_height() as f32,
+            );
+            let to_sun = plan.to_sun().map(|c| c as f32);
+            let [nx, ny] = resolution;
+            (0..ny)
+                .into_par_iter()
+                .flat_map_iter(|j| {
+                    (0..nx).map(move |i| {
+                        let p = shadow_texel_centre([i, j], origin, cell, ground);
+                        shadow_texel(field, p, to_sun, plan.steps())
+                    })
+                })
+                .collect::<Vec<f32>>()
+        };
         Some(Self {
             origin: [lo[0] as f32, lo[1] as f32],
             cell_size: cell as f32,
             resolution,
-            plane: o[2] as f32,
+            plane: plane[0] as f32,
             to_sun: to_sun.map(|c| c as f32),
             values,
         })

@@ -133,7 +133,9 @@ fn planned(scene: &PreparedScene, name: &str) -> Option<bool> {
 /// transmittance < 0.5 (each changed). Every value finite and ≥ 0.
 fn hidden_covering_sky(scene: &Scene) -> (usize, usize, usize) {
     let (width, height) = (scene.file.output.width, scene.file.output.height);
-    let cloudy = scene.prepare().unwrap();
+    let mut cloudy = scene.prepare().unwrap();
+    // The deck's composite only: its shadow on the terrain is the_deck_shadows_the_terrain's.
+    cloudy.shell_cloud.as_mut().unwrap().shadow = None;
     let mut clear = scene.clone();
     clear.file.clouds = None;
     let clear = clear.prepare().unwrap();
@@ -306,6 +308,20 @@ fn the_moon_lights_the_deck_at_night() {
     let mut prepared = scene.prepare().unwrap();
     assert!(prepared.shell_cloud.as_ref().unwrap().moon.is_some());
     assert_eq!(planned(&prepared, "moonlit shell march"), Some(true));
+    // The deck's shadow on the moonlit terrain: toward the moon only (the sun is down).
+    let shell = prepared.shell_cloud.as_ref().unwrap();
+    let moon_map = shell
+        .moon_shadow
+        .as_ref()
+        .expect("a shadow map toward the moon");
+    assert!(shell.shadow.is_none());
+    eprintln!(
+        "night deck's shadow toward the moon: {}×{} texels, {} < 1, baked in {:.3} s",
+        moon_map.resolution[0],
+        moon_map.resolution[1],
+        moon_map.values.iter().filter(|&&t| t < 1.0).count(),
+        shell.shadow_seconds
+    );
     let gpu = common::gpu_or_skip("render::shell_clouds night").map(|gpu| {
         let image = gpu_pixels(gpu, &prepared);
         let cpu = cpu_pixels(&prepared);
@@ -367,4 +383,80 @@ fn the_moon_lights_the_deck_at_night() {
             deck.len()
         );
     }
+}
+
+/// The deck's shadow on the terrain (cloudlight's shadow map of the shell, baked over the
+/// heightfield): the shipped deck at 96×54 from the valley against the same scene
+/// without it. Over terrain pixels the deck is not in front of (its march leaves them
+/// untouched), a pixel is darker only where the map toward the sun is < 1 there, and
+/// many are; nowhere is one brighter.
+#[test]
+fn the_deck_shadows_the_terrain() {
+    let (width, height) = (96, 54);
+    let scene = shipped(width, height);
+    let cloudy = scene.prepare().unwrap();
+    let cloud = cloudy.shell_cloud.as_ref().unwrap();
+    let map = cloud
+        .shadow
+        .as_ref()
+        .expect("a shadow map over the terrain");
+    assert!(cloud.moon_shadow.is_none());
+    assert_eq!(planned(&cloudy, "shell cloud shadow"), Some(true));
+    let shadowed_texels = map.values.iter().filter(|&&t| t < 1.0).count();
+    let darkest = map.values.iter().copied().fold(1.0f32, f32::min);
+    eprintln!(
+        "stratocumulus shadow map: {}×{} texels of {:.1} m on the plane at {} m, baked in \
+         {:.3} s; {shadowed_texels} texels < 1, darkest {darkest:.3e}",
+        map.resolution[0], map.resolution[1], map.cell_size, map.plane, cloud.shadow_seconds
+    );
+    assert!(map.values.iter().all(|t| (0.0..=1.0).contains(t)));
+    let mut clear = scene.clone();
+    clear.file.clouds = None;
+    let clear = clear.prepare().unwrap();
+    assert_eq!(planned(&clear, "shell cloud shadow"), Some(false));
+    let with = render::cpu_renderer::render_radiance(&cloudy).unwrap();
+    let without = render::cpu_renderer::render_radiance(&clear).unwrap();
+    let unlit = &unlit(cloud);
+    let camera = shell_camera(&cloudy.camera).unwrap();
+    let r = cloudy.atmosphere.planet_radius;
+    let eye = cloudy.camera_position - glam::DVec3::new(0.0, r, 0.0);
+    let (mut terrain, mut darker, mut lit_darker, mut brighter) = (0, 0, 0, 0);
+    let mut unchanged_under = 0;
+    for y in 0..height {
+        for x in 0..width {
+            let i = (y * width + x) as usize;
+            let Some(d) = without[i].terrain_distance else {
+                continue;
+            };
+            let m = march_shell_pixel(unlit, &camera, [width, height], [x, y], d);
+            if m.transmittance < 1.0 {
+                continue; // the deck in front: its composite changes the pixel too
+            }
+            terrain += 1;
+            let view = atmos::frame::frame_view_direction([x, y], &cloudy.camera);
+            let p: [f32; 3] = std::array::from_fn(|a| eye.to_array()[a] as f32 + view[a] * d);
+            let shadow = map.at([p[0], -p[2], p[1]]);
+            let (a, b) = (with[i].radiance, without[i].radiance);
+            if a.iter().zip(b).any(|(a, b)| *a > b) {
+                brighter += 1;
+            }
+            if a.iter().zip(b).any(|(a, b)| *a < b) {
+                darker += 1;
+                if shadow == 1.0 {
+                    lit_darker += 1;
+                }
+            } else if shadow < 0.9 {
+                // Unlit by the sun anyway (facing away, or in the terrain's own shadow).
+                unchanged_under += 1;
+            }
+        }
+    }
+    eprintln!(
+        "stratocumulus 96×54: {terrain} terrain pixels not behind the deck, {darker} darker \
+         under its shadow ({lit_darker} of them where the map reads 1), {brighter} brighter; \
+         {unchanged_under} unchanged where the map is < 0.9 (no direct sun there anyway)"
+    );
+    assert_eq!(brighter, 0);
+    assert_eq!(lit_darker, 0);
+    assert!(darker > 100, "{darker} of {terrain}");
 }

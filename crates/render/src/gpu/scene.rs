@@ -100,8 +100,9 @@ pub struct TerrainUniform {
     pub padding2: f32,
 }
 
-/// The volumetric cloud's shadow map parameters of a terrain draw (layout identical to
-/// WGSL `VolumeShadowUniform` in `shaders/render/terrain.wgsl`).
+/// One marched cloud's shadow map parameters of a terrain draw (layout identical to WGSL
+/// `VolumeShadowUniform` in `shaders/render/terrain.wgsl`; a draw holds two, the volume's
+/// and the shell's: `super::cloud_shadow`).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct VolumeShadowUniform {
@@ -113,12 +114,14 @@ pub struct VolumeShadowUniform {
     pub plane: f32,
     /// Unit direction toward the light, east/north/up.
     pub to_sun: [f32; 3],
-    /// 1 when a map is bound, 0 otherwise (no volume cloud, or the moon's draw).
+    /// 1 when a map is bound, 0 otherwise (no such cloud, or none toward this light).
     pub enabled: u32,
     /// Texels east × north.
     pub resolution: [u32; 2],
+    /// Where the map's values start in the terrain pass's values buffer (elements).
+    pub offset: u32,
     /// Alignment.
-    pub padding: [u32; 2],
+    pub padding: u32,
 }
 
 impl VolumeShadowUniform {
@@ -130,11 +133,12 @@ impl VolumeShadowUniform {
         to_sun: [0.0, 0.0, 1.0],
         enabled: 0,
         resolution: [1, 1],
-        padding: [0; 2],
+        offset: 0,
+        padding: 0,
     };
 
-    /// The parameters of `shadow`'s map.
-    pub fn of(shadow: &crate::volume_clouds::CloudShadow) -> Self {
+    /// The parameters of `shadow`'s map, its values from element `offset` on.
+    pub fn of(shadow: &crate::volume_clouds::CloudShadow, offset: u32) -> Self {
         Self {
             origin: shadow.origin,
             cell_size: shadow.cell_size,
@@ -142,7 +146,8 @@ impl VolumeShadowUniform {
             to_sun: shadow.to_sun,
             enabled: 1,
             resolution: shadow.resolution,
-            padding: [0; 2],
+            offset,
+            padding: 0,
         }
     }
 }
@@ -176,9 +181,11 @@ struct TerrainPass {
     lod: TerrainLod,
     cloud_layers: wgpu::Buffer,
     cloud_layer_capacity: usize,
-    /// The volumetric cloud's shadow map parameters (sun draw) and values.
+    /// The marched clouds' shadow map parameters (sun draw) and values
+    /// (`super::cloud_shadow`), and which clouds have room (the volume, the shell).
     volume_shadow: wgpu::Buffer,
     volume_shadow_values: wgpu::Buffer,
+    shadow_clouds: [bool; 2],
     /// The terrain lit by the moon (scenes with a moonlit sky): drawn again over the
     /// sunlit terrain with the moonlit tables, added.
     moon: Option<MoonTerrain>,
@@ -192,7 +199,7 @@ struct MoonTerrain {
     uniform: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     cloud_layers: wgpu::Buffer,
-    /// The volume's shadow map parameters toward the moon (its values share the sun
+    /// The clouds' shadow map parameters toward the moon (their values share the sun
     /// draw's buffer: a scene the moon lights has the sun down, hence no sun map).
     volume_shadow: wgpu::Buffer,
 }
@@ -629,7 +636,10 @@ impl SceneRenderer {
                 rung.as_ref(),
                 terrain,
                 scene.cloud_layers.len(),
-                scene.volume_cloud.is_some() || scene.billboard_cloud.is_some(),
+                [
+                    scene.volume_cloud.is_some() || scene.billboard_cloud.is_some(),
+                    scene.shell_cloud.is_some(),
+                ],
             )?),
             None => None,
         };
@@ -853,7 +863,7 @@ impl SceneRenderer {
         rung: Option<&super::rungs::RungPasses>,
         terrain: &PreparedTerrain,
         cloud_layer_capacity: usize,
-        volume_cloud: bool,
+        shadow_clouds: [bool; 2],
     ) -> Result<TerrainPass, RenderError> {
         // The cloud layers whose shadows fall on the terrain (one unused element when
         // the scene has none: a binding may not be empty).
@@ -919,13 +929,9 @@ impl SceneRenderer {
             })
         };
         let uniform = uniform_buffer("render terrain uniform");
-        // The volume's shadow map: its largest size when the scene has a volume cloud
-        // (the map's extent follows the sun), one unused element otherwise.
-        let shadow_texels = if volume_cloud {
-            (crate::volume_clouds::SHADOW_MAP_MAX_SIDE as usize).pow(2)
-        } else {
-            1
-        };
+        // The clouds' shadow maps: the largest map's size for each marched cloud of the
+        // scene (the map's extent follows the sun), one unused element without one.
+        let shadow_texels = super::cloud_shadow::capacity(shadow_clouds);
         let volume_shadow_values = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("render terrain volume shadow map"),
             size: (shadow_texels * 4) as u64,
@@ -935,7 +941,7 @@ impl SceneRenderer {
         let shadow_uniform = |label| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
-                contents: bytemuck::bytes_of(&VolumeShadowUniform::DISABLED),
+                contents: bytemuck::bytes_of(&super::cloud_shadow::NONE),
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             })
         };
@@ -1140,6 +1146,7 @@ impl SceneRenderer {
             cloud_layer_capacity,
             volume_shadow,
             volume_shadow_values,
+            shadow_clouds,
             moon,
         })
     }
@@ -1330,49 +1337,16 @@ impl SceneRenderer {
             };
             let uniform = uniform_for(&lighting, &scene.sun_light());
             queue.write_buffer(&pass.uniform, 0, bytemuck::bytes_of(&uniform));
-            // The volume's shadow map (the CPU renderer reads the same values).
-            let shadow = scene
-                .sun_light()
-                .volume_shadow
-                .or(scene.moon_light().and_then(|moon| moon.volume_shadow));
-            let shadow_uniform = match shadow {
-                Some(map) if (map.values.len() * 4) as u64 <= pass.volume_shadow_values.size() => {
-                    queue.write_buffer(
-                        &pass.volume_shadow_values,
-                        0,
-                        bytemuck::cast_slice(&map.values),
-                    );
-                    VolumeShadowUniform::of(map)
-                }
-                Some(map) => {
-                    return Err(RenderError::InvalidParameter {
-                        field: "clouds.volume",
-                        value: format!("a {}×{} shadow map", map.resolution[0], map.resolution[1]),
-                        reason: "the renderer was built for a scene without a volume cloud",
-                    });
-                }
-                None => VolumeShadowUniform::DISABLED,
-            };
-            // (The sun's draw reads the map only when it is the sun's.)
-            let sun_shadow = match scene.sun_light().volume_shadow {
-                Some(_) => shadow_uniform,
-                None => VolumeShadowUniform::DISABLED,
-            };
+            // The clouds' shadow maps (the CPU renderer reads the same values).
+            let [sun_shadow, moon_shadow] = super::cloud_shadow::write(
+                queue,
+                &pass.volume_shadow_values,
+                scene,
+                pass.shadow_clouds,
+            )?;
             queue.write_buffer(&pass.volume_shadow, 0, bytemuck::bytes_of(&sun_shadow));
             match (&pass.moon, scene.moon_light()) {
                 (Some(moon_pass), Some(moon)) => {
-                    // One light has a map (the moon's only with the sun down): written above.
-                    let moon_shadow = match (moon.volume_shadow, scene.sun_light().volume_shadow) {
-                        (Some(_), None) => shadow_uniform,
-                        (None, _) => VolumeShadowUniform::DISABLED,
-                        (Some(_), Some(_)) => {
-                            return Err(RenderError::InvalidParameter {
-                                field: "clouds.volume",
-                                value: "shadow maps toward the sun and the moon".into(),
-                                reason: "the terrain pass holds one volume shadow map",
-                            });
-                        }
-                    };
                     queue.write_buffer(
                         &moon_pass.volume_shadow,
                         0,

@@ -161,6 +161,10 @@ pub struct Illuminant<'a> {
     /// The volumetric cloud's shadow map toward this light (the sun's, or at night the
     /// moon's: `crate::volume_clouds::MoonlitVolume::shadow`).
     pub volume_shadow: Option<&'a crate::volume_clouds::CloudShadow>,
+    /// The `[clouds.shell]` deck's shadow map toward this light
+    /// (`crate::shell_clouds::PreparedShell::shadow`, or `moon_shadow`): multiplies the
+    /// volume's.
+    pub shell_shadow: Option<&'a crate::volume_clouds::CloudShadow>,
 }
 
 impl std::fmt::Debug for Illuminant<'_> {
@@ -262,6 +266,7 @@ impl PreparedScene {
                         .as_ref()
                         .and_then(|b| b.shadow.as_ref())
                 }),
+            shell_shadow: self.shell_cloud.as_ref().and_then(|s| s.shadow.as_ref()),
         }
     }
 
@@ -285,6 +290,10 @@ impl PreparedScene {
                         .and_then(|b| b.moon.as_ref())
                         .and_then(|m| m.shadow.as_ref())
                 }),
+            shell_shadow: self
+                .shell_cloud
+                .as_ref()
+                .and_then(|s| s.moon_shadow.as_ref()),
         })
     }
 
@@ -525,6 +534,7 @@ impl Scene {
                 camera_position,
                 sun,
                 moonlit.as_ref(),
+                terrain.as_ref(),
             )?),
             None => None,
         };

@@ -1,0 +1,81 @@
+//! The marched clouds' shadow maps in the terrain pass: two slots, `[0]` the
+//! `[clouds.volume]` cloud's (marched or drawn as billboards), `[1]` the `[clouds.shell]`
+//! deck's, each a `crate::volume_clouds::CloudShadow` baked on the CPU at prepare (the
+//! CPU renderer reads the same values). One storage buffer holds both maps' values,
+//! each from its slot's offset, and a uniform per terrain draw (the sun's, the moon's)
+//! holds the two maps' parameters (WGSL `array<VolumeShadowUniform, 2>` in
+//! `shaders/render/terrain.wgsl`, whose `volume_cloud_shadow` multiplies them, as
+//! `render::cpu_renderer` does). A slot has room only when the scene has that cloud.
+
+use super::scene::VolumeShadowUniform;
+use crate::RenderError;
+use crate::scene::PreparedScene;
+use crate::volume_clouds::{CloudShadow, SHADOW_MAP_MAX_SIDE};
+
+/// The largest map's texels (a slot's room).
+const SLOT_TEXELS: u32 = SHADOW_MAP_MAX_SIDE * SHADOW_MAP_MAX_SIDE;
+
+/// Where each slot's values start in the buffer (elements), for a scene with the volume
+/// cloud (`clouds[0]`) and the shell (`clouds[1]`).
+pub(crate) fn offsets(clouds: [bool; 2]) -> [u32; 2] {
+    [0, if clouds[0] { SLOT_TEXELS } else { 0 }]
+}
+
+/// The values buffer's elements: room for each cloud's map, one unused element when
+/// there is none (a binding may not be empty).
+pub(crate) fn capacity(clouds: [bool; 2]) -> usize {
+    (clouds.iter().filter(|&&c| c).count() * SLOT_TEXELS as usize).max(1)
+}
+
+/// Both slots disabled: the contents of a draw's uniform without clouds.
+pub(crate) const NONE: [VolumeShadowUniform; 2] = [VolumeShadowUniform::DISABLED; 2];
+
+/// Writes the scene's maps into `values` (built for `clouds`) and returns the two draws'
+/// uniforms, `[sun, moon]`. One light at most has a map per cloud (a scene the moon
+/// lights has the sun below the horizon, and a map needs its light above 1°), so the
+/// moon's map takes the slot the sun's would; a map for a cloud the buffer has no room
+/// for is an error naming the cloud.
+pub(crate) fn write(
+    queue: &wgpu::Queue,
+    values: &wgpu::Buffer,
+    scene: &PreparedScene,
+    clouds: [bool; 2],
+) -> Result<[[VolumeShadowUniform; 2]; 2], RenderError> {
+    let sun = scene.sun_light();
+    let moon = scene.moon_light();
+    fn maps<'a>(light: Option<&crate::scene::Illuminant<'a>>) -> [Option<&'a CloudShadow>; 2] {
+        light.map_or([None; 2], |l| [l.volume_shadow, l.shell_shadow])
+    }
+    let (sun_maps, moon_maps) = (maps(Some(&sun)), maps(moon.as_ref()));
+    let offsets = offsets(clouds);
+    let mut uniforms = [NONE; 2];
+    for slot in 0..2 {
+        let field = ["clouds.volume", "clouds.shell"][slot];
+        let (light, map) = match (sun_maps[slot], moon_maps[slot]) {
+            (Some(map), None) => (0, map),
+            (None, Some(map)) => (1, map),
+            (None, None) => continue,
+            (Some(_), Some(_)) => {
+                return Err(RenderError::InvalidParameter {
+                    field,
+                    value: "shadow maps toward the sun and the moon".into(),
+                    reason: "the terrain pass holds one shadow map per cloud",
+                });
+            }
+        };
+        if !clouds[slot] || map.values.len() > SLOT_TEXELS as usize {
+            return Err(RenderError::InvalidParameter {
+                field,
+                value: format!("a {}×{} shadow map", map.resolution[0], map.resolution[1]),
+                reason: "the renderer was built for a scene without this cloud",
+            });
+        }
+        queue.write_buffer(
+            values,
+            u64::from(offsets[slot]) * 4,
+            bytemuck::cast_slice(&map.values),
+        );
+        uniforms[light][slot] = VolumeShadowUniform::of(map, offsets[slot]);
+    }
+    Ok(uniforms)
+}
