@@ -274,9 +274,11 @@ pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, Rend
                 }
             });
     }
-    if let Some(shell) = &scene.shell_cloud {
-        // The [clouds.shell] deck (crate::shell_clouds), before the volume cloud; at
-        // night its march lit by the moon is added through the moonlit tables.
+    // A marched cloud alone; with both, the two by depth per pixel (crate::cloud_order).
+    let alone = scene.shell_cloud.is_none() || scene.volume_cloud.is_none();
+    if let (Some(shell), true) = (&scene.shell_cloud, alone) {
+        // The [clouds.shell] deck (crate::shell_clouds); at night its march lit by the
+        // moon is added through the moonlit tables.
         let tables = precomputed.as_ref().map(|p| (p.luts, &p.frame));
         let moon = match (&shell.moon, scene.moon_light()) {
             (Some(_), Some(light)) => Some((precomputed_frame(&light, camera, false)?, light)),
@@ -287,8 +289,21 @@ pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, Rend
             .map(|(frame, light)| (light, frame.as_ref().map(|p| (p.luts, &p.frame))));
         crate::shell_clouds::composite_shell_cloud(scene, shell, tables, moon, &mut out)?;
     }
-    if let Some(cloud) = &scene.volume_cloud {
+    if let (Some(cloud), true) = (&scene.volume_cloud, alone) {
         composite_volume_cloud(scene, cloud, precomputed.as_ref(), &mut out)?;
+    }
+    if let (Some(shell), Some(cloud)) = (&scene.shell_cloud, &scene.volume_cloud) {
+        let tables = precomputed.as_ref().map(|p| (p.luts, &p.frame));
+        let moon = match scene.moon_light() {
+            Some(light) if shell.moon.is_some() || cloud.moon.is_some() => {
+                Some((precomputed_frame(&light, camera, false)?, light))
+            }
+            _ => None,
+        };
+        let moon = moon
+            .as_ref()
+            .map(|(frame, light)| (light, frame.as_ref().map(|p| (p.luts, &p.frame))));
+        crate::cloud_order::composite_clouds_by_depth(scene, shell, cloud, tables, moon, &mut out)?;
     }
     if let Some(cloud) = &scene.billboard_cloud {
         let tables = precomputed.as_ref().map(|p| (p.luts, &p.frame));

@@ -17,6 +17,7 @@
 
 pub mod aerial_vertex;
 pub mod billboard_clouds;
+pub mod cloud_order;
 pub mod clouds;
 pub mod cpu_renderer;
 pub mod error;
@@ -131,6 +132,14 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {
         name: "render::volume_clouds",
         source: include_str!("../shaders/volume_clouds.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::cloud_order",
+        source: include_str!("../shaders/cloud_order.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::cloud_order_composite",
+        source: include_str!("../shaders/cloud_order_composite.wgsl"),
     },
     skyscape_wgsl::Module {
         name: "render::billboard_air",

@@ -738,29 +738,73 @@ pub(crate) fn composite_marched_cloud(
             for (column, pixel) in pixels.iter_mut().enumerate() {
                 let xy = [column as u32, row as u32];
                 let behind = pixel.terrain_distance.unwrap_or(f32::INFINITY);
-                let result = march(lighting, xy, behind);
-                if !cloud_in_front(&result, behind) {
+                let cloud = MarchedCloud {
+                    lighting,
+                    tables,
+                    moon,
+                    march: &march,
+                };
+                let Some(seen) = cloud.seen(scene, &sun, xy, behind)? else {
                     continue;
-                }
-                let view = atmos::frame::frame_view_direction(xy, camera);
-                let (transmittance, radiance) =
-                    air_in_front(scene, &sun, tables, view, result.depth)?;
-                let mut seen = cloud_through_air(&result, transmittance, radiance);
-                if let Some((moon_lighting, light, moon_tables)) = moon {
-                    let lit = march(moon_lighting, xy, behind);
-                    let (transmittance, radiance) =
-                        air_in_front(scene, light, moon_tables, view, lit.depth)?;
-                    let added = cloud_through_air(&lit, transmittance, radiance);
-                    for (value, a) in seen.iter_mut().zip(added) {
-                        *value += a;
-                    }
-                }
-                for (value, s) in pixel.radiance.iter_mut().zip(seen) {
-                    *value = s + result.transmittance * *value;
+                };
+                for (value, s) in pixel.radiance.iter_mut().zip(seen.radiance) {
+                    *value = s + seen.transmittance * *value;
                 }
             }
             Ok::<(), crate::RenderError>(())
         })
+}
+
+/// A marched cloud as the CPU composites it (the volume's, the shell's): the sun's
+/// lighting and tables, at night the moon's lighting, light and tables, and its march
+/// per pixel (`march(lighting, pixel, behind)`, up to `behind` metres).
+pub(crate) struct MarchedCloud<'a, M> {
+    pub(crate) lighting: &'a Lighting<f32>,
+    pub(crate) tables: AirTables<'a>,
+    pub(crate) moon: Option<(
+        &'a Lighting<f32>,
+        &'a crate::scene::Illuminant<'a>,
+        AirTables<'a>,
+    )>,
+    pub(crate) march: &'a M,
+}
+
+impl<M: Fn(&Lighting<f32>, [u32; 2], f32) -> MarchResult<f32>> MarchedCloud<'_, M> {
+    /// The cloud at pixel `xy` in front of a scene `behind` metres away (`sun`: the
+    /// scene's sun light): `None` where it has no opacity in front ([`cloud_in_front`]),
+    /// else its light seen through the air ([`cloud_through_air`] with the sun's air
+    /// from [`air_in_front`], plus the moon's at night), its transmittance and depth;
+    /// the caller adds `T_c · L_behind`.
+    pub(crate) fn seen(
+        &self,
+        scene: &crate::scene::PreparedScene,
+        sun: &crate::scene::Illuminant<'_>,
+        xy: [u32; 2],
+        behind: f32,
+    ) -> Result<Option<crate::cloud_order::SeenCloud>, crate::RenderError> {
+        let march = self.march;
+        let result = march(self.lighting, xy, behind);
+        if !cloud_in_front(&result, behind) {
+            return Ok(None);
+        }
+        let view = atmos::frame::frame_view_direction(xy, &scene.camera);
+        let (transmittance, radiance) = air_in_front(scene, sun, self.tables, view, result.depth)?;
+        let mut seen = cloud_through_air(&result, transmittance, radiance);
+        if let Some((moon_lighting, light, moon_tables)) = self.moon {
+            let lit = march(moon_lighting, xy, behind);
+            let (transmittance, radiance) =
+                air_in_front(scene, light, moon_tables, view, lit.depth)?;
+            let added = cloud_through_air(&lit, transmittance, radiance);
+            for (value, a) in seen.iter_mut().zip(added) {
+                *value += a;
+            }
+        }
+        Ok(Some(crate::cloud_order::SeenCloud {
+            radiance: seen,
+            transmittance: result.transmittance,
+            depth: result.depth,
+        }))
+    }
 }
 
 /// The composite pass's uniform (layout identical to WGSL `VolumeComposite`).

@@ -5,7 +5,9 @@
 //! the air in front of the cloud per pixel and light (`shaders/render/volume_air.wgsl`:
 //! atmos' `aerial_perspective`, the CPU's function) and the composite render pass
 //! (`shaders/render/volume_clouds.wgsl`). Each cloud supplies only its march, prepared
-//! per frame up to the distance buffer.
+//! per frame up to the distance buffer. A scene with both the shell and the volume cloud
+//! records only their marches and air here ([`CloudComposite::encode_marches`]) and
+//! composites the two by depth in one pass (`super::cloud_order`).
 
 use crate::volume_clouds::{
     VolumeAirParams, VolumeComposite, VolumeDistanceParams, buffer_entry, compute_pipeline,
@@ -384,16 +386,8 @@ impl<M: CloudMarch> CloudComposite<M> {
             });
             lit.air = Some((air, group));
         }
-        fn buffers<M: CloudMarch>(
-            lit: &LitMarch<M>,
-        ) -> Result<(&wgpu::Buffer, &wgpu::Buffer), crate::RenderError> {
-            let image = lit.march.image().ok_or(crate::RenderError::NotPrepared)?;
-            let (air, _) = lit.air.as_ref().ok_or(crate::RenderError::NotPrepared)?;
-            Ok((image, air))
-        }
-        let (image, air) = buffers(&self.sun)?;
         // Without the moon its bindings hold the sun's buffers (unread: moonlit = 0).
-        let (moon_image, moon_air) = buffers(self.moon.as_ref().unwrap_or(&self.sun))?;
+        let [image, air, moon_image, moon_air] = self.seen_buffers()?;
         self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some(&format!("render {name} clouds")),
             layout: &self.layout,
@@ -421,16 +415,60 @@ impl<M: CloudMarch> CloudComposite<M> {
         moon_luts: Option<&atmos::gpu::AtmosphereLuts>,
         times: CloudTimes<'_>,
     ) -> Result<(), crate::RenderError> {
-        let name = self.name;
-        let groups = self.groups.ok_or(crate::RenderError::NotPrepared)?;
         let bind_group = self
             .bind_group
             .as_ref()
             .ok_or(crate::RenderError::NotPrepared)?;
-        self.sun.march.encode(encoder, times.march)?;
+        self.encode_marches(encoder, luts, moon_luts, times.march, times.moon)?;
+        draw_fullscreen(
+            encoder,
+            &format!("render {} clouds", self.name),
+            target,
+            times.composite,
+            &self.pipeline,
+            bind_group,
+        );
+        Ok(())
+    }
+
+    /// Whether the cloud was built lit by the moon too (a second march and air pass).
+    pub(crate) fn moonlit(&self) -> bool {
+        self.moon.is_some()
+    }
+
+    /// The buffers a composite reads (after `prepare`): the sun's march and its air,
+    /// then the moon's march and its air (the sun's again when not [`Self::moonlit`]).
+    pub(crate) fn seen_buffers(&self) -> Result<[&wgpu::Buffer; 4], crate::RenderError> {
+        fn buffers<M: CloudMarch>(
+            lit: &LitMarch<M>,
+        ) -> Result<(&wgpu::Buffer, &wgpu::Buffer), crate::RenderError> {
+            let image = lit.march.image().ok_or(crate::RenderError::NotPrepared)?;
+            let (air, _) = lit.air.as_ref().ok_or(crate::RenderError::NotPrepared)?;
+            Ok((image, air))
+        }
+        let (image, air) = buffers(&self.sun)?;
+        let (moon_image, moon_air) = buffers(self.moon.as_ref().unwrap_or(&self.sun))?;
+        Ok([image, air, moon_image, moon_air])
+    }
+
+    /// Records the marches (after [`CloudDistance::encode`]; `march` and `moon`: their
+    /// timestamp writes) and the air passes with each light's tables (`moon_luts`: the
+    /// moonlit ones, at night), each a compute pass of its own: what a composite reads.
+    pub(crate) fn encode_marches(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        luts: &atmos::gpu::AtmosphereLuts,
+        moon_luts: Option<&atmos::gpu::AtmosphereLuts>,
+        march: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        moon: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), crate::RenderError> {
+        let name = self.name;
+        let groups = self.groups.ok_or(crate::RenderError::NotPrepared)?;
+        self.sun.march.encode(encoder, march)?;
+        let moon_times = moon;
         let moon = match (&self.moon, moon_luts) {
             (Some(moon), Some(moon_luts)) => {
-                moon.march.encode(encoder, times.moon)?;
+                moon.march.encode(encoder, moon_times)?;
                 Some((moon, moon_luts))
             }
             (None, _) => None,
@@ -449,14 +487,6 @@ impl<M: CloudMarch> CloudComposite<M> {
             pass.set_bind_group(2, air_group, &[]);
             pass.dispatch_workgroups(groups[0], groups[1], 1);
         }
-        draw_fullscreen(
-            encoder,
-            &format!("render {name} clouds"),
-            target,
-            times.composite,
-            &self.pipeline,
-            bind_group,
-        );
         Ok(())
     }
 }

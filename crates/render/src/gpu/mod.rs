@@ -9,6 +9,7 @@
 //! * [`timer::PassTimes`]: GPU timestamps per pass.
 
 pub(crate) mod cloud_composite;
+pub(crate) mod cloud_order;
 pub(crate) mod cloud_shadow;
 pub mod present;
 pub mod rungs;

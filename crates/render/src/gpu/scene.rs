@@ -14,7 +14,8 @@
 //! 4. render: the cloud layers, farthest first, hidden where the terrain is nearer;
 //!    then the `[clouds.volume]` cloud: the terrain's depth as a distance per pixel
 //!    and cloudlight's march up to it (two compute passes), composited over the scene
-//!    (`render::volume_clouds`);
+//!    (`render::volume_clouds`); with the `[clouds.shell]` deck too, the two are
+//!    composited by depth per pixel in one pass (`render::cloud_order`);
 //! 5. compute: the display pass (tone map, sRGB, dither) into RGBA8 pixels.
 //!
 //! The half-float HDR target holds radiance × the scene's exposure (a night's radiance
@@ -226,6 +227,8 @@ pub struct SceneRenderer {
     /// The terrain's distance per pixel the marched clouds stop at (with a volume or a
     /// shell cloud): one pass a frame for both.
     cloud_distance: Option<super::cloud_composite::CloudDistance>,
+    /// The shell and the volume cloud composited by depth (a scene with both).
+    cloud_order: Option<super::cloud_order::CloudOrderPass>,
     hdr: wgpu::Texture,
     hdr_view: wgpu::TextureView,
     depth_view: wgpu::TextureView,
@@ -688,6 +691,12 @@ impl SceneRenderer {
         } else {
             None
         };
+        // Both marched clouds: one composite of the two by depth per pixel.
+        let cloud_order = if volume_cloud.is_some() && shell_cloud.is_some() {
+            Some(super::cloud_order::CloudOrderPass::new(device, HDR)?)
+        } else {
+            None
+        };
 
         // Only a scene drawing [clouds.volume] as billboards builds their pipeline.
         let billboard_cloud = match &scene.billboard_cloud {
@@ -822,6 +831,11 @@ impl SceneRenderer {
                 }
                 labels.push("shell clouds");
             }
+            if cloud_order.is_some() {
+                // Their one composite by depth replaces "volume clouds" and "shell clouds".
+                labels.retain(|l| !matches!(*l, "volume clouds" | "shell clouds"));
+                labels.push("clouds by depth");
+            }
             labels.push("display");
             PassTimes::new(device, queue, labels)
         } else {
@@ -843,6 +857,7 @@ impl SceneRenderer {
             billboard_cloud,
             shell_cloud,
             cloud_distance,
+            cloud_order,
             hdr,
             hdr_view,
             depth_view,
@@ -1228,6 +1243,12 @@ impl SceneRenderer {
             (None, None) => {}
             (built, _) => return Err(differs("clouds.shell", built.is_some())),
         }
+        if let (Some(order), Some(volume), Some(shell)) =
+            (&mut self.cloud_order, &self.volume_cloud, &self.shell_cloud)
+        {
+            // After both clouds' marches and air: their buffers.
+            order.prepare(device, queue, scene, volume, shell, depth)?;
+        }
         match (&mut self.billboard_cloud, &scene.billboard_cloud) {
             (Some(pass), Some(cloud)) => pass.prepare(&self.device, queue, scene, cloud)?,
             (None, None) => {}
@@ -1552,7 +1573,27 @@ impl SceneRenderer {
             // After the terrain (the marches stop at its depth), once for both clouds.
             distance.encode(encoder)?;
         }
-        if let (Some(shell), Some(luts)) = (&self.shell_cloud, &self.luts) {
+        if let (Some(order), Some(shell), Some(volume), Some(luts)) = (
+            &self.cloud_order,
+            &self.shell_cloud,
+            &self.volume_cloud,
+            &self.luts,
+        ) {
+            // Both marched clouds: their marches and air, then one composite by depth.
+            let moon_luts = self.moonlit.as_ref().map(|(luts, _)| luts);
+            let compute = |label| times.and_then(|t| t.compute_writes(label));
+            let (march, moon) = (compute("shell cloud march"), compute("moonlit shell march"));
+            shell.encode_marches(encoder, luts, moon_luts, march, moon)?;
+            let (march, moon) = (
+                compute("volume cloud march"),
+                compute("moonlit cloud march"),
+            );
+            volume.encode_marches(encoder, luts, moon_luts, march, moon)?;
+            let composite = times.and_then(|t| t.render_writes("clouds by depth"));
+            order.encode(encoder, &self.hdr_view, composite)?;
+        }
+        let alone = self.cloud_order.is_none();
+        if let (Some(shell), Some(luts), true) = (&self.shell_cloud, &self.luts, alone) {
             // After the terrain (the march stops at its depth), before the volume cloud.
             shell.encode(
                 encoder,
@@ -1566,7 +1607,7 @@ impl SceneRenderer {
                 },
             )?;
         }
-        if let (Some(volume), Some(luts)) = (&self.volume_cloud, &self.luts) {
+        if let (Some(volume), Some(luts), true) = (&self.volume_cloud, &self.luts, alone) {
             // After the terrain: the march stops at its depth.
             volume.encode(
                 encoder,

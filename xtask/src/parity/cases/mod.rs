@@ -23,6 +23,7 @@ mod common_cases;
 mod integer_references;
 mod render_billboard_cases;
 mod render_cases;
+mod render_cloud_order_cases;
 mod render_volume_cases;
 mod terrain_cases;
 
@@ -372,6 +373,7 @@ pub fn all() -> Vec<Case> {
         vec![render_cases::present_case()],
         render_billboard_cases::cases(),
         render_volume_cases::cases(),
+        render_cloud_order_cases::cases(),
         terrain_cases::cases(),
         cloudlight_cases::cases(),
         cloudlight_cases::cone_cases(),

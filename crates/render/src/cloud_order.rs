@@ -1,0 +1,152 @@
+//! A scene's two marched clouds — the `[clouds.shell]` deck and the `[clouds.volume]`
+//! cloud — composited by depth per pixel, on the CPU ([`composite_clouds_by_depth`])
+//! and on the GPU (`render::gpu::cloud_order`, `shaders/render/cloud_order_composite.wgsl`).
+//! A scene with only one of them composites it alone, as before
+//! (`render::volume_clouds::composite_marched_cloud`, the GPU's `CloudComposite`).
+//!
+//! # Order along the ray
+//!
+//! Each cloud's march gives, per pixel, its radiance `L_c`, transmittance `T_c` and the
+//! opacity-weighted depth `d` of its density along the ray (`cloudlight::march`'s
+//! `MarchResult::depth`, `Σ tₖ·wₖ / Σ wₖ` with `wₖ` the opacity step `k` adds); each is
+//! seen through the air in front of it as alone ([`SeenCloud`]: `S = L_c·T_air(d) +
+//! L_air(d)·(1 − T_c)`, the moon's march added at night, `crate::volume_clouds`). Along
+//! the ray the nearer cloud goes over the farther one, and both over what is behind:
+//!
+//! `L = S_near + T_near · (S_far + T_far · L_behind)`
+//!
+//! ([`in_depth_order`], WGSL twin `clouds_in_depth_order` in
+//! `shaders/render/cloud_order.wgsl`), "nearer" being the smaller `d`. Where the two
+//! clouds' segments along the ray are disjoint (a volume cloud above or below the deck,
+//! beside it) this is the exact order: each `d` lies inside its own cloud's segment. The
+//! air is exact too: `L_air(d_far) = L_air(d_near) + T_air(d_near)·L_air(d_near → d_far)`,
+//! so the farther cloud's air, scaled by `T_near`, is the air behind the nearer cloud.
+//!
+//! **The approximation**, where the segments overlap along the ray (a volume cloud
+//! reaching into the deck's altitudes, the ray crossing both in the same stretch): each
+//! march is still its own cloud's alone, and the whole of the cloud with the smaller
+//! opacity-weighted depth is put in front of the whole of the other. The true pixel then
+//! lies between the two orders; the error is at most their difference,
+//! `|S_a·(1 − T_b) − S_b·(1 − T_a)|`, and vanishes where either cloud is transparent.
+//! Each march is also limited only by the terrain, not by the other cloud: a cloud
+//! behind an opaque one is marched in full and hidden by `T_near`, exact up to the
+//! march's early exit.
+
+use cloudlight::march::{Lighting, MarchResult};
+
+use crate::cpu_renderer::PixelRadiance;
+use crate::scene::{Illuminant, PreparedScene};
+use crate::shell_clouds::PreparedShell;
+use crate::volume_clouds::{AirTables, MarchedCloud, PreparedVolume};
+
+/// One marched cloud seen at a pixel as if alone: the radiance it adds in front of what
+/// is behind it (its light through the air in front of it and the air's in-scatter it
+/// hides, `L_c·T_air + L_air·(1 − T_c)`, summed over its lights), its transmittance
+/// `T_c` and its opacity-weighted depth (m). Behind it, `T_c · L_behind` is added.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SeenCloud {
+    /// What the cloud adds in front of what is behind it.
+    pub radiance: [f32; 3],
+    /// The light from behind that arrives through it, in [0, 1].
+    pub transmittance: f32,
+    /// The opacity-weighted depth of its density along the ray (m).
+    pub depth: f32,
+}
+
+impl SeenCloud {
+    /// No cloud at the pixel: adds nothing and lets everything through.
+    pub const NONE: Self = Self {
+        radiance: [0.0; 3],
+        transmittance: 1.0,
+        depth: 0.0,
+    };
+}
+
+/// Two clouds at one pixel in depth order (module docs): the one with the smaller
+/// opacity-weighted depth over the other (`a` over `b` when the depths tie), as one
+/// cloud `S_near + T_near·S_far` with transmittance `T_near·T_far` and the nearer one's
+/// depth. With either [`SeenCloud::NONE`] it is the other exactly. WGSL twin
+/// `clouds_in_depth_order` in `shaders/render/cloud_order.wgsl`.
+pub fn in_depth_order(a: SeenCloud, b: SeenCloud) -> SeenCloud {
+    let (near, far) = if b.depth < a.depth { (b, a) } else { (a, b) };
+    SeenCloud {
+        radiance: std::array::from_fn(|k| near.radiance[k] + near.transmittance * far.radiance[k]),
+        transmittance: near.transmittance * far.transmittance,
+        depth: near.depth,
+    }
+}
+
+/// The CPU twin of the GPU's composite of both marched clouds by depth
+/// (`shaders/render/cloud_order_composite.wgsl`): per pixel the volume's and the deck's
+/// f32 marches up to the terrain's hit (`PixelRadiance::terrain_distance`; the sky: no
+/// limit), each seen as alone (`crate::volume_clouds::composite_marched_cloud`'s pixel:
+/// drawn where it has opacity in front of the scene, through the air of the sun's
+/// `tables`, the moon's march added through `moon`'s tables at night), then
+/// [`in_depth_order`] over what is behind.
+pub fn composite_clouds_by_depth(
+    scene: &PreparedScene,
+    shell: &PreparedShell,
+    volume: &PreparedVolume,
+    tables: AirTables<'_>,
+    moon: Option<(&Illuminant<'_>, AirTables<'_>)>,
+    out: &mut [PixelRadiance],
+) -> Result<(), crate::RenderError> {
+    use rayon::prelude::*;
+    let camera = &scene.camera;
+    let size = [camera.width, camera.height];
+    let volume_camera =
+        crate::volume_clouds::pinhole_camera(camera, scene.atmosphere.planet_radius)?;
+    let shell_camera = crate::shell_clouds::shell_camera(camera)?;
+    let march_volume = |lighting: &Lighting<f32>, xy: [u32; 2], behind: f32| -> MarchResult<f32> {
+        crate::volume_clouds::march_pixel_lit(volume, lighting, &volume_camera, size, xy, behind)
+    };
+    let march_shell = |lighting: &Lighting<f32>, xy: [u32; 2], behind: f32| -> MarchResult<f32> {
+        crate::shell_clouds::march_shell_pixel_lit(shell, lighting, &shell_camera, size, xy, behind)
+    };
+    let volume_moon = match (&volume.moon, moon) {
+        (Some(moonlit), Some((light, moon_tables))) => {
+            Some((&moonlit.lighting, light, moon_tables))
+        }
+        _ => None,
+    };
+    let shell_moon = match (&shell.moon, moon) {
+        (Some(lighting), Some((light, moon_tables))) => Some((lighting, light, moon_tables)),
+        _ => None,
+    };
+    let clouds = (
+        MarchedCloud {
+            lighting: &volume.lighting,
+            tables,
+            moon: volume_moon,
+            march: &march_volume,
+        },
+        MarchedCloud {
+            lighting: &shell.lighting,
+            tables,
+            moon: shell_moon,
+            march: &march_shell,
+        },
+    );
+    let sun = scene.sun_light();
+    out.par_chunks_mut(camera.width as usize)
+        .enumerate()
+        .try_for_each(|(row, pixels)| {
+            for (column, pixel) in pixels.iter_mut().enumerate() {
+                let xy = [column as u32, row as u32];
+                let behind = pixel.terrain_distance.unwrap_or(f32::INFINITY);
+                let volume = clouds.0.seen(scene, &sun, xy, behind)?;
+                let shell = clouds.1.seen(scene, &sun, xy, behind)?;
+                if volume.is_none() && shell.is_none() {
+                    continue;
+                }
+                let seen = in_depth_order(
+                    volume.unwrap_or(SeenCloud::NONE),
+                    shell.unwrap_or(SeenCloud::NONE),
+                );
+                for (value, s) in pixel.radiance.iter_mut().zip(seen.radiance) {
+                    *value = s + seen.transmittance * *value;
+                }
+            }
+            Ok::<(), crate::RenderError>(())
+        })
+}
