@@ -185,10 +185,12 @@ fn exact_rows(
 /// The near field of every texel as [`Sampler::build_batch`] leaves it in its view:
 /// [`Sampler::near_field`], with the rays of the last `NEAR_STEPS` texels of each
 /// line stopped at the line's last texel ([`Sampler::near_best`]).
-fn near_of_views(sampler: &Sampler<'_>) -> Vec<f64> {
+///
+/// Takes the sampler's near field (which [`far_rows`] does not read).
+fn near_of_views(sampler: &mut Sampler<'_>) -> Vec<f64> {
     let l = sampler.lines;
     let (n, nm) = (l.n_dominant, l.n_minor);
-    let mut near = sampler.near.clone();
+    let mut near = std::mem::take(&mut sampler.near);
     let steps = NEAR_STEPS.min(sampler.max_steps);
     let ids = l.ids();
     let first = *ids.start();
@@ -242,8 +244,8 @@ pub(crate) fn bake_rows(
         sampler = None;
         (vec![f64::NEG_INFINITY; n * nm], Vec::new())
     } else {
-        let s = Sampler::new(lines, grid, inv_two_r, max_steps);
-        let near = near_of_views(&s);
+        let mut s = Sampler::new(lines, grid, inv_two_r, max_steps);
+        let near = near_of_views(&mut s);
         let t = lines.slope;
         let shifts: Vec<RowShift> = (0..n)
             .map(|u| {
