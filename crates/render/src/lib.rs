@@ -130,6 +130,18 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/volume_air.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "render::cloud_air_io",
+        source: include_str!("../shaders/cloud_air_io.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::cloud_air_closed_form",
+        source: include_str!("../shaders/cloud_air_closed_form.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::cloud_air_single",
+        source: include_str!("../shaders/cloud_air_single.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "render::volume_clouds",
         source: include_str!("../shaders/volume_clouds.wgsl"),
     },

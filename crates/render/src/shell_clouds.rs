@@ -622,8 +622,8 @@ impl ShellCloudPass {
     /// when the deck is lit by the moon too, [`PreparedShell::moon`]).
     pub(crate) fn new_shell(
         device: &wgpu::Device,
-        luts: &atmos::gpu::AtmosphereLuts,
-        moon_luts: Option<&atmos::gpu::AtmosphereLuts>,
+        luts: crate::gpu::cloud_air::CloudAir<'_>,
+        moon_luts: Option<crate::gpu::cloud_air::CloudAir<'_>>,
         target: wgpu::TextureFormat,
     ) -> Result<Self, crate::RenderError> {
         Self::new(

@@ -930,8 +930,8 @@ impl VolumeCloudPass {
     /// scene's cloud is lit by the moon too ([`PreparedVolume::moon`]).
     pub(crate) fn new_volume(
         device: &wgpu::Device,
-        luts: &atmos::gpu::AtmosphereLuts,
-        moon_luts: Option<&atmos::gpu::AtmosphereLuts>,
+        luts: crate::gpu::cloud_air::CloudAir<'_>,
+        moon_luts: Option<crate::gpu::cloud_air::CloudAir<'_>>,
         target: wgpu::TextureFormat,
     ) -> Result<Self, crate::RenderError> {
         Self::new(

@@ -188,3 +188,76 @@ fn the_reference_rungs_keep_their_error_and_the_tables_are_not_baked() {
     }
     let _ = gpu;
 }
+
+/// The shipped cumulus (`[clouds.volume]`, marched) under the closed form and single
+/// scattering (the precomputed rung first, as the baseline): the cloud's air is the
+/// rung's own functions on the GPU (`render::gpu::cloud_air`, a compute pass) and the
+/// rung's segment model on the CPU (`volume_clouds::air_in_front`); the cloud's pixels
+/// (the march's transmittance below 1) agree within 2 LSB as the precomputed rung's do
+/// (`tests/volume_clouds.rs`), and the whole image with scene_gpu's metric.
+#[test]
+fn the_cumulus_agrees_on_the_gpu_and_the_cpu_under_every_gpu_rung() {
+    let Some(gpu) = common::gpu_or_skip("render::rungs_gpu cumulus") else {
+        return;
+    };
+    let (width, height) = (160u32, 90u32);
+    let mut precomputed: Option<Vec<u32>> = None;
+    for rung in [Rung::Precomputed, Rung::ClosedForm, Rung::Single] {
+        let scene = shipped("cumulus", width, height, rung).prepare().unwrap();
+        let (gpu_image, cpu_image, agreement) = compare(gpu, &scene);
+        let cloud = scene.volume_cloud.as_ref().unwrap();
+        let pinhole =
+            render::volume_clouds::pinhole_camera(&scene.camera, scene.atmosphere.planet_radius)
+                .unwrap();
+        let mut drawn = Vec::new();
+        for y in 0..height {
+            for x in 0..width {
+                let march = render::volume_clouds::march_pixel(
+                    cloud,
+                    &pinhole,
+                    [width, height],
+                    [x, y],
+                    f32::INFINITY,
+                );
+                if march.transmittance < 1.0 {
+                    drawn.push((y * width + x) as usize);
+                }
+            }
+        }
+        // The rung's own air: its cloud pixels differ from the precomputed rung's.
+        let baseline = precomputed.get_or_insert_with(|| gpu_image.clone());
+        let differing = drawn
+            .iter()
+            .filter(|&&i| baseline[i] != gpu_image[i])
+            .count();
+        let (cloud_pixels, cloud_within, worst) =
+            common::within_two_over(&gpu_image, &cpu_image, drawn);
+        eprintln!(
+            "cumulus {} {width}×{height} GPU vs CPU: {:.3} % of pixels within 2 LSB, {:.3} % \
+             within 8, {:.3} % within 2 LSB of the other image's 3×3 neighbourhood; cloud \
+             pixels {cloud_within} of {cloud_pixels} within 2 LSB, worst {worst} LSB; \
+             {differing} cloud pixels differ from the precomputed rung's GPU image",
+            rung.name(),
+            100.0 * agreement.two,
+            100.0 * agreement.eight,
+            100.0 * agreement.shifted,
+        );
+        assert!(
+            agreement.close(),
+            "{}: {}",
+            rung.name(),
+            agreement.fractions()
+        );
+        assert!(cloud_pixels > 100, "{}: {cloud_pixels}", rung.name());
+        assert!(
+            rung == Rung::Precomputed || differing > 0,
+            "{}: the same cloud as the precomputed rung's",
+            rung.name()
+        );
+        assert!(
+            cloud_within as f64 >= 0.99 * cloud_pixels as f64,
+            "{}: {cloud_within} of {cloud_pixels}, worst {worst}",
+            rung.name()
+        );
+    }
+}

@@ -174,8 +174,8 @@ impl<M: CloudMarch> CloudComposite<M> {
         device: &wgpu::Device,
         name: &'static str,
         field: &'static str,
-        luts: &atmos::gpu::AtmosphereLuts,
-        moon_luts: Option<&atmos::gpu::AtmosphereLuts>,
+        luts: super::cloud_air::CloudAir<'_>,
+        moon_luts: Option<super::cloud_air::CloudAir<'_>>,
         target: wgpu::TextureFormat,
         march: impl Fn() -> Result<M, crate::RenderError>,
     ) -> Result<Self, crate::RenderError> {
@@ -197,9 +197,9 @@ impl<M: CloudMarch> CloudComposite<M> {
                 mapped_at_creation: false,
             })
         };
-        // The air per pixel: groups 0 and 1 are the light's tables.
+        // The air per pixel: groups 0 and 1 are the light's tables (or, for a rung
+        // without tables, its camera and parameters: `super::cloud_air`).
         let air_label = format!("render {name} air");
-        let air_module = module("render::volume_air", &air_label)?;
         let air_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&air_label),
             entries: &[
@@ -212,22 +212,12 @@ impl<M: CloudMarch> CloudComposite<M> {
             &format!("{air_label} uniform"),
             std::mem::size_of::<VolumeAirParams>(),
         );
-        let lit = |luts: &atmos::gpu::AtmosphereLuts,
+        let lit = |luts: super::cloud_air::CloudAir<'_>,
                    label: &str|
          -> Result<LitMarch<M>, crate::RenderError> {
             Ok(LitMarch {
                 march: march()?,
-                air_pipeline: compute_pipeline(
-                    device,
-                    label,
-                    &air_module,
-                    "volume_air_main",
-                    &[
-                        Some(&luts.layouts().uniforms),
-                        Some(&luts.layouts().tables),
-                        Some(&air_layout),
-                    ],
-                ),
+                air_pipeline: luts.pipeline(device, label, &air_layout)?,
                 air: None,
             })
         };
@@ -411,8 +401,8 @@ impl<M: CloudMarch> CloudComposite<M> {
         &self,
         encoder: &mut wgpu::CommandEncoder,
         target: &wgpu::TextureView,
-        luts: &atmos::gpu::AtmosphereLuts,
-        moon_luts: Option<&atmos::gpu::AtmosphereLuts>,
+        luts: super::cloud_air::CloudAir<'_>,
+        moon_luts: Option<super::cloud_air::CloudAir<'_>>,
         times: CloudTimes<'_>,
     ) -> Result<(), crate::RenderError> {
         let bind_group = self
@@ -457,8 +447,8 @@ impl<M: CloudMarch> CloudComposite<M> {
     pub(crate) fn encode_marches(
         &self,
         encoder: &mut wgpu::CommandEncoder,
-        luts: &atmos::gpu::AtmosphereLuts,
-        moon_luts: Option<&atmos::gpu::AtmosphereLuts>,
+        luts: super::cloud_air::CloudAir<'_>,
+        moon_luts: Option<super::cloud_air::CloudAir<'_>>,
         march: Option<wgpu::ComputePassTimestampWrites<'_>>,
         moon: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), crate::RenderError> {
@@ -482,8 +472,7 @@ impl<M: CloudMarch> CloudComposite<M> {
                 timestamp_writes: None,
             });
             pass.set_pipeline(&lit.air_pipeline);
-            pass.set_bind_group(0, tables.uniform_bind_group(), &[]);
-            pass.set_bind_group(1, tables.table_bind_group(), &[]);
+            tables.bind(&mut pass);
             pass.set_bind_group(2, air_group, &[]);
             pass.dispatch_workgroups(groups[0], groups[1], 1);
         }

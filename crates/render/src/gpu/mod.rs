@@ -8,6 +8,7 @@
 //!   to RGBA8, for the ladder's image tests;
 //! * [`timer::PassTimes`]: GPU timestamps per pass.
 
+pub(crate) mod cloud_air;
 pub(crate) mod cloud_composite;
 pub(crate) mod cloud_order;
 pub(crate) mod cloud_shadow;

@@ -149,21 +149,23 @@ pub fn no_gpu_passes(rung: Rung) -> RenderError {
     }
 }
 
-/// The error of a scene with GPU clouds that read the precomputed rung's tables
-/// (`[clouds.volume]`'s march and composite, `[clouds.shell]`) on a rung without
-/// tables.
+/// The error of a scene with GPU marched clouds (`[clouds.volume]`'s march,
+/// `[clouds.shell]`) on a rung with neither tables nor passes of its own (the reference
+/// rungs): their air is the precomputed rung's tables or the rung's functions
+/// (`super::cloud_air`).
 pub fn volume_needs_tables(rung: Rung) -> RenderError {
     RenderError::InvalidParameter {
         field: "atmosphere.rung",
         value: format!("\"{}\"", rung.name()),
-        reason: "the GPU's volume and shell clouds read the precomputed rung's tables; render \
-                 this scene with the precomputed rung, or on the CPU (--cpu)",
+        reason: "the GPU's volume and shell clouds see their air through the precomputed \
+                 rung's tables or the closed form's or single scattering's passes; render \
+                 this scene with one of those rungs, or on the CPU (--cpu)",
     }
 }
 
 /// The override constants of a rung's aerial-perspective shader (single scattering's
 /// sample counts, those of the CPU's `SingleScatteringSky`).
-fn air_constants(rung: Rung) -> Vec<(&'static str, f64)> {
+pub(crate) fn air_constants(rung: Rung) -> Vec<(&'static str, f64)> {
     match rung {
         Rung::Single => {
             let settings = atmos::single_scattering::SingleScatteringSettings::default();
@@ -338,6 +340,9 @@ struct LightPasses {
     /// single scattering).
     light_table: wgpu::Buffer,
     terrain_group: wgpu::BindGroup,
+    /// The air in front of a marched cloud lit by this light (its camera and the
+    /// rung's parameters of its atmosphere; `super::cloud_air`).
+    cloud_air: super::cloud_air::RungCloudAir,
 }
 
 impl LightPasses {
@@ -356,6 +361,7 @@ impl LightPasses {
         queue.write_buffer(&self.sky_camera, 0, bytemuck::bytes_of(camera));
         queue.write_buffer(&self.sky_present, 0, bytemuck::bytes_of(present));
         queue.write_buffer(&self.terrain_light, 0, bytemuck::bytes_of(light));
+        self.cloud_air.prepare(queue, camera);
         Ok(())
     }
 }
@@ -590,7 +596,9 @@ impl RungPasses {
                     },
                 ],
             });
+            let cloud_air = super::cloud_air::RungCloudAir::new(device, rung, &parameters);
             Ok::<_, RenderError>(LightPasses {
+                cloud_air,
                 renderer,
                 output,
                 sky_camera,
@@ -627,6 +635,13 @@ impl RungPasses {
     /// Whether the moon lights the scene (its sky added, the terrain drawn again).
     pub fn has_moon(&self) -> bool {
         self.moon.is_some()
+    }
+
+    /// The air in front of a marched cloud lit by the sun, or by the moon (`moon`; `None`
+    /// when the moon does not light the scene).
+    pub(crate) fn cloud_air(&self, moon: bool) -> Option<super::cloud_air::CloudAir<'_>> {
+        let light = if moon { self.moon.as_ref()? } else { &self.sun };
+        Some(super::cloud_air::CloudAir::Rung(&light.cloud_air))
     }
 
     /// The terrain pipeline's rung parts: its shader module (vertex `terrain_vertex`,

@@ -657,14 +657,17 @@ impl SceneRenderer {
             )?)
         };
 
-        // A marched cloud's tables: the sun's, and at night (`moonlit_cloud`) the moon's,
-        // which light the cloud too (its march and air passes).
+        // A marched cloud's air: the sun's, and at night (`moonlit_cloud`) the moon's,
+        // which light the cloud too (its march and air passes): the tables, or the
+        // rung's functions (`super::cloud_air`).
         let cloud_luts = |moonlit_cloud: bool| {
-            let sun = luts
-                .as_ref()
-                .ok_or_else(|| super::rungs::volume_needs_tables(scene.rung))?;
-            let moon = moonlit.as_ref().filter(|_| moonlit_cloud).map(|(l, _)| l);
-            Ok::<_, RenderError>((sun, moon))
+            let (sun, moon) = super::cloud_air::cloud_airs(
+                luts.as_ref(),
+                moonlit.as_ref().map(|(l, _)| l),
+                rung.as_ref(),
+                scene.rung,
+            )?;
+            Ok::<_, RenderError>((sun, moon.filter(|_| moonlit_cloud)))
         };
         // Only a scene with [clouds.volume] builds the march and its composite.
         let volume_cloud = match &scene.volume_cloud {
@@ -1166,6 +1169,25 @@ impl SceneRenderer {
         })
     }
 
+    /// The marched clouds' air (the sun's, the moon's on a moonlit night): the tables or
+    /// the rung's functions (`super::cloud_air`); `None` without either.
+    fn cloud_airs(
+        &self,
+    ) -> Option<(
+        super::cloud_air::CloudAir<'_>,
+        Option<super::cloud_air::CloudAir<'_>>,
+    )> {
+        super::cloud_air::cloud_airs(
+            self.luts.as_ref(),
+            self.moonlit.as_ref().map(|(luts, _)| luts),
+            self.rung.as_ref(),
+            self.rung
+                .as_ref()
+                .map_or(crate::scene::Rung::Precomputed, |r| r.rung()),
+        )
+        .ok()
+    }
+
     /// Writes the frame's uniforms: the LUTs' camera, the sky pass's sun disc, the
     /// terrain's view and lighting and its tiles, the display's exposure.
     ///
@@ -1573,14 +1595,13 @@ impl SceneRenderer {
             // After the terrain (the marches stop at its depth), once for both clouds.
             distance.encode(encoder)?;
         }
-        if let (Some(order), Some(shell), Some(volume), Some(luts)) = (
+        if let (Some(order), Some(shell), Some(volume), Some((luts, moon_luts))) = (
             &self.cloud_order,
             &self.shell_cloud,
             &self.volume_cloud,
-            &self.luts,
+            self.cloud_airs(),
         ) {
             // Both marched clouds: their marches and air, then one composite by depth.
-            let moon_luts = self.moonlit.as_ref().map(|(luts, _)| luts);
             let compute = |label| times.and_then(|t| t.compute_writes(label));
             let (march, moon) = (compute("shell cloud march"), compute("moonlit shell march"));
             shell.encode_marches(encoder, luts, moon_luts, march, moon)?;
@@ -1593,13 +1614,15 @@ impl SceneRenderer {
             order.encode(encoder, &self.hdr_view, composite)?;
         }
         let alone = self.cloud_order.is_none();
-        if let (Some(shell), Some(luts), true) = (&self.shell_cloud, &self.luts, alone) {
+        if let (Some(shell), Some((luts, moon_luts)), true) =
+            (&self.shell_cloud, self.cloud_airs(), alone)
+        {
             // After the terrain (the march stops at its depth), before the volume cloud.
             shell.encode(
                 encoder,
                 &self.hdr_view,
                 luts,
-                self.moonlit.as_ref().map(|(luts, _)| luts),
+                moon_luts,
                 super::cloud_composite::CloudTimes {
                     march: times.and_then(|t| t.compute_writes("shell cloud march")),
                     moon: times.and_then(|t| t.compute_writes("moonlit shell march")),
@@ -1607,13 +1630,15 @@ impl SceneRenderer {
                 },
             )?;
         }
-        if let (Some(volume), Some(luts), true) = (&self.volume_cloud, &self.luts, alone) {
+        if let (Some(volume), Some((luts, moon_luts)), true) =
+            (&self.volume_cloud, self.cloud_airs(), alone)
+        {
             // After the terrain: the march stops at its depth.
             volume.encode(
                 encoder,
                 &self.hdr_view,
                 luts,
-                self.moonlit.as_ref().map(|(luts, _)| luts),
+                moon_luts,
                 super::cloud_composite::CloudTimes {
                     march: times.and_then(|t| t.compute_writes("volume cloud march")),
                     moon: times.and_then(|t| t.compute_writes("moonlit cloud march")),

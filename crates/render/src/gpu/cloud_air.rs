@@ -1,0 +1,181 @@
+//! The air in front of a marched cloud (the volume's, the shell's) per pixel and light:
+//! what groups 0 and 1 of a cloud's air pass bind ([`CloudAir`]). The precomputed rung
+//! binds its tables there (`shaders/render/volume_air.wgsl`: atmos'
+//! `aerial_perspective`, the twin of `atmos::lut::drop_in::aerial_perspective`); a rung
+//! without tables binds a camera whose `sun` is the light's direction and the rung's
+//! parameters of the light's atmosphere ([`RungCloudAir`]:
+//! `shaders/render/cloud_air_closed_form.wgsl`, `cloud_air_single.wgsl`, the
+//! formulas of the terrain's aerial-perspective pass of `super::rungs`), the twin of
+//! the CPU's `volume_clouds::air_in_front` without tables (the light's segment model
+//! over the segment camera → the cloud's transmittance-weighted depth). Both write the
+//! same buffer (group 2, `render::cloud_air_io`'s layout), which the composite reads.
+
+use crate::RenderError;
+use crate::scene::Rung;
+
+/// What a cloud's air pass binds in groups 0 and 1 for one light.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum CloudAir<'a> {
+    /// The precomputed rung's tables of the light.
+    Tables(&'a atmos::gpu::AtmosphereLuts),
+    /// A rung without tables: the rung's functions for the light.
+    Rung(&'a RungCloudAir),
+}
+
+impl CloudAir<'_> {
+    /// The air pass's pipeline with `air_layout` (group 2) and this light's groups.
+    pub(crate) fn pipeline(
+        &self,
+        device: &wgpu::Device,
+        label: &str,
+        air_layout: &wgpu::BindGroupLayout,
+    ) -> Result<wgpu::ComputePipeline, RenderError> {
+        let (module_name, entry, layouts, constants) = match self {
+            Self::Tables(luts) => (
+                "render::volume_air",
+                "volume_air_main",
+                [&luts.layouts().uniforms, &luts.layouts().tables],
+                Vec::new(),
+            ),
+            Self::Rung(air) => {
+                let (module_name, entry) = match air.rung {
+                    Rung::Single => ("render::cloud_air_single", "cloud_air_single"),
+                    _ => ("render::cloud_air_closed_form", "cloud_air_closed_form"),
+                };
+                (
+                    module_name,
+                    entry,
+                    [&air.camera_layout, &air.parameters_layout],
+                    super::rungs::air_constants(air.rung),
+                )
+            }
+        };
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(label),
+            source: wgpu::ShaderSource::Wgsl(crate::composer().compose_module(module_name)?.into()),
+        });
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(label),
+            bind_group_layouts: &[Some(layouts[0]), Some(layouts[1]), Some(air_layout)],
+            immediate_size: 0,
+        });
+        Ok(
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(label),
+                layout: Some(&layout),
+                module: &module,
+                entry_point: Some(entry),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: &constants,
+                    ..Default::default()
+                },
+                cache: None,
+            }),
+        )
+    }
+
+    /// Binds this light's groups 0 and 1 in `pass`.
+    pub(crate) fn bind(&self, pass: &mut wgpu::ComputePass<'_>) {
+        let [uniforms, tables] = match self {
+            Self::Tables(luts) => [luts.uniform_bind_group(), luts.table_bind_group()],
+            Self::Rung(air) => [&air.camera_group, &air.parameters_group],
+        };
+        pass.set_bind_group(0, uniforms, &[]);
+        pass.set_bind_group(1, tables, &[]);
+    }
+}
+
+/// A light's cloud air for a rung without tables: the scene camera with `sun` set to
+/// the light's direction (group 0, written each frame by [`Self::prepare`]) and the
+/// rung's parameters of the light's atmosphere (group 1: `ClosedFormSkyParameters`,
+/// or `AtmosphereParameters` for single scattering).
+#[derive(Debug)]
+pub struct RungCloudAir {
+    rung: Rung,
+    camera: wgpu::Buffer,
+    camera_layout: wgpu::BindGroupLayout,
+    camera_group: wgpu::BindGroup,
+    parameters_layout: wgpu::BindGroupLayout,
+    parameters_group: wgpu::BindGroup,
+}
+
+impl RungCloudAir {
+    /// The groups of `rung`'s air for a light of `atmosphere` (the closed forms and
+    /// single scattering; `parameters`: the rung's uniform of that atmosphere).
+    pub(crate) fn new(device: &wgpu::Device, rung: Rung, parameters: &wgpu::Buffer) -> Self {
+        let layout = |label: &str| {
+            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some(label),
+                entries: &[wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                }],
+            })
+        };
+        let group = |label: &str, layout: &wgpu::BindGroupLayout, buffer: &wgpu::Buffer| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(label),
+                layout,
+                entries: &[wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: buffer.as_entire_binding(),
+                }],
+            })
+        };
+        let camera = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render cloud air camera (rung)"),
+            size: std::mem::size_of::<atmos::frame::FrameCamera>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let camera_layout = layout("render cloud air camera (rung)");
+        let camera_group = group("render cloud air camera (rung)", &camera_layout, &camera);
+        let parameters_layout = layout("render cloud air parameters (rung)");
+        let parameters_group = group(
+            "render cloud air parameters (rung)",
+            &parameters_layout,
+            parameters,
+        );
+        Self {
+            rung,
+            camera,
+            camera_layout,
+            camera_group,
+            parameters_layout,
+            parameters_group,
+        }
+    }
+
+    /// Writes the frame's camera (its `sun` the light's direction: the scene camera for
+    /// the sun, `MoonlitSky::camera` for the moon).
+    pub(crate) fn prepare(&self, queue: &wgpu::Queue, camera: &atmos::frame::FrameCamera) {
+        queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(camera));
+    }
+}
+
+/// A marched cloud's air for the sun and, on a moonlit night, the moon: the precomputed
+/// rung's tables (`luts`, `moon_luts`) or the passes of a rung without tables (`rung`);
+/// an error naming `rung_name` when there are neither (the reference rungs).
+pub(crate) fn cloud_airs<'a>(
+    luts: Option<&'a atmos::gpu::AtmosphereLuts>,
+    moon_luts: Option<&'a atmos::gpu::AtmosphereLuts>,
+    rung: Option<&'a super::rungs::RungPasses>,
+    rung_name: Rung,
+) -> Result<(CloudAir<'a>, Option<CloudAir<'a>>), RenderError> {
+    match (luts, rung) {
+        (Some(luts), _) => Ok((CloudAir::Tables(luts), moon_luts.map(CloudAir::Tables))),
+        (None, Some(rung)) => {
+            let sun = rung
+                .cloud_air(false)
+                .ok_or_else(|| super::rungs::volume_needs_tables(rung_name))?;
+            Ok((sun, rung.cloud_air(true)))
+        }
+        (None, None) => Err(super::rungs::volume_needs_tables(rung_name)),
+    }
+}

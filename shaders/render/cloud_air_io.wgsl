@@ -1,0 +1,57 @@
+// What the rungs' cloud air passes (render::cloud_air_closed_form,
+// render::cloud_air_single) read and write: group 2 of render::volume_air (its uniform,
+// cloudlight's march output, the air per pixel, the same layout the composite reads)
+// and each pixel's segment camera → the cloud's transmittance-weighted depth.
+#import atmos::frame
+
+struct CloudAirParams {
+    width: u32,
+    height: u32,
+    padding0: u32,
+    padding1: u32,
+}
+
+@group(2) @binding(0) var<uniform> cloud_air_params: CloudAirParams;
+// cloudlight's march output: two vec4 per pixel, x fastest (radiance rgb + T_c, then the
+// transmittance-weighted depth d in x).
+@group(2) @binding(1) var<storage, read> cloud_march: array<vec4<f32>>;
+// Two vec4 per pixel: the air's in-scattered radiance, then its transmittance (written
+// where the cloud has opacity, T_c < 1).
+@group(2) @binding(2) var<storage, read_write> cloud_air: array<vec4<f32>>;
+
+// A pixel's segment: the camera's radius, the view's zenith cosine, the distance to the
+// cloud's depth, the view and the local up; `has_air` false outside the image or where
+// the cloud has no opacity.
+struct CloudAirSegment {
+    index: u32,
+    r: f32,
+    mu: f32,
+    distance: f32,
+    view: vec3<f32>,
+    up: vec3<f32>,
+    has_air: bool,
+}
+
+fn cloud_air_segment(pixel: vec2<u32>, camera: FrameCamera) -> CloudAirSegment {
+    var s: CloudAirSegment;
+    if pixel.x >= cloud_air_params.width || pixel.y >= cloud_air_params.height {
+        return s;
+    }
+    s.index = 2u * (pixel.y * cloud_air_params.width + pixel.x);
+    if !(cloud_march[s.index].w < 1.0) {
+        return s;
+    }
+    s.view = frame_view_direction(pixel, camera);
+    s.r = length(camera.position);
+    s.up = camera.position / s.r;
+    s.mu = dot(s.view, s.up);
+    s.distance = cloud_march[s.index + 1u].x;
+    s.has_air = true;
+    return s;
+}
+
+// Writes the segment's in-scattered radiance and transmittance.
+fn cloud_air_store(s: CloudAirSegment, radiance: vec3<f32>, transmittance: vec3<f32>) {
+    cloud_air[s.index] = vec4<f32>(radiance, 0.0);
+    cloud_air[s.index + 1u] = vec4<f32>(transmittance, 0.0);
+}
