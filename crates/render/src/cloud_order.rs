@@ -150,3 +150,35 @@ pub fn composite_clouds_by_depth(
             Ok::<(), crate::RenderError>(())
         })
 }
+
+/// What `skyscape explain` says of the composite by depth (`planned_passes` of
+/// `render::gpu::scene` calls it after the clouds' own entries): with both marched clouds,
+/// "clouds by depth" runs and the "volume clouds" and "shell clouds" composites are
+/// replaced by it (their marches still run); otherwise it is skipped.
+pub fn adjust_plan(scene: &PreparedScene, plan: &mut Vec<(&'static str, Result<String, String>)>) {
+    if scene.shell_cloud.is_none() || scene.volume_cloud.is_none() {
+        plan.push((
+            "clouds by depth",
+            Err(
+                "not both [clouds.shell] and a marched [clouds.volume]: each marched cloud \
+                 composites alone"
+                    .into(),
+            ),
+        ));
+        return;
+    }
+    for (pass, entry) in plan.iter_mut() {
+        if matches!(*pass, "volume clouds" | "shell clouds") {
+            *entry = Err("with both marched clouds, composited in \"clouds by depth\"".into());
+        }
+    }
+    plan.push((
+        "clouds by depth",
+        Ok(
+            "the shell's and the volume cloud's marches and air composited by depth per \
+            pixel in one full-screen pass: the one with the smaller opacity-weighted depth \
+            over the other"
+                .into(),
+        ),
+    ));
+}

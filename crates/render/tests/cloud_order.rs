@@ -215,3 +215,26 @@ fn the_nearer_cloud_goes_over_the_farther_on_the_cpu_and_the_gpu() {
         assert!(crossing_within as f64 >= 0.999 * crossing as f64);
     }
 }
+
+/// `skyscape explain`'s plan: with both clouds "clouds by depth" runs in place of their
+/// two composites; with one, that cloud's composite runs and "clouds by depth" is skipped.
+#[test]
+fn explain_plans_one_composite_by_depth() {
+    let planned = |scene: &PreparedScene, pass: &str| {
+        render::gpu::scene::planned_passes(scene)
+            .into_iter()
+            .find(|(name, _)| *name == pass)
+            .map(|(_, plan)| plan.is_ok())
+    };
+    let mut scene = scene(&VIEWS[0]);
+    assert_eq!(planned(&scene, "clouds by depth"), Some(true));
+    for pass in ["volume clouds", "shell clouds"] {
+        assert_eq!(planned(&scene, pass), Some(false), "{pass}");
+    }
+    for pass in ["volume cloud march", "shell cloud march"] {
+        assert_eq!(planned(&scene, pass), Some(true), "{pass}");
+    }
+    scene.shell_cloud = None;
+    assert_eq!(planned(&scene, "clouds by depth"), Some(false));
+    assert_eq!(planned(&scene, "volume clouds"), Some(true));
+}

@@ -390,6 +390,7 @@ pub fn planned_passes(scene: &PreparedScene) -> Vec<(&'static str, Result<String
     ));
     plan.push(("billboard clouds", crate::billboard_clouds::explain(scene)));
     plan.extend(crate::shell_clouds::shell_pass_plans(scene));
+    crate::cloud_order::adjust_plan(scene, &mut plan);
     plan.push((
         "display",
         Ok("exposure, 1 − exp(−x), sRGB, dither to RGBA8".into()),
