@@ -261,3 +261,104 @@ fn the_cumulus_agrees_on_the_gpu_and_the_cpu_under_every_gpu_rung() {
         );
     }
 }
+
+/// The shipped stratocumulus deck (`[clouds.shell]`) under the closed form and single
+/// scattering (the precomputed rung first, as the baseline), as the cumulus above: the
+/// deck's pixels (its march's transmittance below 1, marched unlit: the transmittance
+/// does not depend on the light) within 2 LSB GPU vs CPU, and the rungs' own air.
+#[test]
+fn the_shell_agrees_on_the_gpu_and_the_cpu_under_every_gpu_rung() {
+    let Some(gpu) = common::gpu_or_skip("render::rungs_gpu stratocumulus") else {
+        return;
+    };
+    deck_agrees(gpu, "stratocumulus", |rung| {
+        shipped("stratocumulus", 64, 36, rung)
+    });
+}
+
+/// At night a deck lit by the moon (the shipped night scene with a deck, as
+/// `tests/shell_clouds.rs`' night test): its moonlit march's air is the rung's
+/// functions with the moon's parameters; the deck's pixels agree as by day.
+#[test]
+fn the_moonlit_shell_agrees_on_the_gpu_and_the_cpu_under_every_gpu_rung() {
+    let Some(gpu) = common::gpu_or_skip("render::rungs_gpu night deck") else {
+        return;
+    };
+    let night = std::fs::read_to_string(common::scene_path("night")).unwrap();
+    let deck = "[clouds.shell]\nbottom_m = 3500.0\ntop_m = 4300.0\ncoverage = 0.35\n\
+                coverage_contrast = 0.25\ncloud_type = 0.5\ncloud_type_contrast = 0.0\n\
+                shape_period_m = 6000.0\ndetail_period_m = 800.0\nview_steps = 12\n\
+                light_steps = 3\nambient_steps = 1\noctaves = 4\n";
+    deck_agrees(gpu, "night deck", |rung| {
+        let mut scene = Scene::parse(&format!("{night}{deck}"), ".").unwrap();
+        scene.file.output.width = 64;
+        scene.file.output.height = 36;
+        scene.file.atmosphere.rung = rung;
+        scene
+    });
+}
+
+/// GPU vs CPU of `scene(rung)`'s `[clouds.shell]` deck under the precomputed rung (the
+/// baseline), the closed form and single scattering: the deck's pixels (its march's
+/// transmittance below 1, marched unlit: the transmittance does not depend on the
+/// light) within 2 LSB, and the rung's own air (its deck pixels differ from the
+/// precomputed rung's GPU image).
+fn deck_agrees(gpu: &skyscape_harness::GpuContext, name: &str, scene: impl Fn(Rung) -> Scene) {
+    let mut precomputed: Option<Vec<u32>> = None;
+    for rung in [Rung::Precomputed, Rung::ClosedForm, Rung::Single] {
+        let scene = scene(rung).prepare().unwrap();
+        let (width, height) = (scene.camera.width, scene.camera.height);
+        let (gpu_image, cpu_image, agreement) = compare(gpu, &scene);
+        let mut cloud = scene.shell_cloud.clone().unwrap();
+        cloud.lighting =
+            cloudlight::march::Lighting::new([0.0, 0.0, 1.0], [0.0; 3], [0.0; 3], [0.0, 0.0, 1.0])
+                .unwrap();
+        cloud.moon = None;
+        let camera = render::shell_clouds::shell_camera(&scene.camera).unwrap();
+        let mut deck = Vec::new();
+        for y in 0..height {
+            for x in 0..width {
+                let march = render::shell_clouds::march_shell_pixel(
+                    &cloud,
+                    &camera,
+                    [width, height],
+                    [x, y],
+                    f32::INFINITY,
+                );
+                if march.transmittance < 1.0 {
+                    deck.push((y * width + x) as usize);
+                }
+            }
+        }
+        let baseline = precomputed.get_or_insert_with(|| gpu_image.clone());
+        let differing = deck
+            .iter()
+            .filter(|&&i| baseline[i] != gpu_image[i])
+            .count();
+        let (cloud_pixels, cloud_within, worst) =
+            common::within_two_over(&gpu_image, &cpu_image, deck);
+        eprintln!(
+            "{name} {} {width}×{height} GPU vs CPU: {:.3} % of pixels within 2 LSB, \
+             {:.3} % within 8; deck pixels {cloud_within} of {cloud_pixels} within 2 LSB, \
+             worst {worst} LSB; {differing} deck pixels differ from the precomputed rung's \
+             GPU image",
+            rung.name(),
+            100.0 * agreement.two,
+            100.0 * agreement.eight,
+        );
+        if scene.moonlit.is_some() {
+            assert!(scene.shell_cloud.as_ref().unwrap().moon.is_some(), "{name}");
+        }
+        assert!(cloud_pixels > 200, "{}: {cloud_pixels}", rung.name());
+        assert!(
+            rung == Rung::Precomputed || differing > 0,
+            "{}: the same deck as the precomputed rung's",
+            rung.name()
+        );
+        assert!(
+            cloud_within as f64 >= 0.99 * cloud_pixels as f64,
+            "{}: {cloud_within} of {cloud_pixels}, worst {worst}",
+            rung.name()
+        );
+    }
+}
