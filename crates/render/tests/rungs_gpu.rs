@@ -205,6 +205,16 @@ fn the_cumulus_agrees_on_the_gpu_and_the_cpu_under_every_gpu_rung() {
     for rung in [Rung::Precomputed, Rung::ClosedForm, Rung::Single] {
         let scene = shipped("cumulus", width, height, rung).prepare().unwrap();
         let (gpu_image, cpu_image, agreement) = compare(gpu, &scene);
+        // `skyscape explain` names the rung's air, not the tables, for the cloud.
+        let plan = render::gpu::scene::planned_passes(&scene);
+        let (_, composite) = plan.iter().find(|(n, _)| *n == "volume clouds").unwrap();
+        let composite = composite.as_ref().unwrap();
+        assert_eq!(
+            composite.contains("atmos' aerial perspective"),
+            rung == Rung::Precomputed,
+            "{}: {composite}",
+            rung.name()
+        );
         let cloud = scene.volume_cloud.as_ref().unwrap();
         let pinhole =
             render::volume_clouds::pinhole_camera(&scene.camera, scene.atmosphere.planet_radius)

@@ -17,7 +17,11 @@
 //!   (`shaders/render/terrain_closed_form.wgsl`, `terrain_single.wgsl`: the same
 //!   `terrain_surface` of `render::terrain`, lit by the rung's transmittance from the
 //!   point to the top of the atmosphere, seen through the rung's segment camera → point)
-//!   and the light and the rung's parameters in bind group 3.
+//!   and the light and the rung's parameters in bind group 3;
+//! * **marched clouds' air** (`[clouds.volume]`, `[clouds.shell]`): the light's
+//!   `super::cloud_air::RungCloudAir` (its camera and the rung's parameters of its
+//!   atmosphere), bound by the clouds' air pass where the precomputed rung binds its
+//!   tables (`super::cloud_air`).
 //!
 //! Separate pipelines rather than `override` constants: the closed form and single
 //! scattering read different uniforms (`ClosedFormSkyParameters`,
@@ -954,6 +958,20 @@ pub fn adjust_plan(scene: &PreparedScene, plan: &mut Vec<(&'static str, Result<S
                     },
                 ));
             }
+            // The marched cloud's air: the rung's functions, not atmos' tables.
+            "volume clouds" => adjusted.push((
+                name,
+                entry.map(
+                    |text| match text.split_once(", through atmos' aerial perspective") {
+                        Some((composite, _)) => format!(
+                            "{composite}, through {model}'s in-scatter and transmittance of the \
+                         segment to its depth per pixel and light (a compute pass, untimed: \
+                         render::gpu::cloud_air)"
+                        ),
+                        None => text,
+                    },
+                ),
+            )),
             _ => adjusted.push((name, entry)),
         }
     }
