@@ -69,12 +69,17 @@ const VIEWS: [View; 4] = [
 /// grown by the automaton, on the precomputed rung (the GPU's marched clouds need its
 /// tables).
 fn scene(view: &View) -> PreparedScene {
+    scene_on(view, "precomputed")
+}
+
+/// [`scene`] on the atmosphere rung `rung`.
+fn scene_on(view: &View, rung: &str) -> PreparedScene {
     let [x, y, z] = view.look_at;
     let text = format!(
         "[camera]\nposition = [0.0, {camera}, 0.0]\nlook_at = [{x}, {y}, {z}]\n\
          vertical_fov_deg = 60.0\nnear = 1.0\nfar = 100000.0\n\
          [sun]\nelevation_deg = 40.0\nazimuth_deg = 230.0\n\
-         [atmosphere]\nrung = \"precomputed\"\n\
+         [atmosphere]\nrung = \"{rung}\"\n\
          [clouds.shell]\nbottom_m = 1000.0\ntop_m = 1800.0\ncoverage = 0.5\n\
          coverage_contrast = 0.25\ncloud_type = 0.5\ncloud_type_contrast = 0.0\n\
          shape_period_m = 6000.0\ndetail_period_m = 800.0\nsigma_t_per_density = 0.04\n\
@@ -237,4 +242,29 @@ fn explain_plans_one_composite_by_depth() {
     scene.shell_cloud = None;
     assert_eq!(planned(&scene, "clouds by depth"), Some(false));
     assert_eq!(planned(&scene, "volume clouds"), Some(true));
+}
+
+/// Under the GPU's other rungs (the clouds' air from the rung's functions instead of the
+/// tables): the view where the deck hides the cumulus, GPU vs CPU on its cloud pixels.
+#[test]
+fn both_clouds_agree_under_the_other_gpu_rungs() {
+    let Some(gpu) = gpu_or_skip("both marched clouds by depth under every GPU rung") else {
+        return;
+    };
+    for rung in ["closed-form", "single"] {
+        let scene = scene_on(&VIEWS[2], rung);
+        let gpu_image = gpu_pixels(gpu, &scene);
+        let cpu_image = render_cpu(&scene).unwrap().pixels;
+        let cloudy = marches(&scene)
+            .into_iter()
+            .enumerate()
+            .filter(|(_, [(t_v, _), (t_s, _)])| *t_v < 1.0 || *t_s < 1.0)
+            .map(|(i, _)| i);
+        let (n, ok, worst) = within_two_over(&gpu_image, &cpu_image, cloudy);
+        println!(
+            "{} under {rung} GPU vs CPU: cloud pixels {ok} of {n} within 2 LSB (worst {worst})",
+            VIEWS[2].name
+        );
+        assert!(ok as f64 >= 0.999 * n as f64, "{rung}");
+    }
 }
