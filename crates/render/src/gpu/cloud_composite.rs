@@ -245,19 +245,7 @@ impl<M: CloudMarch> CloudComposite<M> {
             &format!("{label} uniform"),
             std::mem::size_of::<VolumeComposite>(),
         );
-        // dst · T_c + the cloud's own light (premultiplied).
-        let blend = wgpu::BlendState {
-            color: wgpu::BlendComponent {
-                src_factor: wgpu::BlendFactor::One,
-                dst_factor: wgpu::BlendFactor::SrcAlpha,
-                operation: wgpu::BlendOperation::Add,
-            },
-            alpha: wgpu::BlendComponent {
-                src_factor: wgpu::BlendFactor::Zero,
-                dst_factor: wgpu::BlendFactor::One,
-                operation: wgpu::BlendOperation::Add,
-            },
-        };
+        let blend = over_transmittance_blend();
         let pipeline = fullscreen_pipeline(
             device,
             &label,
@@ -596,5 +584,22 @@ impl CloudDistance {
         pass.set_bind_group(0, group, &[]);
         pass.dispatch_workgroups(groups[0], groups[1], 1);
         Ok(())
+    }
+}
+
+/// `dst · T + src`: a cloud's own light (premultiplied, rgb) over what is behind it,
+/// whose transmittance `T` is the fragment's alpha; the target's alpha is kept.
+pub(crate) fn over_transmittance_blend() -> wgpu::BlendState {
+    wgpu::BlendState {
+        color: wgpu::BlendComponent {
+            src_factor: wgpu::BlendFactor::One,
+            dst_factor: wgpu::BlendFactor::SrcAlpha,
+            operation: wgpu::BlendOperation::Add,
+        },
+        alpha: wgpu::BlendComponent {
+            src_factor: wgpu::BlendFactor::Zero,
+            dst_factor: wgpu::BlendFactor::One,
+            operation: wgpu::BlendOperation::Add,
+        },
     }
 }
