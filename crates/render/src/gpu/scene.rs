@@ -20,8 +20,10 @@
 //!
 //! The half-float HDR target holds radiance × the scene's exposure (a night's radiance
 //! would flush in f16's subnormals otherwise). The CPU twin is `render::cpu_renderer`
-//! (the same shading functions, ray cast instead of rasterised). Only the precomputed
-//! rung has GPU passes here; the others render on the CPU.
+//! (the same shading functions, ray cast instead of rasterised). The precomputed rung's
+//! passes are here; the closed form's and single scattering's sky, terrain and cloud air
+//! are in `render::gpu::rungs` and `render::gpu::cloud_air`; the reference rungs (f64)
+//! render on the CPU only.
 
 use atmos::gpu::AtmosphereLuts;
 use atmos::gpu::sky::{SkyPass, SkyPassDescriptor};
