@@ -32,6 +32,10 @@
 //!   texel of a ground grid, at any sun elevation: the march written once over the float
 //!   type (f32: the twin of the GPU pass [`gpu::ShadowMapPass`], an R32Float texture) and
 //!   the exact f64 map of a volume.
+//! * [`shell_shadow`](mod@shell_shadow): the same map over a procedural [`CloudShell`]
+//!   (its density evaluated per sample), twin of the GPU pass
+//!   [`gpu::ShellShadowMapPass`] (a storage buffer), equal bit for bit to the generic
+//!   march on the shell.
 //! * [`shell`](mod@shell) and [`noise`]: seed 003's procedural cloud shell about the
 //!   planet ([`CloudShell`], a [`DensityField`]): tileable Perlin, Worley and
 //!   Perlin–Worley noise, a procedural or user weather map, height profiles per cloud
@@ -79,6 +83,7 @@ pub mod propagate;
 pub mod reference;
 pub mod shadow_map;
 pub mod shell;
+pub mod shell_shadow;
 pub mod slice;
 pub mod volume;
 
@@ -186,6 +191,14 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {
         name: "cloudlight::shadow_map_pass",
         source: include_str!("../shaders/shadow_map_pass.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "cloudlight::shell_shadow",
+        source: include_str!("../shaders/shell_shadow.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "cloudlight::shell_shadow_map_pass",
+        source: include_str!("../shaders/shell_shadow_map_pass.wgsl"),
     },
 ];
 

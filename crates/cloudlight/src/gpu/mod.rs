@@ -30,6 +30,11 @@ pub use noise_bake::{
 mod shadow_map;
 pub use shadow_map::{ShadowMapGpuError, ShadowMapPass, compose_shadow_map_shader};
 
+mod shell_shadow_map;
+pub use shell_shadow_map::{
+    ShellShadowMapGpuError, ShellShadowMapPass, compose_shell_shadow_map_shader,
+};
+
 /// Workgroup size of the slice kernel along each in-slice axis.
 pub const WORKGROUP_SIZE: u32 = 8;
 

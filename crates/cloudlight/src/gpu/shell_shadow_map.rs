@@ -1,0 +1,300 @@
+//! [`ShellShadowMapPass`]: the ground's cloud shadow map of a procedural cloud shell on a
+//! GPU (`shaders/cloudlight/shell_shadow_map_pass.wgsl`), bring your own device.
+//!
+//! [`ShellShadowMapPass::new`] builds the pipeline; [`ShellShadowMapPass::prepare`]
+//! uploads the shell's parameters ([`ShellField`]) and the plan and creates the output
+//! buffer and the bind group; [`ShellShadowMapPass::encode`] only records one dispatch
+//! (8×8 texels per workgroup). The noise is evaluated per sample, as the GPU shell march
+//! ([`crate::gpu::MarchShellPass`]) evaluates it: no noise bake.
+//!
+//! The output is a storage buffer of `resolution[0] × resolution[1]` f32 (`i` fastest,
+//! `STORAGE | COPY_SRC`), texel `(i, j)` the transmittance at the ground point of
+//! [`ShadowGrid::texel_centre`] in the shell's planet-centred frame: a buffer, not a
+//! texture, so a renderer can copy it into a larger buffer of maps at any offset
+//! (`copy_buffer_to_buffer` has no 256-byte row alignment).
+//!
+//! The f32 CPU twin is [`shell_shadow_map::<f32>`](crate::shell_shadow::shell_shadow_map),
+//! equal bit for bit to [`shadow_map::<f32>`](crate::shadow_map::shadow_map) on the
+//! [`crate::CloudShell`].
+//!
+//! [`ShadowGrid::texel_centre`]: crate::shadow_map::ShadowGrid::texel_centre
+
+use super::shadow_map::SHADOW_WORKGROUP_SIZE;
+use crate::shadow_map::ShadowMapPlan;
+use crate::shell_shadow::ShellField;
+
+const PARAMS_BYTES: u64 = 112;
+
+/// Errors of the shell's shadow-map pass, naming the field and value.
+#[derive(Debug, thiserror::Error)]
+pub enum ShellShadowMapGpuError {
+    /// Composing the WGSL failed (a packaging bug).
+    #[error(transparent)]
+    Compose(#[from] skyscape_wgsl::ComposeError),
+    /// The output buffer is larger than the device lets a shader bind.
+    #[error(
+        "the map needs {bytes} bytes but the device's max_storage_buffer_binding_size is {limit}"
+    )]
+    BufferTooLarge {
+        /// The buffer's size.
+        bytes: u64,
+        /// The device limit.
+        limit: u64,
+    },
+    /// The map needs more workgroups along one axis than the device can dispatch.
+    #[error("{field} = {value} texels needs {groups} workgroups, the device allows {limit}")]
+    TooManyWorkgroups {
+        /// `resolution.x` or `resolution.y`.
+        field: &'static str,
+        /// Texels along it.
+        value: u32,
+        /// Workgroups needed.
+        groups: u32,
+        /// `max_compute_workgroups_per_dimension`.
+        limit: u32,
+    },
+    /// `encode` was called before `prepare`.
+    #[error("encode before prepare: no shell shadow map to compute")]
+    EncodeBeforePrepare,
+    /// Bytes handed to [`ShellShadowMapPass::decode`] have the wrong length.
+    #[error("readback has {got} bytes, expected {expected}")]
+    ReadbackSize {
+        /// Bytes given.
+        got: usize,
+        /// Bytes expected.
+        expected: usize,
+    },
+}
+
+/// The composed WGSL of the pass (entry point `shell_shadow_map_main`).
+pub fn compose_shell_shadow_map_shader() -> Result<String, skyscape_wgsl::ComposeError> {
+    crate::composer().compose_module("cloudlight::shell_shadow_map_pass")
+}
+
+#[derive(Debug)]
+struct Prepared {
+    bind_group: wgpu::BindGroup,
+    workgroups: [u32; 2],
+    resolution: [u32; 2],
+    output: wgpu::Buffer,
+    _params: wgpu::Buffer,
+}
+
+/// The shell's cloud shadow map on a GPU (see the module documentation).
+#[derive(Debug)]
+pub struct ShellShadowMapPass {
+    pipeline: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+    prepared: Option<Prepared>,
+}
+
+impl ShellShadowMapPass {
+    /// Builds the pipeline on `device`.
+    pub fn new(device: &wgpu::Device) -> Result<Self, ShellShadowMapGpuError> {
+        let source = compose_shell_shadow_map_shader()?;
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("cloudlight::shell_shadow_map_pass"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let entry = |binding: u32, ty: wgpu::BufferBindingType, size: Option<u64>| {
+            wgpu::BindGroupLayoutEntry {
+                binding,
+                visibility: wgpu::ShaderStages::COMPUTE,
+                ty: wgpu::BindingType::Buffer {
+                    ty,
+                    has_dynamic_offset: false,
+                    min_binding_size: size.and_then(wgpu::BufferSize::new),
+                },
+                count: None,
+            }
+        };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("cloudlight shell shadow map"),
+            entries: &[
+                entry(0, wgpu::BufferBindingType::Uniform, Some(PARAMS_BYTES)),
+                entry(
+                    1,
+                    wgpu::BufferBindingType::Storage { read_only: false },
+                    None,
+                ),
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("cloudlight shell shadow map"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("cloudlight::shell_shadow_map_main"),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some("shell_shadow_map_main"),
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            cache: None,
+        });
+        Ok(Self {
+            pipeline,
+            layout,
+            prepared: None,
+        })
+    }
+
+    /// Uploads `field` (the shell, [`ShellField::of`]) and `plan` (its grid in the shell's
+    /// planet-centred frame), creates the output buffer and the bind group
+    /// [`ShellShadowMapPass::encode`] records with. Takes effect at the next submit.
+    pub fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        field: &ShellField<f32>,
+        plan: &ShadowMapPlan,
+    ) -> Result<(), ShellShadowMapGpuError> {
+        let limits = device.limits();
+        let resolution = plan.grid.resolution();
+        let bytes = plan.grid.texels() as u64 * 4;
+        let limit = limits.max_storage_buffer_binding_size;
+        if bytes > limit {
+            return Err(ShellShadowMapGpuError::BufferTooLarge { bytes, limit });
+        }
+        let mut workgroups = [0u32; 2];
+        for (k, (field, value)) in ["resolution.x", "resolution.y"]
+            .into_iter()
+            .zip(resolution)
+            .enumerate()
+        {
+            let groups = value.div_ceil(SHADOW_WORKGROUP_SIZE);
+            let limit = limits.max_compute_workgroups_per_dimension;
+            if groups > limit {
+                return Err(ShellShadowMapGpuError::TooManyWorkgroups {
+                    field,
+                    value,
+                    groups,
+                    limit,
+                });
+            }
+            workgroups[k] = groups;
+        }
+        let grid = &plan.grid;
+        let f = |x: f64| (x as f32).to_bits();
+        let b = f32::to_bits;
+        let l = plan.to_sun();
+        let words: [u32; 28] = [
+            f(grid.origin()[0]),
+            f(grid.origin()[1]),
+            f(grid.cell_size()),
+            f(grid.ground_height()),
+            f(l[0]),
+            f(l[1]),
+            f(l[2]),
+            b(field.extinction_per_density),
+            b(field.planet_radius),
+            b(field.inner_radius),
+            b(field.outer_radius),
+            b(field.shape_period),
+            b(field.detail_period),
+            b(field.erosion),
+            b(field.weather_period),
+            b(field.coverage_mean),
+            b(field.coverage_contrast),
+            b(field.cloud_type_mean),
+            b(field.cloud_type_contrast),
+            0,
+            field.seed,
+            field.weather_seed,
+            field.weather_cells,
+            plan.steps(),
+            resolution[0],
+            resolution[1],
+            0,
+            0,
+        ];
+        let params = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("cloudlight shell shadow map params"),
+            size: PARAMS_BYTES,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        queue.write_buffer(&params, 0, bytemuck::cast_slice(&words));
+        let output = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("cloudlight shell shadow map"),
+            size: bytes,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("cloudlight shell shadow map"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: params.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: output.as_entire_binding(),
+                },
+            ],
+        });
+        self.prepared = Some(Prepared {
+            bind_group,
+            workgroups,
+            resolution,
+            output,
+            _params: params,
+        });
+        Ok(())
+    }
+
+    /// Records the map's dispatch into `encoder`.
+    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder) -> Result<(), ShellShadowMapGpuError> {
+        self.encode_timed(encoder, None)
+    }
+
+    /// [`ShellShadowMapPass::encode`] with timestamp writes on its compute pass.
+    pub fn encode_timed(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), ShellShadowMapGpuError> {
+        let prepared = self
+            .prepared
+            .as_ref()
+            .ok_or(ShellShadowMapGpuError::EncodeBeforePrepare)?;
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("cloudlight shell shadow map"),
+            timestamp_writes,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &prepared.bind_group, &[]);
+        pass.dispatch_workgroups(prepared.workgroups[0], prepared.workgroups[1], 1);
+        Ok(())
+    }
+
+    /// The map (f32 per texel, `i` fastest); `None` before `prepare`.
+    pub fn buffer(&self) -> Option<&wgpu::Buffer> {
+        self.prepared.as_ref().map(|p| &p.output)
+    }
+
+    /// `[nx, ny]` texels of the prepared map; `None` before `prepare`.
+    pub fn resolution(&self) -> Option<[u32; 2]> {
+        self.prepared.as_ref().map(|p| p.resolution)
+    }
+
+    /// Turns the buffer's bytes (as `skyscape_harness::read_buffer` returns them) into
+    /// one f32 per texel, `i` fastest.
+    pub fn decode(&self, bytes: &[u8]) -> Result<Vec<f32>, ShellShadowMapGpuError> {
+        let expected = self.prepared.as_ref().map_or(0, |p| {
+            p.resolution[0] as usize * p.resolution[1] as usize * 4
+        });
+        if bytes.len() != expected || expected == 0 {
+            return Err(ShellShadowMapGpuError::ReadbackSize {
+                got: bytes.len(),
+                expected,
+            });
+        }
+        Ok(bytes
+            .chunks_exact(4)
+            .map(|b| f32::from_ne_bytes([b[0], b[1], b[2], b[3]]))
+            .collect())
+    }
+}
