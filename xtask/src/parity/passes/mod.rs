@@ -11,6 +11,7 @@ mod cloudlight_march_passes;
 mod cloudlight_noise_passes;
 mod cloudlight_passes;
 mod cloudlight_shadow_passes;
+mod cloudlight_shell_shadow_passes;
 mod cloudsim_passes;
 mod terrain_passes;
 
@@ -60,6 +61,7 @@ pub fn all() -> Vec<PassCase> {
         cloudlight_march_passes::cases(),
         cloudlight_noise_passes::cases(),
         cloudlight_shadow_passes::cases(),
+        cloudlight_shell_shadow_passes::cases(),
         atmos_passes::cases(),
         atmos_drop_in_passes::cases(),
     ]
