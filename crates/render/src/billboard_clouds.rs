@@ -38,13 +38,16 @@
 //! east/north/up frame, [`billboard_camera`]). Each particle is seen through the air
 //! between the camera and its centre (`atmos::lut::drop_in::aerial_perspective` on the
 //! precomputed rung, WGSL `aerial_perspective`, else the rung's
-//! `SkyQuery::with_max_distance`): `colour' = colour · T_air + L_air`
+//! `SkyQuery::with_max_distance`; on the GPU a compute pass of the rung's own functions
+//! per particle before the draw, `shaders/render/billboard_air_closed_form.wgsl`,
+//! `billboard_air_single.wgsl`, read per instance by `billboard_clouds_rung.wgsl`):
+//! `colour' = colour · T_air + L_air`
 //! ([`billboard_seen_through_air`]), so the premultiplied splat adds
 //! `α · (colour · T_air + L_air)` over `(1 − α)` of what is behind, the marched cloud's
 //! `L_c · T_air + L_air · (1 − T_c)`. At night the moonlit air in front of each particle
 //! is added to `L_air` ([`moonlit_air`]: the moon's segment model, computed on the CPU
 //! for both renderers and read by the GPU's vertex stage per instance; the sun's air
-//! comes from the tables). A particle covers a pixel only where its view
+//! comes from the tables or the rung's pass). A particle covers a pixel only where its view
 //! depth is less than the terrain's: on the CPU `cloudlight::billboard::rasterise_limited`
 //! with the ray-cast terrain's view depth per pixel, on the GPU a depth test `Greater`
 //! of `near / z` against the terrain's reverse-z depth (`shaders/render/billboard_clouds.wgsl`,
@@ -646,35 +649,41 @@ pub fn params_bytes(
 }
 
 /// The billboard pass's group 2: the uniform (vertex stage) and the moonlit air per
-/// instance (a read-only storage buffer of `vec4<f32>`).
+/// instance (a read-only storage buffer of `vec4<f32>`); with `sun_air` (a rung without
+/// tables) the sun's air per instance too (`shaders/render/billboard_clouds_rung.wgsl`).
 #[cfg(feature = "gpu")]
-fn params_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+fn params_layout(device: &wgpu::Device, sun_air: bool) -> wgpu::BindGroupLayout {
     let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::VERTEX,
         ty,
         count: None,
     };
+    let storage = |binding| {
+        entry(
+            binding,
+            wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only: true },
+                has_dynamic_offset: false,
+                min_binding_size: wgpu::BufferSize::new(16),
+            },
+        )
+    };
+    let entries = [
+        entry(
+            0,
+            wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: wgpu::BufferSize::new(PARAMS_BYTES),
+            },
+        ),
+        storage(1),
+        storage(2),
+    ];
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("render billboard clouds"),
-        entries: &[
-            entry(
-                0,
-                wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: wgpu::BufferSize::new(PARAMS_BYTES),
-                },
-            ),
-            entry(
-                1,
-                wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Storage { read_only: true },
-                    has_dynamic_offset: false,
-                    min_binding_size: wgpu::BufferSize::new(16),
-                },
-            ),
-        ],
+        entries: &entries[..if sun_air { 3 } else { 2 }],
     })
 }
 
@@ -683,8 +692,9 @@ fn needs_tables() -> RenderError {
     RenderError::InvalidParameter {
         field: "clouds.volume.draw",
         value: "\"billboards\"".into(),
-        reason: "the GPU billboards read the precomputed rung's aerial-perspective tables; \
-                 render this scene with the precomputed rung, or on the CPU (--cpu)",
+        reason: "the GPU billboards see their air through the precomputed rung's tables or \
+                 the closed form's or single scattering's passes; render this scene with one \
+                 of those rungs, or on the CPU (--cpu)",
     }
 }
 
@@ -704,20 +714,22 @@ fn params_bind_group(
     layout: &wgpu::BindGroupLayout,
     uniform: &wgpu::Buffer,
     moon_air: &wgpu::Buffer,
+    sun_air: Option<&wgpu::Buffer>,
 ) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry<'_>> = [Some(uniform), Some(moon_air), sun_air]
+        .into_iter()
+        .enumerate()
+        .filter_map(|(binding, buffer)| {
+            Some(wgpu::BindGroupEntry {
+                binding: binding as u32,
+                resource: buffer?.as_entire_binding(),
+            })
+        })
+        .collect();
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("render billboard clouds"),
         layout,
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: uniform.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: moon_air.as_entire_binding(),
-            },
-        ],
+        entries: &entries,
     })
 }
 
@@ -725,10 +737,217 @@ fn params_bind_group(
 #[cfg(feature = "gpu")]
 pub const PARAMS_BYTES: u64 = 80;
 
+/// The particles per workgroup of the rungs' billboard air passes
+/// (`shaders/render/billboard_air_*.wgsl`).
+#[cfg(feature = "gpu")]
+const AIR_WORKGROUP: u32 = 64;
+
+/// The sun's air in front of every particle under a rung without tables: a compute pass
+/// of the rung's functions (`shaders/render/billboard_air_closed_form.wgsl`,
+/// `billboard_air_single.wgsl`) per particle, with the sun's camera and the rung's
+/// parameters of `crate::gpu::cloud_air::RungCloudAir` in groups 0 and 1 (written each
+/// frame by the rung's passes), the particles' world offsets in and their air out in
+/// group 2 (`shaders/render/billboard_air_io.wgsl`). The twin of the CPU's segment model
+/// in [`composite_billboards_cpu`].
+#[cfg(feature = "gpu")]
+#[derive(Debug)]
+struct RungBillboardAir {
+    pipeline: wgpu::ComputePipeline,
+    /// The sun's camera and the rung's parameters (groups 0 and 1).
+    light: [wgpu::BindGroup; 2],
+    layout: wgpu::BindGroupLayout,
+    uniform: wgpu::Buffer,
+    /// The particles' world offsets (one `vec4<f32>` each).
+    offsets: wgpu::Buffer,
+    /// The particles' air (two `vec4<f32>` each: radiance, transmittance), read by the
+    /// draw's vertex stage.
+    air: wgpu::Buffer,
+    group: wgpu::BindGroup,
+}
+
+#[cfg(feature = "gpu")]
+impl RungBillboardAir {
+    fn new(
+        device: &wgpu::Device,
+        air: &crate::gpu::cloud_air::RungCloudAir,
+    ) -> Result<Self, RenderError> {
+        let (rung, layouts, groups) = air.groups();
+        let (module_name, entry) = match rung {
+            crate::scene::Rung::Single => ("render::billboard_air_single", "billboard_air_single"),
+            _ => (
+                "render::billboard_air_closed_form",
+                "billboard_air_closed_form",
+            ),
+        };
+        let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only },
+                has_dynamic_offset: false,
+                min_binding_size: wgpu::BufferSize::new(16),
+            },
+            count: None,
+        };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("render billboard air"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: wgpu::BufferSize::new(16),
+                    },
+                    count: None,
+                },
+                storage(1, true),
+                storage(2, false),
+            ],
+        });
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("render billboard air"),
+            source: wgpu::ShaderSource::Wgsl(crate::composer().compose_module(module_name)?.into()),
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("render billboard air"),
+            bind_group_layouts: &[Some(layouts[0]), Some(layouts[1]), Some(&layout)],
+            immediate_size: 0,
+        });
+        let constants = crate::gpu::rungs::air_constants(rung);
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("render billboard air"),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some(entry),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: &constants,
+                ..Default::default()
+            },
+            cache: None,
+        });
+        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render billboard air uniform"),
+            size: 16,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let (offsets, air) = Self::buffers(device, 1);
+        let group = Self::group(device, &layout, &uniform, &offsets, &air);
+        Ok(Self {
+            pipeline,
+            light: groups.map(Clone::clone),
+            layout,
+            uniform,
+            offsets,
+            air,
+            group,
+        })
+    }
+
+    /// The offsets and air buffers for `count` particles.
+    fn buffers(device: &wgpu::Device, count: u64) -> (wgpu::Buffer, wgpu::Buffer) {
+        let buffer = |label, size| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        (
+            buffer("render billboard offsets", 16 * count),
+            buffer("render billboard sun air", 32 * count),
+        )
+    }
+
+    fn group(
+        device: &wgpu::Device,
+        layout: &wgpu::BindGroupLayout,
+        uniform: &wgpu::Buffer,
+        offsets: &wgpu::Buffer,
+        air: &wgpu::Buffer,
+    ) -> wgpu::BindGroup {
+        let entries: Vec<wgpu::BindGroupEntry<'_>> = [uniform, offsets, air]
+            .into_iter()
+            .enumerate()
+            .map(|(binding, buffer)| wgpu::BindGroupEntry {
+                binding: binding as u32,
+                resource: buffer.as_entire_binding(),
+            })
+            .collect();
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("render billboard air"),
+            layout,
+            entries: &entries,
+        })
+    }
+
+    /// Uploads the particles' world offsets (the draw's order) and their count; `true`
+    /// when the air buffer was replaced (the draw's group 2 must be made again).
+    fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        particles: &[Billboard],
+    ) -> Result<bool, RenderError> {
+        let count = particles.len() as u64;
+        let groups = count.div_ceil(u64::from(AIR_WORKGROUP));
+        let limit = u64::from(device.limits().max_compute_workgroups_per_dimension);
+        if groups > limit || 32 * count > device.limits().max_storage_buffer_binding_size {
+            return Err(RenderError::InvalidParameter {
+                field: "clouds.volume.billboards",
+                value: format!("{count} billboards"),
+                reason: "more particles than the device's compute dispatch or storage \
+                         binding limits allow for their air",
+            });
+        }
+        let replaced = self.offsets.size() < 16 * count;
+        if replaced {
+            (self.offsets, self.air) = Self::buffers(device, count);
+            self.group = Self::group(
+                device,
+                &self.layout,
+                &self.uniform,
+                &self.offsets,
+                &self.air,
+            );
+        }
+        let offsets: Vec<f32> = particles
+            .iter()
+            .flat_map(|p| {
+                let [x, y, z] = world_offset(p.relative);
+                [x, y, z, 0.0]
+            })
+            .collect();
+        if !offsets.is_empty() {
+            queue.write_buffer(&self.offsets, 0, bytemuck::cast_slice(&offsets));
+        }
+        let params = [count as u32, 0, 0, 0];
+        queue.write_buffer(&self.uniform, 0, bytemuck::cast_slice(&params));
+        Ok(replaced)
+    }
+
+    /// Records the compute pass of `count` particles' air.
+    fn encode(&self, encoder: &mut wgpu::CommandEncoder, count: u32) {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("render billboard air"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &self.light[0], &[]);
+        pass.set_bind_group(1, &self.light[1], &[]);
+        pass.set_bind_group(2, &self.group, &[]);
+        pass.dispatch_workgroups(count.div_ceil(AIR_WORKGROUP), 1, 1);
+    }
+}
+
 /// The GPU side: cloudlight's instanced quads (`cloudlight::gpu::billboard`'s instance
 /// layout, pipeline and pass) drawn by `shaders/render/billboard_clouds.wgsl` into the HDR target with the
 /// terrain's depth as a read-only depth attachment (test `Greater`), the LUTs in groups
-/// 0 and 1 for the aerial perspective.
+/// 0 and 1 for the aerial perspective (the precomputed rung), or each particle's air
+/// from [`RungBillboardAir`]'s pass in group 2 (the closed form, single scattering).
 #[cfg(feature = "gpu")]
 use cloudlight::gpu::billboard::{
     BillboardPipelineDescriptor, begin_billboard_pass, billboard_pipeline, draw_billboards,
@@ -743,6 +962,9 @@ pub(crate) struct BillboardCloudPass {
     uniform: wgpu::Buffer,
     /// The moonlit air per instance (16 bytes, unread, without a moonlit sky).
     moon_air: wgpu::Buffer,
+    /// The sun's air per particle under a rung without tables (`None`: the precomputed
+    /// rung's tables in groups 0 and 1).
+    rung_air: Option<RungBillboardAir>,
     instances: Option<wgpu::Buffer>,
     count: u32,
 }
@@ -750,20 +972,39 @@ pub(crate) struct BillboardCloudPass {
 #[cfg(feature = "gpu")]
 impl BillboardCloudPass {
     /// The pipeline for an HDR target of `target` and a depth attachment of `depth`;
-    /// the particles' air is read from the precomputed rung's `luts` (an error without).
+    /// the particles' air is the sun's `air` (`crate::gpu::cloud_air::cloud_airs`): the
+    /// precomputed rung's tables, read in the vertex stage, or a rung's functions, a
+    /// compute pass per particle before the draw (an error without either).
     pub(crate) fn new(
         device: &wgpu::Device,
-        luts: Option<&atmos::gpu::AtmosphereLuts>,
+        air: Option<crate::gpu::cloud_air::CloudAir<'_>>,
         target: wgpu::TextureFormat,
         depth: wgpu::TextureFormat,
     ) -> Result<Self, RenderError> {
-        let luts = luts.ok_or_else(needs_tables)?;
-        let source = crate::composer().compose_module("render::billboard_clouds")?;
+        use crate::gpu::cloud_air::CloudAir;
+        let (module_name, vertex_entry, fragment_entry) = match air {
+            Some(CloudAir::Tables(_)) => (
+                "render::billboard_clouds",
+                "billboard_clouds_vertex",
+                "billboard_clouds_fragment",
+            ),
+            Some(CloudAir::Rung(_)) => (
+                "render::billboard_clouds_rung",
+                "billboard_clouds_rung_vertex",
+                "billboard_clouds_rung_fragment",
+            ),
+            None => return Err(needs_tables()),
+        };
+        let rung_air = match air {
+            Some(CloudAir::Rung(rung)) => Some(RungBillboardAir::new(device, rung)?),
+            _ => None,
+        };
+        let source = crate::composer().compose_module(module_name)?;
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("render billboard clouds"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
         });
-        let layout = params_layout(device);
+        let layout = params_layout(device, rung_air.is_some());
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("render billboard clouds uniform"),
             size: PARAMS_BYTES,
@@ -771,14 +1012,23 @@ impl BillboardCloudPass {
             mapped_at_creation: false,
         });
         let moon_air = moon_air_buffer(device, 16);
-        let bind_group = params_bind_group(device, &layout, &uniform, &moon_air);
+        let bind_group = params_bind_group(
+            device,
+            &layout,
+            &uniform,
+            &moon_air,
+            rung_air.as_ref().map(|r| &r.air),
+        );
+        // The rungs' pipeline binds group 2 alone (its air is in group 2).
+        let tables = match air {
+            Some(CloudAir::Tables(luts)) => {
+                [Some(&luts.layouts().uniforms), Some(&luts.layouts().tables)]
+            }
+            _ => [None, None],
+        };
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("render billboard clouds"),
-            bind_group_layouts: &[
-                Some(&luts.layouts().uniforms),
-                Some(&luts.layouts().tables),
-                Some(&layout),
-            ],
+            bind_group_layouts: &[tables[0], tables[1], Some(&layout)],
             immediate_size: 0,
         });
         let pipeline = billboard_pipeline(
@@ -787,8 +1037,8 @@ impl BillboardCloudPass {
                 label: "render billboard clouds",
                 layout: &pipeline_layout,
                 module: &module,
-                vertex_entry: "billboard_clouds_vertex",
-                fragment_entry: "billboard_clouds_fragment",
+                vertex_entry,
+                fragment_entry,
                 target,
                 depth_stencil: Some(wgpu::DepthStencilState {
                     format: depth,
@@ -805,6 +1055,7 @@ impl BillboardCloudPass {
             bind_group,
             uniform,
             moon_air,
+            rung_air,
             instances: None,
             count: 0,
         })
@@ -860,10 +1111,15 @@ impl BillboardCloudPass {
                 .collect();
             if self.moon_air.size() < bytes.len() as u64 {
                 self.moon_air = moon_air_buffer(device, bytes.len() as u64);
-                self.bind_group =
-                    params_bind_group(device, &self.layout, &self.uniform, &self.moon_air);
+                self.bind_group = self.params_group(device);
             }
             queue.write_buffer(&self.moon_air, 0, &bytes);
+        }
+        // A rung without tables: the particles' offsets for the sun's air pass.
+        if let Some(rung_air) = &mut self.rung_air
+            && rung_air.prepare(device, queue, &particles)?
+        {
+            self.bind_group = self.params_group(device);
         }
         let frame = cloudlight::billboard::ScreenFrame::<f32>::new(&camera, cloud.settings.size);
         queue.write_buffer(
@@ -879,8 +1135,20 @@ impl BillboardCloudPass {
         Ok(())
     }
 
+    /// The draw's group 2 over the current buffers.
+    fn params_group(&self, device: &wgpu::Device) -> wgpu::BindGroup {
+        params_bind_group(
+            device,
+            &self.layout,
+            &self.uniform,
+            &self.moon_air,
+            self.rung_air.as_ref().map(|r| &r.air),
+        )
+    }
+
     /// Records one render pass drawing the particles over `target`, depth-tested against
-    /// `depth` (read only).
+    /// `depth` (read only); under a rung without tables, the particles' air pass first
+    /// (compute, untimed), else the precomputed rung's `luts` bound in groups 0 and 1.
     pub(crate) fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -889,7 +1157,15 @@ impl BillboardCloudPass {
         luts: Option<&atmos::gpu::AtmosphereLuts>,
         timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) -> Result<(), RenderError> {
-        let luts = luts.ok_or_else(needs_tables)?;
+        let luts = match &self.rung_air {
+            Some(air) => {
+                if self.count > 0 {
+                    air.encode(encoder, self.count);
+                }
+                None
+            }
+            None => Some(luts.ok_or_else(needs_tables)?),
+        };
         let mut pass = begin_billboard_pass(
             encoder,
             "render billboard clouds",
@@ -902,8 +1178,10 @@ impl BillboardCloudPass {
             timestamp_writes,
         );
         if let (Some(instances), true) = (&self.instances, self.count > 0) {
-            pass.set_bind_group(0, luts.uniform_bind_group(), &[]);
-            pass.set_bind_group(1, luts.table_bind_group(), &[]);
+            if let Some(luts) = luts {
+                pass.set_bind_group(0, luts.uniform_bind_group(), &[]);
+                pass.set_bind_group(1, luts.table_bind_group(), &[]);
+            }
             pass.set_bind_group(2, &self.bind_group, &[]);
             draw_billboards(&mut pass, &self.pipeline, instances, self.count);
         }

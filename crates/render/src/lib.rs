@@ -158,8 +158,28 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/billboard_air.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "render::billboard_clouds_io",
+        source: include_str!("../shaders/billboard_clouds_io.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "render::billboard_clouds",
         source: include_str!("../shaders/billboard_clouds.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::billboard_clouds_rung",
+        source: include_str!("../shaders/billboard_clouds_rung.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::billboard_air_io",
+        source: include_str!("../shaders/billboard_air_io.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::billboard_air_closed_form",
+        source: include_str!("../shaders/billboard_air_closed_form.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::billboard_air_single",
+        source: include_str!("../shaders/billboard_air_single.wgsl"),
     },
     skyscape_wgsl::Module {
         name: "render::display",

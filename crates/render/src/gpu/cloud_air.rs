@@ -157,6 +157,17 @@ impl RungCloudAir {
     pub(crate) fn prepare(&self, queue: &wgpu::Queue, camera: &atmos::frame::FrameCamera) {
         queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(camera));
     }
+
+    /// The rung, and groups 0 and 1's layouts and this light's bind groups, for another
+    /// pass of the rung's functions per light (the billboards' air,
+    /// `crate::billboard_clouds`).
+    pub(crate) fn groups(&self) -> (Rung, [&wgpu::BindGroupLayout; 2], [&wgpu::BindGroup; 2]) {
+        (
+            self.rung,
+            [&self.camera_layout, &self.parameters_layout],
+            [&self.camera_group, &self.parameters_group],
+        )
+    }
 }
 
 /// A marched cloud's air for the sun and, on a moonlit night, the moon: the precomputed

@@ -706,9 +706,12 @@ impl SceneRenderer {
 
         // Only a scene drawing [clouds.volume] as billboards builds their pipeline.
         let billboard_cloud = match &scene.billboard_cloud {
+            // The sun's air: the tables, or the rung's functions (`super::cloud_air`).
             Some(_) => Some(crate::billboard_clouds::BillboardCloudPass::new(
                 device,
-                luts.as_ref(),
+                super::cloud_air::cloud_airs(luts.as_ref(), None, rung.as_ref(), scene.rung)
+                    .ok()
+                    .map(|(sun, _)| sun),
                 HDR,
                 DEPTH,
             )?),

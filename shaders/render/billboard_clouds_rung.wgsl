@@ -1,0 +1,27 @@
+// The billboards (render::billboard_clouds) under a rung without tables (the closed
+// form, single scattering): the same quads, depth test and blending, each particle seen
+// through the sun's air in front of it that the rung's billboard air pass
+// (render::billboard_air_closed_form, render::billboard_air_single) wrote per particle
+// before the draw, read here per instance; at night the moonlit air is added as on the
+// precomputed rung (render::billboard_clouds_io).
+// Twin: render::billboard_clouds::composite_billboards_cpu without tables (Rust).
+//
+// Bindings: group 2 only (groups 0 and 1 unused): render::billboard_clouds_io's
+// parameters and moonlit air, and the sun's air per particle.
+#import render::billboard_clouds_io
+
+// Two vec4 per instance: the sun's air's in-scattered radiance, then its transmittance
+// (render::billboard_air_io's output).
+@group(2) @binding(2) var<storage, read> sun_air: array<vec4<f32>>;
+
+@vertex
+fn billboard_clouds_rung_vertex(in: BillboardInstance, @builtin(instance_index) instance: u32) -> BillboardVarying {
+    let radiance = sun_air[2u * instance].xyz;
+    let transmittance = sun_air[2u * instance + 1u].xyz;
+    return billboard_clouds_seen_vertex(in, instance, transmittance, radiance);
+}
+
+@fragment
+fn billboard_clouds_rung_fragment(in: BillboardVarying) -> @location(0) vec4<f32> {
+    return billboard_quad_fragment(in);
+}
