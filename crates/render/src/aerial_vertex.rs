@@ -5,12 +5,17 @@
 //! camera → point (transmittance and in-scatter, atmos' `aerial_perspective`) for every
 //! terrain fragment at its position. `"per-vertex"` evaluates it, as seed 000's vertex
 //! shader does, at the vertices of the GPU's terrain mesh (the quadtree tiles of
-//! [`crate::terrain_mesh`], in the vertex stage of `shaders/render/terrain.wgsl`, the
-//! same WGSL function by `#import`) and lets the rasteriser interpolate it to the
-//! fragments (perspective-correct). A fragment then pays a multiply-add instead of a
-//! lookup in the aerial-perspective volume or, beyond its 32 km range and off screen, a
-//! march through the tables; the price is the interpolation error over a triangle, which
-//! grows with the tile's step (far, coarse tiles).
+//! [`crate::terrain_mesh`]) and lets the rasteriser interpolate it to the fragments
+//! (perspective-correct). With the precomputed rung the vertex stage evaluates it
+//! (`shaders/render/terrain_aerial_vertex.wgsl`, atmos' `aerial_perspective`, the same
+//! WGSL function by `#import`); with the closed form and single scattering a compute
+//! pass over the drawn tiles' vertices evaluates the rung's own functions (those its
+//! per-pixel pass evaluates) and the vertex stage reads them (`render::gpu::vertex_air`,
+//! `shaders/render/terrain_rung_aerial_vertex.wgsl`). A fragment then pays a multiply-add
+//! instead of a lookup in the aerial-perspective volume or a march (the tables beyond
+//! the volume's 32 km range, the rung's segment otherwise); the price is the
+//! interpolation error over a triangle, which grows with the tile's step (far, coarse
+//! tiles).
 //!
 //! The CPU reference renderer ray casts the bilinear heightfield, so it has no triangles
 //! of its own. Its twin of the per-vertex variant ([`VertexAerial`]) selects the tiles
@@ -98,29 +103,20 @@ pub fn plan(variant: AerialPerspective) -> &'static str {
     }
 }
 
-/// Whether the GPU renderer draws `scene`'s terrain with the variant it asks for: per
-/// vertex needs the precomputed rung's tables (the GPU terrain passes of the rungs
-/// without tables are per pixel), so a scene asking for it with another rung is an
-/// error there rather than a silently different image; the CPU renderer draws every
-/// rung per vertex.
-pub fn check_gpu(scene: &PreparedScene) -> Result<(), RenderError> {
-    match &scene.terrain {
-        Some(terrain)
-            if terrain.aerial_perspective.per_vertex()
-                && scene.rung != crate::scene::Rung::Precomputed =>
-        {
-            Err(RenderError::InvalidParameter {
-                field: "terrain.aerial_perspective",
-                value: format!(
-                    "\"{}\" with rung \"{}\"",
-                    terrain.aerial_perspective.name(),
-                    scene.rung.name()
-                ),
-                reason: "the GPU renderer evaluates it per vertex from the precomputed rung's \
-                         tables only; render this rung per vertex on the CPU (--cpu)",
-            })
-        }
-        _ => Ok(()),
+/// What `skyscape explain` says of the terrain's aerial perspective with a rung without
+/// tables, whose model (e.g. "the closed form") evaluates it.
+pub fn rung_plan(variant: AerialPerspective, model: &str) -> String {
+    match variant {
+        AerialPerspective::PerPixel => format!(
+            "{model}'s in-scatter and transmittance of each terrain pixel's segment from the \
+             camera (compute, reading the depth), copied back"
+        ),
+        AerialPerspective::PerVertex => format!(
+            "per vertex (seed 000; [terrain] aerial_perspective = \"per-vertex\"): {model}'s \
+             in-scatter and transmittance of the segment to each drawn tile vertex (compute \
+             over the vertices, per light), interpolated across the triangles by the terrain \
+             draw"
+        ),
     }
 }
 

@@ -82,6 +82,34 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/terrain_aerial_vertex.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "render::vertex_air",
+        source: include_str!("../shaders/vertex_air.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::vertex_air_compute",
+        source: include_str!("../shaders/vertex_air_compute.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::vertex_air_closed_form",
+        source: include_str!("../shaders/vertex_air_closed_form.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::vertex_air_single",
+        source: include_str!("../shaders/vertex_air_single.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::terrain_rung_aerial_vertex",
+        source: include_str!("../shaders/terrain_rung_aerial_vertex.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::terrain_closed_form_aerial_vertex",
+        source: include_str!("../shaders/terrain_closed_form_aerial_vertex.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::terrain_single_aerial_vertex",
+        source: include_str!("../shaders/terrain_single_aerial_vertex.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "render::sky_rung",
         source: include_str!("../shaders/sky_rung.wgsl"),
     },

@@ -13,7 +13,7 @@ use common::{Agreement, cpu_pixels, lsb};
 use render::aerial_vertex::{AerialPerspective, VertexAerial};
 use render::cpu_renderer::render_radiance;
 use render::gpu::{SceneRenderer, SceneRendererSettings};
-use render::scene::{PreparedScene, Scene};
+use render::scene::{PreparedScene, Rung, Scene};
 
 const DEFAULT_SCENE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/default.toml");
 
@@ -518,5 +518,116 @@ fn the_twin_interpolates_on_the_triangle_under_each_hit() {
             "{name}: {on_ray} of {hits}"
         );
         assert!(median < 1e-3 && p99 < 2e-2, "{name}: {median} {p99}");
+    }
+}
+
+fn smooth_hills_with(variant: AerialPerspective, rung: Rung) -> PreparedScene {
+    let mut scene = Scene::parse(SMOOTH_HILLS, ".").unwrap();
+    scene.file.terrain.as_mut().unwrap().aerial_perspective = variant;
+    scene.file.atmosphere.rung = rung;
+    scene.prepare().unwrap()
+}
+
+/// The rungs without tables per vertex on the GPU (`render::gpu::vertex_air`: their
+/// own functions, a compute pass over the drawn tiles' vertices) against the CPU twin,
+/// on the smooth hills with the precomputed test's 99.9 % goal; the per-vertex image
+/// differs from the per-pixel one (so it is not drawn per pixel), and `skyscape
+/// explain` names the variant.
+#[test]
+fn per_vertex_agrees_on_the_gpu_and_the_cpu_under_the_rungs_without_tables() {
+    for rung in [Rung::ClosedForm, Rung::Single] {
+        let scene = smooth_hills_with(AerialPerspective::PerVertex, rung);
+        let plan = render::gpu::scene::planned_passes(&scene);
+        let air = plan
+            .iter()
+            .find(|(name, _)| *name == "terrain aerial perspective")
+            .and_then(|(_, entry)| entry.as_ref().ok())
+            .unwrap_or_else(|| panic!("{}: {plan:?}", rung.name()));
+        assert!(air.contains("per vertex"), "{}: {air}", rung.name());
+    }
+    let Some(gpu) = common::gpu_or_skip("render::aerial_vertex (rungs without tables)") else {
+        return;
+    };
+    for rung in [Rung::ClosedForm, Rung::Single] {
+        let scene = smooth_hills_with(AerialPerspective::PerVertex, rung);
+        let gpu_image = gpu_pixels(gpu, &scene);
+        let cpu_image = cpu_pixels(&scene);
+        let two = render::tonemap::fraction_within_lsb(&gpu_image, &cpu_image, 2).unwrap();
+        let worst = gpu_image
+            .iter()
+            .zip(&cpu_image)
+            .map(|(a, b)| lsb(*a, *b))
+            .max()
+            .unwrap();
+        let per_pixel_scene = smooth_hills_with(AerialPerspective::PerPixel, rung);
+        let per_pixel = gpu_pixels(gpu, &per_pixel_scene);
+        let changed = gpu_image
+            .iter()
+            .zip(&per_pixel)
+            .filter(|(a, b)| a != b)
+            .count();
+        let per_pixel_two =
+            render::tonemap::fraction_within_lsb(&per_pixel, &cpu_pixels(&per_pixel_scene), 2)
+                .unwrap();
+        eprintln!(
+            "smooth hills 160×90, {}, per vertex: GPU vs CPU {:.3} % of pixels within 2 LSB \
+             (worst {worst}); {changed} pixels differ from the per-pixel GPU image (per pixel: \
+             GPU vs CPU {:.3} % within 2 LSB)",
+            rung.name(),
+            100.0 * two,
+            100.0 * per_pixel_two
+        );
+        assert!(two >= 0.999, "{}: {two}", rung.name());
+        assert!(changed > 100, "{}: {changed}", rung.name());
+    }
+}
+
+/// The moonlit night (the moon drawn as a second, added light: each light's own
+/// segments per vertex) under the rungs without tables: per vertex on the GPU agrees
+/// with the CPU twin no worse than per pixel does on the same tiles (scene_gpu's
+/// metric), and differs from per pixel.
+#[test]
+fn per_vertex_under_the_moon_agrees_under_the_rungs_without_tables() {
+    let Some(gpu) = common::gpu_or_skip("render::aerial_vertex (moonlit, rungs without tables)")
+    else {
+        return;
+    };
+    for rung in [Rung::ClosedForm, Rung::Single] {
+        let night = |variant: AerialPerspective| {
+            let mut scene = common::shipped("night", 96, 54);
+            scene.file.atmosphere.rung = rung;
+            scene.file.terrain.as_mut().unwrap().aerial_perspective = variant;
+            scene.prepare().unwrap()
+        };
+        let (per_pixel_scene, per_vertex_scene) = (
+            night(AerialPerspective::PerPixel),
+            night(AerialPerspective::PerVertex),
+        );
+        assert!(
+            per_vertex_scene.moonlit.is_some(),
+            "the moon lights the night"
+        );
+        let per_pixel = agreement(gpu, &per_pixel_scene);
+        let per_vertex = agreement(gpu, &per_vertex_scene);
+        let changed = gpu_pixels(gpu, &per_vertex_scene)
+            .iter()
+            .zip(&gpu_pixels(gpu, &per_pixel_scene))
+            .filter(|(a, b)| a != b)
+            .count();
+        eprintln!(
+            "night 96×54 (moonlit), {}: per pixel {per_pixel}; per vertex {per_vertex}; \
+             {changed} pixels differ between the two GPU images",
+            rung.name()
+        );
+        assert!(
+            per_vertex.two >= per_pixel.two - 0.005,
+            "{per_vertex} vs {per_pixel}"
+        );
+        assert!(
+            per_vertex.eight >= per_pixel.eight - 0.005,
+            "{per_vertex} vs {per_pixel}"
+        );
+        assert!(per_vertex.unbiased(1.5), "{per_vertex}");
+        assert!(changed > 0, "{}: {changed}", rung.name());
     }
 }

@@ -16,6 +16,7 @@ pub mod present;
 pub mod rungs;
 pub mod scene;
 pub mod timer;
+pub(crate) mod vertex_air;
 
 pub use present::Presenter;
 pub use scene::{SceneRenderer, SceneRendererSettings};

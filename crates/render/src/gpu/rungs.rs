@@ -329,6 +329,54 @@ impl AirPass {
             targets: None,
         })
     }
+
+    /// Binds the scene's targets (once: the same every frame) and writes the frame's
+    /// camera and lights.
+    fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &PreparedScene,
+        hdr_view: &wgpu::TextureView,
+        depth_view: &wgpu::TextureView,
+    ) {
+        if self.targets.is_none() {
+            self.targets = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("render terrain air (rung)"),
+                layout: &self.layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: self.uniform.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::TextureView(depth_view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: wgpu::BindingResource::TextureView(hdr_view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: wgpu::BindingResource::TextureView(&self.scratch_view),
+                    },
+                ],
+            }));
+        }
+        let air = RungAirUniform {
+            camera: scene.camera,
+            moon_direction: scene
+                .moonlit
+                .as_ref()
+                .map_or([0.0; 3], |moon| moon.direction.as_vec3().to_array()),
+            moon: u32::from(scene.moonlit.is_some()),
+            near: scene.near.max(0.01) as f32,
+            radiance_scale: scene.present.exposure,
+            padding: [0.0; 2],
+        };
+        queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&air));
+    }
 }
 
 /// One light's sky evaluation and draw, and its terrain group.
@@ -380,7 +428,10 @@ pub struct RungPasses {
     terrain_module: wgpu::ShaderModule,
     sun: LightPasses,
     moon: Option<LightPasses>,
-    air: AirPass,
+    /// The terrain's aerial perspective per pixel; `None` per vertex (`vertex_air`).
+    air: Option<AirPass>,
+    /// The terrain's aerial perspective per vertex (`super::vertex_air`), when asked for.
+    vertex_air: Option<super::vertex_air::VertexAirPlan>,
 }
 
 /// The terrain's aerial perspective: a compute pass reading the drawn surface and the
@@ -618,7 +669,11 @@ impl RungPasses {
             Some(moon) => Some(light(&moon.atmosphere, "moon")?),
             None => None,
         };
-        let air = AirPass::new(device, scene, hdr, &air_constants(rung))?;
+        let vertex_air = super::vertex_air::VertexAirPlan::new(scene)?;
+        let air = match vertex_air {
+            Some(_) => None,
+            None => Some(AirPass::new(device, scene, hdr, &air_constants(rung))?),
+        };
         Ok(Some(Self {
             rung,
             sky_pipeline: sky_pipeline(false),
@@ -628,7 +683,14 @@ impl RungPasses {
             sun,
             moon,
             air,
+            vertex_air,
         }))
+    }
+
+    /// The terrain's aerial perspective per vertex (`super::vertex_air`), when the scene
+    /// asks for it.
+    pub(crate) fn vertex_air(&self) -> Option<&super::vertex_air::VertexAirPlan> {
+        self.vertex_air.as_ref()
     }
 
     /// The rung drawn.
@@ -674,42 +736,9 @@ impl RungPasses {
         depth_view: &wgpu::TextureView,
     ) -> Result<(), RenderError> {
         let camera = &scene.camera;
-        if self.air.targets.is_none() {
-            self.air.targets = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("render terrain air (rung)"),
-                layout: &self.air.layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: self.air.uniform.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::TextureView(depth_view),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: wgpu::BindingResource::TextureView(hdr_view),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 3,
-                        resource: wgpu::BindingResource::TextureView(&self.air.scratch_view),
-                    },
-                ],
-            }));
+        if let Some(air) = &mut self.air {
+            air.prepare(device, queue, scene, hdr_view, depth_view);
         }
-        let air = RungAirUniform {
-            camera: *camera,
-            moon_direction: scene
-                .moonlit
-                .as_ref()
-                .map_or([0.0; 3], |moon| moon.direction.as_vec3().to_array()),
-            moon: u32::from(scene.moonlit.is_some()),
-            near: scene.near.max(0.01) as f32,
-            radiance_scale: scene.present.exposure,
-            padding: [0.0; 2],
-        };
-        queue.write_buffer(&self.air.uniform, 0, bytemuck::bytes_of(&air));
         // The terrain's elevations (the CPU renderer's span for its light table).
         let range = scene.terrain.as_ref().map_or([0.0, 0.0], |t| {
             terrain::intersect::HeightfieldTracer::new(&t.heightfield).elevation_range()
@@ -808,24 +837,24 @@ impl RungPasses {
         hdr: &wgpu::Texture,
         times: Option<&super::timer::PassTimes>,
     ) -> Result<(), RenderError> {
-        let targets = self.air.targets.as_ref().ok_or(RenderError::NotPrepared)?;
-        let size = self.air.scratch.size();
+        // Per vertex, the terrain's draws applied it (`super::vertex_air`).
+        let Some(air) = &self.air else {
+            return Ok(());
+        };
+        let targets = air.targets.as_ref().ok_or(RenderError::NotPrepared)?;
+        let size = air.scratch.size();
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("render terrain air (rung)"),
                 timestamp_writes: times
                     .and_then(|t| t.compute_writes("terrain aerial perspective")),
             });
-            pass.set_pipeline(&self.air.pipeline);
+            pass.set_pipeline(&air.pipeline);
             pass.set_bind_group(0, targets, &[]);
-            pass.set_bind_group(1, &self.air.parameters, &[]);
+            pass.set_bind_group(1, &air.parameters, &[]);
             pass.dispatch_workgroups(size.width.div_ceil(8), size.height.div_ceil(8), 1);
         }
-        encoder.copy_texture_to_texture(
-            self.air.scratch.as_image_copy(),
-            hdr.as_image_copy(),
-            size,
-        );
+        encoder.copy_texture_to_texture(air.scratch.as_image_copy(), hdr.as_image_copy(), size);
         Ok(())
     }
 
@@ -948,10 +977,10 @@ pub fn adjust_plan(scene: &PreparedScene, plan: &mut Vec<(&'static str, Result<S
                 ));
                 adjusted.push((
                     "terrain aerial perspective",
-                    if drawn {
-                        Ok(format!(
-                            "{model}'s in-scatter and transmittance of each terrain pixel's \
-                             segment from the camera (compute, reading the depth), copied back"
+                    if let (true, Some(terrain)) = (drawn, &scene.terrain) {
+                        Ok(crate::aerial_vertex::rung_plan(
+                            terrain.aerial_perspective,
+                            model,
                         ))
                     } else {
                         Err("no terrain".into())

@@ -192,6 +192,8 @@ struct TerrainPass {
     /// The terrain lit by the moon (scenes with a moonlit sky): drawn again over the
     /// sunlit terrain with the moonlit tables, added.
     moon: Option<MoonTerrain>,
+    /// The aerial perspective per vertex of a rung without tables (`super::vertex_air`).
+    vertex_air: Option<super::vertex_air::VertexAir>,
 }
 
 /// The moonlit terrain draw: the terrain pipeline with additive blending, depth-equal
@@ -555,7 +557,6 @@ impl SceneRenderer {
                 reason: "beyond the device's largest texture side",
             });
         }
-        crate::aerial_vertex::check_gpu(scene)?;
         // The closed form and single scattering: their own sky and terrain passes, no
         // tables (`super::rungs`); the reference rungs have none (an error).
         let rung = super::rungs::RungPasses::new(device, scene, HDR, DEPTH)?;
@@ -970,12 +971,14 @@ impl SceneRenderer {
             })
         };
         let volume_shadow = shadow_uniform("render terrain volume shadow");
-        let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
+        // Compute: the per-vertex aerial perspective of a rung without tables reads the
+        // uniform and the heights (`super::vertex_air`).
+        let stages = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("render terrain"),
             entries: &[
                 uniform_entry(0, stages),
-                storage_read(1, wgpu::ShaderStages::VERTEX),
+                storage_read(1, wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::COMPUTE),
                 storage_read(2, wgpu::ShaderStages::FRAGMENT),
                 storage_read(3, wgpu::ShaderStages::FRAGMENT),
                 storage_read(4, wgpu::ShaderStages::FRAGMENT),
@@ -1026,14 +1029,26 @@ impl SceneRenderer {
         let (shader, vertex_entry, fragment_entry) =
             crate::aerial_vertex::terrain_shader(terrain.aerial_perspective);
         // A rung without tables: its own fragment stage and group 3, the tables' groups
-        // unbound (`super::rungs`; its aerial perspective is per pixel, as on the CPU).
+        // unbound (`super::rungs`; its aerial perspective per pixel in a compute pass
+        // over the frame, or per vertex as below).
         let (vertex_entry, fragment_entry) = match rung {
             Some(rung) => ("terrain_vertex", rung.terrain_fragment()),
             None => (vertex_entry, fragment_entry),
         };
-        let module = match rung {
-            Some(rung) => rung.terrain_shader().0.clone(),
-            None => {
+        // Per vertex with a rung without tables: the segments from a compute pass over
+        // the tiles' vertices, bound in group 0 (`super::vertex_air`).
+        let vertex_air = match rung.and_then(|r| r.vertex_air()) {
+            Some(plan) => Some(super::vertex_air::VertexAir::new(device, plan, &layout)?),
+            None => None,
+        };
+        let (vertex_entry, fragment_entry) = match &vertex_air {
+            Some(air) => (air.draw_shader().2, air.draw_shader().3),
+            None => (vertex_entry, fragment_entry),
+        };
+        let module = match (rung, &vertex_air) {
+            (Some(_), Some(air)) => air.draw_shader().1.clone(),
+            (Some(rung), None) => rung.terrain_shader().0.clone(),
+            (None, _) => {
                 let source = crate::composer().compose_module(shader)?;
                 device.create_shader_module(wgpu::ShaderModuleDescriptor {
                     label: Some("render terrain"),
@@ -1045,7 +1060,8 @@ impl SceneRenderer {
         // one (the same vertices give the same depths: the clip position is invariant).
         let make_pipeline = |luts: Option<&AtmosphereLuts>, moon: bool| {
             let mut groups = vec![
-                luts.map(|l| &l.layouts().uniforms),
+                luts.map(|l| &l.layouts().uniforms)
+                    .or(vertex_air.as_ref().map(|air| air.draw_shader().0)),
                 luts.map(|l| &l.layouts().tables),
                 Some(&layout),
             ];
@@ -1172,6 +1188,7 @@ impl SceneRenderer {
             volume_shadow_values,
             shadow_clouds,
             moon,
+            vertex_air,
         })
     }
 
@@ -1456,6 +1473,9 @@ impl SceneRenderer {
             }
             queue.write_buffer(&pass.tiles, 0, bytemuck::cast_slice(&tiles));
             pass.tile_count = tiles.len() as u32;
+            if let Some(air) = &mut pass.vertex_air {
+                air.prepare(&self.device, queue, scene, &tiles)?;
+            }
         }
         self.prepared = true;
         Ok(())
@@ -1525,6 +1545,10 @@ impl SceneRenderer {
             }
         }
         if let Some(terrain) = &self.terrain {
+            // Per vertex with a rung without tables: the vertices' segments first.
+            if let Some(air) = &terrain.vertex_air {
+                air.encode(encoder, &terrain.bind_group, times);
+            }
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("render terrain"),
                 color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -1555,6 +1579,9 @@ impl SceneRenderer {
             if let Some(rung) = &self.rung {
                 rung.bind_terrain(&mut pass, false);
             }
+            if let Some(air) = &terrain.vertex_air {
+                air.bind(&mut pass, false);
+            }
             pass.set_bind_group(2, &terrain.bind_group, &[]);
             pass.set_vertex_buffer(0, terrain.grid.slice(..));
             pass.set_vertex_buffer(1, terrain.tiles.slice(..));
@@ -1570,6 +1597,9 @@ impl SceneRenderer {
             if let (Some(moon), Some(rung)) = (&terrain.moon, &self.rung) {
                 pass.set_pipeline(&moon.pipeline);
                 rung.bind_terrain(&mut pass, true);
+                if let Some(air) = &terrain.vertex_air {
+                    air.bind(&mut pass, true);
+                }
                 pass.set_bind_group(2, &moon.bind_group, &[]);
                 pass.draw_indexed(0..terrain.index_count, 0, 0..terrain.tile_count);
             }
