@@ -535,7 +535,7 @@ fn smooth_hills_with(variant: AerialPerspective, rung: Rung) -> PreparedScene {
 /// explain` names the variant.
 #[test]
 fn per_vertex_agrees_on_the_gpu_and_the_cpu_under_the_rungs_without_tables() {
-    for rung in [Rung::ClosedForm, Rung::Single] {
+    for rung in [Rung::ClosedForm, Rung::ClosedFormVertex, Rung::Single] {
         let scene = smooth_hills_with(AerialPerspective::PerVertex, rung);
         let plan = render::gpu::scene::planned_passes(&scene);
         let air = plan
@@ -548,7 +548,7 @@ fn per_vertex_agrees_on_the_gpu_and_the_cpu_under_the_rungs_without_tables() {
     let Some(gpu) = common::gpu_or_skip("render::aerial_vertex (rungs without tables)") else {
         return;
     };
-    for rung in [Rung::ClosedForm, Rung::Single] {
+    for rung in [Rung::ClosedForm, Rung::ClosedFormVertex, Rung::Single] {
         let scene = smooth_hills_with(AerialPerspective::PerVertex, rung);
         let gpu_image = gpu_pixels(gpu, &scene);
         let cpu_image = cpu_pixels(&scene);
