@@ -1,7 +1,9 @@
-// What the rungs' cloud air passes (render::cloud_air_closed_form,
-// render::cloud_air_single) read and write: group 2 of render::volume_air (its uniform,
-// cloudlight's march output, the air per pixel, the same layout the composite reads)
-// and each pixel's segment camera → the cloud's transmittance-weighted depth.
+// What every cloud air pass (render::volume_air with the precomputed tables,
+// render::cloud_air_closed_form, render::cloud_air_single) reads and writes: its
+// group 2 (the uniform, cloudlight's march output, the air per pixel: one layout,
+// `air_layout` of crates/render/src/gpu/cloud_composite.rs, whose air buffer the
+// composite reads) and each pixel's segment camera → the cloud's transmittance-weighted
+// depth.
 #import atmos::frame
 
 struct CloudAirParams {

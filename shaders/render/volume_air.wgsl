@@ -11,34 +11,17 @@
 // returns, then min/max of q and c/q) and runs with the `q == 0` return removed, with
 // min/max replaced by (q, c/q), or with a branch-free intersection; the terrain
 // fragment, which imports the same function, runs. The compute pass runs it on lavapipe.
+// Group 2 (the uniform, cloudlight's march output, the air per pixel) is
+// render::cloud_air_io's, shared with the rungs' cloud air passes.
 #import atmos::aerial_perspective
-
-struct VolumeAirParams {
-    width: u32,
-    height: u32,
-    padding0: u32,
-    padding1: u32,
-}
-
-@group(2) @binding(0) var<uniform> air_params: VolumeAirParams;
-// cloudlight's march output: two vec4 per pixel, x fastest (radiance rgb + T_c, then the
-// transmittance-weighted depth d in x).
-@group(2) @binding(1) var<storage, read> march: array<vec4<f32>>;
-// Two vec4 per pixel: the air's in-scattered radiance, then its transmittance (written
-// where the cloud has opacity, T_c < 1).
-@group(2) @binding(2) var<storage, read_write> air: array<vec4<f32>>;
+#import render::cloud_air_io
 
 @compute @workgroup_size(8, 8)
 fn volume_air_main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x >= air_params.width || id.y >= air_params.height {
+    let s = cloud_air_segment(id.xy, frame_camera);
+    if !s.has_air {
         return;
     }
-    let i = 2u * (id.y * air_params.width + id.x);
-    if !(march[i].w < 1.0) {
-        return;
-    }
-    let view = frame_view_direction(id.xy, frame_camera);
-    let segment = aerial_perspective(view * march[i + 1u].x);
-    air[i] = vec4<f32>(segment.radiance, 0.0);
-    air[i + 1u] = vec4<f32>(segment.transmittance, 0.0);
+    let segment = aerial_perspective(s.view * s.distance);
+    cloud_air_store(s, segment.radiance, segment.transmittance);
 }

@@ -842,8 +842,8 @@ pub struct VolumeDistanceParams {
     pub padding0: u32,
 }
 
-/// The uniform of the air pass (layout identical to WGSL `VolumeAirParams` in
-/// `shaders/render/volume_air.wgsl`).
+/// The uniform of the cloud air passes (layout identical to WGSL `CloudAirParams` in
+/// `shaders/render/cloud_air_io.wgsl`, group 2 of every cloud air pass).
 #[cfg(feature = "gpu")]
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
