@@ -76,6 +76,35 @@ pub fn in_depth_order(a: SeenCloud, b: SeenCloud) -> SeenCloud {
     }
 }
 
+/// Draws clouds over an image of `width`-pixel rows (rows in parallel): per pixel,
+/// `seen(xy, behind)` (`behind`: the terrain's hit, `PixelRadiance::terrain_distance`;
+/// the sky: infinity) over what the pixel holds, `L = S + T_c · L`; a pixel where it is
+/// `None` is kept. The loop of both CPU cloud composites, the one cloud's
+/// (`crate::volume_clouds::composite_marched_cloud`) and the two by depth
+/// ([`composite_clouds_by_depth`]); the first error stops it.
+pub(crate) fn draw_seen_clouds(
+    width: u32,
+    out: &mut [PixelRadiance],
+    seen: impl Fn([u32; 2], f32) -> Result<Option<SeenCloud>, crate::RenderError> + Sync,
+) -> Result<(), crate::RenderError> {
+    use rayon::prelude::*;
+    out.par_chunks_mut(width as usize)
+        .enumerate()
+        .try_for_each(|(row, pixels)| {
+            for (column, pixel) in pixels.iter_mut().enumerate() {
+                let xy = [column as u32, row as u32];
+                let behind = pixel.terrain_distance.unwrap_or(f32::INFINITY);
+                let Some(seen) = seen(xy, behind)? else {
+                    continue;
+                };
+                for (value, s) in pixel.radiance.iter_mut().zip(seen.radiance) {
+                    *value = s + seen.transmittance * *value;
+                }
+            }
+            Ok(())
+        })
+}
+
 /// The CPU twin of the GPU's composite of both marched clouds by depth
 /// (`shaders/render/cloud_order_composite.wgsl`): per pixel the volume's and the deck's
 /// f32 marches up to the terrain's hit (`PixelRadiance::terrain_distance`; the sky: no
@@ -91,7 +120,6 @@ pub fn composite_clouds_by_depth(
     moon: Option<(&Illuminant<'_>, AirTables<'_>)>,
     out: &mut [PixelRadiance],
 ) -> Result<(), crate::RenderError> {
-    use rayon::prelude::*;
     let camera = &scene.camera;
     let size = [camera.width, camera.height];
     let volume_camera =
@@ -128,27 +156,17 @@ pub fn composite_clouds_by_depth(
         },
     );
     let sun = scene.sun_light();
-    out.par_chunks_mut(camera.width as usize)
-        .enumerate()
-        .try_for_each(|(row, pixels)| {
-            for (column, pixel) in pixels.iter_mut().enumerate() {
-                let xy = [column as u32, row as u32];
-                let behind = pixel.terrain_distance.unwrap_or(f32::INFINITY);
-                let volume = clouds.0.seen(scene, &sun, xy, behind)?;
-                let shell = clouds.1.seen(scene, &sun, xy, behind)?;
-                if volume.is_none() && shell.is_none() {
-                    continue;
-                }
-                let seen = in_depth_order(
-                    volume.unwrap_or(SeenCloud::NONE),
-                    shell.unwrap_or(SeenCloud::NONE),
-                );
-                for (value, s) in pixel.radiance.iter_mut().zip(seen.radiance) {
-                    *value = s + seen.transmittance * *value;
-                }
-            }
-            Ok::<(), crate::RenderError>(())
-        })
+    draw_seen_clouds(camera.width, out, |xy, behind| {
+        let volume = clouds.0.seen(scene, &sun, xy, behind)?;
+        let shell = clouds.1.seen(scene, &sun, xy, behind)?;
+        if volume.is_none() && shell.is_none() {
+            return Ok(None);
+        }
+        Ok(Some(in_depth_order(
+            volume.unwrap_or(SeenCloud::NONE),
+            shell.unwrap_or(SeenCloud::NONE),
+        )))
+    })
 }
 
 /// What `skyscape explain` says of the composite by depth (`planned_passes` of

@@ -729,30 +729,16 @@ pub(crate) fn composite_marched_cloud(
     march: impl Fn(&Lighting<f32>, [u32; 2], f32) -> MarchResult<f32> + Sync,
     out: &mut [crate::cpu_renderer::PixelRadiance],
 ) -> Result<(), crate::RenderError> {
-    use rayon::prelude::*;
-    let camera = &scene.camera;
     let sun = scene.sun_light();
-    out.par_chunks_mut(camera.width as usize)
-        .enumerate()
-        .try_for_each(|(row, pixels)| {
-            for (column, pixel) in pixels.iter_mut().enumerate() {
-                let xy = [column as u32, row as u32];
-                let behind = pixel.terrain_distance.unwrap_or(f32::INFINITY);
-                let cloud = MarchedCloud {
-                    lighting,
-                    tables,
-                    moon,
-                    march: &march,
-                };
-                let Some(seen) = cloud.seen(scene, &sun, xy, behind)? else {
-                    continue;
-                };
-                for (value, s) in pixel.radiance.iter_mut().zip(seen.radiance) {
-                    *value = s + seen.transmittance * *value;
-                }
-            }
-            Ok::<(), crate::RenderError>(())
-        })
+    let cloud = MarchedCloud {
+        lighting,
+        tables,
+        moon,
+        march: &march,
+    };
+    crate::cloud_order::draw_seen_clouds(scene.camera.width, out, |xy, behind| {
+        cloud.seen(scene, &sun, xy, behind)
+    })
 }
 
 /// A marched cloud as the CPU composites it (the volume's, the shell's): the sun's
