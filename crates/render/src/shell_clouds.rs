@@ -35,11 +35,15 @@
 //! Over a scene's terrain the deck shades it as the volume cloud does: cloudlight's
 //! shadow map of the shell's density field toward each light that is up ([`shell_shadow`],
 //! [`crate::volume_clouds::CloudShadow::over`]), baked once on the CPU at prepare, on the
-//! plane of the shell's base over the heightfield's extent swept along the light. Both
-//! renderers read the same values with the same bilinear lookup (`CloudShadow::at`, the
-//! terrain pass's `shadow_map_at`) and multiply the terrain's direct light by it times
-//! the volume cloud's map (the terrain pass holds one map per marched cloud:
-//! `crate::gpu::cloud_shadow`). At night the map is the moon's.
+//! plane of the shell's base over the heightfield's extent swept along the light. The
+//! GPU renderer bakes the same map again on the GPU (`crate::gpu::shell_shadow`:
+//! cloudlight's `ShellShadowMapPass` over [`shell_shadow_map_plan`], whose f32 twin
+//! `cloudlight::shell_shadow::shell_shadow_map` equals the CPU bake bit for bit) and
+//! uses it instead of the CPU's values. Both renderers read the map with the same
+//! bilinear lookup (`CloudShadow::at`, the terrain pass's `shadow_map_at`) and multiply
+//! the terrain's direct light by it times the volume cloud's map (the terrain pass holds
+//! one map per marched cloud: `crate::gpu::cloud_shadow`). At night the map is the
+//! moon's.
 //!
 //! # What it costs
 //!
@@ -525,6 +529,27 @@ pub fn shell_shadow(
     )
 }
 
+/// The plan of `map` (a [`shell_shadow`] of `shell` toward unit world direction
+/// `toward`) in the shell's planet-centred frame: its texels, the plane of the shell's
+/// base, the light and [`SHADOW_STEPS`]; in f32 the same texel centres and direction as
+/// the CPU bake's (the GPU bake, `crate::gpu::shell_shadow`, marches this plan with
+/// `cloudlight::gpu::ShellShadowMapPass`).
+pub fn shell_shadow_map_plan(
+    shell: &cloudlight::CloudShell,
+    map: &CloudShadow,
+    toward: DVec3,
+) -> Result<cloudlight::shadow_map::ShadowMapPlan, cloudlight::shadow_map::ShadowMapError> {
+    let planet = shell.planet_radius();
+    let plane = shell.settings().inner_radius - planet;
+    let grid = cloudlight::shadow_map::ShadowGrid::new(
+        map.origin.map(f64::from),
+        f64::from(map.cell_size),
+        map.resolution,
+        plane + planet,
+    )?;
+    cloudlight::shadow_map::ShadowMapPlan::new(grid, world_to_enu(toward.to_array()), SHADOW_STEPS)
+}
+
 /// The scene camera as a pinhole camera in the shell's planet-centred frame (module
 /// documentation): [`crate::volume_clouds::pinhole_camera`] with the planet centre as
 /// the origin, so [`cloudlight::march::pixel_direction`] gives the scene's pixel rays.
@@ -767,8 +792,9 @@ fn shell_shadow_plan(cloud: &PreparedShell) -> Result<String, String> {
     }
     Ok(format!(
         "cloudlight's shadow map of the deck over the terrain on the plane of its base \
-         ({}; {} steps per texel), baked on the CPU at prepare in {:.2} s (measured), read \
-         by the terrain pass times the volume's",
+         ({}; {} steps per texel), baked on the CPU at prepare in {:.2} s (measured; the \
+         CPU renderer's) and again on the GPU by the GPU renderer (cloudlight's \
+         ShellShadowMapPass, the same formula), read by the terrain pass times the volume's",
         maps.join(", "),
         SHADOW_STEPS,
         cloud.shadow_seconds

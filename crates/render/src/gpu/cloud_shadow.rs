@@ -1,7 +1,8 @@
 //! The marched clouds' shadow maps in the terrain pass: two slots, `[0]` the
 //! `[clouds.volume]` cloud's (marched or drawn as billboards), `[1]` the `[clouds.shell]`
 //! deck's, each a `crate::volume_clouds::CloudShadow` baked on the CPU at prepare (the
-//! CPU renderer reads the same values). One storage buffer holds both maps' values,
+//! CPU renderer reads the same values), except the deck's, baked on the GPU
+//! (`super::shell_shadow`, the same formula). One storage buffer holds both maps' values,
 //! each from its slot's offset, and a uniform per terrain draw (the sun's, the moon's)
 //! holds the two maps' parameters (WGSL `array<VolumeShadowUniform, 2>` in
 //! `shaders/render/terrain.wgsl`, whose `volume_cloud_shadow` multiplies them, as
@@ -34,12 +35,17 @@ pub(crate) const NONE: [VolumeShadowUniform; 2] = [VolumeShadowUniform::DISABLED
 /// uniforms, `[sun, moon]`. One light at most has a map per cloud (a scene the moon
 /// lights has the sun below the horizon, and a map needs its light above 1°), so the
 /// moon's map takes the slot the sun's would; a map for a cloud the buffer has no room
-/// for is an error naming the cloud.
+/// for is an error naming the cloud. With `shell_gpu` (a scene with the shell over
+/// terrain) the deck's map is baked on the GPU into its slot
+/// ([`super::shell_shadow::ShellShadowGpu::bake_into`]) instead of uploaded from the
+/// CPU's bake.
 pub(crate) fn write(
+    device: &wgpu::Device,
     queue: &wgpu::Queue,
     values: &wgpu::Buffer,
     scene: &PreparedScene,
     clouds: [bool; 2],
+    shell_gpu: Option<&mut super::shell_shadow::ShellShadowGpu>,
 ) -> Result<[[VolumeShadowUniform; 2]; 2], RenderError> {
     let sun = scene.sun_light();
     let moon = scene.moon_light();
@@ -48,6 +54,10 @@ pub(crate) fn write(
     }
     let (sun_maps, moon_maps) = (maps(Some(&sun)), maps(moon.as_ref()));
     let offsets = offsets(clouds);
+    let gpu_shell_light = match shell_gpu {
+        Some(gpu) if clouds[1] => gpu.bake_into(device, queue, scene, values, offsets[1])?,
+        _ => None,
+    };
     let mut uniforms = [NONE; 2];
     for slot in 0..2 {
         let field = ["clouds.volume", "clouds.shell"][slot];
@@ -70,11 +80,13 @@ pub(crate) fn write(
                 reason: "the renderer was built for a scene without this cloud",
             });
         }
-        queue.write_buffer(
-            values,
-            u64::from(offsets[slot]) * 4,
-            bytemuck::cast_slice(&map.values),
-        );
+        if !(slot == 1 && gpu_shell_light == Some(light)) {
+            queue.write_buffer(
+                values,
+                u64::from(offsets[slot]) * 4,
+                bytemuck::cast_slice(&map.values),
+            );
+        }
         uniforms[light][slot] = VolumeShadowUniform::of(map, offsets[slot]);
     }
     Ok(uniforms)

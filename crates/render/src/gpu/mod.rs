@@ -15,6 +15,7 @@ pub(crate) mod cloud_shadow;
 pub mod present;
 pub mod rungs;
 pub mod scene;
+pub(crate) mod shell_shadow;
 pub mod timer;
 pub(crate) mod vertex_air;
 

@@ -189,6 +189,8 @@ struct TerrainPass {
     volume_shadow: wgpu::Buffer,
     volume_shadow_values: wgpu::Buffer,
     shadow_clouds: [bool; 2],
+    /// The shell deck's shadow map baked on the GPU (`super::shell_shadow`).
+    shell_shadow: Option<super::shell_shadow::ShellShadowGpu>,
     /// The terrain lit by the moon (scenes with a moonlit sky): drawn again over the
     /// sunlit terrain with the moonlit tables, added.
     moon: Option<MoonTerrain>,
@@ -1187,6 +1189,11 @@ impl SceneRenderer {
             volume_shadow,
             volume_shadow_values,
             shadow_clouds,
+            shell_shadow: if shadow_clouds[1] {
+                Some(super::shell_shadow::ShellShadowGpu::new(device)?)
+            } else {
+                None
+            },
             moon,
             vertex_air,
         })
@@ -1403,12 +1410,15 @@ impl SceneRenderer {
             };
             let uniform = uniform_for(&lighting, &scene.sun_light());
             queue.write_buffer(&pass.uniform, 0, bytemuck::bytes_of(&uniform));
-            // The clouds' shadow maps (the CPU renderer reads the same values).
+            // The clouds' shadow maps (the CPU renderer reads the same values; the deck's
+            // baked on the GPU by the same formula).
             let [sun_shadow, moon_shadow] = super::cloud_shadow::write(
+                &self.device,
                 queue,
                 &pass.volume_shadow_values,
                 scene,
                 pass.shadow_clouds,
+                pass.shell_shadow.as_mut(),
             )?;
             queue.write_buffer(&pass.volume_shadow, 0, bytemuck::bytes_of(&sun_shadow));
             match (&pass.moon, scene.moon_light()) {

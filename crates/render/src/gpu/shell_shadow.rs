@@ -1,0 +1,96 @@
+//! The `[clouds.shell]` deck's shadow map on the terrain baked on the GPU:
+//! `cloudlight::gpu::ShellShadowMapPass` over the map's grid and light
+//! ([`crate::shell_clouds::shell_shadow_map_plan`]: the plane, texels, steps and light
+//! direction of the CPU's [`crate::shell_clouds::shell_shadow`]), its buffer copied into
+//! the terrain pass's shadow values at the shell's slot (`super::cloud_shadow`). The CPU
+//! renderer reads the CPU bake (cloudlight's generic march on the `CloudShell`, equal bit
+//! for bit to the pass's f32 twin `cloudlight::shell_shadow::shell_shadow_map`).
+//!
+//! Baked when a prepared scene's map differs from the one in the buffer (the first
+//! prepare; a new sun), not every frame. A deck with a grid weather map (the GPU shell
+//! passes compute procedural weather only) keeps the CPU's values.
+
+use cloudlight::gpu::ShellShadowMapPass;
+use cloudlight::shadow_map::ShadowMapPlan;
+use cloudlight::shell_shadow::ShellField;
+
+use crate::RenderError;
+use crate::scene::PreparedScene;
+
+/// The shell's shadow-map bake and what the values buffer holds.
+#[derive(Debug)]
+pub(crate) struct ShellShadowGpu {
+    pass: ShellShadowMapPass,
+    /// The plan and the light (0 sun, 1 moon) of the map in the buffer.
+    baked: Option<(ShadowMapPlan, usize)>,
+}
+
+fn bake_error(e: impl std::fmt::Display) -> RenderError {
+    RenderError::InvalidParameter {
+        field: "clouds.shell",
+        value: e.to_string(),
+        reason: "the deck's shadow map could not be baked on the GPU",
+    }
+}
+
+impl ShellShadowGpu {
+    /// The bake's pipeline (built only for a scene with `[clouds.shell]` over terrain).
+    pub(crate) fn new(device: &wgpu::Device) -> Result<Self, RenderError> {
+        Ok(Self {
+            pass: ShellShadowMapPass::new(device).map_err(bake_error)?,
+            baked: None,
+        })
+    }
+
+    /// Makes `values` hold the deck's map toward the light that has one (at element
+    /// `offset`), baking it on the GPU unless it is already there; returns that light
+    /// (0 the sun, 1 the moon), or `None` when the scene has no deck map or its weather
+    /// is a grid (then the caller uploads the CPU's values).
+    pub(crate) fn bake_into(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &PreparedScene,
+        values: &wgpu::Buffer,
+        offset: u32,
+    ) -> Result<Option<usize>, RenderError> {
+        let Some(cloud) = &scene.shell_cloud else {
+            return Ok(None);
+        };
+        let Ok(field) = ShellField::<f32>::of(&cloud.shell) else {
+            return Ok(None);
+        };
+        let (light, map, toward) = match (&cloud.shadow, &cloud.moon_shadow, &scene.moonlit) {
+            (Some(map), _, _) => (0, map, scene.sun),
+            (None, Some(map), Some(moon)) => (1, map, moon.direction),
+            _ => return Ok(None),
+        };
+        let plan = crate::shell_clouds::shell_shadow_map_plan(&cloud.shell, map, toward)
+            .map_err(bake_error)?;
+        if self.baked == Some((plan, light)) {
+            return Ok(Some(light));
+        }
+        let bytes = plan.grid.texels() as u64 * 4;
+        if u64::from(offset) * 4 + bytes > values.size() {
+            return Err(bake_error(format!(
+                "a {}×{} map beyond the shadow buffer",
+                map.resolution[0], map.resolution[1]
+            )));
+        }
+        self.pass
+            .prepare(device, queue, &field, &plan)
+            .map_err(bake_error)?;
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("render shell shadow bake"),
+        });
+        self.pass.encode(&mut encoder).map_err(bake_error)?;
+        let baked = self
+            .pass
+            .buffer()
+            .ok_or_else(|| bake_error("no map after prepare"))?;
+        encoder.copy_buffer_to_buffer(baked, 0, values, u64::from(offset) * 4, bytes);
+        queue.submit([encoder.finish()]);
+        self.baked = Some((plan, light));
+        Ok(Some(light))
+    }
+}

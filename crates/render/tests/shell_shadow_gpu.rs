@@ -1,0 +1,75 @@
+//! The `[clouds.shell]` deck's shadow map of the shipped `stratocumulus` scene baked on
+//! the GPU (cloudlight's `ShellShadowMapPass` over `shell_shadow_map_plan`, what the GPU
+//! renderer's terrain pass reads) against the CPU's bake at prepare (what the CPU
+//! renderer reads), both timed. Skipped without an adapter (adapter → run; none and
+//! SKYSCAPE_REQUIRE_GPU=1 → fail; none → a visible SKIPPED line).
+#![cfg(feature = "gpu")]
+
+mod common;
+
+use cloudlight::gpu::ShellShadowMapPass;
+use cloudlight::shell_shadow::ShellField;
+
+#[test]
+fn the_deck_map_baked_on_the_gpu_is_the_cpu_bake() {
+    let Some(gpu) = common::gpu_or_skip("render::shell_shadow_gpu") else {
+        return;
+    };
+    let scene = common::shipped("stratocumulus", 96, 54).prepare().unwrap();
+    let cloud = scene.shell_cloud.as_ref().unwrap();
+    let map = cloud
+        .shadow
+        .as_ref()
+        .expect("a shadow map over the terrain");
+    let plan = render::shell_clouds::shell_shadow_map_plan(&cloud.shell, map, scene.sun).unwrap();
+    assert_eq!(plan.grid.resolution(), map.resolution);
+    let field = ShellField::<f32>::of(&cloud.shell).unwrap();
+    let mut pass = ShellShadowMapPass::new(&gpu.device).unwrap();
+    // Twice: the first includes the driver's first dispatch of the pipeline.
+    let mut seconds = Vec::new();
+    let mut values = Vec::new();
+    for _ in 0..2 {
+        let started = std::time::Instant::now();
+        pass.prepare(&gpu.device, &gpu.queue, &field, &plan)
+            .unwrap();
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        pass.encode(&mut encoder).unwrap();
+        gpu.queue.submit([encoder.finish()]);
+        let bytes = skyscape_harness::read_buffer(
+            gpu,
+            "shell shadow map",
+            pass.buffer().unwrap(),
+            0,
+            plan.grid.texels() as u64 * 4,
+        )
+        .unwrap();
+        seconds.push(started.elapsed().as_secs_f64());
+        values = pass.decode(&bytes).unwrap();
+    }
+    let worst = values
+        .iter()
+        .zip(&map.values)
+        .map(|(g, c)| (g - c).abs())
+        .fold(0.0f32, f32::max);
+    let shaded = map.values.iter().filter(|&&t| t < 0.5).count();
+    eprintln!(
+        "stratocumulus deck map {}×{} texels of {:.1} m, {} steps: {shaded} texels < 0.5; CPU \
+         bake at prepare (rayon, {} threads) {:.3} s; GPU bake on {} {:.3} s then {:.3} s \
+         (prepare + dispatch + readback; a CPU adapter's time is not GPU speed); max |GPU − \
+         CPU| {worst:.2e}",
+        map.resolution[0],
+        map.resolution[1],
+        map.cell_size,
+        render::shell_clouds::SHADOW_STEPS,
+        rayon::current_num_threads(),
+        cloud.shadow_seconds,
+        skyscape_harness::describe_adapter(&gpu.adapter.get_info()),
+        seconds[0],
+        seconds[1],
+    );
+    assert!(shaded > 0, "the deck shades the terrain");
+    // The same formula in the same order (the CPU bake is the pass's f32 twin bit for
+    // bit): WGSL's division, sqrt and exp against Rust's; cloudlight's shell_shadow_gpu
+    // test and the parity pass measure ≤ 1.3e-6 on lavapipe.
+    assert!(worst <= 1e-5, "worst {worst:e}");
+}
