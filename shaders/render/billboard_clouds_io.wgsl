@@ -14,7 +14,8 @@ struct BillboardCloudParams {
     near: f32,
     // Multiplies the particles' light (the HDR target holds radiance × exposure).
     radiance_scale: f32,
-    // 1: moon_air holds the moonlit air in front of each instance; 0: none.
+    // 1: moon_air holds the moonlit air in front of each instance; 0: none; 2: the
+    // moon's air from a rung's pass (render::billboard_clouds_rung adds it itself).
     moonlit: u32,
     pad1: u32,
 }
@@ -31,7 +32,8 @@ fn billboard_world_offset(in: BillboardInstance) -> vec3<f32> {
 }
 
 // The particle's quad corner, its colour seen through the sun's air in front of it
-// (`air_transmittance`, `air_radiance`) plus, at night, the moonlit air's radiance.
+// (`air_transmittance`, `air_radiance`) plus, at night (moonlit = 1), the moonlit air's
+// radiance of moon_air.
 fn billboard_clouds_seen_vertex(in: BillboardInstance, instance: u32, air_transmittance: vec3<f32>, air_radiance: vec3<f32>) -> BillboardVarying {
     let relative = in.relative_density.xyz;
     let s = billboard_screen(params.frame, relative, in.relative_density.w);

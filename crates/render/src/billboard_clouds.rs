@@ -631,28 +631,29 @@ pub fn explain(scene: &PreparedScene) -> Result<String, String> {
 }
 
 /// The billboard pass's uniform bytes: `cloudlight::billboard`'s frame (64 bytes), the
-/// near plane, the radiance scale, whether the moonlit air is added (WGSL
-/// `BillboardCloudParams`).
+/// near plane, the radiance scale, which moonlit air is added (WGSL
+/// `BillboardCloudParams`: 0 none, 1 the CPU's per instance, 2 a rung's pass's).
 #[cfg(feature = "gpu")]
 pub fn params_bytes(
     frame: &cloudlight::billboard::ScreenFrame<f32>,
     near: f32,
     radiance_scale: f32,
-    moonlit: bool,
+    moonlit: u32,
 ) -> [u8; PARAMS_BYTES as usize] {
     let mut bytes = [0u8; PARAMS_BYTES as usize];
     bytes[..64].copy_from_slice(&cloudlight::gpu::billboard::frame_bytes(frame));
     bytes[64..68].copy_from_slice(&near.to_ne_bytes());
     bytes[68..72].copy_from_slice(&radiance_scale.to_ne_bytes());
-    bytes[72..76].copy_from_slice(&u32::from(moonlit).to_ne_bytes());
+    bytes[72..76].copy_from_slice(&moonlit.to_ne_bytes());
     bytes
 }
 
 /// The billboard pass's group 2: the uniform (vertex stage) and the moonlit air per
-/// instance (a read-only storage buffer of `vec4<f32>`); with `sun_air` (a rung without
-/// tables) the sun's air per instance too (`shaders/render/billboard_clouds_rung.wgsl`).
+/// instance (a read-only storage buffer of `vec4<f32>`); with `rung_air` (a rung without
+/// tables) the sun's and the moon's air per instance too
+/// (`shaders/render/billboard_clouds_rung.wgsl`).
 #[cfg(feature = "gpu")]
-fn params_layout(device: &wgpu::Device, sun_air: bool) -> wgpu::BindGroupLayout {
+fn params_layout(device: &wgpu::Device, rung_air: bool) -> wgpu::BindGroupLayout {
     let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::VERTEX,
@@ -680,10 +681,11 @@ fn params_layout(device: &wgpu::Device, sun_air: bool) -> wgpu::BindGroupLayout 
         ),
         storage(1),
         storage(2),
+        storage(3),
     ];
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("render billboard clouds"),
-        entries: &entries[..if sun_air { 3 } else { 2 }],
+        entries: &entries[..if rung_air { 4 } else { 2 }],
     })
 }
 
@@ -714,9 +716,10 @@ fn params_bind_group(
     layout: &wgpu::BindGroupLayout,
     uniform: &wgpu::Buffer,
     moon_air: &wgpu::Buffer,
-    sun_air: Option<&wgpu::Buffer>,
+    rung_air: Option<[&wgpu::Buffer; 2]>,
 ) -> wgpu::BindGroup {
-    let entries: Vec<wgpu::BindGroupEntry<'_>> = [Some(uniform), Some(moon_air), sun_air]
+    let [sun, moon] = rung_air.map_or([None; 2], |airs| airs.map(Some));
+    let entries: Vec<wgpu::BindGroupEntry<'_>> = [Some(uniform), Some(moon_air), sun, moon]
         .into_iter()
         .enumerate()
         .filter_map(|(binding, buffer)| {
@@ -742,23 +745,32 @@ pub const PARAMS_BYTES: u64 = 80;
 #[cfg(feature = "gpu")]
 const AIR_WORKGROUP: u32 = 64;
 
-/// The sun's air in front of every particle under a rung without tables: a compute pass
-/// of the rung's functions (`shaders/render/billboard_air_closed_form.wgsl`,
-/// `billboard_air_single.wgsl`) per particle, with the sun's camera and the rung's
-/// parameters of `crate::gpu::cloud_air::RungCloudAir` in groups 0 and 1 (written each
-/// frame by the rung's passes), the particles' world offsets in and their air out in
-/// group 2 (`shaders/render/billboard_air_io.wgsl`). The twin of the CPU's segment model
-/// in [`composite_billboards_cpu`].
+/// The air in front of every particle under a rung without tables, per light (the sun,
+/// and the moon on a moonlit night): a compute pass of the rung's functions
+/// (`shaders/render/billboard_air_closed_form.wgsl`, `billboard_air_single.wgsl`) per
+/// particle, with the light's camera and the rung's parameters of its atmosphere
+/// (`crate::gpu::cloud_air::RungCloudAir`, written each frame by the rung's passes) in
+/// groups 0 and 1, the particles' world offsets in and their air out in group 2
+/// (`shaders/render/billboard_air_io.wgsl`). The twin of the CPU's segment models in
+/// [`composite_billboards_cpu`] (the sun's) and [`moonlit_air`] (the moon's).
 #[cfg(feature = "gpu")]
 #[derive(Debug)]
 struct RungBillboardAir {
-    pipeline: wgpu::ComputePipeline,
-    /// The sun's camera and the rung's parameters (groups 0 and 1).
-    light: [wgpu::BindGroup; 2],
     layout: wgpu::BindGroupLayout,
     uniform: wgpu::Buffer,
     /// The particles' world offsets (one `vec4<f32>` each).
     offsets: wgpu::Buffer,
+    sun: LightAir,
+    moon: Option<LightAir>,
+}
+
+/// One light's billboard air pass and its output.
+#[cfg(feature = "gpu")]
+#[derive(Debug)]
+struct LightAir {
+    pipeline: wgpu::ComputePipeline,
+    /// The light's camera and the rung's parameters (groups 0 and 1).
+    light: [wgpu::BindGroup; 2],
     /// The particles' air (two `vec4<f32>` each: radiance, transmittance), read by the
     /// draw's vertex stage.
     air: wgpu::Buffer,
@@ -769,16 +781,9 @@ struct RungBillboardAir {
 impl RungBillboardAir {
     fn new(
         device: &wgpu::Device,
-        air: &crate::gpu::cloud_air::RungCloudAir,
+        sun: &crate::gpu::cloud_air::RungCloudAir,
+        moon: Option<&crate::gpu::cloud_air::RungCloudAir>,
     ) -> Result<Self, RenderError> {
-        let (rung, layouts, groups) = air.groups();
-        let (module_name, entry) = match rung {
-            crate::scene::Rung::Single => ("render::billboard_air_single", "billboard_air_single"),
-            _ => (
-                "render::billboard_air_closed_form",
-                "billboard_air_closed_form",
-            ),
-        };
         let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
             binding,
             visibility: wgpu::ShaderStages::COMPUTE,
@@ -806,60 +811,77 @@ impl RungBillboardAir {
                 storage(2, false),
             ],
         });
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("render billboard air"),
-            source: wgpu::ShaderSource::Wgsl(crate::composer().compose_module(module_name)?.into()),
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("render billboard air"),
-            bind_group_layouts: &[Some(layouts[0]), Some(layouts[1]), Some(&layout)],
-            immediate_size: 0,
-        });
-        let constants = crate::gpu::rungs::air_constants(rung);
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("render billboard air"),
-            layout: Some(&pipeline_layout),
-            module: &module,
-            entry_point: Some(entry),
-            compilation_options: wgpu::PipelineCompilationOptions {
-                constants: &constants,
-                ..Default::default()
-            },
-            cache: None,
-        });
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("render billboard air uniform"),
             size: 16,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let (offsets, air) = Self::buffers(device, 1);
-        let group = Self::group(device, &layout, &uniform, &offsets, &air);
+        let offsets = Self::buffer(device, "render billboard offsets", 16);
+        let light = |air: &crate::gpu::cloud_air::RungCloudAir, label: &str| {
+            let (rung, layouts, groups) = air.groups();
+            let (module_name, entry) = match rung {
+                crate::scene::Rung::Single => {
+                    ("render::billboard_air_single", "billboard_air_single")
+                }
+                _ => (
+                    "render::billboard_air_closed_form",
+                    "billboard_air_closed_form",
+                ),
+            };
+            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(label),
+                source: wgpu::ShaderSource::Wgsl(
+                    crate::composer().compose_module(module_name)?.into(),
+                ),
+            });
+            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some(label),
+                bind_group_layouts: &[Some(layouts[0]), Some(layouts[1]), Some(&layout)],
+                immediate_size: 0,
+            });
+            let constants = crate::gpu::rungs::air_constants(rung);
+            let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(label),
+                layout: Some(&pipeline_layout),
+                module: &module,
+                entry_point: Some(entry),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: &constants,
+                    ..Default::default()
+                },
+                cache: None,
+            });
+            let air = Self::buffer(device, label, 32);
+            let group = Self::group(device, &layout, &uniform, &offsets, &air);
+            Ok::<_, RenderError>(LightAir {
+                pipeline,
+                light: groups.map(Clone::clone),
+                air,
+                group,
+            })
+        };
+        let sun = light(sun, "render billboard sun air")?;
+        let moon = match moon {
+            Some(moon) => Some(light(moon, "render billboard moon air")?),
+            None => None,
+        };
         Ok(Self {
-            pipeline,
-            light: groups.map(Clone::clone),
             layout,
             uniform,
             offsets,
-            air,
-            group,
+            sun,
+            moon,
         })
     }
 
-    /// The offsets and air buffers for `count` particles.
-    fn buffers(device: &wgpu::Device, count: u64) -> (wgpu::Buffer, wgpu::Buffer) {
-        let buffer = |label, size| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            })
-        };
-        (
-            buffer("render billboard offsets", 16 * count),
-            buffer("render billboard sun air", 32 * count),
-        )
+    fn buffer(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
+        device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        })
     }
 
     fn group(
@@ -884,8 +906,13 @@ impl RungBillboardAir {
         })
     }
 
+    /// The sun's air and the moon's (the sun's again without a moon pass: unread).
+    fn airs(&self) -> [&wgpu::Buffer; 2] {
+        [&self.sun.air, &self.moon.as_ref().unwrap_or(&self.sun).air]
+    }
+
     /// Uploads the particles' world offsets (the draw's order) and their count; `true`
-    /// when the air buffer was replaced (the draw's group 2 must be made again).
+    /// when the air buffers were replaced (the draw's group 2 must be made again).
     fn prepare(
         &mut self,
         device: &wgpu::Device,
@@ -894,8 +921,10 @@ impl RungBillboardAir {
     ) -> Result<bool, RenderError> {
         let count = particles.len() as u64;
         let groups = count.div_ceil(u64::from(AIR_WORKGROUP));
-        let limit = u64::from(device.limits().max_compute_workgroups_per_dimension);
-        if groups > limit || 32 * count > device.limits().max_storage_buffer_binding_size {
+        let limits = device.limits();
+        if groups > u64::from(limits.max_compute_workgroups_per_dimension)
+            || 32 * count > limits.max_storage_buffer_binding_size
+        {
             return Err(RenderError::InvalidParameter {
                 field: "clouds.volume.billboards",
                 value: format!("{count} billboards"),
@@ -905,14 +934,22 @@ impl RungBillboardAir {
         }
         let replaced = self.offsets.size() < 16 * count;
         if replaced {
-            (self.offsets, self.air) = Self::buffers(device, count);
-            self.group = Self::group(
-                device,
-                &self.layout,
-                &self.uniform,
-                &self.offsets,
-                &self.air,
-            );
+            self.offsets = Self::buffer(device, "render billboard offsets", 16 * count);
+            for (light, label) in [
+                (Some(&mut self.sun), "render billboard sun air"),
+                (self.moon.as_mut(), "render billboard moon air"),
+            ] {
+                if let Some(light) = light {
+                    light.air = Self::buffer(device, label, 32 * count);
+                    light.group = Self::group(
+                        device,
+                        &self.layout,
+                        &self.uniform,
+                        &self.offsets,
+                        &light.air,
+                    );
+                }
+            }
         }
         let offsets: Vec<f32> = particles
             .iter()
@@ -929,17 +966,21 @@ impl RungBillboardAir {
         Ok(replaced)
     }
 
-    /// Records the compute pass of `count` particles' air.
-    fn encode(&self, encoder: &mut wgpu::CommandEncoder, count: u32) {
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("render billboard air"),
-            timestamp_writes: None,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &self.light[0], &[]);
-        pass.set_bind_group(1, &self.light[1], &[]);
-        pass.set_bind_group(2, &self.group, &[]);
-        pass.dispatch_workgroups(count.div_ceil(AIR_WORKGROUP), 1, 1);
+    /// Records the compute passes of `count` particles' air: the sun's, and the moon's
+    /// when `moon`.
+    fn encode(&self, encoder: &mut wgpu::CommandEncoder, count: u32, moon: bool) {
+        let lights = [Some(&self.sun), self.moon.as_ref().filter(|_| moon)];
+        for light in lights.into_iter().flatten() {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("render billboard air"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(&light.pipeline);
+            pass.set_bind_group(0, &light.light[0], &[]);
+            pass.set_bind_group(1, &light.light[1], &[]);
+            pass.set_bind_group(2, &light.group, &[]);
+            pass.dispatch_workgroups(count.div_ceil(AIR_WORKGROUP), 1, 1);
+        }
     }
 }
 
@@ -962,9 +1003,11 @@ pub(crate) struct BillboardCloudPass {
     uniform: wgpu::Buffer,
     /// The moonlit air per instance (16 bytes, unread, without a moonlit sky).
     moon_air: wgpu::Buffer,
-    /// The sun's air per particle under a rung without tables (`None`: the precomputed
-    /// rung's tables in groups 0 and 1).
+    /// The air per particle under a rung without tables (`None`: the precomputed rung's
+    /// tables in groups 0 and 1).
     rung_air: Option<RungBillboardAir>,
+    /// This frame's moonlit air: 0 none, 1 the CPU's per instance, 2 the rung's pass.
+    moonlit: u32,
     instances: Option<wgpu::Buffer>,
     count: u32,
 }
@@ -974,10 +1017,13 @@ impl BillboardCloudPass {
     /// The pipeline for an HDR target of `target` and a depth attachment of `depth`;
     /// the particles' air is the sun's `air` (`crate::gpu::cloud_air::cloud_airs`): the
     /// precomputed rung's tables, read in the vertex stage, or a rung's functions, a
-    /// compute pass per particle before the draw (an error without either).
+    /// compute pass per particle before the draw (an error without either). A rung's
+    /// `moon` (a moonlit sky) gets its pass too; on the precomputed rung the moonlit air
+    /// is the CPU's ([`moonlit_air`]).
     pub(crate) fn new(
         device: &wgpu::Device,
         air: Option<crate::gpu::cloud_air::CloudAir<'_>>,
+        moon: Option<crate::gpu::cloud_air::CloudAir<'_>>,
         target: wgpu::TextureFormat,
         depth: wgpu::TextureFormat,
     ) -> Result<Self, RenderError> {
@@ -996,7 +1042,13 @@ impl BillboardCloudPass {
             None => return Err(needs_tables()),
         };
         let rung_air = match air {
-            Some(CloudAir::Rung(rung)) => Some(RungBillboardAir::new(device, rung)?),
+            Some(CloudAir::Rung(rung)) => {
+                let moon = match moon {
+                    Some(CloudAir::Rung(moon)) => Some(moon),
+                    _ => None,
+                };
+                Some(RungBillboardAir::new(device, rung, moon)?)
+            }
             _ => None,
         };
         let source = crate::composer().compose_module(module_name)?;
@@ -1017,7 +1069,7 @@ impl BillboardCloudPass {
             &layout,
             &uniform,
             &moon_air,
-            rung_air.as_ref().map(|r| &r.air),
+            rung_air.as_ref().map(RungBillboardAir::airs),
         );
         // The rungs' pipeline binds group 2 alone (its air is in group 2).
         let tables = match air {
@@ -1056,6 +1108,7 @@ impl BillboardCloudPass {
             uniform,
             moon_air,
             rung_air,
+            moonlit: 0,
             instances: None,
             count: 0,
         })
@@ -1100,7 +1153,21 @@ impl BillboardCloudPass {
             }
         }
         self.count = count;
-        let moon_air = moonlit_air(scene, cloud, &particles)?;
+        // The moon's air from the rung's pass (a moonlit night under a rung without
+        // tables), else the CPU's.
+        let rung_moon = self.rung_air.as_ref().is_some_and(|r| r.moon.is_some())
+            && cloud.moon.is_some()
+            && scene.moon_light().is_some();
+        let moon_air = if rung_moon {
+            None
+        } else {
+            moonlit_air(scene, cloud, &particles)?
+        };
+        self.moonlit = match (rung_moon, &moon_air) {
+            (true, _) => 2,
+            (false, Some(_)) => 1,
+            (false, None) => 0,
+        };
         if let Some(air) = &moon_air
             && !air.is_empty()
         {
@@ -1115,7 +1182,7 @@ impl BillboardCloudPass {
             }
             queue.write_buffer(&self.moon_air, 0, &bytes);
         }
-        // A rung without tables: the particles' offsets for the sun's air pass.
+        // A rung without tables: the particles' offsets for the air passes.
         if let Some(rung_air) = &mut self.rung_air
             && rung_air.prepare(device, queue, &particles)?
         {
@@ -1129,7 +1196,7 @@ impl BillboardCloudPass {
                 &frame,
                 cloud.settings.near as f32,
                 scene.present.exposure,
-                moon_air.is_some(),
+                self.moonlit,
             ),
         );
         Ok(())
@@ -1142,7 +1209,7 @@ impl BillboardCloudPass {
             &self.layout,
             &self.uniform,
             &self.moon_air,
-            self.rung_air.as_ref().map(|r| &r.air),
+            self.rung_air.as_ref().map(RungBillboardAir::airs),
         )
     }
 
@@ -1160,7 +1227,7 @@ impl BillboardCloudPass {
         let luts = match &self.rung_air {
             Some(air) => {
                 if self.count > 0 {
-                    air.encode(encoder, self.count);
+                    air.encode(encoder, self.count, self.moonlit == 2);
                 }
                 None
             }

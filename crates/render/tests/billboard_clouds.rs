@@ -470,6 +470,85 @@ fn the_billboards_agree_on_the_gpu_and_the_cpu_under_every_gpu_rung() {
     }
 }
 
+/// The pixels where `scene`'s billboards show in front of its terrain (the CPU's
+/// composite, `rasterise_limited` against the ray-cast terrain's view depth).
+fn shown_billboard_pixels(scene: &render::scene::PreparedScene) -> Vec<usize> {
+    let cloud = scene.billboard_cloud.as_ref().unwrap();
+    let (camera, list) = particles(scene, cloud).unwrap();
+    let radiance = render::cpu_renderer::render_radiance(scene).unwrap();
+    let width = scene.camera.width;
+    let forward = scene.camera.forward;
+    let max_depth: Vec<f32> = (0..radiance.len())
+        .map(|i| {
+            radiance[i].terrain_distance.map_or(f32::INFINITY, |d| {
+                let view = atmos::frame::frame_view_direction(
+                    [i as u32 % width, i as u32 / width],
+                    &scene.camera,
+                );
+                d * (view[0] * forward[0] + view[1] * forward[1] + view[2] * forward[2])
+            })
+        })
+        .collect();
+    let shown = cloudlight::billboard::rasterise_limited::<f32>(
+        &list,
+        &camera,
+        cloud.settings.size,
+        &max_depth,
+    )
+    .unwrap();
+    (0..radiance.len())
+        .filter(|&i| shown.rgba[i][3] > 0.0)
+        .collect()
+}
+
+/// At night under every GPU rung: the shipped night (2024-12-15 21:00 UTC, 46.5° N
+/// 8° E, the full moon 56° up) looking west-north-west at a cumulus 10 km away, 3.8 km
+/// up, drawn as billboards lit by the moon; on the GPU the moon's air in front of each
+/// particle is the rung's pass run for the moon (the closed form, single scattering) or
+/// the CPU's segment model (the precomputed rung), on the CPU the moon's segment model.
+#[test]
+fn the_moonlit_billboards_agree_on_the_gpu_and_the_cpu_under_every_gpu_rung() {
+    let Some(gpu) = common::gpu_or_skip("render::billboard_clouds night rungs") else {
+        return;
+    };
+    let text = std::fs::read_to_string(common::scene_path("night")).unwrap();
+    let (start, end) = (text.find("[camera]").unwrap(), text.find("[time]").unwrap());
+    let text = format!(
+        "{}[camera]\nposition = [-14000.0, 2500.0, 0.0]\n\
+         look_direction = [-0.852, 0.423, -0.310]\nvertical_fov_deg = 40.0\nnear = 1.0\n\
+         far = 120000.0\n{}\n[clouds.volume]\nseed = 2026\nsteps = 300\n\
+         grid = [32, 32, 16]\ncell_size_m = 100.0\nbase_m = 3800.0\n\
+         centre_m = [-23400.0, -3420.0]\nsigma_t_per_density = 0.03\n\
+         draw = \"billboards\"\n",
+        &text[..start],
+        &text[end..]
+    );
+    for rung in [Rung::Precomputed, Rung::ClosedForm, Rung::Single] {
+        let mut scene = Scene::parse(&text, ".").unwrap();
+        scene.file.output.width = 96;
+        scene.file.output.height = 54;
+        scene.file.atmosphere.rung = rung;
+        let scene = scene.prepare().unwrap();
+        let cloud = scene.billboard_cloud.as_ref().unwrap();
+        assert!(
+            cloud.moon.is_some(),
+            "{}: the moon lights them",
+            rung.name()
+        );
+        let (gpu_image, cpu_image, agreement) = compare(gpu, &scene);
+        let shown = shown_billboard_pixels(&scene);
+        let (count, within, worst) = within_two_over(&gpu_image, &cpu_image, shown);
+        eprintln!(
+            "moonlit billboards 96×54 {} GPU vs CPU: {agreement}; pixels where a billboard \
+             shows {within} of {count} within 2 LSB (worst {worst})",
+            rung.name()
+        );
+        assert!(count > 50, "{}: {count}", rung.name());
+        assert_eq!(within, count, "{}: worst {worst}", rung.name());
+        assert!(agreement.close(), "{}: {agreement}", rung.name());
+    }
+}
+
 /// A cumulus 4 km north of the origin lit by a low sun in the east (10° up), seen from
 /// `camera` (TOML lines of `[camera]`), 96×64 pixels, closed-form rung.
 fn low_eastern_sun(camera: &str) -> Scene {

@@ -709,15 +709,20 @@ impl SceneRenderer {
 
         // Only a scene drawing [clouds.volume] as billboards builds their pipeline.
         let billboard_cloud = match &scene.billboard_cloud {
-            // The sun's air: the tables, or the rung's functions (`super::cloud_air`).
-            Some(_) => Some(crate::billboard_clouds::BillboardCloudPass::new(
-                device,
-                super::cloud_air::cloud_airs(luts.as_ref(), None, rung.as_ref(), scene.rung)
-                    .ok()
-                    .map(|(sun, _)| sun),
-                HDR,
-                DEPTH,
-            )?),
+            // The air: the tables, or the rung's functions per light (`super::cloud_air`).
+            Some(cloud) => {
+                let airs =
+                    super::cloud_air::cloud_airs(luts.as_ref(), None, rung.as_ref(), scene.rung)
+                        .ok();
+                Some(crate::billboard_clouds::BillboardCloudPass::new(
+                    device,
+                    airs.map(|(sun, _)| sun),
+                    airs.and_then(|(_, moon)| moon)
+                        .filter(|_| cloud.moon.is_some()),
+                    HDR,
+                    DEPTH,
+                )?)
+            }
             None => None,
         };
 
