@@ -447,6 +447,15 @@ fn the_billboards_agree_on_the_gpu_and_the_cpu_under_every_gpu_rung() {
             "{}: {within} of {count}, worst {worst}",
             rung.name()
         );
+        // `skyscape explain` names the rung's air pass.
+        if rung != Rung::Precomputed {
+            let plan = render::gpu::scene::planned_passes(&scene);
+            let entry = plan.iter().find(|(name, _)| *name == "billboard clouds");
+            assert!(
+                matches!(entry, Some((_, Ok(text))) if text.contains("particle per light")),
+                "{entry:?}"
+            );
+        }
         images.push((rung, gpu_image, covered));
     }
     let (_, precomputed, _) = &images[0];

@@ -1001,6 +1001,17 @@ pub fn adjust_plan(scene: &PreparedScene, plan: &mut Vec<(&'static str, Result<S
                     },
                 ),
             )),
+            // The billboards' air: the rung's functions per particle, not atmos' tables.
+            "billboard clouds" => adjusted.push((
+                name,
+                entry.map(|text| {
+                    format!(
+                        "{text} ({model}'s in-scatter and transmittance of the segment to each \
+                         particle per light: a compute pass before the draw, untimed, \
+                         render::billboard_clouds)"
+                    )
+                }),
+            )),
             _ => adjusted.push((name, entry)),
         }
     }
