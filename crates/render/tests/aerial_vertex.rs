@@ -631,3 +631,75 @@ fn per_vertex_under_the_moon_agrees_under_the_rungs_without_tables() {
         assert!(changed > 0, "{}: {changed}", rung.name());
     }
 }
+
+/// The trade under the rungs without tables on the GPU: the whole frame's wall time
+/// (prepare, encode, submit, read back; the device's timestamps of lavapipe's compute
+/// passes are not its time), per pixel against per vertex, 1 warm-up frame then 5
+/// alternated, the median; and the vertices the per-vertex pass evaluates.
+///
+/// ```sh
+/// WGPU_BACKEND=vulkan XDG_RUNTIME_DIR=/tmp/xdg cargo test --release -p render \
+///     --test aerial_vertex measure_the_rungs_trade -- --ignored --nocapture
+/// ```
+#[test]
+#[ignore = "a measurement: minutes on lavapipe"]
+fn measure_the_rungs_trade() {
+    let Ok(gpu) = skyscape_harness::context() else {
+        eprintln!("no adapter: no GPU timing");
+        return;
+    };
+    let (width, height) = (640, 360);
+    let scenes = [
+        ("default", Scene::open(DEFAULT_SCENE).unwrap()),
+        ("smooth hills", Scene::parse(SMOOTH_HILLS, ".").unwrap()),
+    ];
+    let (grid, _) = render::terrain_mesh::tile_mesh();
+    for (name, scene) in &scenes {
+        for rung in [Rung::ClosedForm, Rung::Single] {
+            let prepared =
+                [AerialPerspective::PerPixel, AerialPerspective::PerVertex].map(|variant| {
+                    let mut scene = scene.clone();
+                    scene.file.output.width = width;
+                    scene.file.output.height = height;
+                    scene.file.atmosphere.rung = rung;
+                    scene.file.terrain.as_mut().unwrap().aerial_perspective = variant;
+                    scene.prepare().unwrap()
+                });
+            let mut renderers = [0, 1].map(|k| {
+                SceneRenderer::new(&gpu.device, &gpu.queue, &prepared[k], Default::default())
+                    .unwrap()
+            });
+            let mut ms = [Vec::new(), Vec::new()];
+            for frame in 0..6 {
+                for k in 0..2 {
+                    let start = std::time::Instant::now();
+                    let renderer = &mut renderers[k];
+                    renderer.prepare(&gpu.queue, &prepared[k]).unwrap();
+                    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+                    renderer.encode(&mut encoder).unwrap();
+                    gpu.queue.submit([encoder.finish()]);
+                    let buffer = renderer.pixel_buffer();
+                    skyscape_harness::read_buffer(gpu, "pixels", buffer, 0, buffer.size()).unwrap();
+                    if frame > 0 {
+                        ms[k].push(1e3 * start.elapsed().as_secs_f64());
+                    }
+                }
+            }
+            let tiles = renderers[1].terrain_tiles();
+            for (k, label) in ["per pixel", "per vertex"].iter().enumerate() {
+                let mut sorted = ms[k].clone();
+                sorted.sort_by(f64::total_cmp);
+                eprintln!(
+                    "{name} {width}×{height} {}, {label}: frame median {:.1} ms of {:.1?} \
+                     ({tiles} tiles, {} vertices per vertex) on {} — {}",
+                    rung.name(),
+                    sorted[sorted.len() / 2],
+                    ms[k],
+                    tiles as usize * grid.len(),
+                    skyscape_harness::describe_adapter(&gpu.info),
+                    skyscape_harness::device_type_label(gpu.info.device_type),
+                );
+            }
+        }
+    }
+}
