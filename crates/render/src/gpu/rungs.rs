@@ -17,7 +17,11 @@
 //!   (`shaders/render/terrain_closed_form.wgsl`, `terrain_single.wgsl`: the same
 //!   `terrain_surface` of `render::terrain`, lit by the rung's transmittance from the
 //!   point to the top of the atmosphere, seen through the rung's segment camera → point)
-//!   and the light and the rung's parameters in bind group 3;
+//!   and the light and the rung's parameters in bind group 3; the segment is a compute
+//!   pass per pixel after the draws (`shaders/render/air_closed_form.wgsl`,
+//!   `air_single.wgsl`), or per vertex (`[terrain] aerial_perspective = "per-vertex"`) a
+//!   compute pass over the drawn tiles' vertices before them, read by the vertex stage
+//!   (`super::vertex_air`);
 //! * **marched clouds' air** (`[clouds.volume]`, `[clouds.shell]`): the light's
 //!   `super::cloud_air::RungCloudAir` (its camera and the rung's parameters of its
 //!   atmosphere), bound by the clouds' air pass where the precomputed rung binds its
