@@ -85,6 +85,7 @@ pub mod shadow_map;
 pub mod shell;
 pub mod shell_shadow;
 pub mod slice;
+pub mod union;
 pub mod volume;
 
 #[cfg(feature = "gpu")]
