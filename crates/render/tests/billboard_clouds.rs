@@ -343,7 +343,8 @@ fn the_billboards_agree_on_the_gpu_and_the_cpu() {
     );
 }
 
-/// The billboards under the rungs without tables (the closed form, single scattering):
+/// The billboards under the rungs without tables (the closed form per pixel and per dome
+/// vertex, whose air is the closed form's either way, and single scattering):
 /// on the GPU each particle's air is a compute pass of the rung's own functions
 /// (`shaders/render/billboard_air_closed_form.wgsl`, `billboard_air_single.wgsl`), on
 /// the CPU the rung's segment model. The shipped `billboards` scene at 160×90 under each
@@ -358,7 +359,12 @@ fn the_billboards_agree_on_the_gpu_and_the_cpu_under_every_gpu_rung() {
     };
     let (width, height) = (160usize, 90usize);
     let mut images = Vec::new();
-    for rung in [Rung::Precomputed, Rung::ClosedForm, Rung::Single] {
+    for rung in [
+        Rung::Precomputed,
+        Rung::ClosedForm,
+        Rung::ClosedFormVertex,
+        Rung::Single,
+    ] {
         let mut scene = shipped(width as u32, height as u32);
         scene.file.atmosphere.rung = rung;
         let scene = scene.prepare().unwrap();
@@ -532,7 +538,12 @@ fn the_moonlit_billboards_agree_on_the_gpu_and_the_cpu_under_every_gpu_rung() {
         &text[..start],
         &text[end..]
     );
-    for rung in [Rung::Precomputed, Rung::ClosedForm, Rung::Single] {
+    for rung in [
+        Rung::Precomputed,
+        Rung::ClosedForm,
+        Rung::ClosedFormVertex,
+        Rung::Single,
+    ] {
         let mut scene = Scene::parse(&text, ".").unwrap();
         scene.file.output.width = 96;
         scene.file.output.height = 54;
