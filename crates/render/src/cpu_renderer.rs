@@ -156,6 +156,19 @@ struct PrecomputedFrame<'a> {
 
 /// Linear radiance of every pixel, row-major (the HDR image before display).
 pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, RenderError> {
+    if let Some(cloud) = scene
+        .shell_cloud
+        .as_ref()
+        .filter(|c| !c.shadows_baked_on_cpu())
+    {
+        let maps = [&cloud.shadow, &cloud.moon_shadow].into_iter().flatten().count();
+        return Err(RenderError::InvalidParameter {
+            field: "clouds.shell",
+            value: format!("{maps} shadow map(s) without values"),
+            reason: "prepared for the GPU (Scene::prepare_for_gpu): call \
+                     PreparedScene::bake_shell_shadow_on_cpu first",
+        });
+    }
     let camera = &scene.camera;
     let (width, height) = (camera.width as usize, camera.height as usize);
     let light = match &scene.terrain {

@@ -244,6 +244,40 @@ pub struct PreparedShell {
     pub shadow_seconds: f64,
 }
 
+impl PreparedShell {
+    /// Whether the shadow maps hold their values (a scene from `Scene::prepare`), or only
+    /// their grids (from [`Scene::prepare_for_gpu`]: the GPU renderer bakes them; the CPU
+    /// renderer needs [`crate::scene::PreparedScene::bake_shell_shadow_on_cpu`] first).
+    pub fn shadows_baked_on_cpu(&self) -> bool {
+        [&self.shadow, &self.moon_shadow]
+            .into_iter()
+            .flatten()
+            .all(|map| !map.values.is_empty())
+    }
+}
+
+impl crate::scene::PreparedScene {
+    /// Bakes on the CPU the deck's shadow maps a [`Scene::prepare_for_gpu`] left as grids
+    /// (the CPU renderer's, when the GPU renderer is not used after all); nothing for a
+    /// scene whose maps are baked. Sets `shadow_seconds`.
+    pub fn bake_shell_shadow_on_cpu(&mut self) {
+        let (Some(cloud), Some(terrain)) = (&mut self.shell_cloud, &self.terrain) else {
+            return;
+        };
+        if cloud.shadows_baked_on_cpu() {
+            return;
+        }
+        let started = std::time::Instant::now();
+        if cloud.shadow.is_some() {
+            cloud.shadow = shell_shadow(&cloud.shell, terrain, self.sun);
+        }
+        if let (Some(_), Some(moon)) = (&cloud.moon_shadow, &self.moonlit) {
+            cloud.moon_shadow = shell_shadow(&cloud.shell, terrain, moon.direction);
+        }
+        cloud.shadow_seconds = started.elapsed().as_secs_f64();
+    }
+}
+
 /// The `[clouds.shell]` key a cloudlight `ShellError` is about.
 fn shell_key(error: &ShellError) -> &'static str {
     let field: &str = match error {
@@ -422,6 +456,7 @@ impl Scene {
         sun: DVec3,
         moonlit: Option<&crate::scene::prepare::MoonlitSky>,
         terrain: Option<&crate::scene::prepare::PreparedTerrain>,
+        cpu_shadow: bool,
     ) -> Result<PreparedShell, SceneError> {
         let (shell, settings) = self.check_shell_cloud(section, atmosphere)?;
         // The middle of the shell straight above the camera.
@@ -459,10 +494,21 @@ impl Scene {
         };
         // The shadow maps: only over terrain, only toward a light that is up.
         let started = std::time::Instant::now();
-        let shadow_toward = |toward: DVec3| terrain.and_then(|t| shell_shadow(&shell, t, toward));
+        // Without `cpu_shadow` (a scene prepared for the GPU renderer) only the maps'
+        // grids, unless the GPU cannot bake them (a grid weather map).
+        let on_gpu = !cpu_shadow && cloudlight::shell_shadow::ShellField::<f32>::of(&shell).is_ok();
+        let shadow_toward = |toward: DVec3| {
+            terrain.and_then(|t| {
+                if on_gpu {
+                    shell_shadow_unbaked(&shell, t, toward)
+                } else {
+                    shell_shadow(&shell, t, toward)
+                }
+            })
+        };
         let shadow = shadow_toward(sun);
         let moon_shadow = moonlit.and_then(|moon| shadow_toward(moon.direction));
-        let shadow_seconds = if shadow.is_some() || moon_shadow.is_some() {
+        let shadow_seconds = if !on_gpu && (shadow.is_some() || moon_shadow.is_some()) {
             started.elapsed().as_secs_f64()
         } else {
             0.0
@@ -496,6 +542,43 @@ pub fn shell_shadow(
     terrain: &crate::scene::prepare::PreparedTerrain,
     toward: DVec3,
 ) -> Option<CloudShadow> {
+    shell_shadow_of(shell, shell, terrain, toward)
+}
+
+/// A [`shell_shadow`]'s grid, plane and light without its values (`values` empty): what
+/// [`Scene::prepare_for_gpu`] keeps for the GPU renderer, which bakes the values itself
+/// (`crate::gpu::shell_shadow`). Its texels cost nothing: the march runs over a field
+/// without spans.
+pub fn shell_shadow_unbaked(
+    shell: &cloudlight::CloudShell,
+    terrain: &crate::scene::prepare::PreparedTerrain,
+    toward: DVec3,
+) -> Option<CloudShadow> {
+    struct NoCloud;
+    impl cloudlight::DensityField<f32> for NoCloud {
+        fn density(&self, _: [f32; 3]) -> f32 {
+            0.0
+        }
+        fn extinction_per_density(&self) -> f32 {
+            0.0
+        }
+        fn ray_spans(&self, _: [f32; 3], _: [f32; 3]) -> cloudlight::RaySpans<f32> {
+            cloudlight::RaySpans::none()
+        }
+    }
+    let mut map = shell_shadow_of(&NoCloud, shell, terrain, toward)?;
+    map.values = Vec::new();
+    Some(map)
+}
+
+/// [`shell_shadow`] marching `field` (the shell, or a field without spans for the grid
+/// alone).
+fn shell_shadow_of<D: cloudlight::DensityField<f32> + Sync + ?Sized>(
+    field: &D,
+    shell: &cloudlight::CloudShell,
+    terrain: &crate::scene::prepare::PreparedTerrain,
+    toward: DVec3,
+) -> Option<CloudShadow> {
     let to_light = world_to_enu(toward.to_array());
     if to_light[2] < 1f64.to_radians().sin() {
         return None;
@@ -520,7 +603,7 @@ pub fn shell_shadow(
         [0, 1].map(|a| [half_east, half_south][a] + (near * to_light[a]).max(far * to_light[a]));
     let longer = (hi[0] - lo[0]).max(hi[1] - lo[1]);
     CloudShadow::over(
-        shell,
+        field,
         [lo, hi],
         hf.spacing().max(longer / f64::from(SHADOW_SIDE)),
         [plane, planet],
@@ -790,13 +873,20 @@ fn shell_shadow_plan(cloud: &PreparedShell) -> Result<String, String> {
             "no [terrain] under the deck, or no light above 1°: no shadow map baked".into(),
         );
     }
+    let baked = if cloud.shadows_baked_on_cpu() {
+        format!(
+            "baked on the CPU at prepare in {:.2} s (measured; the CPU renderer's) and again \
+             on the GPU by the GPU renderer",
+            cloud.shadow_seconds
+        )
+    } else {
+        "prepared for the GPU: baked by the GPU renderer only".to_owned()
+    };
     Ok(format!(
         "cloudlight's shadow map of the deck over the terrain on the plane of its base \
-         ({}; {} steps per texel), baked on the CPU at prepare in {:.2} s (measured; the \
-         CPU renderer's) and again on the GPU by the GPU renderer (cloudlight's \
-         ShellShadowMapPass, the same formula), read by the terrain pass times the volume's",
+         ({}; {} steps per texel), {baked} (cloudlight's ShellShadowMapPass, the same \
+         formula), read by the terrain pass times the volume's",
         maps.join(", "),
         SHADOW_STEPS,
-        cloud.shadow_seconds
     ))
 }

@@ -73,3 +73,50 @@ fn the_deck_map_baked_on_the_gpu_is_the_cpu_bake() {
     // test and the parity pass measure ≤ 1.3e-6 on lavapipe.
     assert!(worst <= 1e-5, "worst {worst:e}");
 }
+
+/// `Scene::prepare_for_gpu` leaves the deck's map to the GPU: the same grid without
+/// values, no CPU time; the CPU renderer refuses it (naming the key) until
+/// `bake_shell_shadow_on_cpu`, which gives `prepare`'s values; the GPU renderer draws it
+/// pixel for pixel as it draws `prepare`'s scene.
+#[test]
+fn a_scene_prepared_for_the_gpu_leaves_the_bake_to_it() {
+    let scene = common::shipped("stratocumulus", 96, 54);
+    let started = std::time::Instant::now();
+    let mut for_gpu = scene.prepare_for_gpu().unwrap();
+    let gpu_prepare = started.elapsed().as_secs_f64();
+    let started = std::time::Instant::now();
+    let full = scene.prepare().unwrap();
+    let cpu_prepare = started.elapsed().as_secs_f64();
+    let (lazy, baked) = (
+        for_gpu.shell_cloud.as_ref().unwrap(),
+        full.shell_cloud.as_ref().unwrap(),
+    );
+    let (lazy_map, map) = (
+        lazy.shadow.as_ref().unwrap(),
+        baked.shadow.as_ref().unwrap(),
+    );
+    assert!(lazy_map.values.is_empty() && !lazy.shadows_baked_on_cpu());
+    assert_eq!(lazy.shadow_seconds, 0.0);
+    assert_eq!(
+        (lazy_map.origin, lazy_map.cell_size, lazy_map.resolution),
+        (map.origin, map.cell_size, map.resolution)
+    );
+    assert_eq!((lazy_map.plane, lazy_map.to_sun), (map.plane, map.to_sun));
+    eprintln!(
+        "stratocumulus 96×54 prepared for the GPU in {gpu_prepare:.2} s, with the CPU's deck \
+         map in {cpu_prepare:.2} s (its bake {:.2} s)",
+        baked.shadow_seconds
+    );
+    let err = render::cpu_renderer::render_cpu(&for_gpu).unwrap_err();
+    assert!(err.to_string().contains("clouds.shell"), "{err}");
+    if let Some(gpu) = common::gpu_or_skip("render::shell_shadow_gpu prepare_for_gpu") {
+        assert_eq!(
+            common::gpu_pixels(gpu, &for_gpu),
+            common::gpu_pixels(gpu, &full)
+        );
+    }
+    for_gpu.bake_shell_shadow_on_cpu();
+    let rebaked = for_gpu.shell_cloud.as_ref().unwrap();
+    assert!(rebaked.shadows_baked_on_cpu() && rebaked.shadow_seconds > 0.0);
+    assert_eq!(rebaked.shadow.as_ref().unwrap().values, map.values);
+}

@@ -358,14 +358,19 @@ fn apply_overrides(scene: &mut Scene, args: &RenderArgs) -> Result<(), Failure> 
     Ok(())
 }
 
-fn prepare(scene: &Scene, label: &str) -> Result<PreparedScene, Failure> {
+/// `for_gpu`: only the GPU renderer will draw it (`Scene::prepare_for_gpu`: the shell
+/// deck's shadow maps are left to the GPU to bake).
+fn prepare(scene: &Scene, label: &str, for_gpu: bool) -> Result<PreparedScene, Failure> {
     let spinner = indicatif::ProgressBar::new_spinner().with_message(format!(
         "preparing {label}: atmosphere tables, terrain, horizon maps"
     ));
     spinner.enable_steady_tick(std::time::Duration::from_millis(120));
-    let prepared = scene
-        .prepare()
-        .map_err(|e| Failure::Input(format!("{label}: {e}")));
+    let prepared = if for_gpu {
+        scene.prepare_for_gpu()
+    } else {
+        scene.prepare()
+    }
+    .map_err(|e| Failure::Input(format!("{label}: {e}")));
     spinner.finish_and_clear();
     prepared
 }
@@ -789,9 +794,13 @@ fn render_command(args: RenderArgs) -> Result<(), Failure> {
             animation.apply(&mut frame_scene.file, frame);
         }
         let start = std::time::Instant::now();
-        let mut prepared = prepare(&frame_scene, &name)?;
         let projected =
             frame_scene.file.output.projection != render::projection::Projection::Rectilinear;
+        let mut prepared = prepare(
+            &frame_scene,
+            &name,
+            !(args.cpu || args.compare || projected),
+        )?;
         let gpu = if args.cpu || projected {
             None
         } else {
@@ -823,7 +832,11 @@ fn render_command(args: RenderArgs) -> Result<(), Failure> {
                 };
                 render_projected(&frame_scene, &mut prepared, backends, on)?
             }
-            None => render_cpu(&prepared).map_err(Failure::Runtime)?,
+            None => {
+                // A GPU failure falls back here: bake what was left to the GPU.
+                prepared.bake_shell_shadow_on_cpu();
+                render_cpu(&prepared).map_err(Failure::Runtime)?
+            }
         };
         let numbered = (frames > 1).then_some(frame);
         let path = output_path(&args, &frame_scene, &name, format, numbered)?;
@@ -879,7 +892,7 @@ fn render_command(args: RenderArgs) -> Result<(), Failure> {
 fn explain_command(name: &str, backend: Option<&str>) -> Result<(), Failure> {
     let backends = backends(backend)?;
     let (scene, label) = load_scene(Some(name))?;
-    let prepared = prepare(&scene, &label)?;
+    let prepared = prepare(&scene, &label, false)?;
     println!(
         "{label}: {}×{}, {}, terrain {}",
         prepared.camera.width,

@@ -346,6 +346,18 @@ pub fn world_direction(elevation: f64, azimuth: f64) -> DVec3 {
 impl Scene {
     /// Validates the scene and builds its atmosphere, rung, camera and terrain.
     pub fn prepare(&self) -> Result<PreparedScene, SceneError> {
+        self.prepare_with(true)
+    }
+
+    /// [`Scene::prepare`] for the GPU renderer: the `[clouds.shell]` deck's shadow maps
+    /// are left as grids for the GPU to bake (`crate::shell_clouds::shell_shadow_unbaked`);
+    /// the CPU renderer refuses such a scene until
+    /// [`PreparedScene::bake_shell_shadow_on_cpu`].
+    pub fn prepare_for_gpu(&self) -> Result<PreparedScene, SceneError> {
+        self.prepare_with(false)
+    }
+
+    fn prepare_with(&self, cpu_shell_shadow: bool) -> Result<PreparedScene, SceneError> {
         let atmosphere = self.atmosphere()?;
         let file = &self.file;
 
@@ -535,6 +547,7 @@ impl Scene {
                 sun,
                 moonlit.as_ref(),
                 terrain.as_ref(),
+                cpu_shell_shadow,
             )?),
             None => None,
         };
