@@ -27,10 +27,34 @@
 //! march is still its own cloud's alone, and the whole of the cloud with the smaller
 //! opacity-weighted depth is put in front of the whole of the other. The true pixel then
 //! lies between the two orders; the error is at most their difference,
-//! `|S_a·(1 − T_b) − S_b·(1 − T_a)|`, and vanishes where either cloud is transparent.
+//! `|S_a·(1 − T_b) − S_b·(1 − T_a)|`, and vanishes where either cloud is transparent
+//! (and where both have the same source function `J`: then `S = J·(1 − T)` for each and
+//! the two orders agree).
 //! Each march is also limited only by the terrain, not by the other cloud: a cloud
 //! behind an opaque one is marched in full and hidden by `T_near`, exact up to the
 //! march's early exit.
+//!
+//! **Not modelled: each cloud's shadow on the other.** Each cloud's light and ambient
+//! marches cross its own field only: a cumulus under the deck is lit as if the deck were
+//! absent, the deck under a cumulus is not shadowed by it, whether their segments
+//! overlap or not.
+//!
+//! **Measured** (`cargo test -p render --test cloud_overlap -- --nocapture`, 55–80 s in
+//! the debug test build): the deck (1,000–1,800 m) and a cumulus (a 2.4 × 2.4 × 0.6 km
+//! grid, its base at 1,400 m, reaching into the deck, or at 2,000 m), four 64×36 views
+//! from below and above the deck, in f64 with one light and the same march settings for
+//! both clouds, against one march over their union (`cloudlight::union::UnionField`,
+//! interleaved, its light and ambient marches through both), over the pixels crossing
+//! both (each ≥ 1 % opaque alone), the clouds' radiance over black, LSB after the tone
+//! map at exposure 12. This composite: 150 pixels whose segments overlap, mean 5.2 LSB,
+//! max 29.5 (relative mean 9.6 %); 529 disjoint, mean 3.0 LSB, max 97.0 (a deck pixel in
+//! the cumulus's shadow drawn lit: 258 % too bright). Nearly all of it is the missing
+//! mutual shadowing: each cloud's view march alone but lit through both, in depth order,
+//! is within 0.02 LSB mean, 0.4 max of the union on the overlapping pixels (the ordering
+//! alone; the march's own floor, on the disjoint pixels where the order is exact, reaches
+//! 1.2 LSB), inside the bound above on 150 of 150 (mean 49 LSB, max 136: loose, the two
+//! clouds' source functions being close where they overlap) and between the two orders
+//! on 150 of 150 (within that floor).
 
 use cloudlight::march::{Lighting, MarchResult};
 

@@ -478,6 +478,22 @@ fn the_depth_order_against_one_march_through_both_clouds() {
         bounds.mean_lsb,
         bounds.max_lsb
     );
+    // Whether the union lies between the two orders (per channel, up to the floor).
+    let floor = disjoint[1].max_abs;
+    let between = in_overlap
+        .iter()
+        .filter(|p| {
+            let (ab, ba) = (over(p.lit[0], p.lit[1]), over(p.lit[1], p.lit[0]));
+            (0..3).all(|k| {
+                p.union[k] >= ab[k].min(ba[k]) - floor && p.union[k] <= ab[k].max(ba[k]) + floor
+            })
+        })
+        .count();
+    println!(
+        "  overlapping: the union between the two orders (within the floor {floor:.1e}) in \
+         {between} of {} px",
+        in_overlap.len()
+    );
     // Enough pixels of each kind for the figures to mean something (150 and 529).
     assert!(overlapping[0].count >= 100 && disjoint[0].count >= 300);
     // The ordering alone: within the documented bound on every overlapping pixel, up to
