@@ -50,6 +50,9 @@
 //!   Hillaire's energy-conserving step; sun and sky light and aerial perspective from
 //!   `atmos`; the GPU passes [`gpu::MarchPass`] (a volume) and [`gpu::MarchShellPass`]
 //!   (the procedural shell), whose twin is `march::render_image::<f32>`.
+//! * [`union::UnionField`]: two density fields (a volume and the shell, each in its own
+//!   frame and σ_t) as one, so one march interleaves them and lights each through both;
+//!   `render`'s `cloud_overlap` test measures its two-cloud composite against it.
 //! * [`slice::slice_attenuation`] (seed 002's per-texel attenuation) and
 //!   [`jitter::bayer_jitter_4x4`] (seed 003's ordered march jitter).
 //!
