@@ -38,6 +38,23 @@ pub enum RenderError {
     #[cfg(feature = "gpu")]
     #[error("cloudlight march pass: {0}")]
     MarchPass(#[from] cloudlight::gpu::MarchGpuError),
+    /// The device rejected a pipeline, shader or bind group that `what` created (caught
+    /// by error scopes: validation, internal, out of memory): e.g. a WGSL feature the
+    /// GL backend cannot translate to GLSL. `adapter` is the adapter's name and backend.
+    #[cfg(feature = "gpu")]
+    #[error(
+        "{what} on {adapter}: the device rejected it: {}",
+        crate::gpu::validation::one_line(.source)
+    )]
+    Device {
+        /// The entry point that failed (e.g. `SceneRenderer::new`).
+        what: &'static str,
+        /// The adapter's name and backend (e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (gl)`).
+        adapter: String,
+        /// wgpu's error; its message names the call and the object's label.
+        #[source]
+        source: wgpu::Error,
+    },
 }
 
 pub(crate) fn check(

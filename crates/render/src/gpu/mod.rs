@@ -17,6 +17,7 @@ pub mod rungs;
 pub mod scene;
 pub(crate) mod shell_shadow;
 pub mod timer;
+pub(crate) mod validation;
 pub(crate) mod vertex_air;
 
 pub use present::Presenter;

@@ -22,8 +22,13 @@ pub struct Presenter {
 }
 
 impl Presenter {
-    /// Compiles the pass on `device`.
+    /// Compiles the pass on `device`; a pipeline the device rejects is a
+    /// [`RenderError::Device`] (caught by device error scopes).
     pub fn new(device: &wgpu::Device) -> Result<Self, RenderError> {
+        super::validation::scoped(device, "Presenter::new", || Self::new_unscoped(device))
+    }
+
+    fn new_unscoped(device: &wgpu::Device) -> Result<Self, RenderError> {
         let source = crate::composer().compose_module("render::present")?;
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("render present"),

@@ -480,8 +480,20 @@ fn fragment_texture(binding: u32) -> wgpu::BindGroupLayoutEntry {
 impl RungPasses {
     /// The passes of `scene`'s rung, or `None` for the precomputed rung (its tables and
     /// sky pass are the scene renderer's own); an error for the reference rungs.
-    /// `hdr` and `depth` are the scene's targets' formats.
+    /// `hdr` and `depth` are the scene's targets' formats. A pipeline the device
+    /// rejects is a [`RenderError::Device`] (caught by device error scopes).
     pub fn new(
+        device: &wgpu::Device,
+        scene: &PreparedScene,
+        hdr: wgpu::TextureFormat,
+        depth: wgpu::TextureFormat,
+    ) -> Result<Option<Self>, RenderError> {
+        super::validation::scoped(device, "RungPasses::new", || {
+            Self::new_unscoped(device, scene, hdr, depth)
+        })
+    }
+
+    fn new_unscoped(
         device: &wgpu::Device,
         scene: &PreparedScene,
         hdr: wgpu::TextureFormat,

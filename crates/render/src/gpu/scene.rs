@@ -543,8 +543,21 @@ impl CloudPass {
 
 impl SceneRenderer {
     /// Builds the passes `scene` needs. Errors for a rung without GPU passes (render
-    /// it on the CPU) and for resources beyond the device's limits.
+    /// it on the CPU), for resources beyond the device's limits, and for a pipeline,
+    /// shader or bind group the device rejects ([`RenderError::Device`], caught by a
+    /// device error scope: e.g. the shell clouds' pipeline on the GL backend).
     pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &PreparedScene,
+        settings: SceneRendererSettings,
+    ) -> Result<Self, RenderError> {
+        super::validation::scoped(device, "SceneRenderer::new", || {
+            Self::new_unscoped(device, queue, scene, settings)
+        })
+    }
+
+    fn new_unscoped(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         scene: &PreparedScene,
@@ -1231,6 +1244,17 @@ impl SceneRenderer {
     /// `PreparedScene::look_along` and prepared again (same size), each bit for bit the
     /// face a renderer built for it draws (`tests/panorama_gpu.rs`).
     pub fn prepare(
+        &mut self,
+        queue: &wgpu::Queue,
+        scene: &PreparedScene,
+    ) -> Result<(), RenderError> {
+        let device = self.device.clone();
+        super::validation::scoped(&device, "SceneRenderer::prepare", || {
+            self.prepare_unscoped(queue, scene)
+        })
+    }
+
+    fn prepare_unscoped(
         &mut self,
         queue: &wgpu::Queue,
         scene: &PreparedScene,
