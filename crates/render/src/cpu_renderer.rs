@@ -161,7 +161,10 @@ pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, Rend
         .as_ref()
         .filter(|c| !c.shadows_baked_on_cpu())
     {
-        let maps = [&cloud.shadow, &cloud.moon_shadow].into_iter().flatten().count();
+        let maps = [&cloud.shadow, &cloud.moon_shadow]
+            .into_iter()
+            .flatten()
+            .count();
         return Err(RenderError::InvalidParameter {
             field: "clouds.shell",
             value: format!("{maps} shadow map(s) without values"),
