@@ -5,6 +5,7 @@
 // composite reads) and each pixel's segment camera → the cloud's transmittance-weighted
 // depth.
 #import atmos::frame
+#import render::air_segment
 
 struct CloudAirParams {
     width: u32,
@@ -21,39 +22,24 @@ struct CloudAirParams {
 // where the cloud has opacity, T_c < 1).
 @group(2) @binding(2) var<storage, read_write> cloud_air: array<vec4<f32>>;
 
-// A pixel's segment: the camera's radius, the view's zenith cosine, the distance to the
-// cloud's depth, the view and the local up; `has_air` false outside the image or where
-// the cloud has no opacity.
-struct CloudAirSegment {
-    index: u32,
-    r: f32,
-    mu: f32,
-    distance: f32,
-    view: vec3<f32>,
-    up: vec3<f32>,
-    has_air: bool,
-}
-
-fn cloud_air_segment(pixel: vec2<u32>, camera: FrameCamera) -> CloudAirSegment {
-    var s: CloudAirSegment;
+// A pixel's segment (render::air_segment): camera → the cloud's depth; `has_air` false
+// outside the image or where the cloud has no opacity.
+fn cloud_air_segment(pixel: vec2<u32>, camera: FrameCamera) -> AirSegment {
+    var s: AirSegment;
     if pixel.x >= cloud_air_params.width || pixel.y >= cloud_air_params.height {
         return s;
     }
-    s.index = 2u * (pixel.y * cloud_air_params.width + pixel.x);
-    if !(cloud_march[s.index].w < 1.0) {
+    let index = 2u * (pixel.y * cloud_air_params.width + pixel.x);
+    if !(cloud_march[index].w < 1.0) {
+        s.index = index;
         return s;
     }
-    s.view = frame_view_direction(pixel, camera);
-    s.r = length(camera.position);
-    s.up = camera.position / s.r;
-    s.mu = dot(s.view, s.up);
-    s.distance = cloud_march[s.index + 1u].x;
-    s.has_air = true;
-    return s;
+    let view = frame_view_direction(pixel, camera);
+    return air_segment(index, view, cloud_march[index + 1u].x, camera);
 }
 
 // Writes the segment's in-scattered radiance and transmittance.
-fn cloud_air_store(s: CloudAirSegment, radiance: vec3<f32>, transmittance: vec3<f32>) {
+fn cloud_air_store(s: AirSegment, radiance: vec3<f32>, transmittance: vec3<f32>) {
     cloud_air[s.index] = vec4<f32>(radiance, 0.0);
     cloud_air[s.index + 1u] = vec4<f32>(transmittance, 0.0);
 }

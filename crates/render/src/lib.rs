@@ -158,6 +158,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/volume_air.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "render::air_segment",
+        source: include_str!("../shaders/air_segment.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "render::cloud_air_io",
         source: include_str!("../shaders/cloud_air_io.wgsl"),
     },

@@ -1,0 +1,32 @@
+// The segment camera → a point that every air pass in front of something evaluates
+// (per pixel in render::cloud_air_io, per particle in render::billboard_air_io): no
+// bindings of its own, so both io modules, each with its own group 2, import it.
+#import atmos::frame
+
+// A segment: the index of its two vec4 in the pass's air output, the camera's radius,
+// the view's zenith cosine, the distance to the point, the view and the local up;
+// `has_air` false where the pass writes nothing for it (outside the image, no cloud
+// opacity, past the last particle, a particle at the eye).
+struct AirSegment {
+    index: u32,
+    r: f32,
+    mu: f32,
+    distance: f32,
+    view: vec3<f32>,
+    up: vec3<f32>,
+    has_air: bool,
+}
+
+// The segment of length `distance` along the unit `view` from the camera, its air
+// output at `index`.
+fn air_segment(index: u32, view: vec3<f32>, distance: f32, camera: FrameCamera) -> AirSegment {
+    var s: AirSegment;
+    s.index = index;
+    s.view = view;
+    s.r = length(camera.position);
+    s.up = camera.position / s.r;
+    s.mu = dot(s.view, s.up);
+    s.distance = distance;
+    s.has_air = true;
+    return s;
+}
