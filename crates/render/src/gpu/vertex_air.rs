@@ -30,6 +30,7 @@ use crate::RenderError;
 use crate::scene::Rung;
 use crate::scene::prepare::PreparedScene;
 use crate::terrain_mesh::{Tile, tile_mesh};
+use crate::volume_clouds::buffer_entry;
 
 /// The light and the dispatch of a pass (layout identical to WGSL `VertexAirUniform` in
 /// `shaders/render/vertex_air.wgsl`).
@@ -89,23 +90,6 @@ pub(crate) fn wanted(scene: &PreparedScene) -> bool {
         .is_some_and(|t| t.aerial_perspective.per_vertex())
         && scene.rung != Rung::Precomputed
         && super::rungs::has_rung_passes(scene.rung)
-}
-
-fn entry(
-    binding: u32,
-    visibility: wgpu::ShaderStages,
-    ty: wgpu::BufferBindingType,
-) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Buffer {
-            ty,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
 }
 
 /// What the per-vertex passes need of the scene, taken when the rung's passes are built
@@ -187,23 +171,23 @@ impl VertexAir {
         let compute_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("render terrain vertex air (compute)"),
             entries: &[
-                entry(4, compute, wgpu::BufferBindingType::Uniform),
-                entry(
+                buffer_entry(4, compute, wgpu::BufferBindingType::Uniform),
+                buffer_entry(
                     5,
                     compute,
                     wgpu::BufferBindingType::Storage { read_only: false },
                 ),
-                entry(6, compute, read),
-                entry(7, compute, read),
-                entry(8, compute, wgpu::BufferBindingType::Uniform),
+                buffer_entry(6, compute, read),
+                buffer_entry(7, compute, read),
+                buffer_entry(8, compute, wgpu::BufferBindingType::Uniform),
             ],
         });
         let vertex = wgpu::ShaderStages::VERTEX;
         let draw_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("render terrain vertex air (draw)"),
             entries: &[
-                entry(4, vertex, wgpu::BufferBindingType::Uniform),
-                entry(5, vertex, read),
+                buffer_entry(4, vertex, wgpu::BufferBindingType::Uniform),
+                buffer_entry(5, vertex, read),
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
