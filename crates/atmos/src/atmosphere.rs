@@ -93,6 +93,17 @@ pub enum GpuError {
         /// The usage it lacks, e.g. `write-only storage textures`.
         need: &'static str,
     },
+    /// A wgpu backend that runs the bake but gives wrong tables: wgpu 30's GL backend
+    /// binds a 3-D storage texture as its first slice only, so the aerial-perspective
+    /// volume's other slices stay zero (`cargo test -p atmos --test storage_texture_3d`
+    /// shows it), and its multiple-scattering table reads back zero.
+    #[error("the {backend} backend cannot bake the LUTs: {reason}")]
+    UnsupportedBackend {
+        /// The backend, as `WGPU_BACKEND` spells it (e.g. `gl`).
+        backend: String,
+        /// What it gets wrong.
+        reason: &'static str,
+    },
     /// `encode` before `prepare`.
     #[error("{pass}: encode called before prepare")]
     NotPrepared {

@@ -1,8 +1,11 @@
-//! The GL backend cannot compile some of skyscape's pipelines (naga's GLSL output has
-//! no `textureLoad` from depth textures, which the cloud passes use). The scene
-//! renderer returns that as an error naming the pipeline and the adapter (error
-//! scopes, `render::gpu::validation`), and the `skyscape` binary falls back to the
-//! CPU reference renderer, or exits 1 where a GPU image is required: never a panic.
+//! The GL backend gives no GPU image: atmos refuses to bake the precomputed rung's
+//! tables there (wgpu's GL backend writes one slice of a 3-D storage texture), and the
+//! rungs without tables use pipelines GL cannot compile (naga's GLSL output has no
+//! `textureLoad` from depth textures). The scene renderer returns either as an error
+//! (the second caught by error scopes, `render::gpu::validation`, naming the pipeline
+//! and the adapter), and the `skyscape` binary falls back to the CPU reference
+//! renderer, or exits 1 where a GPU image is required: never a panic, never a wrong
+//! image.
 //!
 //! Runs only where a GL adapter exists (Mesa's llvmpipe on CI machines); otherwise it
 //! says so on stderr and passes.
@@ -45,16 +48,36 @@ fn a_pipeline_gl_cannot_compile_is_an_error_not_a_panic() {
     let out_arg = out.to_str().expect("a UTF-8 temporary path");
     let size = ["--width", "16", "--height", "9"];
 
-    // The default render falls back to the CPU reference renderer and says why.
+    // The precomputed rung (the scene's): atmos refuses to bake its tables on GL, whose
+    // 3-D storage writes reach one slice only (a wrong image otherwise), and the render
+    // falls back to the CPU reference renderer.
     let mut args = vec!["render", "stratocumulus", "--backend", "gl", "-o", out_arg];
     args.extend(size);
     let output = skyscape(&args);
     let stderr = assert_no_panic("render on gl", &output);
     assert_eq!(output.status.code(), Some(0), "{stderr}");
     for expected in [
-        "SceneRenderer::new",
+        "the gl backend cannot bake the LUTs",
+        "rendering on the CPU reference renderer",
+    ] {
+        assert!(stderr.contains(expected), "no `{expected}` in: {stderr}");
+    }
+    assert!(out.exists(), "no image at {}", out.display());
+    let _ = std::fs::remove_file(&out);
+
+    // The closed form has no tables: a pipeline GL cannot compile (textureLoad from a
+    // depth texture) is caught by the error scopes, named, and the render falls back.
+    let mut args = vec!["render", "stratocumulus", "--backend", "gl", "-o", out_arg];
+    args.extend(["--rung", "closed-form"]);
+    args.extend(size);
+    let output = skyscape(&args);
+    let stderr = assert_no_panic("render --rung closed-form on gl", &output);
+    assert_eq!(output.status.code(), Some(0), "{stderr}");
+    for expected in [
+        "RungPasses::new",
         "(gl)",
-        "'render shell clouds'",
+        "the device rejected it",
+        "textureLoad",
         "rendering on the CPU reference renderer",
     ] {
         assert!(stderr.contains(expected), "no `{expected}` in: {stderr}");
@@ -69,7 +92,7 @@ fn a_pipeline_gl_cannot_compile_is_an_error_not_a_panic() {
 
     // --explain needs a GPU image: a runtime failure (exit 1) naming the backend.
     let mut args = vec!["render", "stratocumulus", "--backend", "gl", "--explain"];
-    args.extend(["-o", out_arg]);
+    args.extend(["--rung", "closed-form", "-o", out_arg]);
     args.extend(size);
     let output = skyscape(&args);
     let stderr = assert_no_panic("render --explain on gl", &output);
@@ -77,7 +100,7 @@ fn a_pipeline_gl_cannot_compile_is_an_error_not_a_panic() {
     for expected in [
         "--explain needs a GPU image",
         "(gl)",
-        "'render shell clouds'",
+        "the device rejected it",
     ] {
         assert!(stderr.contains(expected), "no `{expected}` in: {stderr}");
     }

@@ -94,8 +94,20 @@ pub fn uniform_buffer(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Bu
 
 /// Errors unless the device can write `rgba32float` storage textures from compute
 /// passes and read them unfiltered (every WebGPU adapter can; a downlevel GL adapter
-/// may not).
+/// may not), and on wgpu's GL backend, whose 3-D storage writes reach only the first
+/// slice ([`GpuError::UnsupportedBackend`]): there the bake would run and give wrong
+/// tables.
 pub fn check_texture_support(device: &wgpu::Device) -> Result<(), AtmosError> {
+    let backend = device.adapter_info().backend;
+    if backend == wgpu::Backend::Gl {
+        return Err(GpuError::UnsupportedBackend {
+            backend: backend.to_string(),
+            reason: "wgpu's GL backend writes only the first slice of a 3-D storage texture \
+                     (the aerial-perspective volume would be zero beyond it); use Vulkan, \
+                     Metal or DX12, or bake the tables on the CPU",
+        }
+        .into());
+    }
     if device.limits().max_storage_textures_per_shader_stage < 2 {
         return Err(GpuError::UnsupportedFormat {
             format: "rgba32float",
