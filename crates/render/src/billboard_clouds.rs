@@ -819,44 +819,22 @@ impl RungBillboardAir {
         });
         let offsets = Self::buffer(device, "render billboard offsets", 16);
         let light = |air: &crate::gpu::cloud_air::RungCloudAir, label: &str| {
-            let (rung, layouts, groups) = air.groups();
-            let (module_name, entry) = match rung {
-                crate::scene::Rung::Single => {
-                    ("render::billboard_air_single", "billboard_air_single")
-                }
-                _ => (
+            let pipeline = air.pipeline(
+                device,
+                label,
+                ("render::billboard_air_single", "billboard_air_single"),
+                (
                     "render::billboard_air_closed_form",
                     "billboard_air_closed_form",
                 ),
-            };
-            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(label),
-                source: wgpu::ShaderSource::Wgsl(
-                    crate::composer().compose_module(module_name)?.into(),
-                ),
-            });
-            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some(label),
-                bind_group_layouts: &[Some(layouts[0]), Some(layouts[1]), Some(&layout)],
-                immediate_size: 0,
-            });
-            let constants = crate::gpu::rungs::air_constants(rung);
-            let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(label),
-                layout: Some(&pipeline_layout),
-                module: &module,
-                entry_point: Some(entry),
-                compilation_options: wgpu::PipelineCompilationOptions {
-                    constants: &constants,
-                    ..Default::default()
-                },
-                cache: None,
-            });
+                &layout,
+            )?;
+            let light = air.groups().map(Clone::clone);
             let air = Self::buffer(device, label, 32);
             let group = Self::group(device, &layout, &uniform, &offsets, &air);
             Ok::<_, RenderError>(LightAir {
                 pipeline,
-                light: groups.map(Clone::clone),
+                light,
                 air,
                 group,
             })

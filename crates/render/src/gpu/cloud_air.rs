@@ -30,48 +30,23 @@ impl CloudAir<'_> {
         label: &str,
         air_layout: &wgpu::BindGroupLayout,
     ) -> Result<wgpu::ComputePipeline, RenderError> {
-        let (module_name, entry, layouts, constants) = match self {
-            Self::Tables(luts) => (
-                "render::volume_air",
-                "volume_air_main",
+        match self {
+            Self::Tables(luts) => air_pipeline(
+                device,
+                label,
+                ("render::volume_air", "volume_air_main"),
                 [&luts.layouts().uniforms, &luts.layouts().tables],
-                Vec::new(),
+                air_layout,
+                &[],
             ),
-            Self::Rung(air) => {
-                let (module_name, entry) = match air.rung {
-                    Rung::Single => ("render::cloud_air_single", "cloud_air_single"),
-                    _ => ("render::cloud_air_closed_form", "cloud_air_closed_form"),
-                };
-                (
-                    module_name,
-                    entry,
-                    [&air.camera_layout, &air.parameters_layout],
-                    super::rungs::air_constants(air.rung),
-                )
-            }
-        };
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(label),
-            source: wgpu::ShaderSource::Wgsl(crate::composer().compose_module(module_name)?.into()),
-        });
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some(label),
-            bind_group_layouts: &[Some(layouts[0]), Some(layouts[1]), Some(air_layout)],
-            immediate_size: 0,
-        });
-        Ok(
-            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(label),
-                layout: Some(&layout),
-                module: &module,
-                entry_point: Some(entry),
-                compilation_options: wgpu::PipelineCompilationOptions {
-                    constants: &constants,
-                    ..Default::default()
-                },
-                cache: None,
-            }),
-        )
+            Self::Rung(air) => air.pipeline(
+                device,
+                label,
+                ("render::cloud_air_single", "cloud_air_single"),
+                ("render::cloud_air_closed_form", "cloud_air_closed_form"),
+                air_layout,
+            ),
+        }
     }
 
     /// Binds this light's groups 0 and 1 in `pass`.
@@ -158,16 +133,71 @@ impl RungCloudAir {
         queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(camera));
     }
 
-    /// The rung, and groups 0 and 1's layouts and this light's bind groups, for another
-    /// pass of the rung's functions per light (the billboards' air,
-    /// `crate::billboard_clouds`).
-    pub(crate) fn groups(&self) -> (Rung, [&wgpu::BindGroupLayout; 2], [&wgpu::BindGroup; 2]) {
-        (
-            self.rung,
+    /// The pipeline of a pass of this rung's functions for one light with `air_layout`
+    /// (group 2) and this light's groups 0 and 1: `single`'s (module, entry point) for
+    /// single scattering (its constants `super::rungs::air_constants`), `closed_form`'s
+    /// otherwise. The clouds' air ([`CloudAir::pipeline`]) and the billboards' air
+    /// (`crate::billboard_clouds`) are such passes.
+    pub(crate) fn pipeline(
+        &self,
+        device: &wgpu::Device,
+        label: &str,
+        single: (&str, &str),
+        closed_form: (&str, &str),
+        air_layout: &wgpu::BindGroupLayout,
+    ) -> Result<wgpu::ComputePipeline, RenderError> {
+        let module = match self.rung {
+            Rung::Single => single,
+            _ => closed_form,
+        };
+        air_pipeline(
+            device,
+            label,
+            module,
             [&self.camera_layout, &self.parameters_layout],
-            [&self.camera_group, &self.parameters_group],
+            air_layout,
+            &super::rungs::air_constants(self.rung),
         )
     }
+
+    /// This light's bind groups 0 and 1, for a pass made by [`Self::pipeline`].
+    pub(crate) fn groups(&self) -> [&wgpu::BindGroup; 2] {
+        [&self.camera_group, &self.parameters_group]
+    }
+}
+
+/// The compute pipeline of `module`'s (composed module name, entry point) with groups 0
+/// and 1 `layouts` and group 2 `air_layout`, its overrides `constants`.
+fn air_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    (module_name, entry): (&str, &str),
+    layouts: [&wgpu::BindGroupLayout; 2],
+    air_layout: &wgpu::BindGroupLayout,
+    constants: &[(&str, f64)],
+) -> Result<wgpu::ComputePipeline, RenderError> {
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(crate::composer().compose_module(module_name)?.into()),
+    });
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &[Some(layouts[0]), Some(layouts[1]), Some(air_layout)],
+        immediate_size: 0,
+    });
+    Ok(
+        device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(label),
+            layout: Some(&layout),
+            module: &module,
+            entry_point: Some(entry),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants,
+                ..Default::default()
+            },
+            cache: None,
+        }),
+    )
 }
 
 /// A marched cloud's air for the sun and, on a moonlit night, the moon: the precomputed
