@@ -170,6 +170,12 @@ fn per_vertex_agrees_on_the_gpu_and_the_cpu() {
     let per_vertex = agreement(gpu, &default_scene(160, 90, AerialPerspective::PerVertex));
     eprintln!("default 160×90 (terrain_error_px 1), per pixel: {per_pixel}");
     eprintln!("default 160×90 (terrain_error_px 1), per vertex: {per_vertex}");
+    assert_per_vertex_no_worse(&per_vertex, &per_pixel);
+}
+
+/// Per vertex no worse than per pixel on the same scene: the shares within 2 and 8 LSB
+/// of the CPU at most 0.5 % lower, and per vertex unbiased within 1.5 LSB.
+fn assert_per_vertex_no_worse(per_vertex: &Agreement, per_pixel: &Agreement) {
     assert!(
         per_vertex.two >= per_pixel.two - 0.005,
         "{per_vertex} vs {per_pixel}"
@@ -619,15 +625,7 @@ fn per_vertex_under_the_moon_agrees_under_the_rungs_without_tables() {
              {changed} pixels differ between the two GPU images",
             rung.name()
         );
-        assert!(
-            per_vertex.two >= per_pixel.two - 0.005,
-            "{per_vertex} vs {per_pixel}"
-        );
-        assert!(
-            per_vertex.eight >= per_pixel.eight - 0.005,
-            "{per_vertex} vs {per_pixel}"
-        );
-        assert!(per_vertex.unbiased(1.5), "{per_vertex}");
+        assert_per_vertex_no_worse(&per_vertex, &per_pixel);
         assert!(changed > 0, "{}: {changed}", rung.name());
     }
 }
