@@ -379,29 +379,9 @@ fn the_billboards_agree_on_the_gpu_and_the_cpu_under_every_gpu_rung() {
             .collect();
         // Where a billboard shows: in front of the terrain's view depth (the CPU's
         // composite, `rasterise_limited`), not hidden by a nearer hill.
-        let forward = scene.camera.forward;
-        let max_depth: Vec<f32> = (0..width * height)
-            .map(|i| {
-                radiance[i].terrain_distance.map_or(f32::INFINITY, |d| {
-                    let view = atmos::frame::frame_view_direction(
-                        [(i % width) as u32, (i / width) as u32],
-                        &scene.camera,
-                    );
-                    d * (view[0] * forward[0] + view[1] * forward[1] + view[2] * forward[2])
-                })
-            })
-            .collect();
-        let shown = cloudlight::billboard::rasterise_limited::<f32>(
-            &list,
-            &camera,
-            cloud.settings.size,
-            &max_depth,
-        )
-        .unwrap();
-        let visible: Vec<usize> = covered
-            .iter()
-            .copied()
-            .filter(|&i| shown.rgba[i][3] > 0.0)
+        let visible: Vec<usize> = shown_billboard_pixels(&scene, &radiance)
+            .into_iter()
+            .filter(|&i| open.rgba[i][3] > 0.0)
             .collect();
         // Clear of the terrain: no terrain in the pixel's 3×3 neighbourhood.
         let clear: Vec<usize> = covered
@@ -486,11 +466,14 @@ fn the_billboards_agree_on_the_gpu_and_the_cpu_under_every_gpu_rung() {
 }
 
 /// The pixels where `scene`'s billboards show in front of its terrain (the CPU's
-/// composite, `rasterise_limited` against the ray-cast terrain's view depth).
-fn shown_billboard_pixels(scene: &render::scene::PreparedScene) -> Vec<usize> {
+/// composite, `rasterise_limited` against the view depth of the ray-cast terrain of
+/// `radiance`, `scene`'s CPU render).
+fn shown_billboard_pixels(
+    scene: &render::scene::PreparedScene,
+    radiance: &[render::cpu_renderer::PixelRadiance],
+) -> Vec<usize> {
     let cloud = scene.billboard_cloud.as_ref().unwrap();
     let (camera, list) = particles(scene, cloud).unwrap();
-    let radiance = render::cpu_renderer::render_radiance(scene).unwrap();
     let width = scene.camera.width;
     let forward = scene.camera.forward;
     let max_depth: Vec<f32> = (0..radiance.len())
@@ -556,7 +539,8 @@ fn the_moonlit_billboards_agree_on_the_gpu_and_the_cpu_under_every_gpu_rung() {
             rung.name()
         );
         let (gpu_image, cpu_image, agreement) = compare(gpu, &scene);
-        let shown = shown_billboard_pixels(&scene);
+        let radiance = render::cpu_renderer::render_radiance(&scene).unwrap();
+        let shown = shown_billboard_pixels(&scene, &radiance);
         let (count, within, worst) = within_two_over(&gpu_image, &cpu_image, shown);
         eprintln!(
             "moonlit billboards 96×54 {} GPU vs CPU: {agreement}; pixels where a billboard \
