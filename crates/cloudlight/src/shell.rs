@@ -502,6 +502,29 @@ impl ShellSettings {
             horizon_fade_end: 120_000.0,
         }
     }
+
+    /// A stratocumulus deck from 1 km to 1.8 km above `planet_radius`: procedural
+    /// weather of coverage 0.35 ± 0.25 and cloud type ½ (no contrast), shape noise over
+    /// 6 km, detail over 800 m, σ_t 0.04 /m, the rest [`Self::cumulus_over`]'s. The deck
+    /// of render's shipped `stratocumulus` scene (`scenes/stratocumulus.toml`; render's
+    /// `tests/shell_clouds.rs` checks they are the same).
+    pub fn stratocumulus_deck(planet_radius: f64) -> Self {
+        Self {
+            inner_radius: planet_radius + 1_000.0,
+            outer_radius: planet_radius + 1_800.0,
+            weather: WeatherMap::Procedural(ProceduralWeather {
+                coverage_mean: 0.35,
+                coverage_contrast: 0.25,
+                cloud_type_mean: 0.5,
+                cloud_type_contrast: 0.0,
+                ..ProceduralWeather::default()
+            }),
+            shape_period: 6_000.0,
+            detail_period: 800.0,
+            extinction_per_density: 0.04,
+            ..Self::cumulus_over(planet_radius)
+        }
+    }
 }
 
 /// Seed 003's procedural cloud shell about a planet (module documentation): a

@@ -5,30 +5,15 @@
 
 use cloudlight::gpu::{ShellShadowMapGpuError, ShellShadowMapPass};
 use cloudlight::shadow_map::{ShadowGrid, ShadowMapPlan};
-use cloudlight::shell::{ProceduralWeather, WeatherMap};
 use cloudlight::shell_shadow::{ShellField, shell_shadow_map};
 use cloudlight::{CloudShell, ShellSettings};
 
-/// The shipped `stratocumulus` scene's deck: 1000–1800 m, coverage 0.35 ± 0.25, type ½,
-/// 6 km shape and 800 m detail noise, σ_t 0.04 /m.
+/// The shipped `stratocumulus` scene's deck ([`ShellSettings::stratocumulus_deck`]):
+/// 1000–1800 m, coverage 0.35 ± 0.25, type ½, 6 km shape and 800 m detail noise,
+/// σ_t 0.04 /m.
 fn stratocumulus() -> CloudShell {
     let earth = atmos::Atmosphere::earth();
-    let r = earth.planet_radius;
-    let settings = ShellSettings {
-        inner_radius: r + 1000.0,
-        outer_radius: r + 1800.0,
-        weather: WeatherMap::Procedural(ProceduralWeather {
-            coverage_mean: 0.35,
-            coverage_contrast: 0.25,
-            cloud_type_mean: 0.5,
-            cloud_type_contrast: 0.0,
-            ..ProceduralWeather::default()
-        }),
-        shape_period: 6000.0,
-        detail_period: 800.0,
-        extinction_per_density: 0.04,
-        ..ShellSettings::cumulus_over(r)
-    };
+    let settings = ShellSettings::stratocumulus_deck(earth.planet_radius);
     CloudShell::new(&earth, settings).unwrap()
 }
 

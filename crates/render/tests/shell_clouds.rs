@@ -30,6 +30,18 @@ fn shipped(width: u32, height: u32) -> Scene {
     common::shipped("stratocumulus", width, height)
 }
 
+/// The shipped deck is cloudlight's `ShellSettings::stratocumulus_deck`, the deck of
+/// cloudlight's shell-shadow GPU test and of the parity's shell shadow-map passes.
+#[test]
+fn the_shipped_deck_is_cloudlights_stratocumulus_deck() {
+    let prepared = shipped(8, 8).prepare().unwrap();
+    let shell = prepared.shell_cloud.as_ref().unwrap();
+    assert_eq!(
+        shell.shell.settings(),
+        &cloudlight::ShellSettings::stratocumulus_deck(prepared.atmosphere.planet_radius)
+    );
+}
+
 #[test]
 fn shell_errors_name_the_key_and_its_line() {
     let prepared = Scene::parse(&format!("{VALID}{SHELL}"), ".")

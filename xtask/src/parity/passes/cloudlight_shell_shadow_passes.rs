@@ -7,7 +7,7 @@
 
 use super::*;
 use cloudlight::shadow_map::{ShadowGrid, ShadowMapPlan, shadow_march_point};
-use cloudlight::shell::{ProceduralWeather, WeatherMap, shell_ray_spans};
+use cloudlight::shell::shell_ray_spans;
 use cloudlight::shell_shadow::{ShellField, shell_field_density, shell_shadow_map};
 use cloudlight::{CloudShell, ShellSettings};
 
@@ -56,26 +56,11 @@ const TOLERANCE: Tolerance = Tolerance {
           (τ·δh/h), n·u·τ for the sum, 3u·τ for σ·Σρ·h, exp 5 + 2τ ULP of T; doubled",
 };
 
-/// The shipped `stratocumulus` scene's deck (scenes/stratocumulus.toml).
+/// The shipped `stratocumulus` scene's deck (scenes/stratocumulus.toml):
+/// `ShellSettings::stratocumulus_deck` over Earth.
 fn shell() -> Result<CloudShell, String> {
     let earth = atmos::Atmosphere::earth();
-    let r = earth.planet_radius;
-    let settings = ShellSettings {
-        inner_radius: r + 1000.0,
-        outer_radius: r + 1800.0,
-        weather: WeatherMap::Procedural(ProceduralWeather {
-            coverage_mean: 0.35,
-            coverage_contrast: 0.25,
-            cloud_type_mean: 0.5,
-            cloud_type_contrast: 0.0,
-            ..ProceduralWeather::default()
-        }),
-        shape_period: 6000.0,
-        detail_period: 800.0,
-        extinction_per_density: 0.04,
-        seed: 3,
-        ..ShellSettings::cumulus_over(r)
-    };
+    let settings = ShellSettings::stratocumulus_deck(earth.planet_radius);
     CloudShell::new(&earth, settings).map_err(|e| e.to_string())
 }
 
