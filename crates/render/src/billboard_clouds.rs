@@ -46,9 +46,10 @@
 //! `α · (colour · T_air + L_air)` over `(1 − α)` of what is behind, the marched cloud's
 //! `L_c · T_air + L_air · (1 − T_c)`. At night the moonlit air in front of each particle
 //! is added to `L_air` ([`moonlit_air`]: the moon's segment model, computed on the CPU
-//! for both renderers and read by the GPU's vertex stage per instance; the sun's air
-//! comes from the tables or the rung's pass). A particle covers a pixel only where its view
-//! depth is less than the terrain's: on the CPU `cloudlight::billboard::rasterise_limited`
+//! and, on the precomputed rung, read by the GPU's vertex stage per instance; under the
+//! closed form and single scattering the GPU runs the rung's pass for the moon instead;
+//! the sun's air comes from the tables or the rung's pass). A particle covers a pixel
+//! only where its view depth is less than the terrain's: on the CPU `cloudlight::billboard::rasterise_limited`
 //! with the ray-cast terrain's view depth per pixel, on the GPU a depth test `Greater`
 //! of `near / z` against the terrain's reverse-z depth (`shaders/render/billboard_clouds.wgsl`,
 //! which draws cloudlight's instanced quads with `cloudlight::billboard`'s

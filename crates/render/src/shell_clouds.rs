@@ -34,7 +34,8 @@
 //!
 //! Over a scene's terrain the deck shades it as the volume cloud does: cloudlight's
 //! shadow map of the shell's density field toward each light that is up ([`shell_shadow`],
-//! [`crate::volume_clouds::CloudShadow::over`]), baked once on the CPU at prepare, on the
+//! [`crate::volume_clouds::CloudShadow::over`]), baked once on the CPU at prepare (not by
+//! [`Scene::prepare_for_gpu`](crate::scene::Scene::prepare_for_gpu)), on the
 //! plane of the shell's base over the heightfield's extent swept along the light. The
 //! GPU renderer bakes the same map again on the GPU (`crate::gpu::shell_shadow`:
 //! cloudlight's `ShellShadowMapPass` over [`shell_shadow_map_plan`], whose f32 twin
