@@ -36,9 +36,9 @@ pub(crate) const NONE: [VolumeShadowUniform; 2] = [VolumeShadowUniform::DISABLED
 /// lights has the sun below the horizon, and a map needs its light above 1°), so the
 /// moon's map takes the slot the sun's would; a map for a cloud the buffer has no room
 /// for is an error naming the cloud. With `shell_gpu` (a scene with the shell over
-/// terrain) the deck's map is baked on the GPU into its slot
-/// ([`super::shell_shadow::ShellShadowGpu::bake_into`]) instead of uploaded from the
-/// CPU's bake.
+/// terrain) the deck's map is baked on the GPU into its slot (prepared here by
+/// [`super::shell_shadow::ShellShadowGpu::prepare`], recorded by the renderer's
+/// `encode`) instead of uploaded from the CPU's bake.
 pub(crate) fn write(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
@@ -55,7 +55,7 @@ pub(crate) fn write(
     let (sun_maps, moon_maps) = (maps(Some(&sun)), maps(moon.as_ref()));
     let offsets = offsets(clouds);
     let gpu_shell_light = match shell_gpu {
-        Some(gpu) if clouds[1] => gpu.bake_into(device, queue, scene, values, offsets[1])?,
+        Some(gpu) if clouds[1] => gpu.prepare(device, queue, scene, values, offsets[1])?,
         _ => None,
     };
     let mut uniforms = [NONE; 2];

@@ -1583,6 +1583,13 @@ impl SceneRenderer {
                 moon_sky.draw(&mut pass, luts)?;
             }
         }
+        // The shell deck's shadow map, when `prepare` found it changed: baked and copied
+        // into the terrain pass's shadow values before the pass reads them.
+        if let Some(terrain) = &mut self.terrain
+            && let Some(shell_shadow) = &mut terrain.shell_shadow
+        {
+            shell_shadow.encode(encoder, &terrain.volume_shadow_values)?;
+        }
         if let Some(terrain) = &self.terrain {
             // Per vertex with a rung without tables: the vertices' segments first.
             if let Some(air) = &terrain.vertex_air {

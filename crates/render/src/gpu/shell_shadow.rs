@@ -7,7 +7,8 @@
 //! for bit to the pass's f32 twin `cloudlight::shell_shadow::shell_shadow_map`).
 //!
 //! Baked when a prepared scene's map differs from the one in the buffer (the first
-//! prepare; a new sun), not every frame. A deck with a grid weather map (the GPU shell
+//! prepare; a new sun), not every frame: `prepare` fills the pass's inputs, the
+//! renderer's `encode` records the dispatch and the copy (no submit of its own). A deck with a grid weather map (the GPU shell
 //! passes compute procedural weather only) keeps the CPU's values.
 
 use cloudlight::gpu::ShellShadowMapPass;
@@ -21,8 +22,12 @@ use crate::scene::PreparedScene;
 #[derive(Debug)]
 pub(crate) struct ShellShadowGpu {
     pass: ShellShadowMapPass,
-    /// The plan and the light (0 sun, 1 moon) of the map in the buffer.
+    /// The plan and the light (0 sun, 1 moon) of the map in the buffer (or recorded
+    /// into it by the next `encode`).
     baked: Option<(ShadowMapPlan, usize)>,
+    /// A bake `prepare` made ready and `encode` has not recorded yet: the values
+    /// buffer's byte offset and the map's bytes.
+    pending: Option<(u64, u64)>,
 }
 
 fn bake_error(e: impl std::fmt::Display) -> RenderError {
@@ -39,14 +44,16 @@ impl ShellShadowGpu {
         Ok(Self {
             pass: ShellShadowMapPass::new(device).map_err(bake_error)?,
             baked: None,
+            pending: None,
         })
     }
 
-    /// Makes `values` hold the deck's map toward the light that has one (at element
-    /// `offset`), baking it on the GPU unless it is already there; returns that light
-    /// (0 the sun, 1 the moon), or `None` when the scene has no deck map or its weather
-    /// is a grid (then the caller uploads the CPU's values).
-    pub(crate) fn bake_into(
+    /// Prepares the bake of the deck's map toward the light that has one into `values`
+    /// at element `offset`, unless the buffer already holds it: [`Self::encode`] records
+    /// it (no submit here). Returns that light (0 the sun, 1 the moon), or `None` when
+    /// the scene has no deck map or its weather is a grid (then the caller uploads the
+    /// CPU's values).
+    pub(crate) fn prepare(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
@@ -80,17 +87,28 @@ impl ShellShadowGpu {
         self.pass
             .prepare(device, queue, &field, &plan)
             .map_err(bake_error)?;
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("render shell shadow bake"),
-        });
-        self.pass.encode(&mut encoder).map_err(bake_error)?;
+        self.pending = Some((u64::from(offset) * 4, bytes));
+        self.baked = Some((plan, light));
+        Ok(Some(light))
+    }
+
+    /// Records the bake `prepare` made ready, and its copy into `values`, into
+    /// `encoder` (nothing when the buffer already holds the map). Recorded before the
+    /// terrain pass that reads `values`.
+    pub(crate) fn encode(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        values: &wgpu::Buffer,
+    ) -> Result<(), RenderError> {
+        let Some((offset, bytes)) = self.pending.take() else {
+            return Ok(());
+        };
+        self.pass.encode(encoder).map_err(bake_error)?;
         let baked = self
             .pass
             .buffer()
             .ok_or_else(|| bake_error("no map after prepare"))?;
-        encoder.copy_buffer_to_buffer(baked, 0, values, u64::from(offset) * 4, bytes);
-        queue.submit([encoder.finish()]);
-        self.baked = Some((plan, light));
-        Ok(Some(light))
+        encoder.copy_buffer_to_buffer(baked, 0, values, offset, bytes);
+        Ok(())
     }
 }
