@@ -1,6 +1,8 @@
 // The segment camera → a point that every air pass in front of something evaluates
 // (per pixel in render::cloud_air_io, per particle in render::billboard_air_io): no
-// bindings of its own, so both io modules, each with its own group 2, import it.
+// bindings of its own, so both io modules, each with its own group 2, import it, and
+// so do the rungs' functions over it (render::air_segment_closed_form,
+// render::air_segment_single) that both kinds of pass call.
 #import atmos::frame
 
 // A segment: the index of its two vec4 in the pass's air output, the camera's radius,
@@ -15,6 +17,13 @@ struct AirSegment {
     view: vec3<f32>,
     up: vec3<f32>,
     has_air: bool,
+}
+
+// What a rung gives for a segment and one light (render::air_segment_closed_form,
+// render::air_segment_single): the in-scattered radiance and the transmittance.
+struct SegmentAir {
+    radiance: vec3<f32>,
+    transmittance: vec3<f32>,
 }
 
 // The segment of length `distance` along the unit `view` from the camera, its air

@@ -3,14 +3,16 @@
 // segment camera → the cloud's transmittance-weighted depth, for the light whose
 // direction is `cloud_air_camera.sun` and whose parameters are bound in group 1 (the
 // sun's, or at night the moon's). The twin of render::volume_air for a rung without
-// tables, with its group 2 (render::cloud_air_io); the formulas are
-// render::air_closed_form's (the terrain's aerial perspective). A compute pass, as
+// tables, with its group 2 (render::cloud_air_io), by render::air_segment_closed_form
+// (which render::billboard_air_closed_form calls per particle; the formulas are
+// render::air_closed_form's, the terrain's aerial perspective). A compute pass, as
 // render::volume_air is (lavapipe crashes compiling the closed form's path length into
 // a fragment stage). CPU twin: render::volume_clouds::air_in_front without tables (the
 // light's segment model, SkyQuery::with_max_distance).
 #import atmos::frame
 #import atmos::closed_form_sky
 #import render::cloud_air_io
+#import render::air_segment_closed_form
 
 @group(0) @binding(0) var<uniform> cloud_air_camera: FrameCamera;
 @group(1) @binding(0) var<uniform> cloud_air_rung: ClosedFormSkyParameters;
@@ -21,10 +23,6 @@ fn cloud_air_closed_form(@builtin(global_invocation_id) id: vec3<u32>) {
     if !s.has_air {
         return;
     }
-    let light = cloud_air_camera.sun;
-    let mu_s = dot(light, s.up);
-    let sunlight = closed_form_sunlight(s.r, mu_s, cloud_air_rung);
-    let radiance = closed_form_sky_radiance(s.r, s.mu, mu_s, dot(s.view, light), s.distance, sunlight, cloud_air_rung);
-    let transmittance = closed_form_sky_transmittance(s.r, s.mu, s.distance, cloud_air_rung);
-    cloud_air_store(s, radiance, transmittance);
+    let air = air_segment_closed_form(s, cloud_air_camera.sun, cloud_air_rung);
+    cloud_air_store(s, air.radiance, air.transmittance);
 }

@@ -4,12 +4,14 @@
 // direction is `cloud_air_camera.sun` and whose atmosphere is bound in group 1 (the
 // sun's, or at night the moon's), with the CPU's SingleScatteringSky's sample counts
 // (override constants). The twin of render::volume_air for a rung without tables, with
-// its group 2 (render::cloud_air_io); the formulas are render::air_single's (the
-// terrain's aerial perspective). CPU twin: render::volume_clouds::air_in_front without
+// its group 2 (render::cloud_air_io), by render::air_segment_single (which
+// render::billboard_air_single calls per particle; the formulas are render::air_single's,
+// the terrain's aerial perspective). CPU twin: render::volume_clouds::air_in_front without
 // tables (the light's segment model, SkyQuery::with_max_distance).
 #import atmos::frame
 #import atmos::single_scattering
 #import render::cloud_air_io
+#import render::air_segment_single
 
 @group(0) @binding(0) var<uniform> cloud_air_camera: FrameCamera;
 @group(1) @binding(0) var<uniform> cloud_air_atmosphere: AtmosphereParameters;
@@ -23,7 +25,6 @@ fn cloud_air_single(@builtin(global_invocation_id) id: vec3<u32>) {
     if !s.has_air {
         return;
     }
-    let light = cloud_air_camera.sun;
-    let air = single_scattering(cloud_air_atmosphere, s.r, s.mu, dot(light, s.up), dot(s.view, light), s.distance, view_samples, light_samples);
+    let air = air_segment_single(s, cloud_air_camera.sun, cloud_air_atmosphere, view_samples, light_samples);
     cloud_air_store(s, air.radiance, air.transmittance);
 }

@@ -162,6 +162,14 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/air_segment.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "render::air_segment_closed_form",
+        source: include_str!("../shaders/air_segment_closed_form.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::air_segment_single",
+        source: include_str!("../shaders/air_segment_single.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "render::cloud_air_io",
         source: include_str!("../shaders/cloud_air_io.wgsl"),
     },
