@@ -4,8 +4,10 @@
 //! `aerial_perspective`, the twin of `atmos::lut::drop_in::aerial_perspective`); a rung
 //! without tables binds a camera whose `sun` is the light's direction and the rung's
 //! parameters of the light's atmosphere ([`RungCloudAir`]:
-//! `shaders/render/cloud_air_closed_form.wgsl`, `cloud_air_single.wgsl`, the
-//! formulas of the terrain's aerial-perspective pass of `super::rungs`), the twin of
+//! `shaders/render/cloud_air_closed_form.wgsl`, `cloud_air_single.wgsl`, which call
+//! `render::air_segment_closed_form` / `render::air_segment_single` as the billboards'
+//! air passes do: the formulas of the terrain's aerial-perspective pass of
+//! `super::rungs`), the twin of
 //! the CPU's `volume_clouds::air_in_front` without tables (the light's segment model
 //! over the segment camera → the cloud's transmittance-weighted depth). Both write the
 //! same buffer (group 2, `render::cloud_air_io`'s layout), which the composite reads.
