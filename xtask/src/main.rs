@@ -8,9 +8,10 @@
 //!   non-zero when a case fails, a comparator lets an injected difference through, a
 //!   tolerance is looser than the audit allows or the checked Markdown table is stale.
 //!   `--self-test` evaluates the CPU sides only (no GPU).
-//! * `tradeoff <atmos|terrain|sky-dome> [--quick] [--backend …]` — speed against accuracy for
-//!   each quality setting of a subsystem, measured; writes `docs/tradeoffs/<subsystem>.md`
-//!   (`sky-dome`: seed 004's 12-sided dome against the per-pixel sky, `sky_dome.md`).
+//! * `tradeoff <atmos|terrain|sky-dome|cloudlight> [--quick] [--backend …]` — speed against
+//!   accuracy for each quality setting of a subsystem, measured; writes
+//!   `docs/tradeoffs/<subsystem>.md` (`sky-dome`: seed 004's 12-sided dome against the
+//!   per-pixel sky, `sky_dome.md`).
 
 mod parity;
 mod tradeoff;
@@ -28,7 +29,7 @@ pub fn workspace_root() -> PathBuf {
 
 const USAGE: &str = "usage: cargo xtask parity [--filter NAME] [--backend BACKENDS] [--inject CASE]
                           [--markdown PATH] [--check-markdown PATH] [--self-test]
-       cargo xtask tradeoff <atmos|terrain|sky-dome> [--quick] [--backend BACKENDS]";
+       cargo xtask tradeoff <atmos|terrain|sky-dome|cloudlight> [--quick] [--backend BACKENDS]";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
