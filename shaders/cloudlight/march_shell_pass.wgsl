@@ -9,6 +9,7 @@
 #import cloudlight::cone
 #import cloudlight::jitter
 #import cloudlight::march
+#import cloudlight::outside_shadow
 #import cloudlight::shell
 
 struct ShellMarchParams {
@@ -231,7 +232,8 @@ fn march_shell_main(@builtin(global_invocation_id) gid: vec3<u32>) {
             let sigma_s = albedo * sigma_t;
             var sun_term = 0.0;
             if sun_lit {
-                let tau = light_optical_depth(p, to_sun);
+                // Another cloud's shadow map adds its optical depth (0 without one).
+                let tau = light_optical_depth(p, to_sun) + outside_depth(p);
                 sun_term = octave_scattering(
                     tau,
                     cos_theta,

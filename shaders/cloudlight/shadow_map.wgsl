@@ -56,3 +56,24 @@ fn shadow_span_optical_depth(density_sum: f32, span: vec2<f32>, n: u32, sigma_t:
     let depth = min(density_sum * h, SHADOW_SATURATION);
     return min(min(sigma_t, SHADOW_SATURATION) * depth, SHADOW_SATURATION);
 }
+
+// The optical depth toward the light of a cloud spanning altitudes [base, top] above a
+// point at altitude `height`, from the transmittance its shadow map holds where the
+// point's light ray meets the map's plane (the cloud's base):
+// −ln max(T, 1e-30) · f², f = clamp((top − h)/(top − base), 0, 1) (inside the cloud's
+// altitudes an empirical fade).
+fn shadow_depth_above(transmittance: f32, height: f32, base: f32, top: f32) -> f32 {
+    let above = min(max((top - height) / (top - base), 0.0), 1.0);
+    let depth = -log(max(transmittance, 1e-30));
+    return depth * (above * above);
+}
+
+// Where `point` reads a shadow map whose plane lies at height `plane` (z up): carried
+// along unit `to_light` to the plane, in texel-centre coordinates ((x − origin)/cell − ½:
+// texel (i, j)'s centre is (i, j)).
+fn shadow_map_texel(point: vec3<f32>, to_light: vec3<f32>, plane: f32, origin: vec2<f32>, cell_size: f32) -> vec2<f32> {
+    let t = (plane - point.z) / to_light.z;
+    let x = point.x + t * to_light.x;
+    let y = point.y + t * to_light.y;
+    return vec2<f32>((x - origin.x) / cell_size - 0.5, (y - origin.y) / cell_size - 0.5);
+}

@@ -204,6 +204,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         name: "cloudlight::shell_shadow_map_pass",
         source: include_str!("../shaders/shell_shadow_map_pass.wgsl"),
     },
+    skyscape_wgsl::Module {
+        name: "cloudlight::outside_shadow",
+        source: include_str!("../shaders/outside_shadow.wgsl"),
+    },
 ];
 
 /// A composer with the common, `atmos` and `cloudlight` modules.

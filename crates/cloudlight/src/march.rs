@@ -623,6 +623,37 @@ pub fn march_view_limited<F: Real>(
     offset: F,
     max_distance: F,
 ) -> MarchResult<F> {
+    march_view_lit_through(
+        field,
+        origin,
+        direction,
+        settings,
+        lighting,
+        offset,
+        max_distance,
+        |_| F::zero(),
+    )
+}
+
+/// [`march_view_limited`] with the light crossing something outside the field too:
+/// `outside_depth(p)` (≥ 0, finite) is the optical depth toward the sun of what lies
+/// outside the field at view sample `p` (another cloud's shadow, read from its map:
+/// `render::mutual_shadow`), added to the light march's `τ_l` before the octaves and the
+/// powder, as one march over both would add it (`crate::union::UnionField`). The sun
+/// term only: the ambient visibility stays the field's own. With `|_| 0` it is
+/// [`march_view_limited`] exactly. WGSL twins: the `outside_depth` hooks of
+/// `march_pass.wgsl` and `march_shell_pass.wgsl`.
+#[allow(clippy::too_many_arguments)] // the limited march's seven inputs and the hook
+pub fn march_view_lit_through<F: Real>(
+    field: &impl DensityField<F>,
+    origin: [F; 3],
+    direction: [F; 3],
+    settings: &MarchSettings,
+    lighting: &Lighting<F>,
+    offset: F,
+    max_distance: F,
+    outside_depth: impl Fn([F; 3]) -> F,
+) -> MarchResult<F> {
     let c = &settings.config;
     let zero = F::zero();
     let offset = if offset.is_finite() {
@@ -677,7 +708,7 @@ pub fn march_view_limited<F: Real>(
         let sigma_s = albedo * sigma_t;
         let mut sun_term = zero;
         if sun_lit {
-            let tau = light_optical_depth(field, p, to_sun, &c.light);
+            let tau = light_optical_depth(field, p, to_sun, &c.light) + outside_depth(p);
             sun_term = octave_scattering(
                 tau,
                 cos_theta,

@@ -264,6 +264,50 @@ pub fn shadow_span_optical_depth<F: Real>(density_sum: F, span: [F; 2], n: u32, 
     (sigma_t.min(saturation) * depth).min(saturation)
 }
 
+/// Where `point` reads a shadow map whose plane lies at height `plane` (the point's
+/// frame, z up): carried along unit `to_light` to the plane, in texel-centre coordinates
+/// `(x − origin)/cell − ½` (texel `(i, j)`'s centre is `(i, j)`). The terrain's lookup
+/// (`render::volume_clouds::volume_shadow_texel`) and another cloud's
+/// (`shaders/cloudlight/outside_shadow.wgsl`). WGSL twin `shadow_map_texel`.
+pub fn shadow_map_texel<F: Real>(
+    point: [F; 3],
+    to_light: [F; 3],
+    plane: F,
+    origin: [F; 2],
+    cell_size: F,
+) -> [F; 2] {
+    let t = (plane - point[2]) / to_light[2];
+    let x = point[0] + t * to_light[0];
+    let y = point[1] + t * to_light[1];
+    let half = F::of(0.5);
+    [
+        (x - origin[0]) / cell_size - half,
+        (y - origin[1]) / cell_size - half,
+    ]
+}
+
+/// The smallest transmittance [`shadow_depth_above`] reads from a map: an opaque texel
+/// (0, its τ saturated) counts as optical depth `−ln 1e-30 ≈ 69`, so the result stays
+/// finite (the light through it is `e^{−69}`, 0 to every channel's precision).
+pub const OPAQUE_TRANSMITTANCE: f64 = 1e-30;
+
+/// The optical depth toward the light of a cloud spanning altitudes `[base, top]`
+/// (`top > base`) above a point at altitude `height`, from the transmittance
+/// `transmittance` its shadow map holds where the point's light ray meets the map's
+/// plane at the cloud's base: `−ln max(T, 1e-30) · f²`, `f = clamp((top − h)/(top −
+/// base), 0, 1)`. Below the base the whole of the map's column lies above the point
+/// (exact up to the map's sampling); above the top none of it. Inside, an empirical
+/// fade: `f²` of the column, continuous at both ends (the part of the column above the
+/// point is not in the map; `render::mutual_shadow` measures this fade against `f`, 0
+/// and 1). Another cloud's shadow on a march
+/// (`crate::march::march_view_lit_through`'s `outside_depth`). WGSL twin
+/// `shadow_depth_above`.
+pub fn shadow_depth_above<F: Real>(transmittance: F, height: F, base: F, top: F) -> F {
+    let above = ((top - height) / (top - base)).max(F::zero()).min(F::one());
+    let depth = -(transmittance.max(F::of(OPAQUE_TRANSMITTANCE)).ln());
+    depth * (above * above)
+}
+
 /// The marched transmittance toward the sun from `ground` (unit `to_sun`) through
 /// `field`: `steps` midpoint samples on each of the field's spans, `exp(−Σ τ)`. Infallible
 /// (per-texel math; [`ShadowMapPlan::new`] validates). The f32 instantiation on a
@@ -369,6 +413,38 @@ mod tests {
     fn sun(elevation_deg: f64) -> [f64; 3] {
         let (e, a) = (elevation_deg.to_radians(), 30f64.to_radians());
         [e.cos() * a.cos(), e.cos() * a.sin(), e.sin()]
+    }
+
+    #[test]
+    fn the_depth_above_is_the_whole_column_below_the_base_and_none_above_the_top() {
+        let t = 0.25f64;
+        let column = -t.ln();
+        // Below the base: the whole column; above the top: nothing; inside: f² of it.
+        assert_eq!(shadow_depth_above(t, 500.0, 1000.0, 1800.0), column);
+        assert_eq!(shadow_depth_above(t, 1000.0, 1000.0, 1800.0), column);
+        assert_eq!(shadow_depth_above(t, 1800.0, 1000.0, 1800.0), 0.0);
+        assert_eq!(shadow_depth_above(t, 2500.0, 1000.0, 1800.0), 0.0);
+        let inside = shadow_depth_above(t, 1600.0, 1000.0, 1800.0);
+        assert!((inside - column * 0.0625).abs() < 1e-15, "{inside}");
+        // An opaque texel is a finite depth (T floored at 1e-30), a clear one 0.
+        let opaque = shadow_depth_above(0.0f32, 0.0, 1000.0, 1800.0);
+        assert!(
+            opaque.is_finite() && (opaque - 69.077_55).abs() < 1e-3,
+            "{opaque}"
+        );
+        assert_eq!(shadow_depth_above(1.0f32, 0.0, 1000.0, 1800.0), 0.0);
+        // The map's lookup: carried along the light to the plane, texel-centre units.
+        let texel: [f64; 2] = shadow_map_texel(
+            [100.0, 50.0, 500.0],
+            [0.6, 0.0, 0.8],
+            1300.0,
+            [0.0; 2],
+            100.0,
+        );
+        assert!(
+            (texel[0] - 6.5).abs() < 1e-12 && (texel[1] - 0.0).abs() < 1e-12,
+            "{texel:?}"
+        );
     }
 
     #[test]

@@ -26,6 +26,98 @@ pub const MARCH_WORKGROUP_SIZE: u32 = 8;
 
 const PARAMS_BYTES: u64 = 240;
 
+/// Bytes of `outside_shadow.wgsl`'s `OutsideShadowParams`.
+const OUTSIDE_PARAMS_BYTES: u64 = 64;
+
+/// Another cloud's shadow map a march reads (`shaders/cloudlight/outside_shadow.wgsl`,
+/// bindings 8 and 9 of both passes): at each view sample `p` the light march's optical
+/// depth gains that cloud's above `p`, read where `p`'s light ray meets the map's plane
+/// ([`crate::shadow_map::shadow_map_texel`], bilinear between texel centres, 1 outside
+/// the map, then [`crate::shadow_map::shadow_depth_above`]). The CPU twin is
+/// [`crate::march::march_view_lit_through`] with that lookup as its `outside_depth`
+/// (`render::mutual_shadow`). Altitudes are the march frame's height minus
+/// `frame_height`.
+#[derive(Debug, Clone, Copy)]
+pub struct OutsideShadow<'a> {
+    /// East, north of texel (0, 0)'s corner (m).
+    pub origin: [f32; 2],
+    /// Texel edge (m).
+    pub cell_size: f32,
+    /// Texels east × north.
+    pub resolution: [u32; 2],
+    /// The map plane's altitude (m).
+    pub plane: f32,
+    /// Unit direction toward the map's light (east/north/up): the march's light.
+    pub to_light: [f32; 3],
+    /// The casting cloud's base and top altitude (m), `base < top`.
+    pub extent: [f32; 2],
+    /// The march frame's height of altitude 0 (0 for a frame about the ground, the
+    /// planet's radius for the shell's planet-centred one).
+    pub frame_height: f32,
+    /// The map's transmittances, east fastest (usage `STORAGE`, at least
+    /// `4·resolution[0]·resolution[1]` bytes).
+    pub values: &'a wgpu::Buffer,
+}
+
+/// The uniform and values bound as bindings 8 and 9: `outside`'s, or a disabled uniform
+/// and a 4-byte placeholder.
+fn outside_bindings(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    outside: Option<&OutsideShadow<'_>>,
+) -> Result<(wgpu::Buffer, wgpu::Buffer), MarchGpuError> {
+    let f = |x: f32| x.to_bits();
+    let words: [u32; 16] = match outside {
+        None => [0; 16],
+        Some(o) => {
+            let needed = u64::from(o.resolution[0]) * u64::from(o.resolution[1]) * 4;
+            let (bytes, usage) = (o.values.size(), o.values.usage());
+            if needed == 0 || bytes < needed || !usage.contains(wgpu::BufferUsages::STORAGE) {
+                return Err(MarchGpuError::OutsideShadowBuffer {
+                    bytes,
+                    usage,
+                    needed,
+                });
+            }
+            [
+                f(o.origin[0]),
+                f(o.origin[1]),
+                f(o.cell_size),
+                f(o.plane),
+                f(o.to_light[0]),
+                f(o.to_light[1]),
+                f(o.to_light[2]),
+                f(1.0),
+                f(o.extent[0]),
+                f(o.extent[1]),
+                f(o.frame_height),
+                0,
+                o.resolution[0],
+                o.resolution[1],
+                0,
+                0,
+            ]
+        }
+    };
+    let params = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("cloudlight march outside shadow"),
+        size: OUTSIDE_PARAMS_BYTES,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    queue.write_buffer(&params, 0, bytemuck::cast_slice(&words));
+    let values = match outside {
+        Some(o) => o.values.clone(),
+        None => device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("cloudlight march no outside shadow"),
+            size: 4,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        }),
+    };
+    Ok((params, values))
+}
+
 /// Errors of the march pass, naming the field and value.
 #[derive(Debug, thiserror::Error)]
 pub enum MarchGpuError {
@@ -69,6 +161,18 @@ pub enum MarchGpuError {
         /// `4·size[0]·size[1]`.
         needed: u64,
     },
+    /// Another cloud's shadow map buffer is too small or cannot be bound as storage.
+    #[error(
+        "outside shadow values: {bytes} bytes with usage {usage:?}: needs ≥ {needed} bytes (one f32 per texel, ≥ 1 texel) and STORAGE"
+    )]
+    OutsideShadowBuffer {
+        /// Its size.
+        bytes: u64,
+        /// Its usage.
+        usage: wgpu::BufferUsages,
+        /// `4·resolution[0]·resolution[1]`.
+        needed: u64,
+    },
     /// `encode` was called before `prepare`.
     #[error("encode before prepare: no image to march")]
     EncodeBeforePrepare,
@@ -96,6 +200,7 @@ struct Prepared {
     _params: wgpu::Buffer,
     _density: wgpu::Buffer,
     _distance: wgpu::Buffer,
+    _outside: (wgpu::Buffer, wgpu::Buffer),
 }
 
 /// The view march on a GPU (see the module documentation).
@@ -195,7 +300,8 @@ fn params_words(
 }
 
 /// A march pass's compute pipeline and its one bind group's layout: `bindings[i]` is
-/// binding `i`'s buffer type and minimum size (both passes bind buffers only).
+/// binding `i`'s buffer type and minimum size (both passes bind buffers only), then
+/// bindings 8 and 9, another cloud's shadow ([`OutsideShadow`]).
 fn march_pipeline(
     device: &wgpu::Device,
     source: &str,
@@ -220,6 +326,31 @@ fn march_pipeline(
             },
             count: None,
         })
+        .chain(
+            [
+                // outside_shadow.wgsl's uniform and values (both passes import it).
+                (
+                    8,
+                    wgpu::BufferBindingType::Uniform,
+                    Some(OUTSIDE_PARAMS_BYTES),
+                ),
+                (
+                    9,
+                    wgpu::BufferBindingType::Storage { read_only: true },
+                    None,
+                ),
+            ]
+            .map(|(binding, ty, min)| wgpu::BindGroupLayoutEntry {
+                binding,
+                visibility: wgpu::ShaderStages::COMPUTE,
+                ty: wgpu::BindingType::Buffer {
+                    ty,
+                    has_dynamic_offset: false,
+                    min_binding_size: min.and_then(wgpu::BufferSize::new),
+                },
+                count: None,
+            }),
+        )
         .collect();
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some(label),
@@ -307,6 +438,37 @@ impl MarchPass {
         lighting: &Lighting<f32>,
         max_distance: Option<&wgpu::Buffer>,
     ) -> Result<(), MarchGpuError> {
+        self.prepare_lit_through(
+            device,
+            queue,
+            volume,
+            camera,
+            size,
+            settings,
+            lighting,
+            max_distance,
+            None,
+        )
+    }
+
+    /// [`MarchPass::prepare_limited`] with the light crossing another cloud too:
+    /// `outside`, when given, is its shadow map toward `lighting`'s light
+    /// ([`OutsideShadow`]; `None` is [`MarchPass::prepare_limited`]). The f32 CPU twin is
+    /// [`march_view_lit_through::<f32>`](crate::march::march_view_lit_through) with the
+    /// map's lookup as `outside_depth`.
+    #[allow(clippy::too_many_arguments)] // device, queue, the twin's inputs, limit, map
+    pub fn prepare_lit_through(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        volume: &CloudVolume,
+        camera: &PinholeCamera,
+        size: [u32; 2],
+        settings: &MarchSettings,
+        lighting: &Lighting<f32>,
+        max_distance: Option<&wgpu::Buffer>,
+        outside: Option<&OutsideShadow<'_>>,
+    ) -> Result<(), MarchGpuError> {
         let limits = device.limits();
         let mut workgroups = [0u32; 2];
         for (k, (field, value)) in ["size.x", "size.y"].into_iter().zip(size).enumerate() {
@@ -358,10 +520,19 @@ impl MarchPass {
             mapped_at_creation: false,
         });
         let distance = distance_binding(device, max_distance, size)?;
+        let outside = outside_bindings(device, queue, outside)?;
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("cloudlight march"),
             layout: &self.layout,
             entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 8,
+                    resource: outside.0.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 9,
+                    resource: outside.1.as_entire_binding(),
+                },
                 wgpu::BindGroupEntry {
                     binding: 0,
                     resource: params.as_entire_binding(),
@@ -388,6 +559,7 @@ impl MarchPass {
             _params: params,
             _density: density,
             _distance: distance,
+            _outside: outside,
         });
         Ok(())
     }
@@ -571,6 +743,7 @@ struct PreparedShell {
     image: wgpu::Buffer,
     _params: wgpu::Buffer,
     _distance: wgpu::Buffer,
+    _outside: (wgpu::Buffer, wgpu::Buffer),
 }
 
 /// The view march of a procedural [`CloudShell`] on a GPU
@@ -645,6 +818,38 @@ impl MarchShellPass {
         lighting: &Lighting<f32>,
         max_distance: Option<&wgpu::Buffer>,
     ) -> Result<(), MarchGpuError> {
+        self.prepare_lit_through(
+            device,
+            queue,
+            shell,
+            camera,
+            size,
+            settings,
+            lighting,
+            max_distance,
+            None,
+        )
+    }
+
+    /// [`MarchShellPass::prepare_limited`] with the light crossing another cloud too
+    /// (`outside`: its shadow map toward `lighting`'s light, [`OutsideShadow`], its
+    /// `frame_height` the planet's radius; `None` is
+    /// [`MarchShellPass::prepare_limited`]). The f32 CPU twin is
+    /// [`march_view_lit_through::<f32>`](crate::march::march_view_lit_through) with the
+    /// map's lookup as `outside_depth`, then [`faded`](crate::march::faded).
+    #[allow(clippy::too_many_arguments)] // device, queue, the twin's inputs, limit, map
+    pub fn prepare_lit_through(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        shell: &CloudShell,
+        camera: &PinholeCamera,
+        size: [u32; 2],
+        settings: &MarchSettings,
+        lighting: &Lighting<f32>,
+        max_distance: Option<&wgpu::Buffer>,
+        outside: Option<&OutsideShadow<'_>>,
+    ) -> Result<(), MarchGpuError> {
         let WeatherMap::Procedural(weather) = &shell.settings().weather else {
             return Err(MarchGpuError::GridWeather);
         };
@@ -694,10 +899,19 @@ impl MarchShellPass {
             mapped_at_creation: false,
         });
         let distance = distance_binding(device, max_distance, size)?;
+        let outside = outside_bindings(device, queue, outside)?;
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("cloudlight march shell"),
             layout: &self.layout,
             entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 8,
+                    resource: outside.0.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 9,
+                    resource: outside.1.as_entire_binding(),
+                },
                 wgpu::BindGroupEntry {
                     binding: 0,
                     resource: params.as_entire_binding(),
@@ -719,6 +933,7 @@ impl MarchShellPass {
             image,
             _params: params,
             _distance: distance,
+            _outside: outside,
         });
         Ok(())
     }

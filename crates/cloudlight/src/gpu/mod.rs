@@ -17,8 +17,8 @@ pub mod billboard;
 
 mod march;
 pub use march::{
-    MARCH_WORKGROUP_SIZE, MarchGpuError, MarchPass, MarchShellPass, compose_march_shader,
-    compose_march_shell_shader,
+    MARCH_WORKGROUP_SIZE, MarchGpuError, MarchPass, MarchShellPass, OutsideShadow,
+    compose_march_shader, compose_march_shell_shader,
 };
 
 mod noise_bake;
