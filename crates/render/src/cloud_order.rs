@@ -34,27 +34,33 @@
 //! behind an opaque one is marched in full and hidden by `T_near`, exact up to the
 //! march's early exit.
 //!
-//! **Not modelled: each cloud's shadow on the other.** Each cloud's light and ambient
-//! marches cross its own field only: a cumulus under the deck is lit as if the deck were
-//! absent, the deck under a cumulus is not shadowed by it, whether their segments
-//! overlap or not.
+//! **Each cloud's shadow on the other** (`crate::mutual_shadow`): each march's light
+//! crosses the other cloud through that cloud's shadow map for the same light, its
+//! optical depth above the sample added to the light march's (exact below the other
+//! cloud's base, an empirical fade inside its altitudes, nothing above it); the ambient
+//! sky is each cloud's own. On the GPU the same maps and formula in cloudlight's march
+//! passes.
 //!
-//! **Measured** (`cargo test -p render --test cloud_overlap -- --nocapture`, 55–80 s in
-//! the debug test build): the deck (1,000–1,800 m) and a cumulus (a 2.4 × 2.4 × 0.6 km
-//! grid, its base at 1,400 m, reaching into the deck, or at 2,000 m), four 64×36 views
-//! from below and above the deck, in f64 with one light and the same march settings for
-//! both clouds, against one march over their union (`cloudlight::union::UnionField`,
-//! interleaved, its light and ambient marches through both), over the pixels crossing
-//! both (each ≥ 1 % opaque alone), the clouds' radiance over black, LSB after the tone
-//! map at exposure 12. This composite: 150 pixels whose segments overlap, mean 5.2 LSB,
-//! max 29.5 (relative mean 9.6 %); 529 disjoint, mean 3.0 LSB, max 97.0 (a deck pixel in
-//! the cumulus's shadow drawn lit: 258 % too bright). Nearly all of it is the missing
-//! mutual shadowing: each cloud's view march alone but lit through both, in depth order,
-//! is within 0.02 LSB mean, 0.4 max of the union on the overlapping pixels (the ordering
-//! alone; the march's own floor, on the disjoint pixels where the order is exact, reaches
-//! 1.2 LSB), inside the bound above on 150 of 150 (mean 49 LSB, max 136: loose, the two
-//! clouds' source functions being close where they overlap) and between the two orders
-//! on 150 of 150 (within that floor).
+//! **Measured** (`cargo test -p render --test cloud_overlap -- --nocapture`, 267 s in
+//! the debug test build at load 7): the deck (1,000–1,800 m) and a cumulus (a 2.4 ×
+//! 2.4 × 0.6 km grid, its base at 1,400 m, reaching into the deck, or at 2,000 m), four
+//! 64×36 views from below and above the deck, in f64 with one light and the same march
+//! settings for both clouds, against one march over their union
+//! (`cloudlight::union::UnionField`, interleaved, its light and ambient marches through
+//! both), over the pixels crossing both (each ≥ 1 % opaque alone), the clouds' radiance
+//! over black, LSB after the tone map at exposure 12. This composite, each cloud lit
+//! through the other's map: 150 pixels whose segments overlap, mean 3.6 LSB, max 16.3
+//! (relative mean 6.0 %); 529 disjoint, mean 0.51 LSB, max 20.5. Without the maps (each
+//! lit through itself only, before `crate::mutual_shadow`): mean 5.2, max 29.5
+//! overlapping; mean 3.0, max 97.0 disjoint (a deck pixel in the cumulus's shadow drawn
+//! lit: 258 % too bright). What remains is the maps' fade inside the other cloud's
+//! altitudes (the cumulus reaching into the deck: its view from above the deck holds the
+//! disjoint maximum): each cloud's view march alone but lit through both, in depth
+//! order, is within 0.02 LSB mean, 0.4 max of the union on the overlapping pixels (the
+//! ordering alone; the march's own floor, on the disjoint pixels where the order is
+//! exact, reaches 1.2 LSB), inside the bound above on 150 of 150 (mean 49 LSB, max 136:
+//! loose, the two clouds' source functions being close where they overlap) and between
+//! the two orders on 150 of 150 (within that floor).
 
 use cloudlight::march::{Lighting, MarchResult};
 
@@ -149,11 +155,33 @@ pub fn composite_clouds_by_depth(
     let volume_camera =
         crate::volume_clouds::pinhole_camera(camera, scene.atmosphere.planet_radius)?;
     let shell_camera = crate::shell_clouds::shell_camera(camera)?;
+    // Each lit through the other's shadow map for the same light (crate::mutual_shadow):
+    // a march lit by anything but the cloud's sun lighting is its moon's.
     let march_volume = |lighting: &Lighting<f32>, xy: [u32; 2], behind: f32| -> MarchResult<f32> {
-        crate::volume_clouds::march_pixel_lit(volume, lighting, &volume_camera, size, xy, behind)
+        let moon = !std::ptr::eq(lighting, &volume.lighting);
+        let deck = crate::mutual_shadow::deck_on_volume(shell, moon);
+        crate::mutual_shadow::march_volume_pixel(
+            volume,
+            lighting,
+            &volume_camera,
+            size,
+            xy,
+            behind,
+            deck,
+        )
     };
     let march_shell = |lighting: &Lighting<f32>, xy: [u32; 2], behind: f32| -> MarchResult<f32> {
-        crate::shell_clouds::march_shell_pixel_lit(shell, lighting, &shell_camera, size, xy, behind)
+        let moon = !std::ptr::eq(lighting, &shell.lighting);
+        let cumulus = crate::mutual_shadow::volume_on_deck(volume, moon);
+        crate::mutual_shadow::march_deck_pixel(
+            shell,
+            lighting,
+            &shell_camera,
+            size,
+            xy,
+            behind,
+            cumulus,
+        )
     };
     let volume_moon = match (&volume.moon, moon) {
         (Some(moonlit), Some((light, moon_tables))) => {
@@ -207,6 +235,7 @@ pub fn adjust_plan(scene: &PreparedScene, plan: &mut Vec<(&'static str, Result<S
                     .into(),
             ),
         ));
+        plan.push(crate::mutual_shadow::plan(scene));
         return;
     }
     for (pass, entry) in plan.iter_mut() {
@@ -223,4 +252,5 @@ pub fn adjust_plan(scene: &PreparedScene, plan: &mut Vec<(&'static str, Result<S
                 .into(),
         ),
     ));
+    plan.push(crate::mutual_shadow::plan(scene));
 }

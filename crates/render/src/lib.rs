@@ -23,6 +23,7 @@ pub mod cpu_renderer;
 pub mod error;
 #[cfg(feature = "gpu")]
 pub mod gpu;
+pub mod mutual_shadow;
 pub mod present;
 pub mod projection;
 pub mod scene;

@@ -243,6 +243,10 @@ pub struct PreparedShell {
     pub moon_shadow: Option<CloudShadow>,
     /// Seconds the shadow maps took to bake on this machine's CPU (0 without one).
     pub shadow_seconds: f64,
+    /// The deck's shadow on the scene's volume cloud, `[sun, moon]`
+    /// (`crate::mutual_shadow::deck_over_volume`, always baked on the CPU): `None`
+    /// without a marched volume cloud or that light (or with it below 1°).
+    pub over_volume: [Option<CloudShadow>; 2],
 }
 
 impl PreparedShell {
@@ -458,6 +462,7 @@ impl Scene {
         moonlit: Option<&crate::scene::prepare::MoonlitSky>,
         terrain: Option<&crate::scene::prepare::PreparedTerrain>,
         cpu_shadow: bool,
+        volume: Option<&cloudlight::CloudVolume>,
     ) -> Result<PreparedShell, SceneError> {
         let (shell, settings) = self.check_shell_cloud(section, atmosphere)?;
         // The middle of the shell straight above the camera.
@@ -514,6 +519,14 @@ impl Scene {
         } else {
             0.0
         };
+        // Its shadow on the volume cloud (crate::mutual_shadow), toward each light.
+        let over_volume = [Some(sun), moonlit.map(|m| m.direction)].map(|toward| {
+            crate::mutual_shadow::deck_over_volume(
+                &shell,
+                volume?,
+                world_to_enu(toward?.to_array()),
+            )
+        });
         Ok(PreparedShell {
             shell,
             settings,
@@ -522,6 +535,7 @@ impl Scene {
             shadow,
             moon_shadow,
             shadow_seconds,
+            over_volume,
         })
     }
 }
@@ -770,8 +784,17 @@ impl ShellCloudPass {
             &cloud.lighting,
             cloud.moon.as_ref(),
             |march, lighting, distances| {
+                // Lit through the volume cloud's shadow map for this light
+                // (crate::mutual_shadow), read the planet's radius below the march's frame.
+                let moon = !std::ptr::eq(lighting, &cloud.lighting);
+                let volume = scene
+                    .volume_cloud
+                    .as_ref()
+                    .and_then(|volume| crate::mutual_shadow::volume_on_deck(volume, moon));
+                let volume = crate::mutual_shadow::upload(device, queue, volume);
+                let planet = cloud.shell.planet_radius() as f32;
                 // The march stops at the terrain: a hill hides the deck behind it.
-                Ok(march.prepare_limited(
+                Ok(march.prepare_lit_through(
                     device,
                     queue,
                     &cloud.shell,
@@ -780,6 +803,10 @@ impl ShellCloudPass {
                     &cloud.settings,
                     lighting,
                     Some(distances),
+                    volume
+                        .as_ref()
+                        .map(|v| crate::mutual_shadow::outside(v, planet))
+                        .as_ref(),
                 )?)
             },
         )

@@ -261,13 +261,8 @@ pub fn volume_shadow_texel(
     origin: [f32; 2],
     cell_size: f32,
 ) -> [f32; 2] {
-    let t = (plane - point[2]) / to_sun[2];
-    let x = point[0] + t * to_sun[0];
-    let y = point[1] + t * to_sun[1];
-    [
-        (x - origin[0]) / cell_size - 0.5,
-        (y - origin[1]) / cell_size - 0.5,
-    ]
+    // cloudlight's lookup, which another cloud's march shares (crate::mutual_shadow).
+    cloudlight::shadow_map::shadow_map_texel(point, to_sun, plane, origin, cell_size)
 }
 
 /// `ground_irradiance` takes a sized model; this lends it the scene's boxed one.
@@ -639,18 +634,46 @@ pub(crate) fn march_field_pixel(
     pixel: [u32; 2],
     max_distance: f32,
 ) -> MarchResult<f32> {
+    march_field_pixel_through(
+        field,
+        settings,
+        lighting,
+        camera,
+        size,
+        pixel,
+        max_distance,
+        |_| 0.0,
+    )
+}
+
+/// [`march_field_pixel`] with the light crossing another cloud too: `outside_depth(p)`
+/// its optical depth toward the light above view sample `p` (the field's frame;
+/// `cloudlight::march::march_view_lit_through`, `crate::mutual_shadow`).
+#[allow(clippy::too_many_arguments)] // march_field_pixel's seven inputs and the hook
+pub(crate) fn march_field_pixel_through(
+    field: &impl cloudlight::DensityField<f32>,
+    settings: &MarchSettings,
+    lighting: &Lighting<f32>,
+    camera: &PinholeCamera,
+    size: [u32; 2],
+    pixel: [u32; 2],
+    max_distance: f32,
+    outside_depth: impl Fn([f32; 3]) -> f32,
+) -> MarchResult<f32> {
     let [forward, right, up] = camera.basis().map(|v| v.map(|c| c as f32));
     let tan_half = camera.tan_half(size).map(|t| t as f32);
     let origin = camera.origin().map(|c| c as f32);
     let direction = cloudlight::march::pixel_direction(pixel, size, forward, right, up, tan_half);
-    cloudlight::march::march_view_at_pixel_limited(
+    let offset = settings.config().jitter.offset(pixel);
+    cloudlight::march::march_view_lit_through(
         field,
         origin,
         direction,
         settings,
         lighting,
-        pixel,
+        offset,
         max_distance,
+        outside_depth,
     )
 }
 
@@ -956,8 +979,15 @@ impl VolumeCloudPass {
             &cloud.lighting,
             moon,
             |march, lighting, distances| {
+                // Lit through the deck's shadow map for this light (crate::mutual_shadow).
+                let moon = !std::ptr::eq(lighting, &cloud.lighting);
+                let deck = scene
+                    .shell_cloud
+                    .as_ref()
+                    .and_then(|shell| crate::mutual_shadow::deck_on_volume(shell, moon));
+                let deck = crate::mutual_shadow::upload(device, queue, deck);
                 // The march stops at the terrain: a ridge cuts the cloud where it stands.
-                Ok(march.prepare_limited(
+                Ok(march.prepare_lit_through(
                     device,
                     queue,
                     &cloud.volume,
@@ -966,6 +996,9 @@ impl VolumeCloudPass {
                     &cloud.settings,
                     lighting,
                     Some(distances),
+                    deck.as_ref()
+                        .map(|d| crate::mutual_shadow::outside(d, 0.0))
+                        .as_ref(),
                 )?)
             },
         )

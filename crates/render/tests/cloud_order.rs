@@ -3,8 +3,10 @@
 //! (1,000–1,800 m) and a volume cloud 3 km north: from above the deck, a volume above
 //! it (the volume in front) and one below it (the deck in front); from below the deck,
 //! a low volume (the volume in front) and one above the deck (the deck in front). Where
-//! the nearer cloud is opaque the image is that cloud's alone, not the farther's;
-//! GPU vs CPU on the cloud pixels (lavapipe in CI).
+//! the nearer cloud is opaque the image is that cloud's alone (lit as in the scene: the
+//! other's shadow on it kept, `render::mutual_shadow`), not the farther's; GPU vs CPU on
+//! the cloud pixels, each cloud lit through the other's shadow map on both (lavapipe in
+//! CI).
 
 mod common;
 
@@ -117,12 +119,31 @@ fn marches(scene: &PreparedScene) -> Vec<[(f32, f32); 2]> {
         .collect()
 }
 
-/// The scene on the CPU with only the volume cloud and with only the deck.
+/// The scene on the CPU with only the volume cloud and with only the deck, each lit as
+/// in the scene: the other cloud emptied (no density: the deck's coverage 0, the
+/// volume's grid zero) but its shadow map on this one kept (`render::mutual_shadow`).
 fn alone(scene: &mut PreparedScene) -> (Vec<u32>, Vec<u32>) {
-    let shell = scene.shell_cloud.take();
+    let shell = scene.shell_cloud.clone();
+    let deck = &mut scene.shell_cloud.as_mut().unwrap().shell;
+    let mut settings = deck.settings().clone();
+    let cloudlight::shell::WeatherMap::Procedural(weather) = &mut settings.weather else {
+        panic!("the deck's weather is procedural");
+    };
+    (weather.coverage_mean, weather.coverage_contrast) = (0.0, 0.0);
+    *deck = cloudlight::CloudShell::new(&scene.atmosphere, settings).unwrap();
     let volume_only = render_cpu(scene).unwrap().pixels;
     scene.shell_cloud = shell;
-    let volume = scene.volume_cloud.take();
+    let volume = scene.volume_cloud.clone();
+    let grid = &mut scene.volume_cloud.as_mut().unwrap().volume;
+    let cells = grid.density().len();
+    *grid = cloudlight::CloudVolume::new(
+        grid.dims(),
+        grid.origin(),
+        grid.voxel_size(),
+        grid.extinction_per_density(),
+        vec![0.0; cells],
+    )
+    .unwrap();
     let shell_only = render_cpu(scene).unwrap().pixels;
     scene.volume_cloud = volume;
     (volume_only, shell_only)
@@ -137,6 +158,12 @@ fn the_nearer_cloud_goes_over_the_farther_on_the_cpu_and_the_gpu() {
     let (mut count, mut within, mut crossing, mut crossing_within) = (0, 0, 0, 0);
     for view in &VIEWS {
         let mut scene = scene(view);
+        // Each cloud's shadow on the other: the volume's map on the deck always (the sun
+        // at 40°), the deck's on the volume where the volume reaches below its top.
+        let (volume, shell) = (&scene.volume_cloud, &scene.shell_cloud);
+        assert!(render::mutual_shadow::volume_on_deck(volume.as_ref().unwrap(), false).is_some());
+        let deck_on_volume = render::mutual_shadow::deck_on_volume(shell.as_ref().unwrap(), false);
+        assert_eq!(deck_on_volume.is_some(), view.volume_base_m < 1800.0);
         let both = render_cpu(&scene).unwrap().pixels;
         let (volume_only, shell_only) = alone(&mut scene);
         let (front_only, back_only) = match view.front {
@@ -233,6 +260,8 @@ fn explain_plans_one_composite_by_depth() {
     };
     let mut scene = scene(&VIEWS[0]);
     assert_eq!(planned(&scene, "clouds by depth"), Some(true));
+    // The volume above the deck: the volume's map shades the deck, the deck's is empty.
+    assert_eq!(planned(&scene, "mutual cloud shadows"), Some(true));
     for pass in ["volume clouds", "shell clouds"] {
         assert_eq!(planned(&scene, pass), Some(false), "{pass}");
     }
@@ -241,6 +270,7 @@ fn explain_plans_one_composite_by_depth() {
     }
     scene.shell_cloud = None;
     assert_eq!(planned(&scene, "clouds by depth"), Some(false));
+    assert_eq!(planned(&scene, "mutual cloud shadows"), Some(false));
     assert_eq!(planned(&scene, "volume clouds"), Some(true));
 }
 

@@ -533,7 +533,8 @@ impl Scene {
                 &atmosphere,
                 &*sky_model,
                 sun,
-                terrain.is_some(),
+                // Its shadow map shades the terrain and the deck (crate::mutual_shadow).
+                terrain.is_some() || file.clouds.as_ref().is_some_and(|c| c.shell.is_some()),
                 moonlit.as_ref(),
             )?),
             None => None,
@@ -548,6 +549,7 @@ impl Scene {
                 moonlit.as_ref(),
                 terrain.as_ref(),
                 cpu_shell_shadow,
+                volume_cloud.as_ref().map(|v| &v.volume),
             )?),
             None => None,
         };

@@ -1,0 +1,294 @@
+//! The two marched clouds' shadows on each other: the `[clouds.shell]` deck darkens the
+//! `[clouds.volume]` cloud's direct light and the volume cloud the deck's, on the CPU
+//! (this module's marches, [`crate::cloud_order::composite_clouds_by_depth`]) and on the
+//! GPU (the same maps and formula in cloudlight's march passes, `crate::gpu::scene`).
+//!
+//! # The formula
+//!
+//! Each cloud has a shadow map toward its light (the sun, or the moon at night; one map
+//! per light that is above 1°): the transmittance of the light through the whole cloud
+//! along the light ray, stored on a flat plane at the cloud's base
+//! ([`crate::volume_clouds::CloudShadow`]). A view sample of cloud A at east/north/up
+//! point `p` (altitude `h`) reads cloud B's map where its light ray meets B's plane (the
+//! terrain's lookup, [`CloudShadow::at`]) and adds to its light march's optical depth
+//! `τ_l` (before the octaves and the powder, as one march over both clouds does:
+//! `cloudlight::union::UnionField`)
+//!
+//! `τ_B = −ln max(T_B, 1e-30) · f²`, `f = clamp((top_B − h)/(top_B − base_B), 0, 1)`
+//!
+//! (`cloudlight::shadow_map::shadow_depth_above`, WGSL twin of the same name;
+//! `cloudlight::march::march_view_lit_through` adds it, on the GPU the
+//! `outside_depth` of `shaders/cloudlight/outside_shadow.wgsl` in both march passes).
+//! Below B's base it is B's whole column along the light, exact up to the map's
+//! sampling (clear air between `p` and the plane); above B's top it is 0. **Approximate
+//! inside B's altitudes** (a cumulus reaching into the deck): the map holds B's whole
+//! column along the ray, of which only the part above `h` shades `p`, and that part is
+//! not known from the map; `f²` of it is an empirical fade, continuous at both ends. On
+//! `cargo test -p render --test cloud_overlap -- --nocapture`'s two views with the
+//! cumulus reaching into the deck (against one march over both clouds; LSB, mean / max
+//! over the pixels where the two overlap along the ray, then where they are disjoint):
+//! `f²` 3.6 / 16.3 and 0.7 / 20.5; no shadowing 5.2 / 29.5 and 2.4 / 55.0; `f` (B's
+//! optical depth spread evenly over its height) 8.2 / 38.8 where they overlap, worse
+//! than none; 0 inside (the map below the base only) 3.4 / 20.4 and 1.1 / 26.5; the
+//! whole column 24.5 / 87.8 and 4.8 / 59.1. The deck's base is a sphere and the map's plane flat: at `d`
+//! metres from the camera's ground point the heights differ by `d²/2R` (0.7 m at 3 km).
+//!
+//! **Not shadowed: the ambient sky.** Each cloud's ambient visibility is its own field's
+//! (the sky above A through B is not taken away), and nothing is shadowed when a light
+//! is below 1° (no map then: a sunset's grazing light).
+//!
+//! # The maps
+//!
+//! The volume cloud's is its terrain map ([`PreparedVolume::shadow`], its moon's
+//! [`crate::volume_clouds::MoonlitVolume::shadow`]), baked whenever the scene has the
+//! deck or terrain. The deck's terrain map covers the terrain only, so the deck gets a
+//! second, small map over the volume cloud ([`PreparedShell::over_volume`],
+//! [`deck_over_volume`]): the grid's footprint swept along the light to the deck's base
+//! from the grid's altitudes below the deck's top, baked on the CPU at prepare (a few
+//! thousand texels; the GPU renderer uploads it). A scene with one cloud kind bakes
+//! neither extra map and marches as before (`outside_depth` 0 is the plain march).
+
+use cloudlight::march::{Lighting, MarchResult, PinholeCamera};
+use cloudlight::{CloudShell, CloudVolume};
+
+use crate::shell_clouds::PreparedShell;
+use crate::volume_clouds::{CloudShadow, PreparedVolume};
+
+/// Texel edge of the deck's map over the volume cloud (m): a sixteenth of the shipped
+/// deck's 800 m detail period, finer than its terrain map's 125 m.
+pub const DECK_OVER_VOLUME_CELL_M: f64 = 50.0;
+
+/// One cloud's shadow map as the other cloud's march reads it: the map and the
+/// altitudes `[base, top]` (m) of the cloud that cast it.
+#[derive(Debug, Clone, Copy)]
+pub struct ShadowOnCloud<'a> {
+    /// The map (its plane at `extent[0]`).
+    pub map: &'a CloudShadow,
+    /// The casting cloud's lowest and highest altitude (m).
+    pub extent: [f32; 2],
+}
+
+impl ShadowOnCloud<'_> {
+    /// The casting cloud's optical depth toward the map's light above `point`
+    /// (east/north/up about the camera's ground point, `point[2]` the altitude):
+    /// `shadow_depth_above` of the map's value there (module docs).
+    pub fn depth_at(&self, point: [f32; 3]) -> f32 {
+        cloudlight::shadow_map::shadow_depth_above(
+            self.map.at(point),
+            point[2],
+            self.extent[0],
+            self.extent[1],
+        )
+    }
+}
+
+/// The volume cloud's altitudes `[base, top]` (m): its grid's.
+pub fn volume_extent(volume: &CloudVolume) -> [f32; 2] {
+    let base = volume.origin()[2];
+    let top = base + f64::from(volume.dims()[2]) * volume.voxel_size();
+    [base as f32, top as f32]
+}
+
+/// The deck's altitudes `[base, top]` (m): its inner and outer radius above the planet.
+pub fn deck_extent(shell: &CloudShell) -> [f32; 2] {
+    let s = shell.settings();
+    let planet = shell.planet_radius();
+    [
+        (s.inner_radius - planet) as f32,
+        (s.outer_radius - planet) as f32,
+    ]
+}
+
+/// The volume cloud's shadow on the deck toward the sun (`moon` false) or the moon:
+/// its map for that light, `None` without one.
+pub fn volume_on_deck(volume: &PreparedVolume, moon: bool) -> Option<ShadowOnCloud<'_>> {
+    let map = if moon {
+        volume.moon.as_ref()?.shadow.as_ref()?
+    } else {
+        volume.shadow.as_ref()?
+    };
+    Some(ShadowOnCloud {
+        map,
+        extent: volume_extent(&volume.volume),
+    })
+}
+
+/// The deck's shadow on the volume cloud toward the sun (`moon` false) or the moon:
+/// its map over the volume for that light ([`PreparedShell::over_volume`]).
+pub fn deck_on_volume(shell: &PreparedShell, moon: bool) -> Option<ShadowOnCloud<'_>> {
+    Some(ShadowOnCloud {
+        map: shell.over_volume[usize::from(moon)].as_ref()?,
+        extent: deck_extent(&shell.shell),
+    })
+}
+
+/// The deck's shadow map over `volume` toward unit `to_light` (east/north/up), or `None`
+/// with the light below 1° or the grid wholly above the deck's top: cloudlight's shadow
+/// map of the shell ([`CloudShadow::over`], the terrain map's
+/// [`crate::shell_clouds::SHADOW_STEPS`] steps per span) on the plane of the deck's base,
+/// over the grid's footprint swept along the light to that plane from the grid's lowest
+/// altitude and its highest below the deck's top, texels [`DECK_OVER_VOLUME_CELL_M`]
+/// (coarser if the footprint needs more than 256 a side).
+pub fn deck_over_volume(
+    shell: &CloudShell,
+    volume: &CloudVolume,
+    to_light: [f64; 3],
+) -> Option<CloudShadow> {
+    if to_light[2] < 1f64.to_radians().sin() {
+        return None;
+    }
+    let [base, top] = deck_extent(shell).map(f64::from);
+    let [low, high] = volume_extent(volume).map(f64::from);
+    if low >= top {
+        return None;
+    }
+    let high = high.min(top);
+    let sweep = |h: f64| ((base - h) / to_light[2]).clamp(-1e5, 1e5);
+    let (a, b) = (sweep(low), sweep(high));
+    let o = volume.origin();
+    let dims = volume.dims();
+    let size = volume.voxel_size();
+    let lo = [0, 1].map(|k| o[k] + (a * to_light[k]).min(b * to_light[k]));
+    let hi =
+        [0, 1].map(|k| o[k] + f64::from(dims[k]) * size + (a * to_light[k]).max(b * to_light[k]));
+    CloudShadow::over(
+        shell,
+        [lo, hi],
+        DECK_OVER_VOLUME_CELL_M,
+        [base, shell.planet_radius()],
+        to_light,
+        crate::shell_clouds::SHADOW_STEPS,
+    )
+}
+
+/// The volume cloud's march at `pixel` lit by `lighting` (its sun's or moon's), the
+/// deck's shadow `deck` on it (module docs; `None`: the plain march,
+/// [`crate::volume_clouds::march_pixel_lit`]).
+pub fn march_volume_pixel(
+    volume: &PreparedVolume,
+    lighting: &Lighting<f32>,
+    camera: &PinholeCamera,
+    size: [u32; 2],
+    pixel: [u32; 2],
+    max_distance: f32,
+    deck: Option<ShadowOnCloud<'_>>,
+) -> MarchResult<f32> {
+    crate::volume_clouds::march_field_pixel_through(
+        &volume.volume,
+        &volume.settings,
+        lighting,
+        camera,
+        size,
+        pixel,
+        max_distance,
+        |p| deck.map_or(0.0, |d| d.depth_at(p)),
+    )
+}
+
+/// The deck's march at `pixel` lit by `lighting`, faded toward the horizon
+/// ([`crate::shell_clouds::march_shell_pixel_lit`]), the volume cloud's shadow `volume`
+/// on it: its samples (planet-centred) read the map at their east/north/up point, the
+/// planet's radius below.
+pub fn march_deck_pixel(
+    shell: &PreparedShell,
+    lighting: &Lighting<f32>,
+    camera: &PinholeCamera,
+    size: [u32; 2],
+    pixel: [u32; 2],
+    max_distance: f32,
+    volume: Option<ShadowOnCloud<'_>>,
+) -> MarchResult<f32> {
+    let planet = shell.shell.planet_radius() as f32;
+    let result = crate::volume_clouds::march_field_pixel_through(
+        &shell.shell,
+        &shell.settings,
+        lighting,
+        camera,
+        size,
+        pixel,
+        max_distance,
+        |p| volume.map_or(0.0, |v| v.depth_at([p[0], p[1], p[2] - planet])),
+    );
+    cloudlight::march::faded(result, shell.shell.horizon_fade(result.depth))
+}
+
+/// The GPU march's view of `shadow` (`cloudlight::gpu::OutsideShadow`, the same map
+/// and lookup as [`ShadowOnCloud::depth_at`]): its values uploaded into a new storage
+/// buffer (a few thousand texels, once per prepare), and the march frame's height of
+/// altitude 0 `frame_height` (0 for the volume's frame, the planet's radius for the
+/// deck's). `None` without a map.
+#[cfg(feature = "gpu")]
+pub(crate) fn upload<'a>(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    shadow: Option<ShadowOnCloud<'a>>,
+) -> Option<(ShadowOnCloud<'a>, wgpu::Buffer)> {
+    let shadow = shadow?;
+    let values = &shadow.map.values;
+    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("render mutual shadow values"),
+        size: (values.len().max(1) * 4) as u64,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    queue.write_buffer(&buffer, 0, bytemuck::cast_slice(values));
+    Some((shadow, buffer))
+}
+
+/// [`upload`]'s map as the march pass binds it, in a march frame whose altitude 0 lies
+/// at height `frame_height`.
+#[cfg(feature = "gpu")]
+pub(crate) fn outside<'a>(
+    (shadow, values): &'a (ShadowOnCloud<'_>, wgpu::Buffer),
+    frame_height: f32,
+) -> cloudlight::gpu::OutsideShadow<'a> {
+    let map = shadow.map;
+    cloudlight::gpu::OutsideShadow {
+        origin: map.origin,
+        cell_size: map.cell_size,
+        resolution: map.resolution,
+        plane: map.plane,
+        to_light: map.to_sun,
+        extent: shadow.extent,
+        frame_height,
+        values,
+    }
+}
+
+/// What `skyscape explain` says of the clouds' shadows on each other
+/// (`crate::cloud_order::adjust_plan` adds it after "clouds by depth"): which maps each
+/// march reads, or why none.
+pub fn plan(scene: &crate::scene::PreparedScene) -> (&'static str, Result<String, String>) {
+    let name = "mutual cloud shadows";
+    let (Some(volume), Some(shell)) = (&scene.volume_cloud, &scene.shell_cloud) else {
+        return (
+            name,
+            Err("not both [clouds.shell] and a marched [clouds.volume]".into()),
+        );
+    };
+    let lights = [(false, "sun"), (true, "moon")];
+    let read: Vec<String> = lights
+        .iter()
+        .flat_map(|&(moon, light)| {
+            let on_volume = deck_on_volume(shell, moon).map(|s| {
+                let [w, h] = s.map.resolution;
+                format!("the deck's {w}×{h} map on the volume ({light})")
+            });
+            let on_deck = volume_on_deck(volume, moon).map(|s| {
+                let [w, h] = s.map.resolution;
+                format!("the volume's {w}×{h} map on the deck ({light})")
+            });
+            [on_volume, on_deck].into_iter().flatten()
+        })
+        .collect();
+    if read.is_empty() {
+        return (name, Err("no shadow map: no light above 1°".into()));
+    }
+    (
+        name,
+        Ok(format!(
+            "each march's light through the other cloud's shadow map (in its march pass): {}",
+            read.join(", ")
+        )),
+    )
+}
