@@ -433,5 +433,54 @@ pub fn cases() -> Vec<Case> {
                       (reference: the generic march at f64 on the same analytic field)",
             },
         },
+        Case {
+            name: "cloudlight::shadow_depth_above",
+            imports: &["cloudlight::shadow_map"],
+            arity: (4, 1),
+            wgsl: "y0 = shadow_depth_above(x0, x1, x2, x3);",
+            grid: || {
+                let mut grid = Vec::new();
+                // Transmittances from opaque (below the 1e-30 floor) to clear; heights
+                // below, inside and above two clouds (the deck's, a cumulus's altitudes).
+                let transmittances = [
+                    0.0, 1e-38, 1e-30, 1e-12, 1e-3, 0.05, 0.37, 0.5, 0.9, 0.999, 1.0,
+                ];
+                for t in transmittances.into_iter().chain(logspace(1e-6, 0.99, 40)) {
+                    for [base, top] in [[1000.0, 1800.0], [1400.0, 2000.0], [300.0, 900.0]] {
+                        for h in [0.0, 299.0, 999.5, 1000.0, 1013.7, 1250.0, 1400.0, 1600.0]
+                            .into_iter()
+                            .chain([1799.0, 1800.0, 1950.0, 2000.0, 2600.0])
+                            .chain(linspace(0.0, 2600.0, 66))
+                        {
+                            grid.push(vec![t, h, base, top]);
+                        }
+                    }
+                }
+                grid
+            },
+            cpu: |x| vec![sm::shadow_depth_above(x[0], x[1], x[2], x[3])],
+            reference: |x| {
+                let f = ((x[3] - x[1]) / (x[3] - x[2])).clamp(0.0, 1.0);
+                vec![-(x[0].max(1e-30)).ln() * f * f]
+            },
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 0.0,
+                // f: top − h and top − base one rounding each, the division u (WGSL 2.5
+                // ULP), f² doubles it and adds u: 10u of f²; −ln T: 3 ULP (WGSL's log)
+                // and 2^-21 absolute near T = 1; the product one more u.
+                bound: Some(|x| {
+                    let f = ((x[3] - x[1]) / (x[3] - x[2])).clamp(0.0, 1.0);
+                    let depth = -(x[0].max(1e-30)).ln();
+                    vec![f * f * (depth * 14.0 * U + 2f64.powi(-21) + 1e-30)]
+                }),
+                why: "f = clamp((top − h)/(top − base)) two subtractions and a division (u, \
+                      WGSL 2.5 ULP), f² doubling it plus u: 10u of f²; −ln max(T, 1e-30) 3 ULP \
+                      and 2^-21 absolute (WGSL's log), the product u (reference: the formula \
+                      in f64)",
+            },
+        },
     ]
 }
