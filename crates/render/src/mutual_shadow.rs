@@ -44,9 +44,14 @@
 //! deck or terrain. The deck's terrain map covers the terrain only, so the deck gets a
 //! second, small map over the volume cloud ([`PreparedShell::over_volume`],
 //! [`deck_over_volume`]): the grid's footprint swept along the light to the deck's base
-//! from the grid's altitudes below the deck's top, baked on the CPU at prepare (a few
-//! thousand texels; the GPU renderer uploads it). A scene with one cloud kind bakes
-//! neither extra map and marches as before (`outside_depth` 0 is the plain march).
+//! from the grid's altitudes below the deck's top, baked on the CPU at prepare, also
+//! for the GPU renderer, which uploads it and the volume's map into a buffer each per
+//! prepare (the `tests/cloud_order.rs` scene with the cumulus reaching into the deck:
+//! the deck's 56×55 map on the volume, the volume's 30×29 on the deck, `skyscape
+//! explain`'s "mutual cloud shadows" line). A scene with one cloud kind bakes neither
+//! extra map and marches as before: `outside_depth` 0 is the plain march on the CPU, and
+//! the GPU passes bind a disabled 64-byte uniform and a 4-byte placeholder, one
+//! branch per light sample.
 
 use cloudlight::march::{Lighting, MarchResult, PinholeCamera};
 use cloudlight::{CloudShell, CloudVolume};
