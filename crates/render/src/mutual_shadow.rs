@@ -51,7 +51,7 @@
 //! explain`'s "mutual cloud shadows" line). A scene with one cloud kind bakes neither
 //! extra map and marches as before: `outside_depth` 0 is the plain march on the CPU, and
 //! the GPU passes bind a disabled 64-byte uniform and a 4-byte placeholder, one
-//! branch per light sample.
+//! branch per view sample.
 
 use cloudlight::march::{Lighting, MarchResult, PinholeCamera};
 use cloudlight::{CloudShell, CloudVolume};
