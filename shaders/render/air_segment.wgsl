@@ -1,14 +1,16 @@
 // The segment camera → a point that every air pass in front of something evaluates
-// (per pixel in render::cloud_air_io, per particle in render::billboard_air_io): no
-// bindings of its own, so both io modules, each with its own group 2, import it, and
-// so do the rungs' functions over it (render::air_segment_closed_form,
-// render::air_segment_single) that both kinds of pass call.
+// (per pixel in render::cloud_air_io and the terrain's render::rung_air, per particle
+// in render::billboard_air_io, per terrain vertex in render::vertex_air_compute): no
+// bindings of its own, so each of them, with its own groups, imports it, and so do the
+// rungs' functions over it (render::air_segment_closed_form,
+// render::air_segment_single) that every such pass calls.
 #import atmos::frame
 
-// A segment: the index of its two vec4 in the pass's air output, the camera's radius,
-// the view's zenith cosine, the distance to the point, the view and the local up;
-// `has_air` false where the pass writes nothing for it (outside the image, no cloud
-// opacity, past the last particle, a particle at the eye).
+// A segment: the index of its two vec4 in the pass's air output (unused where that is
+// a texture, render::rung_air's), the camera's radius, the view's zenith cosine, the
+// distance to the point, the view and the local up; `has_air` false where the pass
+// writes nothing for it (outside the image, no cloud opacity, the sky behind the
+// terrain, past the last particle or the last vertex, a particle at the eye).
 struct AirSegment {
     index: u32,
     r: f32,

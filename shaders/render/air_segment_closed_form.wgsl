@@ -1,7 +1,9 @@
 // Rung 1, the closed form, over a segment (render::air_segment): atmos::closed_form_sky's
 // in-scatter and transmittance of the segment for one light. No bindings: the clouds'
-// air pass (render::cloud_air_closed_form, per pixel) and the billboards'
-// (render::billboard_air_closed_form, per particle) import it with their own groups.
+// air pass (render::cloud_air_closed_form, per pixel), the billboards'
+// (render::billboard_air_closed_form, per particle) and the terrain's
+// (render::air_closed_form per pixel, render::vertex_air_closed_form per vertex) import
+// it with their own groups.
 #import render::air_segment
 #import atmos::closed_form_sky
 

@@ -1,8 +1,10 @@
 // Rung 2, single scattering, over a segment (render::air_segment):
 // atmos::single_scattering's in-scatter and transmittance of the segment for one light.
 // No bindings and no override constants: the clouds' air pass
-// (render::cloud_air_single, per pixel) and the billboards' (render::billboard_air_single,
-// per particle) import it with their own groups and pass their sample counts.
+// (render::cloud_air_single, per pixel), the billboards' (render::billboard_air_single,
+// per particle) and the terrain's (render::air_single per pixel,
+// render::vertex_air_single per vertex) import it with their own groups and pass their
+// sample counts.
 #import render::air_segment
 #import atmos::single_scattering
 

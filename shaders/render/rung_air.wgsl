@@ -1,14 +1,15 @@
 // The aerial perspective of the terrain for a rung without tables, per pixel in a
 // compute pass over the drawn frame (render::air_closed_form, render::air_single): where
 // the terrain's reverse-z depth shows a surface, the segment camera → surface along the
-// pixel's ray (the CPU's SkyQuery::with_max_distance to the hit) gives the rung's
-// transmittance and in-scatter, and the pixel becomes surface × transmittance +
-// in-scatter (the moon's in-scatter added on a moonlit night; its atmosphere differs
-// from the sun's in irradiance only, so the transmittance is the same). Sky pixels are
-// copied. Bindings in group 0; the rung's parameters in group 1.
+// pixel's ray (render::air_segment; the CPU's SkyQuery::with_max_distance to the hit)
+// gives the rung's transmittance and in-scatter, and the pixel becomes surface ×
+// transmittance + in-scatter (the moon's in-scatter added on a moonlit night; its
+// atmosphere differs from the sun's in irradiance only, so the transmittance is the
+// same). Sky pixels are copied. Bindings in group 0; the rung's parameters in group 1.
 // Twin: render::cpu_renderer's shade_terrain (surface × T + L of the segment model).
 #import atmos::frame
 #import render::scene_distance
+#import render::air_segment
 
 // Layout identical to render::gpu::rungs::RungAirUniform.
 struct RungAir {
@@ -31,34 +32,25 @@ struct RungAir {
 @group(0) @binding(2) var air_surface: texture_2d<f32>;
 @group(0) @binding(3) var air_out: texture_storage_2d<rgba16float, write>;
 
-// A pixel's segment: the camera's radius, the view's zenith cosine, the distance to the
-// surface (0: the sky) and the view direction.
-struct AirSegment {
-    r: f32,
-    mu: f32,
-    distance: f32,
-    view: vec3<f32>,
-    up: vec3<f32>,
-}
-
-fn air_segment(pixel: vec2<u32>) -> AirSegment {
+// A pixel's segment (render::air_segment): camera → the surface along the pixel's ray,
+// of no length on the sky. Its `index` is unused (0): the pass writes the pixel of a
+// texture (air_store).
+fn rung_air_segment(pixel: vec2<u32>) -> AirSegment {
     let depth = textureLoad(air_depth, pixel, 0);
     let view = frame_view_direction(pixel, air.camera);
     var distance = 0.0;
     if depth > 0.0 {
         distance = scene_distance_from_depth(depth, view, air.camera.forward, air.near);
     }
-    let r = length(air.camera.position);
-    let up = air.camera.position / r;
-    return AirSegment(r, dot(view, up), distance, view, up);
+    return air_segment(0u, view, distance, air.camera);
 }
 
-// A pixel of the pass: its surface colour (what the terrain pass drew) and its segment;
-// `has_air` is false where the pass has nothing to add (outside the image, or the sky).
+// A pixel of the pass: its surface colour (what the terrain pass drew) and its segment,
+// whose `has_air` is false where the pass has nothing to add (outside the image, or the
+// sky).
 struct AirPixel {
     surface: vec4<f32>,
     segment: AirSegment,
-    has_air: bool,
 }
 
 // The pixel `gid` of the pass's dispatch: outside the image, no air; on the sky (a
@@ -69,12 +61,11 @@ fn air_pixel(gid: vec3<u32>) -> AirPixel {
         return out;
     }
     out.surface = textureLoad(air_surface, gid.xy, 0);
-    out.segment = air_segment(gid.xy);
+    out.segment = rung_air_segment(gid.xy);
     if out.segment.distance <= 0.0 {
         textureStore(air_out, gid.xy, out.surface);
-        return out;
+        out.segment.has_air = false;
     }
-    out.has_air = true;
     return out;
 }
 

@@ -2,7 +2,7 @@
 // tables (render::vertex_air_closed_form, render::vertex_air_single): one invocation per
 // vertex of each drawn tile (x: the tile mesh's vertex, y: the tile), its world position
 // from render::terrain's tile_vertex_world (what the draw's vertex stage computes), the
-// segment camera → vertex in the rung's terms (the CPU's SkyQuery::with_max_distance
+// segment camera → vertex (render::air_segment; the CPU's SkyQuery::with_max_distance
 // from the camera along the vertex's direction, over its distance), written for the
 // draw to interpolate. A compute pass rather than the vertex stage: lavapipe (Mesa
 // 22.3) crashes compiling the closed form's path length and the single-scattering march
@@ -13,6 +13,7 @@
 // segment_to without tables.
 #import render::terrain
 #import render::vertex_air
+#import render::air_segment
 
 @group(0) @binding(4) var<uniform> vertex_air: VertexAirUniform;
 // Two vec4 per vertex (render::vertex_air's vertex_air_index).
@@ -22,49 +23,38 @@
 // The drawn tiles (render::terrain_mesh::Tile: origin, step, skirt as its bits).
 @group(0) @binding(7) var<storage, read> vertex_air_tiles: array<vec4<u32>>;
 
-// The segment camera → a vertex: the camera's radius, the view's zenith cosine, the
-// light's zenith cosine, the view–light cosine and the distance; `valid` is false
-// outside the dispatch's vertices.
-struct VertexAirSegment {
-    r: f32,
-    mu: f32,
-    mu_s: f32,
-    nu: f32,
-    distance: f32,
-    valid: bool,
-}
-
-fn vertex_air_segment(gid: vec3<u32>) -> VertexAirSegment {
-    var out: VertexAirSegment;
+// The segment camera → a vertex (render::air_segment), its `index` the vertex's two
+// vec4 in the segments array (render::vertex_air's vertex_air_index); `has_air` is false
+// outside the dispatch's vertices. A vertex at the camera has a segment of no length
+// (view and zenith cosine 0).
+fn vertex_air_segment(gid: vec3<u32>) -> AirSegment {
+    var s: AirSegment;
     if gid.x >= vertex_air.grid_vertices || gid.y >= vertex_air.tile_count {
-        return out;
+        return s;
     }
     let tile = vertex_air_tiles[gid.y];
     let world = tile_vertex_world(vertex_air_grid[gid.x], tile.xy, tile.z, bitcast<f32>(tile.w));
     let offset = world - terrain.camera;
-    let r = length(vertex_air.camera_position);
-    let up = vertex_air.camera_position / r;
-    out.r = r;
-    out.distance = length(offset);
-    out.mu_s = dot(vertex_air.light, up);
-    if out.distance > 0.0 {
-        let view = offset / out.distance;
-        out.mu = dot(view, up);
-        out.nu = dot(view, vertex_air.light);
+    s.index = vertex_air_index(vertex_air, gid.x, gid.y);
+    s.r = length(vertex_air.camera_position);
+    s.up = vertex_air.camera_position / s.r;
+    s.distance = length(offset);
+    if s.distance > 0.0 {
+        s.view = offset / s.distance;
+        s.mu = dot(s.view, s.up);
     }
-    out.valid = true;
-    return out;
+    s.has_air = true;
+    return s;
 }
 
-// Writes the vertex's segment: `transmittance` and `radiance` (in-scatter); a vertex at
-// the camera has none (transmittance 1, no in-scatter), as on the CPU.
-fn vertex_air_store(gid: vec3<u32>, s: VertexAirSegment, transmittance: vec3<f32>, radiance: vec3<f32>) {
-    let i = vertex_air_index(vertex_air, gid.x, gid.y);
+// Writes the vertex's segment: its transmittance and in-scatter (`air`, the rung's);
+// a vertex at the camera has none (transmittance 1, no in-scatter), as on the CPU.
+fn vertex_air_store(s: AirSegment, air: SegmentAir) {
     if s.distance > 0.0 {
-        vertex_air_segments[i] = vec4<f32>(transmittance, 0.0);
-        vertex_air_segments[i + 1u] = vec4<f32>(radiance, 0.0);
+        vertex_air_segments[s.index] = vec4<f32>(air.transmittance, 0.0);
+        vertex_air_segments[s.index + 1u] = vec4<f32>(air.radiance, 0.0);
     } else {
-        vertex_air_segments[i] = vec4<f32>(1.0, 1.0, 1.0, 0.0);
-        vertex_air_segments[i + 1u] = vec4<f32>(0.0);
+        vertex_air_segments[s.index] = vec4<f32>(1.0, 1.0, 1.0, 0.0);
+        vertex_air_segments[s.index + 1u] = vec4<f32>(0.0);
     }
 }
