@@ -108,6 +108,27 @@
 //! load 4–9, 2026-11-27); from about 4 km on the windowed sweep is the cheaper, and
 //! it is used.
 //!
+//! From `K` = 167 steps (5 km at 30 m on the axes) a maximum distance runs through
+//! the unlimited sweep first: a texel's tangent point on the hull of every sample
+//! ahead is its horizon point over the whole line, and where it lies within `K`
+//! steps it is also the window's (the largest tangent of a set is the largest of any
+//! subset holding it). Only the other texels go through the windowed sweep, whose
+//! hulls are built only where one of them searches, starting from a tangent the
+//! unlimited hull gives: the tangents rise along its vertices up to the horizon
+//! point, so the last vertex within the window has the largest tangent of the
+//! window's samples up to it (the own block's search is skipped when that covers
+//! the block). On the speed-study map the horizon point lies beyond the window for
+//! 35 % of the searched texels at 2 km and 16 % at 6 km (of 16.2 million). That
+//! fraction keeps a window dearer than no limit: within the window their horizon
+//! point lies anywhere (at the window's last sample for about a third of them, at
+//! the last hull vertex within it for 12–18 %, elsewhere for half), and the hull of
+//! the whole line does not lead to it (its vertices' pockets, the hulls each vertex
+//! hid when it was added, reach the window's end about one sample per pocket: 35
+//! pockets per texel at 2 km, 78 at 6 km), so those texels pay for the windowed
+//! sweep on top of the unlimited one. Against the windowed sweep alone this costs
+//! more at 4 km, about the same at 5–12 km (within the noise of a loaded machine)
+//! and 10–25 % less at 20 km (`UNLIMITED_MIN_STEPS` in `horizon_window.rs`).
+//!
 //! The near field of every texel is computed once per azimuth, row by row (step `k`
 //! of a whole row reads one other row at one offset), and looked up as each line is
 //! built.
@@ -498,9 +519,15 @@ fn fl(x: usize) -> f64 {
     x as i64 as f64
 }
 
+/// The angle of the largest tangent `best` (`−∞`: [`NO_HORIZON`]). A zero is `+0`
+/// whatever its sign: `+0` and `−0` tangents tie, and which of them the brute
+/// force's maximum keeps depends on their order along the ray, which the sweeps do
+/// not follow (a `−0` arises only from a `−0` height without curvature).
 fn angle_from_tangent(best: f64) -> f32 {
     if best == f64::NEG_INFINITY {
         NO_HORIZON
+    } else if best == 0.0 {
+        0.0
     } else {
         best.atan() as f32
     }
@@ -543,7 +570,18 @@ fn push_left(g: &[f64], hull: &mut Vec<usize>, p: usize) {
 }
 
 /// The hull sweep over one line.
-fn sweep_line(p: &Profile<'_>, max_steps: usize, g: &mut Vec<f64>, out: &mut [f32]) {
+///
+/// `known`: where its first slice is not NaN, texel `k`'s largest tangent, found
+/// otherwise ([`sweep_line_by_unlimited`]), and such texels only keep the own
+/// block's hull; elsewhere the second slice is the tangent of a sample of the window
+/// (or `−∞`), where the window's maximum starts.
+fn sweep_line(
+    p: &Profile<'_>,
+    max_steps: usize,
+    g: &mut Vec<f64>,
+    known: Option<(&[f64], &[f64])>,
+    out: &mut [f32],
+) {
     let n = p.h.len();
     g.clear();
     g.extend(p.h.iter().enumerate().map(|(i, &h)| {
@@ -588,10 +626,20 @@ fn sweep_line(p: &Profile<'_>, max_steps: usize, g: &mut Vec<f64>, out: &mut [f3
             while hull.len() >= 2 && not_lower(g, k, hull[hull.len() - 1], hull[hull.len() - 2]) {
                 hull.pop();
             }
+            if let Some((known, _)) = known
+                && !known[k].is_nan()
+            {
+                hull.push(k);
+                out[k] = angle_from_tangent(known[k]);
+                continue;
+            }
             if let Some(&j) = hull.last() {
                 best = best.max(p.tangent(k, j));
             }
             hull.push(k);
+            if let Some((_, lower)) = known {
+                best = best.max(lower[k]);
+            }
             // Part B: prefix of the next block up to k + K, searched only when its
             // highest sample, at its nearest distance, could rise above part A's.
             if has_next {
@@ -650,6 +698,55 @@ fn sweep_line(p: &Profile<'_>, max_steps: usize, g: &mut Vec<f64>, out: &mut [f3
         }
         block_start -= block;
     }
+}
+
+/// [`sweep_line`] with a maximum distance of `max_steps` (`1 ≤ K < n − 1`) through
+/// the unlimited sweep: the horizon point over the whole line ahead is the hull
+/// neighbour of `k` (Timonen–Westerholm); when it lies within `K` steps it is also
+/// the window's (the largest tangent of a set is the largest of any subset holding
+/// it). Only the other texels go through the windowed sweep.
+fn sweep_line_by_unlimited(
+    p: &Profile<'_>,
+    max_steps: usize,
+    g: &mut Vec<f64>,
+    [known, lower]: [&mut Vec<f64>; 2],
+    out: &mut [f32],
+) {
+    let n = p.h.len();
+    let mut hull: Vec<usize> = Vec::new();
+    g.clear();
+    g.extend(p.h.iter().enumerate().map(|(i, &h)| {
+        let s = fl(i) * p.step;
+        h - s * s * p.inv_two_r
+    }));
+    known.clear();
+    known.resize(n, f64::NAN);
+    lower.clear();
+    lower.resize(n, f64::NEG_INFINITY);
+    for k in (0..n).rev() {
+        let b = k.saturating_add(max_steps);
+        // The vertices `k` pops are the hull's up to its tangent point, nearest first
+        // (the tangents rise along them): `p_m`, the last within the window, has
+        // the largest tangent of the window's samples up to it.
+        let mut p_m = None;
+        while hull.len() >= 2 && not_lower(g, k, hull[hull.len() - 1], hull[hull.len() - 2]) {
+            let q = hull.pop().expect("two points");
+            if q <= b {
+                p_m = Some(q);
+            }
+        }
+        match hull.last() {
+            None => known[k] = f64::NEG_INFINITY,
+            Some(&j) if j <= b => known[k] = p.tangent(k, j),
+            Some(_) => {
+                if let Some(q) = p_m {
+                    lower[k] = p.tangent(k, q);
+                }
+            }
+        }
+        hull.push(k);
+    }
+    sweep_line(p, max_steps, g, Some((known, lower)), out);
 }
 
 /// The first `i < len` with `pred(i)`, `pred` monotone (false, then true) on
@@ -781,6 +878,13 @@ struct LineScratch {
     /// (sample, added, popped count) per sample offered to the prefix hull.
     undo_log: Vec<(usize, bool, usize)>,
     popped: Vec<usize>,
+    /// Per view: its largest tangent where the unlimited sweep found it, else NaN
+    /// ([`Sampler::sweep_by_unlimited`]).
+    known: Vec<f64>,
+    /// Per view whose `known` is NaN: where its window's maximum starts (the near
+    /// field, or a larger tangent of a window sample) and the last sample up to which
+    /// that is the window's maximum (none: `0`).
+    lower: Vec<(f64, usize)>,
     /// The running maximum of `g` over the next block, from its first sample: the
     /// bound that lets a window skip its part-B search.
     prefix_max: Vec<f64>,
@@ -796,6 +900,9 @@ struct Sampler<'a> {
     max_steps: usize,
     /// Every texel's near field, dominant-major ([`Sampler::near_field`]).
     near: Vec<f64>,
+    /// A maximum distance runs through the unlimited sweep
+    /// ([`Sampler::sweep_by_unlimited`]) rather than the windowed one.
+    by_unlimited: bool,
 }
 
 impl<'a> Sampler<'a> {
@@ -806,6 +913,7 @@ impl<'a> Sampler<'a> {
             inv_two_r,
             max_steps,
             near: Vec::new(),
+            by_unlimited: false,
         };
         sampler.near = sampler.near_field();
         sampler
@@ -1041,7 +1149,11 @@ impl<'a> Sampler<'a> {
         let n = self.lines.n_dominant;
         let far = self.max_steps.saturating_sub(NEAR_STEPS);
         if far > 0 && self.max_steps < n {
-            self.sweep_windowed(sc);
+            if self.by_unlimited {
+                self.sweep_by_unlimited(sc);
+            } else {
+                self.sweep_windowed(sc, false);
+            }
             return;
         }
         sc.out.clear();
@@ -1087,6 +1199,73 @@ impl<'a> Sampler<'a> {
         }
     }
 
+    /// [`Sampler::sweep`] with a maximum distance (`NEAR_STEPS < K < n`) through the
+    /// unlimited sweep: each texel's tangent point on the hull of every far sample
+    /// ahead is its horizon point over the whole line; when it lies within `K` steps
+    /// it is also the window's (the largest tangent of a set is the largest of any
+    /// subset holding it), as is the near field where no sample ahead can rise above
+    /// it. Only the other texels go through [`Sampler::sweep_windowed`].
+    fn sweep_by_unlimited(&self, sc: &mut LineScratch) {
+        let n = self.lines.n_dominant;
+        let max_steps = self.max_steps;
+        let LineScratch {
+            h,
+            g,
+            views,
+            hull,
+            known,
+            lower,
+            ..
+        } = sc;
+        let g = &g[..];
+        hull.clear();
+        known.clear();
+        known.resize(views.len(), f64::NAN);
+        lower.clear();
+        lower.resize(views.len(), (f64::NEG_INFINITY, 0));
+        let mut next = n;
+        let mut from_right = 0usize;
+        let mut g_max = f64::NEG_INFINITY;
+        for (slot, v) in views.iter().enumerate().rev() {
+            let mut best = v.near;
+            let a = v.i + NEAR_STEPS + 1;
+            if a < n {
+                while next > a {
+                    next -= 1;
+                    if !h[next].is_nan() {
+                        push_left(g, hull, next);
+                        g_max = g_max.max(g[next]);
+                    }
+                }
+                if self.can_rise(v, best, g_max, a, n - 1) && !hull.is_empty() {
+                    let len = hull.len();
+                    let guess = len - 1 - from_right.min(len - 1);
+                    let k = self.tangent_point(g, v, len, guess, |k| hull[len - 1 - k]);
+                    from_right = len - 1 - k;
+                    let j = hull[from_right];
+                    let b = v.i.saturating_add(max_steps);
+                    if j > b {
+                        // The tangents rise along the hull's vertices up to `j`: the
+                        // last within the window, if any, has the largest tangent of
+                        // the window's samples up to it.
+                        let first_out = first_true(k + 1, k, |q| hull[len - 1 - q] > b);
+                        lower[slot] = match first_out.checked_sub(1) {
+                            Some(q) => {
+                                let p_m = hull[len - 1 - q];
+                                (best.max(self.tangent_h(h, v, p_m)), p_m)
+                            }
+                            None => (best, 0),
+                        };
+                        continue;
+                    }
+                    best = best.max(self.tangent_h(h, v, j));
+                }
+            }
+            known[slot] = best;
+        }
+        self.sweep_windowed(sc, true);
+    }
+
     /// `false` when no sample of `[lo, hi]` (`v.i < lo ≤ hi`) whose curvature-
     /// corrected height is at most `g_max` (`−∞` when none) can rise, seen from `v`,
     /// above the tangent `best`: the highest such sample at the nearest distance (at
@@ -1117,7 +1296,10 @@ impl<'a> Sampler<'a> {
     /// window slides back, part B built up to `b` at its first search in a block and
     /// then undone point by point), so a window that cannot beat its near field costs
     /// two comparisons and no hull work.
-    fn sweep_windowed(&self, sc: &mut LineScratch) {
+    ///
+    /// With `use_known`, the views whose `sc.known` is not NaN take it and skip the
+    /// window ([`Sampler::sweep_by_unlimited`]).
+    fn sweep_windowed(&self, sc: &mut LineScratch, use_known: bool) {
         let n = self.lines.n_dominant;
         let far = self.max_steps - NEAR_STEPS;
         sc.out.clear();
@@ -1131,6 +1313,8 @@ impl<'a> Sampler<'a> {
             undo_log,
             popped,
             prefix_max,
+            known,
+            lower,
             out,
         } = sc;
         let g = &g[..];
@@ -1145,6 +1329,15 @@ impl<'a> Sampler<'a> {
         let (mut from_right, mut from_left) = (0usize, 0usize);
         for (slot, v) in views.iter().enumerate().rev() {
             let mut best = v.near;
+            // Part A's samples up to `done` need no search.
+            let mut done = 0;
+            if use_known {
+                if !known[slot].is_nan() {
+                    out[slot] = angle_from_tangent(known[slot]);
+                    continue;
+                }
+                (best, done) = lower[slot];
+            }
             let a = v.i + NEAR_STEPS + 1;
             if a < n {
                 let b = (a + far - 1).min(n - 1);
@@ -1170,7 +1363,7 @@ impl<'a> Sampler<'a> {
                     a_max = a_max.max(g[scan]);
                 }
                 // Part A: the rest of the own block, [a, min(start, n) − 1].
-                if self.can_rise(v, best, a_max, a, start.min(n) - 1) {
+                if done < start.min(n) - 1 && self.can_rise(v, best, a_max, a, start.min(n) - 1) {
                     while next > a {
                         next -= 1;
                         if !h[next].is_nan() {
@@ -1332,6 +1525,18 @@ pub fn bake_horizon(
     options: &HorizonOptions,
     algorithm: Algorithm,
 ) -> Result<HorizonMap, TerrainError> {
+    bake_with(hf, azimuth, options, algorithm, None)
+}
+
+/// [`bake_horizon`], a maximum distance's hull sweep run by `method` where given
+/// (else [`window::choose`]'s).
+fn bake_with(
+    hf: &Heightfield,
+    azimuth: f64,
+    options: &HorizonOptions,
+    algorithm: Algorithm,
+    method: Option<window::Method>,
+) -> Result<HorizonMap, TerrainError> {
     options.validate()?;
     let azimuth = check_azimuth(azimuth)?;
     let lines = Lines::new(hf.width(), hf.height(), hf.spacing(), azimuth);
@@ -1339,7 +1544,12 @@ pub fn bake_horizon(
     let inv_two_r = options.inv_two_r();
     let scale = hf.vertical_scale();
     let samples = hf.samples();
-    if algorithm == Algorithm::HullSweep && window::use_rows(&lines, max_steps) {
+    let method = method.unwrap_or_else(|| window::choose(&lines, max_steps));
+    let by_unlimited = method == window::Method::ByUnlimited;
+    if algorithm == Algorithm::HullSweep
+        && method == window::Method::Rows
+        && window::rows_apply(&lines, max_steps)
+    {
         let grid = lines.dominant_major(hf);
         let angles = window::bake_rows(&lines, &grid, inv_two_r, max_steps, options.thread_count());
         return Ok(HorizonMap::from_angles(
@@ -1357,7 +1567,10 @@ pub fn bake_horizon(
         };
         match algorithm {
             Algorithm::BruteForce => brute_line(&p, max_steps, out),
-            Algorithm::HullSweep => sweep_line(&p, max_steps, g, out),
+            Algorithm::HullSweep if by_unlimited => {
+                sweep_line_by_unlimited(&p, max_steps, g, [&mut Vec::new(), &mut Vec::new()], out)
+            }
+            Algorithm::HullSweep => sweep_line(&p, max_steps, g, None, out),
         }
     };
     if lines.dominant_is_x && lines.offsets.iter().all(|&o| o == 0) {
@@ -1437,7 +1650,9 @@ pub fn bake_horizon(
     let sampler = if lines.exact {
         None
     } else {
-        Some(Sampler::new(&lines, &grid, inv_two_r, max_steps))
+        let mut s = Sampler::new(&lines, &grid, inv_two_r, max_steps);
+        s.by_unlimited = by_unlimited;
+        Some(s)
     };
     // Solves the lines of `chunk` in order, handing each texel's angle to `emit`
     // (texel index, angle) in line order.
@@ -1771,6 +1986,89 @@ mod tests {
                                 bits(brute.angles()),
                                 "{w}x{h}, azimuth {azimuth}, K {max_steps}, {effective_radius:?}, {threads} threads"
                             );
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// A maximum distance baked through the unlimited sweep
+    /// ([`super::window::Method::ByUnlimited`]: the window only for the texels whose
+    /// horizon point over the whole line lies beyond it) and by the windowed sweep
+    /// gives [`super::Algorithm::BruteForce`]'s angles bit for bit: window lengths from
+    /// none to past the map, even and odd azimuths (the axes and diagonals' texel
+    /// lines and the others' line samples), curvature on and off, a generated
+    /// mountain map (horizon points near and far), rough maps, and flat stretches of
+    /// `+0` and `−0` (tied zero tangents), 1 and 3 threads.
+    #[test]
+    fn limited_sweeps_are_brute_force_bit_for_bit() {
+        use super::window::Method;
+        use super::{Algorithm, HorizonOptions, bake_with};
+        let rough = |x: usize, y: usize| {
+            let (x, y) = (x as f32, y as f32);
+            ((x * 1.7 + y * 0.9).sin() * 300.0 + (x * y * 0.37).cos() * 120.0).round() - 60.0
+        };
+        let zeros = |x: usize, y: usize| match (x * 7 + y * 3) % 5 {
+            0 => -0.0,
+            1 | 2 => 0.0,
+            3 => 30.0,
+            _ => 60.0,
+        };
+        let mountains = crate::generate::generate(&crate::generate::GeneratorParams {
+            amplitude: 2000.0,
+            wavelength: 1500.0,
+            octaves: 6,
+            ..crate::generate::GeneratorParams::new(90, 70, 30.0, 2010)
+        })
+        .unwrap();
+        let mut maps = vec![
+            mountains,
+            Heightfield::from_fn(61, 23, 30.0, rough).unwrap(),
+            Heightfield::from_fn(9, 40, 30.0, rough).unwrap(),
+            Heightfield::from_fn(19, 21, 30.0, zeros).unwrap(),
+        ];
+        maps.push(Heightfield::from_fn(40, 3, 30.0, rough).unwrap());
+        let mut azimuths: Vec<f64> = (0..16)
+            .map(|k| k as f64 * std::f64::consts::TAU / 16.0)
+            .collect();
+        azimuths.extend([0.3, 1.0, 2.2, 3.9, 5.5, 0.05]);
+        let bits = |a: &[f32]| a.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        for hf in &maps {
+            for &azimuth in &azimuths {
+                let step = Lines::new(hf.width(), hf.height(), hf.spacing(), azimuth).step;
+                for max_steps in [0, 1, 3, NEAR_STEPS, 5, 6, 9, 17, 30, 55, 89, 200] {
+                    for effective_radius in [None, Some(6.371e6)] {
+                        let options = HorizonOptions {
+                            effective_radius,
+                            max_distance: Some(max_steps as f64 * step),
+                            threads: std::num::NonZeroUsize::new(1),
+                        };
+                        let brute =
+                            bake_with(hf, azimuth, &options, Algorithm::BruteForce, None).unwrap();
+                        for method in [Method::Windowed, Method::ByUnlimited] {
+                            for threads in [1, 3] {
+                                let options = HorizonOptions {
+                                    threads: std::num::NonZeroUsize::new(threads),
+                                    ..options
+                                };
+                                let sweep = bake_with(
+                                    hf,
+                                    azimuth,
+                                    &options,
+                                    Algorithm::HullSweep,
+                                    Some(method),
+                                )
+                                .unwrap();
+                                assert_eq!(
+                                    bits(sweep.angles()),
+                                    bits(brute.angles()),
+                                    "{}x{}, azimuth {azimuth}, K {max_steps}, \
+                                     {effective_radius:?}, {method:?}, {threads} threads",
+                                    hf.width(),
+                                    hf.height()
+                                );
+                            }
                         }
                     }
                 }

@@ -17,7 +17,7 @@
 //! maximum is taken from the same start (the near field, or `−∞`) in the same order
 //! of `k`, so the angles are those of [`super::Algorithm::BruteForce`] bit for bit.
 //! The cost is `O(K)` per texel with no branches, against the windowed hull sweep's
-//! two hulls and searches; [`use_rows`] picks it for short windows.
+//! two hulls and searches; [`choose`] picks it for short windows.
 
 use super::{Lines, NEAR_STEPS, Sampler, View, angle_from_tangent, fl, lerp_row};
 
@@ -28,12 +28,54 @@ use super::{Lines, NEAR_STEPS, Sampler, View, angle_from_tangent, fl, lerp_row};
 /// (`K` 200) 3.3–4.1 s against 2.1–2.2 s.
 pub(crate) const ROW_MAX_STEPS: usize = 128;
 
-/// `true` when a bake with `max_steps` (`K`) runs row by row: a window shorter than
-/// the lines (the windowed sweep's case) with far samples, and `K` at most
-/// [`ROW_MAX_STEPS`].
-pub(crate) fn use_rows(lines: &Lines, max_steps: usize) -> bool {
+/// How a hull-sweep bake with a maximum distance is run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Method {
+    /// Row by row ([`bake_rows`]), where [`rows_apply`] (else as `Windowed`).
+    Rows,
+    /// The unlimited sweep, whose horizon point is the window's where it lies
+    /// within it; the windowed sweep for the other texels only.
+    ByUnlimited,
+    /// The windowed hull sweep for every texel (the unlimited one where the window
+    /// reaches the lines' ends).
+    Windowed,
+}
+
+/// `true` when [`bake_rows`] can bake a maximum distance of `max_steps` (`K`): a
+/// window shorter than the lines, with far samples.
+pub(crate) fn rows_apply(lines: &Lines, max_steps: usize) -> bool {
     let first = if lines.exact { 1 } else { NEAR_STEPS + 1 };
-    max_steps >= first && max_steps < lines.n_dominant - 1 && max_steps <= ROW_MAX_STEPS
+    max_steps >= first && max_steps < lines.n_dominant - 1
+}
+
+/// Fewest steps `K` for which a limited bake runs through the unlimited sweep
+/// ([`Method::ByUnlimited`]) rather than the windowed one (`K` is per azimuth: at
+/// 6 km, 200 on the axes, 184 at 22.5° off them, 141 on the diagonals). Measured on
+/// the 1024² speed-study map (`examples/horizon_speed.rs`, 16 azimuths, 1 thread,
+/// CPU time, one build with a temporary switch of method, the methods alternately
+/// in their own processes, load 4–9, 2026-11-27): 4 km 2.40–2.46 s through the
+/// unlimited sweep against 1.95–2.06 s windowed; 5 km 2.00–2.76 s against
+/// 1.72–2.62 s; 6 km 1.82–2.74 s (median 2.10) against 1.75–2.60 s (2.22); 8 km
+/// 1.84–2.35 s (2.03) against 1.77–2.51 s (2.00); 12 km 1.86–2.37 s (2.03) against
+/// 2.01–2.57 s (2.37); 20 km 1.65–2.10 s against 2.20–2.39 s. The crossover lies
+/// about 5 km (`K` 166 on the axes); up to 12 km the difference is within the
+/// noise of a loaded machine.
+pub(crate) const UNLIMITED_MIN_STEPS: usize = 167;
+
+/// How [`super::bake_horizon`]'s hull sweep runs a maximum distance of `max_steps`
+/// (`K`): row by row up to [`ROW_MAX_STEPS`], through the unlimited sweep from
+/// [`UNLIMITED_MIN_STEPS`], windowed in between; a window as long as the lines is
+/// no limit (`Windowed`: the sweep of whole lines).
+pub(crate) fn choose(lines: &Lines, max_steps: usize) -> Method {
+    if max_steps >= lines.n_dominant.saturating_sub(1) {
+        Method::Windowed
+    } else if max_steps <= ROW_MAX_STEPS {
+        Method::Rows
+    } else if max_steps >= UNLIMITED_MIN_STEPS {
+        Method::ByUnlimited
+    } else {
+        Method::Windowed
+    }
 }
 
 /// `f64::max` as the brute force's is compiled (`t` replaces the running maximum
