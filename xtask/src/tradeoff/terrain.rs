@@ -974,6 +974,12 @@ fn study_markdown(md: &mut String, studies: &Studies, c: &Context<'_>) {
                 .map_or("–".into(), |m| format!("{:.0}×", m / r.sweep_seconds))
         );
     }
+    let _ = writeln!(
+        md,
+        "\nEach maximum distance's method, and a 1-thread comparison of each against none: \
+         [`terrain_max_distance.md`](terrain_max_distance.md) (written by hand, not by this \
+         command)."
+    );
 }
 
 fn azimuth_json(rows: &[AzimuthRow], speed: &[SpeedRow]) -> String {
