@@ -27,9 +27,9 @@
 //! error of the maps' shadowing alone. Radiance is the clouds' own over black, no air (the air is
 //! exact, module docs); LSB after the scene's exposure, tone map and sRGB, no dither.
 //!
-//! `cargo test -p render --test cloud_overlap -- --nocapture` prints the figures (267 s
-//! in the debug test build on 2 cores at load 7; 80 s unloaded before the maps' two
-//! marches per pixel were added).
+//! `cargo test -p render --test cloud_overlap -- --nocapture` prints the figures (88 s
+//! in the debug test build on 2 cores at load 2–4, the maps' two marches per pixel
+//! included; 267 s at load 7).
 
 use cloudlight::DensityField;
 use cloudlight::march::{
