@@ -9,7 +9,7 @@
 //! checks the GPU's shadowed fraction against terrain's CPU twin.
 //!
 //! ```sh
-//! cargo run --release -p terrain --example drop_in
+//! cargo run --release -p terrain --example terrain_drop_in
 //! ```
 
 use glam::{Mat4, Vec3, Vec4};

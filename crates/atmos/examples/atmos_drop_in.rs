@@ -7,7 +7,7 @@
 //! groups this program chose. Headless; writes `target/atmos-examples/drop_in.png`.
 //!
 //! ```sh
-//! cargo run --release -p atmos --example drop_in
+//! cargo run --release -p atmos --example atmos_drop_in
 //! ```
 
 use atmos::Atmosphere;
