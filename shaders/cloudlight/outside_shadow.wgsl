@@ -1,12 +1,9 @@
 // Another cloud's shadow on a march (bindings 8 and 9 of the march passes'
 // group 0): its shadow map toward the march's light, read where a view sample's light
 // ray meets the map's plane, as the optical depth above the sample added to the light
-// march's. Twins: render::mutual_shadow::ShadowOnCloud::depth_at (the map's bilinear
-// lookup, render::volume_clouds::CloudShadow::at, then
-// cloudlight::shadow_map::shadow_depth_above); cloudlight::gpu::OutsideShadow fills
-// the uniform.
+// march's. Twin: cloudlight::shadow_map::OutsideShadowMap::outside_depth (the uniform's
+// fields and the values its own); cloudlight::gpu::OutsideShadow fills the uniform.
 #import cloudlight::shadow_map
-#import cloudlight::slice_propagation
 
 struct OutsideShadowParams {
     // Texel (0, 0)'s corner east, north (m); z: texel edge (m); w: the plane's altitude (m).
@@ -24,13 +21,12 @@ struct OutsideShadowParams {
 // The map's transmittances, east fastest (a placeholder when to_light.w is 0).
 @group(0) @binding(9) var<storage, read> outside_shadow_values: array<f32>;
 
-// Texel (x, y) of the map, 1 outside it.
-fn outside_shadow_value(x: i32, y: i32) -> f32 {
-    let size = vec2<i32>(outside_shadow.size.xy);
-    if x < 0 || y < 0 || x >= size.x || y >= size.y {
+// The map's value at flat index `index` (shadow_map_taps), 1 for −1 (outside it).
+fn outside_shadow_value(index: i32) -> f32 {
+    if index < 0 {
         return 1.0;
     }
-    return outside_shadow_values[u32(x + size.x * y)];
+    return outside_shadow_values[u32(index)];
 }
 
 // The casting cloud's optical depth toward the light above the march's sample `p` (the
@@ -42,9 +38,7 @@ fn outside_depth(p: vec3<f32>) -> f32 {
     let point = vec3<f32>(p.x, p.y, p.z - outside_shadow.extent.z);
     let grid = outside_shadow.grid;
     let texel = shadow_map_texel(point, outside_shadow.to_light.xyz, grid.w, grid.xy, grid.z);
-    let f = floor(texel);
-    let i = i32(f.x);
-    let j = i32(f.y);
-    let value = bilinear(outside_shadow_value(i, j), outside_shadow_value(i + 1, j), outside_shadow_value(i, j + 1), outside_shadow_value(i + 1, j + 1), texel.x - f.x, texel.y - f.y);
+    let taps = shadow_map_taps(texel, outside_shadow.size.xy);
+    let value = shadow_map_bilinear(vec4<f32>(outside_shadow_value(taps.index.x), outside_shadow_value(taps.index.y), outside_shadow_value(taps.index.z), outside_shadow_value(taps.index.w)), taps.fraction);
     return shadow_depth_above(value, point.z, outside_shadow.extent.x, outside_shadow.extent.y);
 }

@@ -2,6 +2,7 @@
 // through the volume's box, the march's sample points and a span's optical depth.
 // Twin: cloudlight::shadow_map (Rust, generic over the float type: the f32 instantiation
 // mirrors these operations).
+#import cloudlight::slice_propagation
 
 // Ground point of texel (i, j): (x0 + (i + ½)·cell, y0 + (j + ½)·cell, ground_height).
 fn shadow_texel_centre(texel: vec2<u32>, origin: vec2<f32>, cell_size: f32, ground_height: f32) -> vec3<f32> {
@@ -76,4 +77,37 @@ fn shadow_map_texel(point: vec3<f32>, to_light: vec3<f32>, plane: f32, origin: v
     let x = point.x + t * to_light.x;
     let y = point.y + t * to_light.y;
     return vec2<f32>((x - origin.x) / cell_size - 0.5, (y - origin.y) / cell_size - 0.5);
+}
+
+// The four texels a shadow map's bilinear lookup reads: flat indices (east fastest) of
+// texels (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1), i = ⌊x⌋, j = ⌊y⌋, −1 for one
+// outside the map (its value 1: no cloud there); and (x − i, y − j).
+struct ShadowMapTaps {
+    index: vec4<i32>,
+    fraction: vec2<f32>,
+}
+
+// The texels and fractions of a bilinear lookup between texel centres at texel-centre
+// coordinates `texel` (shadow_map_texel) of a map of `resolution` texels. The caller
+// reads each index's value from its binding (1 for −1), then shadow_map_bilinear.
+fn shadow_map_taps(texel: vec2<f32>, resolution: vec2<u32>) -> ShadowMapTaps {
+    let f = floor(texel);
+    let i = i32(f.x);
+    let j = i32(f.y);
+    let size = vec2<i32>(resolution);
+    var index = vec4<i32>(-1);
+    let x = vec4<i32>(i, i + 1, i, i + 1);
+    let y = vec4<i32>(j, j, j + 1, j + 1);
+    for (var k = 0; k < 4; k++) {
+        if x[k] >= 0 && y[k] >= 0 && x[k] < size.x && y[k] < size.y {
+            index[k] = x[k] + size.x * y[k];
+        }
+    }
+    return ShadowMapTaps(index, texel - f);
+}
+
+// The lookup's value from its four texels' values (in ShadowMapTaps.index's order, 1 for
+// a texel outside the map) at `fraction`: cloudlight's bilinear.
+fn shadow_map_bilinear(values: vec4<f32>, fraction: vec2<f32>) -> f32 {
+    return bilinear(values.x, values.y, values.z, values.w, fraction.x, fraction.y);
 }

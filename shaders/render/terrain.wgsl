@@ -12,7 +12,7 @@
 #import terrain::shadow
 #import render::terrain_shading
 #import celestial::clouds
-#import cloudlight::slice_propagation
+#import cloudlight::shadow_map
 #import render::volume_shadow
 
 struct TerrainUniform {
@@ -150,26 +150,25 @@ fn cloud_shadow_at(offset: vec3<f32>) -> f32 {
     return shadow;
 }
 
-fn volume_shadow_value(map: VolumeShadowUniform, x: i32, y: i32) -> f32 {
-    let size = vec2<i32>(map.resolution);
-    if x < 0 || y < 0 || x >= size.x || y >= size.y {
+// The map's value at flat index `index` (cloudlight's shadow_map_taps), 1 for −1
+// (outside it).
+fn volume_shadow_value(map: VolumeShadowUniform, index: i32) -> f32 {
+    if index < 0 {
         return 1.0;
     }
-    return volume_shadow_values[map.offset + u32(x + size.x * y)];
+    return volume_shadow_values[map.offset + u32(index)];
 }
 
 // One cloud's shadow at world position `world` (x east, y up, z south). Twin:
-// render::volume_clouds::CloudShadow::at (the same map, bilinear between texel centres
-// with cloudlight's bilinear, 1 outside it).
+// render::volume_clouds::CloudShadow::at (the same map; cloudlight's lookup,
+// shadow_map_taps then shadow_map_bilinear: between texel centres, 1 outside it).
 fn shadow_map_at(map: VolumeShadowUniform, world: vec3<f32>) -> f32 {
     if map.enabled == 0u {
         return 1.0;
     }
     let texel = volume_shadow_texel(vec3<f32>(world.x, -world.z, world.y), map.to_sun, map.plane, map.origin, map.cell_size);
-    let f = floor(texel);
-    let i = i32(f.x);
-    let j = i32(f.y);
-    return bilinear(volume_shadow_value(map, i, j), volume_shadow_value(map, i + 1, j), volume_shadow_value(map, i, j + 1), volume_shadow_value(map, i + 1, j + 1), texel.x - f.x, texel.y - f.y);
+    let taps = shadow_map_taps(texel, map.resolution);
+    return shadow_map_bilinear(vec4<f32>(volume_shadow_value(map, taps.index.x), volume_shadow_value(map, taps.index.y), volume_shadow_value(map, taps.index.z), volume_shadow_value(map, taps.index.w)), taps.fraction);
 }
 
 // The marched clouds' shadow at `world`: the volume's times the shell's. Twin:

@@ -286,6 +286,110 @@ pub fn shadow_map_texel<F: Real>(
     ]
 }
 
+/// The four texels a shadow map's bilinear lookup reads ([`shadow_map_taps`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShadowMapTaps<F> {
+    /// Flat indices (east fastest) of texels `(i, j)`, `(i + 1, j)`, `(i, j + 1)`,
+    /// `(i + 1, j + 1)`, `i = ⌊x⌋`, `j = ⌊y⌋`; −1 for a texel outside the map (its value
+    /// 1: no cloud there).
+    pub index: [i64; 4],
+    /// `(x − i, y − j)`.
+    pub fraction: [F; 2],
+}
+
+/// The texels and fractions of a bilinear lookup between texel centres at texel-centre
+/// coordinates `texel` ([`shadow_map_texel`]) of a map of `resolution` texels. The
+/// caller reads each index's value from its map (1 for −1) and blends them with
+/// [`shadow_map_bilinear`]; [`shadow_map_lookup`] is the two over a slice. Used by the
+/// terrain's lookup (`render::volume_clouds::CloudShadow::at`, `shaders/render/
+/// terrain.wgsl`'s `shadow_map_at`) and another cloud's ([`OutsideShadowMap`]). WGSL
+/// twin `shadow_map_taps` (indices in `i32` there: a texel coordinate beyond ±2³¹ is
+/// outside the map on both).
+pub fn shadow_map_taps<F: Real>(texel: [F; 2], resolution: [u32; 2]) -> ShadowMapTaps<F> {
+    let (fx, fy) = (texel[0].floor(), texel[1].floor());
+    let to_index = |f: F| f.to_f64().unwrap_or(f64::NAN) as i64;
+    let (i, j) = (to_index(fx), to_index(fy));
+    let [w, h] = resolution.map(i64::from);
+    let at = |x: i64, y: i64| {
+        if x < 0 || y < 0 || x >= w || y >= h {
+            -1
+        } else {
+            x + w * y
+        }
+    };
+    ShadowMapTaps {
+        index: [at(i, j), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1)],
+        fraction: [texel[0] - fx, texel[1] - fy],
+    }
+}
+
+/// The lookup's value from its four texels' `values` (in [`ShadowMapTaps::index`]'s
+/// order, 1 for a texel outside the map) at `fraction`: cloudlight's bilinear
+/// ([`crate::propagate::bilinear`]). WGSL twin `shadow_map_bilinear`.
+pub fn shadow_map_bilinear<F: Real>(values: [F; 4], fraction: [F; 2]) -> F {
+    crate::propagate::bilinear(
+        values[0],
+        values[1],
+        values[2],
+        values[3],
+        fraction[0],
+        fraction[1],
+    )
+}
+
+/// A shadow map's value at texel-centre coordinates `texel`: [`shadow_map_taps`] read
+/// from `values` (`resolution` texels, east fastest; 1 outside the map), then
+/// [`shadow_map_bilinear`]. On the GPU each caller reads its own binding between the
+/// two (WGSL passes no storage array to a function).
+pub fn shadow_map_lookup<F: Real>(values: &[F], resolution: [u32; 2], texel: [F; 2]) -> F {
+    let taps = shadow_map_taps(texel, resolution);
+    let value = |index: i64| usize::try_from(index).map_or(F::one(), |k| values[k]);
+    shadow_map_bilinear(taps.index.map(value), taps.fraction)
+}
+
+/// Another cloud's shadow map as a march reads it (`march::march_view_lit_through`'s
+/// `outside_depth`): the CPU twin of `shaders/cloudlight/outside_shadow.wgsl`'s uniform
+/// and values (`gpu::OutsideShadow` fills those from the same fields).
+#[derive(Debug, Clone, Copy)]
+pub struct OutsideShadowMap<'a, F> {
+    /// East, north of texel (0, 0)'s corner (m).
+    pub origin: [F; 2],
+    /// Texel edge (m).
+    pub cell_size: F,
+    /// Texels east × north.
+    pub resolution: [u32; 2],
+    /// The map plane's altitude (m).
+    pub plane: F,
+    /// Unit direction toward the map's light (east/north/up).
+    pub to_light: [F; 3],
+    /// The casting cloud's base and top altitude (m), `base < top`.
+    pub extent: [F; 2],
+    /// The march frame's height of altitude 0 (0 about the ground, the planet's radius
+    /// in a planet-centred frame).
+    pub frame_height: F,
+    /// The map's transmittances, east fastest.
+    pub values: &'a [F],
+}
+
+impl<F: Real> OutsideShadowMap<'_, F> {
+    /// The casting cloud's optical depth toward the light above the march's sample `p`
+    /// (the march's frame): `p` lowered by `frame_height`, [`shadow_map_texel`],
+    /// [`shadow_map_lookup`], then [`shadow_depth_above`]. WGSL twin `outside_depth`
+    /// (`shaders/cloudlight/outside_shadow.wgsl`, its map the bound uniform).
+    pub fn outside_depth(&self, p: [F; 3]) -> F {
+        let point = [p[0], p[1], p[2] - self.frame_height];
+        let texel = shadow_map_texel(
+            point,
+            self.to_light,
+            self.plane,
+            self.origin,
+            self.cell_size,
+        );
+        let value = shadow_map_lookup(self.values, self.resolution, texel);
+        shadow_depth_above(value, point[2], self.extent[0], self.extent[1])
+    }
+}
+
 /// The smallest transmittance [`shadow_depth_above`] reads from a map: an opaque texel
 /// (0, its τ saturated) counts as optical depth `−ln 1e-30 ≈ 69`, so the result stays
 /// finite (the light through it is `e^{−69}`, 0 to every channel's precision).

@@ -10,15 +10,18 @@
 //! along the light ray, stored on a flat plane at the cloud's base
 //! ([`crate::volume_clouds::CloudShadow`]). A view sample of cloud A at east/north/up
 //! point `p` (altitude `h`) reads cloud B's map where its light ray meets B's plane (the
-//! terrain's lookup, [`CloudShadow::at`]) and adds to its light march's optical depth
+//! terrain's lookup, [`CloudShadow::at`]: cloudlight's `shadow_map_texel` and
+//! `shadow_map_lookup`) and adds to its light march's optical depth
 //! `τ_l` (before the octaves and the powder, as one march over both clouds does:
 //! `cloudlight::union::UnionField`)
 //!
 //! `τ_B = −ln max(T_B, 1e-30) · f²`, `f = clamp((top_B − h)/(top_B − base_B), 0, 1)`
 //!
-//! (`cloudlight::shadow_map::shadow_depth_above`, WGSL twin of the same name;
-//! `cloudlight::march::march_view_lit_through` adds it, on the GPU the
-//! `outside_depth` of `shaders/cloudlight/outside_shadow.wgsl` in both march passes).
+//! (`cloudlight::shadow_map::shadow_depth_above`, WGSL twin of the same name; the
+//! lookup and it together are `cloudlight::shadow_map::OutsideShadowMap::outside_depth`,
+//! [`ShadowOnCloud::outside`], whose WGSL twin `outside_depth` in
+//! `shaders/cloudlight/outside_shadow.wgsl` both GPU march passes call;
+//! `cloudlight::march::march_view_lit_through` adds it).
 //! Below B's base it is B's whole column along the light, exact up to the map's
 //! sampling (clear air between `p` and the plane); above B's top it is 0. **Approximate
 //! inside B's altitudes** (a cumulus reaching into the deck): the map holds B's whole
@@ -54,6 +57,7 @@
 //! branch per view sample.
 
 use cloudlight::march::{Lighting, MarchResult, PinholeCamera};
+use cloudlight::shadow_map::OutsideShadowMap;
 use cloudlight::{CloudShell, CloudVolume};
 
 use crate::shell_clouds::PreparedShell;
@@ -73,17 +77,30 @@ pub struct ShadowOnCloud<'a> {
     pub extent: [f32; 2],
 }
 
-impl ShadowOnCloud<'_> {
+impl<'a> ShadowOnCloud<'a> {
+    /// The map as a march in a frame whose altitude 0 lies at height `frame_height`
+    /// reads it (0 for the volume's frame, the planet's radius for the deck's):
+    /// cloudlight's CPU twin of the GPU march's uniform and values (the GPU's are filled
+    /// from it, [`outside`]).
+    pub fn outside(&self, frame_height: f32) -> OutsideShadowMap<'a, f32> {
+        let map = self.map;
+        OutsideShadowMap {
+            origin: map.origin,
+            cell_size: map.cell_size,
+            resolution: map.resolution,
+            plane: map.plane,
+            to_light: map.to_sun,
+            extent: self.extent,
+            frame_height,
+            values: &map.values,
+        }
+    }
+
     /// The casting cloud's optical depth toward the map's light above `point`
     /// (east/north/up about the camera's ground point, `point[2]` the altitude):
-    /// `shadow_depth_above` of the map's value there (module docs).
+    /// cloudlight's `outside_depth` in the volume's frame (module docs).
     pub fn depth_at(&self, point: [f32; 3]) -> f32 {
-        cloudlight::shadow_map::shadow_depth_above(
-            self.map.at(point),
-            point[2],
-            self.extent[0],
-            self.extent[1],
-        )
+        self.outside(0.0).outside_depth(point)
     }
 }
 
@@ -186,7 +203,7 @@ pub fn march_volume_pixel(
         size,
         pixel,
         max_distance,
-        |p| deck.map_or(0.0, |d| d.depth_at(p)),
+        |p| deck.map_or(0.0, |d| d.outside(0.0).outside_depth(p)),
     )
 }
 
@@ -203,7 +220,7 @@ pub fn march_deck_pixel(
     max_distance: f32,
     volume: Option<ShadowOnCloud<'_>>,
 ) -> MarchResult<f32> {
-    let planet = shell.shell.planet_radius() as f32;
+    let volume = volume.map(|v| v.outside(shell.shell.planet_radius() as f32));
     let result = crate::volume_clouds::march_field_pixel_through(
         &shell.shell,
         &shell.settings,
@@ -212,13 +229,13 @@ pub fn march_deck_pixel(
         size,
         pixel,
         max_distance,
-        |p| volume.map_or(0.0, |v| v.depth_at([p[0], p[1], p[2] - planet])),
+        |p| volume.map_or(0.0, |v| v.outside_depth(p)),
     );
     cloudlight::march::faded(result, shell.shell.horizon_fade(result.depth))
 }
 
 /// The GPU march's view of `shadow` (`cloudlight::gpu::OutsideShadow`, the same map
-/// and lookup as [`ShadowOnCloud::depth_at`]): its values uploaded into a new storage
+/// and lookup as [`ShadowOnCloud::outside`]'s `outside_depth`): its values uploaded into a new storage
 /// buffer (a few thousand texels, once per prepare), and the march frame's height of
 /// altitude 0 `frame_height` (0 for the volume's frame, the planet's radius for the
 /// deck's). `None` without a map.
@@ -247,15 +264,15 @@ pub(crate) fn outside<'a>(
     (shadow, values): &'a (ShadowOnCloud<'_>, wgpu::Buffer),
     frame_height: f32,
 ) -> cloudlight::gpu::OutsideShadow<'a> {
-    let map = shadow.map;
+    let map = shadow.outside(frame_height);
     cloudlight::gpu::OutsideShadow {
         origin: map.origin,
         cell_size: map.cell_size,
         resolution: map.resolution,
         plane: map.plane,
-        to_light: map.to_sun,
-        extent: shadow.extent,
-        frame_height,
+        to_light: map.to_light,
+        extent: map.extent,
+        frame_height: map.frame_height,
         values,
     }
 }

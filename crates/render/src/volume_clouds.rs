@@ -224,29 +224,14 @@ impl CloudShadow {
         })
     }
 
-    /// The transmittance toward the sun at `point` (east/north/up, metres). The WGSL
-    /// twin is `volume_cloud_shadow` in `shaders/render/terrain.wgsl`.
+    /// The transmittance toward the sun at `point` (east/north/up, metres):
+    /// cloudlight's lookup ([`cloudlight::shadow_map::shadow_map_lookup`]: bilinear
+    /// between texel centres, 1 outside the map). The WGSL twin is `shadow_map_at` in
+    /// `shaders/render/terrain.wgsl`.
     pub fn at(&self, point: [f32; 3]) -> f32 {
         let texel =
             volume_shadow_texel(point, self.to_sun, self.plane, self.origin, self.cell_size);
-        let [w, h] = self.resolution.map(|r| r as i64);
-        let (fx, fy) = (texel[0].floor(), texel[1].floor());
-        let (i, j) = (fx as i64, fy as i64);
-        let value = |x: i64, y: i64| -> f32 {
-            if x < 0 || y < 0 || x >= w || y >= h {
-                1.0
-            } else {
-                self.values[(x + w * y) as usize]
-            }
-        };
-        cloudlight::propagate::bilinear(
-            value(i, j),
-            value(i + 1, j),
-            value(i, j + 1),
-            value(i + 1, j + 1),
-            texel[0] - fx,
-            texel[1] - fy,
-        )
+        cloudlight::shadow_map::shadow_map_lookup(&self.values, self.resolution, texel)
     }
 }
 
