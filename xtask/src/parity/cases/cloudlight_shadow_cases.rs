@@ -482,5 +482,106 @@ pub fn cases() -> Vec<Case> {
                       in f64)",
             },
         },
+        Case {
+            name: "cloudlight::shadow_map_taps",
+            imports: &["cloudlight::shadow_map"],
+            arity: (8, 7),
+            // The lookup as its callers write it (render's terrain `shadow_map_at`,
+            // cloudlight's `outside_depth`): the taps, each tap's value (1 outside the
+            // map; here from the inputs, there from a binding), shadow_map_bilinear.
+            wgsl: "let t = shadow_map_taps(vec2<f32>(x0, x1), vec2<u32>(u32(x2), u32(x3))); \
+                   let c = vec4<f32>(x4, x5, x6, x7); var v = vec4<f32>(1.0); \
+                   for (var k = 0; k < 4; k++) { if t.index[k] >= 0 { v[k] = c[k]; } } \
+                   y0 = f32(t.index.x); y1 = f32(t.index.y); y2 = f32(t.index.z); \
+                   y3 = f32(t.index.w); y4 = t.fraction.x; y5 = t.fraction.y; \
+                   y6 = shadow_map_bilinear(v, t.fraction);",
+            grid: || {
+                let mut grid = Vec::new();
+                // Texel coordinates (f32-exact) before, inside, on and past both edges of
+                // maps from one texel to 256 a side; 12 sets of four texel values.
+                let at = |n: f64| {
+                    [-3.0, -1.0, -0.75, -0.5, 0.0, 0.375, 1.0, 1.5]
+                        .into_iter()
+                        .chain([
+                            0.5 * n + 0.125,
+                            n - 2.0,
+                            n - 1.5,
+                            n - 1.0,
+                            n - 0.25,
+                            n + 0.5,
+                        ])
+                };
+                let values = [
+                    [0.0, 0.0, 0.0, 0.0],
+                    [1.0, 1.0, 1.0, 1.0],
+                    [0.0, 1.0, 0.0, 1.0],
+                    [0.25, 0.5, 0.75, 1.0],
+                    [1.0, 0.0, 0.0, 1.0],
+                    [0.9, 0.1, 0.3, 0.7],
+                    [1e-30, 0.5, 1.0, 0.999],
+                    [0.123, 0.456, 0.789, 0.0125],
+                    [0.6, 0.6, 0.2, 0.2],
+                    [0.05, 0.95, 0.35, 0.65],
+                    [1e-6, 1e-3, 0.01, 0.1],
+                    [0.333, 0.667, 0.111, 0.889],
+                ];
+                for [w, h] in [
+                    [1.0, 1.0],
+                    [2.0, 3.0],
+                    [30.0, 29.0],
+                    [56.0, 55.0],
+                    [256.0, 256.0],
+                ] {
+                    for x in at(w) {
+                        for y in at(h) {
+                            for c in values {
+                                grid.push(vec![x, y, w, h, c[0], c[1], c[2], c[3]]);
+                            }
+                        }
+                    }
+                }
+                grid
+            },
+            cpu: |x| {
+                let t = sm::shadow_map_taps([x[0], x[1]], [x[2] as u32, x[3] as u32]);
+                let v = [0, 1, 2, 3].map(|k| if t.index[k] >= 0 { x[4 + k] } else { 1.0 });
+                let mut out: Vec<f32> = t.index.iter().map(|&i| i as f32).collect();
+                out.extend(t.fraction);
+                out.push(sm::shadow_map_bilinear(v, t.fraction));
+                out
+            },
+            reference: |x| {
+                let (i, j, w, h) = (x[0].floor(), x[1].floor(), x[2], x[3]);
+                let inside = |a: f64, b: f64| a >= 0.0 && b >= 0.0 && a < w && b < h;
+                let taps = [(i, j), (i + 1.0, j), (i, j + 1.0), (i + 1.0, j + 1.0)];
+                let index = taps.map(|(a, b)| if inside(a, b) { a + w * b } else { -1.0 });
+                let v = [0, 1, 2, 3].map(|k| if index[k] >= 0.0 { x[4 + k] } else { 1.0 });
+                let (u, t) = (x[0] - i, x[1] - j);
+                let blend = v[0] * (1.0 - u) * (1.0 - t)
+                    + v[1] * u * (1.0 - t)
+                    + v[2] * (1.0 - u) * t
+                    + v[3] * u * t;
+                let mut out = index.to_vec();
+                out.extend([u, t, blend]);
+                out
+            },
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 0.0,
+                // Indices exact (integers below 2^24); x − ⌊x⌋ exact in f32 (the inputs
+                // are f32-exact); the bilinear blend: 1 − f exact for these fractions,
+                // four products and three sums of terms ≤ max |c|: 8u of it.
+                bound: Some(|x| {
+                    let m = x[4..8].iter().fold(1.0f64, |a, c| a.max(c.abs()));
+                    vec![0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 8.0 * U * m]
+                }),
+                why: "indices are integers below 2^24 and x − ⌊x⌋ is exact for the f32-exact \
+                      inputs (0 error); the blend (1 − f)·((1 − u)·c00 + u·c10) + f·(…): \
+                      1 − u and 1 − f exact for these fractions, 4 products and 3 sums of \
+                      terms ≤ max(1, |c|): 8u of it (reference: the four weights' sum in f64)",
+            },
+        },
     ]
 }
