@@ -195,6 +195,7 @@ pub fn march_volume_pixel(
     max_distance: f32,
     deck: Option<ShadowOnCloud<'_>>,
 ) -> MarchResult<f32> {
+    let deck = deck.map(|d| d.outside(0.0));
     crate::volume_clouds::march_field_pixel_through(
         &volume.volume,
         &volume.settings,
@@ -203,7 +204,7 @@ pub fn march_volume_pixel(
         size,
         pixel,
         max_distance,
-        |p| deck.map_or(0.0, |d| d.outside(0.0).outside_depth(p)),
+        |p| deck.map_or(0.0, |d| d.outside_depth(p)),
     )
 }
 
