@@ -80,8 +80,8 @@ pub struct ShadowOnCloud<'a> {
 impl<'a> ShadowOnCloud<'a> {
     /// The map as a march in a frame whose altitude 0 lies at height `frame_height`
     /// reads it (0 for the volume's frame, the planet's radius for the deck's):
-    /// cloudlight's CPU twin of the GPU march's uniform and values (the GPU's are filled
-    /// from it, [`outside`]).
+    /// cloudlight's CPU twin of the GPU march's uniform and values (the GPU renderer
+    /// fills those from it).
     pub fn outside(&self, frame_height: f32) -> OutsideShadowMap<'a, f32> {
         let map = self.map;
         OutsideShadowMap {
