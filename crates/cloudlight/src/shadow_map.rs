@@ -349,9 +349,10 @@ pub fn shadow_map_lookup<F: Real>(values: &[F], resolution: [u32; 2], texel: [F;
 
 /// Another cloud's shadow map as a march reads it (`march::march_view_lit_through`'s
 /// `outside_depth`): the CPU twin of `shaders/cloudlight/outside_shadow.wgsl`'s uniform
-/// and values (`gpu::OutsideShadow` fills those from the same fields).
+/// and values, its values a slice (`V = &[F]`); on the GPU `V` is the storage buffer
+/// that holds them (`gpu::OutsideShadow`, the same fields bound as that uniform).
 #[derive(Debug, Clone, Copy)]
-pub struct OutsideShadowMap<'a, F> {
+pub struct OutsideShadowMap<V, F> {
     /// East, north of texel (0, 0)'s corner (m).
     pub origin: [F; 2],
     /// Texel edge (m).
@@ -368,10 +369,27 @@ pub struct OutsideShadowMap<'a, F> {
     /// in a planet-centred frame).
     pub frame_height: F,
     /// The map's transmittances, east fastest.
-    pub values: &'a [F],
+    pub values: V,
 }
 
-impl<F: Real> OutsideShadowMap<'_, F> {
+impl<V, F> OutsideShadowMap<V, F> {
+    /// The same map with its values held in `values` (a slice on the CPU, the buffer
+    /// the GPU march binds).
+    pub fn with_values<W>(self, values: W) -> OutsideShadowMap<W, F> {
+        OutsideShadowMap {
+            origin: self.origin,
+            cell_size: self.cell_size,
+            resolution: self.resolution,
+            plane: self.plane,
+            to_light: self.to_light,
+            extent: self.extent,
+            frame_height: self.frame_height,
+            values,
+        }
+    }
+}
+
+impl<F: Real> OutsideShadowMap<&[F], F> {
     /// The casting cloud's optical depth toward the light above the march's sample `p`
     /// (the march's frame): `p` lowered by `frame_height`, [`shadow_map_texel`],
     /// [`shadow_map_lookup`], then [`shadow_depth_above`]. WGSL twin `outside_depth`

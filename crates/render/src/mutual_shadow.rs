@@ -82,7 +82,7 @@ impl<'a> ShadowOnCloud<'a> {
     /// reads it (0 for the volume's frame, the planet's radius for the deck's):
     /// cloudlight's CPU twin of the GPU march's uniform and values (the GPU renderer
     /// fills those from it).
-    pub fn outside(&self, frame_height: f32) -> OutsideShadowMap<'a, f32> {
+    pub fn outside(&self, frame_height: f32) -> OutsideShadowMap<&'a [f32], f32> {
         let map = self.map;
         OutsideShadowMap {
             origin: map.origin,
@@ -265,17 +265,7 @@ pub(crate) fn outside<'a>(
     (shadow, values): &'a (ShadowOnCloud<'_>, wgpu::Buffer),
     frame_height: f32,
 ) -> cloudlight::gpu::OutsideShadow<'a> {
-    let map = shadow.outside(frame_height);
-    cloudlight::gpu::OutsideShadow {
-        origin: map.origin,
-        cell_size: map.cell_size,
-        resolution: map.resolution,
-        plane: map.plane,
-        to_light: map.to_light,
-        extent: map.extent,
-        frame_height: map.frame_height,
-        values,
-    }
+    shadow.outside(frame_height).with_values(values)
 }
 
 /// What `skyscape explain` says of the clouds' shadows on each other

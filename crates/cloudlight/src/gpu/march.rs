@@ -37,27 +37,11 @@ const OUTSIDE_PARAMS_BYTES: u64 = 64;
 /// [`crate::march::march_view_lit_through`] with that lookup as its `outside_depth`
 /// (`render::mutual_shadow`). Altitudes are the march frame's height minus
 /// `frame_height`.
-#[derive(Debug, Clone, Copy)]
-pub struct OutsideShadow<'a> {
-    /// East, north of texel (0, 0)'s corner (m).
-    pub origin: [f32; 2],
-    /// Texel edge (m).
-    pub cell_size: f32,
-    /// Texels east × north.
-    pub resolution: [u32; 2],
-    /// The map plane's altitude (m).
-    pub plane: f32,
-    /// Unit direction toward the map's light (east/north/up): the march's light.
-    pub to_light: [f32; 3],
-    /// The casting cloud's base and top altitude (m), `base < top`.
-    pub extent: [f32; 2],
-    /// The march frame's height of altitude 0 (0 for a frame about the ground, the
-    /// planet's radius for the shell's planet-centred one).
-    pub frame_height: f32,
-    /// The map's transmittances, east fastest (usage `STORAGE`, at least
-    /// `4·resolution[0]·resolution[1]` bytes).
-    pub values: &'a wgpu::Buffer,
-}
+///
+/// The fields are [`crate::shadow_map::OutsideShadowMap`]'s, the CPU twin's, with the
+/// values in a buffer: usage `STORAGE`, at least `4·resolution[0]·resolution[1]` bytes,
+/// east fastest.
+pub type OutsideShadow<'a> = crate::shadow_map::OutsideShadowMap<&'a wgpu::Buffer, f32>;
 
 /// The uniform and values bound as bindings 8 and 9: `outside`'s, or a disabled uniform
 /// and a 4-byte placeholder.
