@@ -1,7 +1,8 @@
 // Seed 003's procedural cloud shell (Schneider, GPU Pro 7): the height profiles per
 // cloud type, the density from the shape and detail noise, the density at a
-// planet-centred point, procedural weather, the horizon fade and a ray's spans inside
-// the shell (atmos' stable ray–sphere roots, imported). Twin: cloudlight::shell (Rust,
+// planet-centred point, procedural weather, a weather grid's bilinear lookup, the
+// horizon fade and a ray's spans inside the shell (atmos' stable ray–sphere roots,
+// imported). Twin: cloudlight::shell (Rust,
 // generic over the float type: the f32 instantiation mirrors these operations).
 // Lengths in metres, planet-centred.
 #import atmos::geometry
@@ -97,6 +98,41 @@ fn procedural_weather(xy: vec2<f32>, period: f32, cells: u32, seed: u32, coverag
     let coverage = min(max(coverage_mean + coverage_contrast * (2.0 * n_coverage - 1.0), 0.0), 1.0);
     let cloud_type = min(max(type_mean + type_contrast * (2.0 * n_type - 1.0), 0.0), 1.0);
     return vec2<f32>(coverage, cloud_type);
+}
+
+// The four cells a weather grid's bilinear lookup reads: flat indices (x fastest) of
+// cells (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1) wrapped into the grid,
+// i = ⌊x/cell − ½⌋, j = ⌊y/cell − ½⌋; and the fractions (gx − i, gy − j).
+struct WeatherGridTaps {
+    index: vec4<u32>,
+    fraction: vec2<f32>,
+}
+
+// The cells and fractions of a bilinear lookup of a repeating grid of `size` cells of
+// `cell` metres at xy (metres; cell (i, j)'s centre at ((i + ½)·cell, (j + ½)·cell)).
+// The caller reads each index's (coverage, cloud type) from its binding, then
+// weather_grid_bilinear. i32() saturates, so exact for |xy/cell| < 2³¹.
+fn weather_grid_taps(size: vec2<u32>, cell: f32, xy: vec2<f32>) -> WeatherGridTaps {
+    let gx = xy.x / cell - 0.5;
+    let gy = xy.y / cell - 0.5;
+    let fx = floor(gx);
+    let fy = floor(gy);
+    let n = vec2<i32>(size);
+    let ix = vec2<i32>(i32(fx), i32(fx + 1.0));
+    let iy = vec2<i32>(i32(fy), i32(fy + 1.0));
+    let x = vec2<u32>(((ix % n.x) + n.x) % n.x);
+    let y = vec2<u32>(((iy % n.y) + n.y) % n.y);
+    let index = vec4<u32>(x.x + size.x * y.x, x.y + size.x * y.x, x.x + size.x * y.y, x.y + size.x * y.y);
+    return WeatherGridTaps(index, vec2<f32>(gx - fx, gy - fy));
+}
+
+// The grid's (coverage, cloud type) at `fraction` from its four cells' values (in
+// WeatherGridTaps.index's order): per layer a + ty·(b − a), a = v00 + tx·(v10 − v00),
+// b = v01 + tx·(v11 − v01).
+fn weather_grid_bilinear(values: array<vec2<f32>, 4>, fraction: vec2<f32>) -> vec2<f32> {
+    let a = values[0] + fraction.x * (values[1] - values[0]);
+    let b = values[2] + fraction.x * (values[3] - values[2]);
+    return a + fraction.y * (b - a);
 }
 
 // A ray's parts inside the shell, nearest first: spans[i] = (t_enter, t_exit) for
