@@ -34,7 +34,9 @@ pub(crate) enum Method {
     /// Row by row ([`bake_rows`]), where [`rows_apply`] (else as `Windowed`).
     Rows,
     /// The unlimited sweep, whose horizon point is the window's where it lies
-    /// within it; the windowed sweep for the other texels only.
+    /// within it; the windowed sweep for the other texels only. On the axes and
+    /// diagonals the windowed sweep keeps the unlimited hull itself, so both
+    /// methods are the same sweep there.
     ByUnlimited,
     /// The windowed hull sweep for every texel (the unlimited one where the window
     /// reaches the lines' ends).
