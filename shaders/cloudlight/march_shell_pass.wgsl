@@ -2,7 +2,8 @@
 // per pixel of a pinhole camera (planet-centred metres) marches the view ray through the
 // shell's spans (up to two), lit by a light march toward the sun at every sample (cone
 // 6 + 1 or full), multiple-scattering octaves and an ambient term, then fades the result
-// toward the horizon at its transmittance-weighted depth. The weather is procedural.
+// toward the horizon at its transmittance-weighted depth. The weather is procedural or a
+// user grid (grid.x; its cells in binding 3).
 // Twin: cloudlight::march::render_image::<f32> on a CloudShell, each pixel then
 // march::faded by CloudShell::horizon_fade(depth).
 
@@ -35,7 +36,7 @@ struct ShellMarchParams {
     sun_irradiance: vec4<f32>,
     // Ambient radiance (rgb); w: backward lobe weight.
     ambient: vec4<f32>,
-    // Unit up of the ambient visibility (xyz); w unused.
+    // Unit up of the ambient visibility (xyz); w: the weather grid's cell edge (m).
     ambient_up: vec4<f32>,
     // Octave factors a, b, c; w: 1 when max_distance holds a per-pixel limit, 0 when none.
     octave_abc: vec4<f32>,
@@ -46,6 +47,8 @@ struct ShellMarchParams {
     image: vec4<u32>,
     // Light steps, octave count, powder (0/1), ambient steps.
     counts: vec4<u32>,
+    // Weather kind (0 procedural, 1 grid), the grid's cells along x and y; w unused.
+    grid: vec4<u32>,
 }
 
 @group(0) @binding(0) var<uniform> params: ShellMarchParams;
@@ -54,17 +57,23 @@ struct ShellMarchParams {
 // The distance (m) along each pixel's ray (x fastest) where its march stops; read only
 // when octave_abc.w is 1 (otherwise a placeholder is bound).
 @group(0) @binding(2) var<storage, read> max_distance: array<f32>;
+// The weather grid's (coverage, cloud type) per cell, x fastest; read only when grid.x
+// is 1 (otherwise a one-cell placeholder is bound).
+@group(0) @binding(3) var<storage, read> weather_grid: array<vec2<f32>>;
 
-// The shell's density with the procedural weather at (x, y) (DensityField for CloudShell).
-fn field_density(p: vec3<f32>) -> f32 {
-    let inner = params.shell.x;
-    let outer = params.shell.y;
-    let r = sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
-    if !(r > inner && r < outer) {
-        return 0.0;
+// The weather (coverage, cloud type) at (x, y) (CloudShell::weather_at): procedural, or
+// the grid's taps read from weather_grid then weather_grid_bilinear.
+fn field_weather(xy: vec2<f32>) -> vec2<f32> {
+    if params.grid.x == 1u {
+        let taps = weather_grid_taps(params.grid.yz, params.ambient_up.w, xy);
+        var values: array<vec2<f32>, 4>;
+        for (var k = 0; k < 4; k++) {
+            values[k] = weather_grid[taps.index[k]];
+        }
+        return weather_grid_bilinear(values, taps.fraction);
     }
-    let weather = procedural_weather(
-        p.xy,
+    return procedural_weather(
+        xy,
         params.weather.x,
         params.seeds.z,
         params.seeds.y,
@@ -73,6 +82,17 @@ fn field_density(p: vec3<f32>) -> f32 {
         params.weather.w,
         params.weather_more.x,
     );
+}
+
+// The shell's density with the weather at (x, y) (DensityField for CloudShell).
+fn field_density(p: vec3<f32>) -> f32 {
+    let inner = params.shell.x;
+    let outer = params.shell.y;
+    let r = sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
+    if !(r > inner && r < outer) {
+        return 0.0;
+    }
+    let weather = field_weather(p.xy);
     return shell_density(
         p,
         inner,

@@ -1,5 +1,7 @@
 // The ground's cloud shadow map of a procedural cloud shell: the shadow_map march with
-// the shell's density (procedural weather, evaluated noise) per sample.
+// the shell's density (procedural weather or a user grid, evaluated noise) per sample.
+// The grid's (coverage, cloud type) per cell, x fastest, is this module's binding 2
+// (a pass importing it binds a one-cell placeholder for procedural weather).
 // Twin: cloudlight::shell_shadow (Rust, generic over the float type: the f32
 // instantiation mirrors these operations, and equals shadow_map::shadow_texel::<f32> on
 // a CloudShell bit for bit).
@@ -8,7 +10,8 @@
 #import cloudlight::shell
 #import cloudlight::cone
 
-// A shell with procedural weather (lengths in metres, planet-centred).
+// A shell (lengths in metres, planet-centred); weather_kind 0: the procedural weather's
+// fields, 1: the grid's (grid_size cells of grid_cell_size metres).
 struct ShellField {
     planet_radius: f32,
     inner_radius: f32,
@@ -25,19 +28,26 @@ struct ShellField {
     seed: u32,
     weather_seed: u32,
     weather_cells: u32,
+    weather_kind: u32,
+    grid_size: vec2<u32>,
+    grid_cell_size: f32,
 }
 
-// The shell's density at planet-centred p: zero outside (inner, outer), else
-// shell_density with the procedural weather at (x, y).
-fn shell_field_density(field: ShellField, p: vec3<f32>) -> f32 {
-    let inner = field.inner_radius;
-    let outer = field.outer_radius;
-    let r = sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
-    if !(r > inner && r < outer) {
-        return 0.0;
+@group(0) @binding(2) var<storage, read> shell_weather_grid: array<vec2<f32>>;
+
+// The shell's (coverage, cloud type) at xy (metres): the procedural weather, or the
+// grid's taps read from shell_weather_grid then weather_grid_bilinear.
+fn shell_field_weather(field: ShellField, xy: vec2<f32>) -> vec2<f32> {
+    if field.weather_kind == 1u {
+        let taps = weather_grid_taps(field.grid_size, field.grid_cell_size, xy);
+        var values: array<vec2<f32>, 4>;
+        for (var k = 0; k < 4; k++) {
+            values[k] = shell_weather_grid[taps.index[k]];
+        }
+        return weather_grid_bilinear(values, taps.fraction);
     }
-    let weather = procedural_weather(
-        p.xy,
+    return procedural_weather(
+        xy,
         field.weather_period,
         field.weather_cells,
         field.weather_seed,
@@ -46,6 +56,18 @@ fn shell_field_density(field: ShellField, p: vec3<f32>) -> f32 {
         field.cloud_type_mean,
         field.cloud_type_contrast,
     );
+}
+
+// The shell's density at planet-centred p: zero outside (inner, outer), else
+// shell_density with the weather at (x, y) (shell_field_weather).
+fn shell_field_density(field: ShellField, p: vec3<f32>) -> f32 {
+    let inner = field.inner_radius;
+    let outer = field.outer_radius;
+    let r = sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
+    if !(r > inner && r < outer) {
+        return 0.0;
+    }
+    let weather = shell_field_weather(field, p.xy);
     return shell_density(
         p,
         inner,

@@ -1,5 +1,5 @@
-//! The ground's cloud shadow map of a procedural cloud shell ([`crate::CloudShell`] with
-//! procedural weather): the [`crate::shadow_map`] march with the shell's density
+//! The ground's cloud shadow map of a procedural cloud shell ([`crate::CloudShell`], its
+//! weather procedural or a user grid): the [`crate::shadow_map`] march with the shell's density
 //! evaluated per sample, as `shaders/cloudlight/shell_shadow.wgsl` does on a GPU
 //! ([`crate::gpu::ShellShadowMapPass`]).
 //!
@@ -23,12 +23,22 @@ use crate::shadow_map::{
     SATURATION, ShadowMapPlan, shadow_accumulate, shadow_march_point, shadow_span_optical_depth,
     shadow_texel_centre,
 };
-use crate::shell::{CloudShell, WeatherMap, procedural_weather, shell_density, shell_ray_spans};
+use crate::shell::{
+    CloudShell, WeatherMap, procedural_weather, shell_density, shell_ray_spans,
+    weather_grid_bilinear, weather_grid_taps,
+};
 
-/// A shell with procedural weather, its parameters in the float type (WGSL struct
-/// `ShellField`; the f32 instantiation is what the GPU pass uploads). Lengths in metres,
-/// planet-centred.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// [`ShellField::weather_kind`] of a procedural weather (the `weather_*`, `coverage_*` and
+/// `cloud_type_*` fields).
+pub const WEATHER_PROCEDURAL: u32 = 0;
+/// [`ShellField::weather_kind`] of a user weather grid (the `grid_*` fields).
+pub const WEATHER_GRID: u32 = 1;
+
+/// A shell, its parameters in the float type (WGSL struct `ShellField`; the f32
+/// instantiation is what the GPU pass uploads, the grid's cells going to a storage
+/// buffer). Lengths in metres, planet-centred. The weather is procedural or a user grid
+/// ([`ShellField::weather_kind`]); the other kind's fields are zero.
+#[derive(Debug, Clone, PartialEq)]
 pub struct ShellField<F> {
     /// The planet's radius (a ray stops where it meets the planet).
     pub planet_radius: F,
@@ -60,22 +70,23 @@ pub struct ShellField<F> {
     pub weather_seed: u32,
     /// The weather's lattice cells per period.
     pub weather_cells: u32,
+    /// [`WEATHER_PROCEDURAL`] or [`WEATHER_GRID`].
+    pub weather_kind: u32,
+    /// The weather grid's cells along x and y.
+    pub grid_size: [u32; 2],
+    /// The weather grid's cell edge, metres.
+    pub grid_cell_size: F,
+    /// The weather grid's `[coverage, cloud_type]` per cell, x fastest (empty for a
+    /// procedural weather); on the GPU the storage binding `shell_weather_grid`.
+    pub grid_cells: Vec<[f32; 2]>,
 }
 
-/// Why a shell has no [`ShellField`]: its weather is a grid (the GPU shell passes compute
-/// procedural weather only).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
-#[error("weather = Grid: the shell's shadow map on the GPU supports procedural weather only")]
-pub struct GridWeather;
-
 impl<F: Real> ShellField<F> {
-    /// `shell`'s parameters rounded to `F`; an error for a grid weather map.
-    pub fn of(shell: &CloudShell) -> Result<Self, GridWeather> {
+    /// `shell`'s parameters rounded to `F` (a grid's cells stay f32, as stored).
+    pub fn of(shell: &CloudShell) -> Self {
         let s = shell.settings();
-        let WeatherMap::Procedural(w) = &s.weather else {
-            return Err(GridWeather);
-        };
-        Ok(Self {
+        let zero = F::zero();
+        let mut field = Self {
             planet_radius: F::of(shell.planet_radius()),
             inner_radius: F::of(s.inner_radius),
             outer_radius: F::of(s.outer_radius),
@@ -83,29 +94,60 @@ impl<F: Real> ShellField<F> {
             detail_period: F::of(s.detail_period),
             erosion: F::of(s.erosion),
             extinction_per_density: F::of(s.extinction_per_density),
-            weather_period: F::of(w.period),
-            coverage_mean: F::of(w.coverage_mean),
-            coverage_contrast: F::of(w.coverage_contrast),
-            cloud_type_mean: F::of(w.cloud_type_mean),
-            cloud_type_contrast: F::of(w.cloud_type_contrast),
+            weather_period: zero,
+            coverage_mean: zero,
+            coverage_contrast: zero,
+            cloud_type_mean: zero,
+            cloud_type_contrast: zero,
             seed: s.seed,
-            weather_seed: w.seed,
-            weather_cells: w.cells,
-        })
+            weather_seed: 0,
+            weather_cells: 0,
+            weather_kind: WEATHER_PROCEDURAL,
+            grid_size: [0, 0],
+            grid_cell_size: zero,
+            grid_cells: Vec::new(),
+        };
+        match &s.weather {
+            WeatherMap::Procedural(w) => {
+                field.weather_period = F::of(w.period);
+                field.coverage_mean = F::of(w.coverage_mean);
+                field.coverage_contrast = F::of(w.coverage_contrast);
+                field.cloud_type_mean = F::of(w.cloud_type_mean);
+                field.cloud_type_contrast = F::of(w.cloud_type_contrast);
+                field.weather_seed = w.seed;
+                field.weather_cells = w.cells;
+            }
+            WeatherMap::Grid(g) => {
+                field.weather_kind = WEATHER_GRID;
+                field.grid_size = g.size;
+                field.grid_cell_size = F::of(g.cell_size);
+                field.grid_cells = g
+                    .coverage
+                    .iter()
+                    .zip(&g.cloud_type)
+                    .map(|(&c, &t)| [c, t])
+                    .collect();
+            }
+        }
+        field
     }
 }
 
-/// The shell's density at planet-centred `p`: zero outside `(inner, outer)`, else
-/// [`shell_density`] with the procedural weather at `(x, y)` (the shell's
-/// [`crate::DensityField::density`], op for op). WGSL twin `shell_field_density`.
-pub fn shell_field_density<F: Real>(field: &ShellField<F>, p: [F; 3]) -> F {
-    let (inner, outer) = (field.inner_radius, field.outer_radius);
-    let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
-    if !(r > inner && r < outer) {
-        return F::zero();
+/// The shell's `[coverage, cloud_type]` at horizontal position `xy` (metres): the
+/// procedural weather, or the grid's [`weather_grid_taps`] read from
+/// [`ShellField::grid_cells`] then [`weather_grid_bilinear`] (what
+/// [`CloudShell::weather_at`] computes, op for op). WGSL twin `shell_field_weather` (the
+/// cells from its storage binding).
+pub fn shell_field_weather<F: Real>(field: &ShellField<F>, xy: [F; 2]) -> [F; 2] {
+    if field.weather_kind == WEATHER_GRID {
+        let taps = weather_grid_taps(field.grid_size, field.grid_cell_size, xy);
+        let values = taps
+            .index
+            .map(|k| field.grid_cells[k as usize].map(|v| F::of(f64::from(v))));
+        return weather_grid_bilinear(values, taps.fraction);
     }
-    let [coverage, cloud_type] = procedural_weather(
-        [p[0], p[1]],
+    procedural_weather(
+        xy,
         field.weather_period,
         field.weather_cells,
         field.weather_seed,
@@ -113,7 +155,19 @@ pub fn shell_field_density<F: Real>(field: &ShellField<F>, p: [F; 3]) -> F {
         field.coverage_contrast,
         field.cloud_type_mean,
         field.cloud_type_contrast,
-    );
+    )
+}
+
+/// The shell's density at planet-centred `p`: zero outside `(inner, outer)`, else
+/// [`shell_density`] with the weather at `(x, y)` ([`shell_field_weather`]; the shell's
+/// [`crate::DensityField::density`], op for op). WGSL twin `shell_field_density`.
+pub fn shell_field_density<F: Real>(field: &ShellField<F>, p: [F; 3]) -> F {
+    let (inner, outer) = (field.inner_radius, field.outer_radius);
+    let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+    if !(r > inner && r < outer) {
+        return F::zero();
+    }
+    let [coverage, cloud_type] = shell_field_weather(field, [p[0], p[1]]);
     shell_density(
         p,
         inner,
@@ -206,8 +260,8 @@ mod tests {
     #[test]
     fn the_twin_is_the_generic_march_bit_for_bit() {
         let shell = shell();
-        let field = ShellField::<f32>::of(&shell).unwrap();
-        let field64 = ShellField::<f64>::of(&shell).unwrap();
+        let field = ShellField::<f32>::of(&shell);
+        let field64 = ShellField::<f64>::of(&shell);
         for elevation in [70.0, 25.0, 3.0] {
             let plan = plan(&shell, elevation);
             let generic = shadow_map::<f32, _>(&shell, &plan);
@@ -222,18 +276,32 @@ mod tests {
     }
 
     #[test]
-    fn a_grid_weather_has_no_field() {
+    fn a_grid_weather_twin_is_the_generic_march_bit_for_bit() {
         let earth = atmos::Atmosphere::earth();
         let mut s = ShellSettings::cumulus_over(earth.planet_radius);
+        s.detail_period = 800.0;
+        let (nx, ny) = (5u32, 3u32);
+        let n = (nx * ny) as usize;
         s.weather = WeatherMap::Grid(WeatherGrid {
-            size: [1, 1],
-            cell_size: 1000.0,
-            coverage: vec![0.5],
-            cloud_type: vec![0.5],
+            size: [nx, ny],
+            cell_size: 1700.0,
+            coverage: (0..n).map(|k| [0.9, 0.2, 0.7, 1.0][k % 4]).collect(),
+            cloud_type: (0..n).map(|k| [0.5, 1.0, 0.8][k % 3]).collect(),
             precipitation: None,
         });
         let shell = CloudShell::new(&earth, s).unwrap();
-        let err = ShellField::<f32>::of(&shell).unwrap_err();
-        assert!(err.to_string().starts_with("weather = Grid"), "{err}");
+        let field = ShellField::<f32>::of(&shell);
+        assert_eq!(field.weather_kind, WEATHER_GRID);
+        assert_eq!(field.grid_cells.len(), n);
+        for elevation in [70.0, 25.0] {
+            let plan = plan(&shell, elevation);
+            let twin = shell_shadow_map(&field, &plan);
+            assert_eq!(
+                shadow_map::<f32, _>(&shell, &plan),
+                twin,
+                "sun {elevation}°"
+            );
+            assert!(twin.iter().any(|&t| t < 0.5), "sun {elevation}°: no shadow");
+        }
     }
 }

@@ -38,7 +38,7 @@ fn shell_shadow_map_pass_matches_the_f32_twin() {
         return;
     };
     let shell = stratocumulus();
-    let field = ShellField::<f32>::of(&shell).unwrap();
+    let field = ShellField::<f32>::of(&shell);
     let mut pass = ShellShadowMapPass::new(&gpu.device).unwrap();
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     assert!(matches!(

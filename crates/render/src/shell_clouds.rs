@@ -501,8 +501,8 @@ impl Scene {
         // The shadow maps: only over terrain, only toward a light that is up.
         let started = std::time::Instant::now();
         // Without `cpu_shadow` (a scene prepared for the GPU renderer) only the maps'
-        // grids, unless the GPU cannot bake them (a grid weather map).
-        let on_gpu = !cpu_shadow && cloudlight::shell_shadow::ShellField::<f32>::of(&shell).is_ok();
+        // grids: the GPU bakes them (procedural or grid weather).
+        let on_gpu = !cpu_shadow;
         let shadow_toward = |toward: DVec3| {
             terrain.and_then(|t| {
                 if on_gpu {

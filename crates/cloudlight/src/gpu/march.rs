@@ -18,7 +18,7 @@
 //! lookup is f64 rounded once; the shader's is f32).
 
 use crate::march::{Jitter, LightMarch, Lighting, MarchResult, MarchSettings, PinholeCamera};
-use crate::shell::{ProceduralWeather, WeatherMap};
+use crate::shell_shadow::ShellField;
 use crate::{CloudShell, CloudVolume};
 
 /// Pixels per workgroup along each image axis.
@@ -113,7 +113,7 @@ pub enum MarchGpuError {
         "`{what}` needs {bytes} bytes but the device's max_storage_buffer_binding_size is {limit}"
     )]
     BufferTooLarge {
-        /// `density` or `image`.
+        /// `density`, `image` or `weather grid`.
         what: &'static str,
         /// Its size.
         bytes: u64,
@@ -130,9 +130,6 @@ pub enum MarchGpuError {
         /// `max_compute_workgroups_per_dimension`.
         limit: u32,
     },
-    /// The shell pass computes procedural weather only.
-    #[error("weather = Grid: the GPU shell pass supports procedural weather only")]
-    GridWeather,
     /// The per-pixel distance buffer is too small or cannot be bound as storage.
     #[error(
         "max_distance buffer: {bytes} bytes with usage {usage:?}: needs ≥ {needed} bytes (one f32 per pixel) and STORAGE"
@@ -625,16 +622,17 @@ fn light_words(settings: &MarchSettings) -> (u32, f64, f64, u32, u32) {
     (mode, cone_step, spread, light_steps, jitter)
 }
 
-/// The uniform block of `march_shell_pass.wgsl` (`ShellMarchParams`), as 64 words.
+/// The uniform block of `march_shell_pass.wgsl` (`ShellMarchParams`), as 68 words; the
+/// weather's words from `weather` (the shell's [`ShellField`], procedural or grid).
 fn shell_params_words(
     shell: &CloudShell,
-    weather: &ProceduralWeather,
+    weather: &ShellField<f32>,
     camera: &PinholeCamera,
     size: [u32; 2],
     settings: &MarchSettings,
     lighting: &Lighting<f32>,
     limited: bool,
-) -> [u32; 64] {
+) -> [u32; 68] {
     let c = settings.config();
     let s = shell.settings();
     let f = |x: f64| (x as f32).to_bits();
@@ -674,11 +672,11 @@ fn shell_params_words(
         f(s.horizon_fade_start),
         f(s.horizon_fade_end),
         f(c.transmittance_epsilon),
-        f(weather.period),
-        f(weather.coverage_mean),
-        f(weather.coverage_contrast),
-        f(weather.cloud_type_mean),
-        f(weather.cloud_type_contrast),
+        g(weather.weather_period),
+        g(weather.coverage_mean),
+        g(weather.coverage_contrast),
+        g(weather.cloud_type_mean),
+        g(weather.cloud_type_contrast),
         f(c.albedo),
         f(cone_step),
         f(spread),
@@ -697,14 +695,14 @@ fn shell_params_words(
         g(amb_up[0]),
         g(amb_up[1]),
         g(amb_up[2]),
-        0,
+        g(weather.grid_cell_size),
         f(c.octaves.a),
         f(c.octaves.b),
         f(c.octaves.c),
         g(if limited { 1.0 } else { 0.0 }),
         s.seed,
-        weather.seed,
-        weather.cells,
+        weather.weather_seed,
+        weather.weather_cells,
         c.view_steps,
         size[0],
         size[1],
@@ -714,10 +712,14 @@ fn shell_params_words(
         c.octaves.count,
         u32::from(c.powder),
         c.ambient_steps,
+        weather.weather_kind,
+        weather.grid_size[0],
+        weather.grid_size[1],
+        0,
     ]
 }
 
-const SHELL_PARAMS_BYTES: u64 = 256;
+const SHELL_PARAMS_BYTES: u64 = 272;
 
 #[derive(Debug)]
 struct PreparedShell {
@@ -727,6 +729,7 @@ struct PreparedShell {
     image: wgpu::Buffer,
     _params: wgpu::Buffer,
     _distance: wgpu::Buffer,
+    _weather: wgpu::Buffer,
     _outside: (wgpu::Buffer, wgpu::Buffer),
 }
 
@@ -735,7 +738,9 @@ struct PreparedShell {
 /// [`MarchPass`], each pixel faded toward the horizon at its depth. The f32 CPU twin is
 /// [`render_image::<f32>`](crate::march::render_image) on the shell, each pixel then
 /// [`faded`](crate::march::faded) by [`CloudShell::horizon_fade`] of its depth. The camera
-/// is planet-centred (metres); the weather must be [`WeatherMap::Procedural`].
+/// is planet-centred (metres). The weather is procedural or a user grid
+/// ([`crate::shell::WeatherMap`]; a grid's coverage and cloud type uploaded in `prepare`
+/// to a storage buffer, binding 3, and looked up as [`CloudShell::weather_at`] does).
 #[derive(Debug)]
 pub struct MarchShellPass {
     pipeline: wgpu::ComputePipeline,
@@ -756,6 +761,8 @@ impl MarchShellPass {
                 (Uniform, Some(SHELL_PARAMS_BYTES)),
                 (Storage { read_only: false }, None),
                 (Storage { read_only: true }, None),
+                // The weather grid's cells (a one-cell placeholder for procedural).
+                (Storage { read_only: true }, Some(8)),
             ],
         );
         Ok(Self {
@@ -834,9 +841,7 @@ impl MarchShellPass {
         max_distance: Option<&wgpu::Buffer>,
         outside: Option<&OutsideShadow<'_>>,
     ) -> Result<(), MarchGpuError> {
-        let WeatherMap::Procedural(weather) = &shell.settings().weather else {
-            return Err(MarchGpuError::GridWeather);
-        };
+        let weather = ShellField::<f32>::of(shell);
         let limits = device.limits();
         let mut workgroups = [0u32; 2];
         for (k, (field, value)) in ["size.x", "size.y"].into_iter().zip(size).enumerate() {
@@ -860,9 +865,30 @@ impl MarchShellPass {
                 limit,
             });
         }
+        // The grid's (coverage, cloud type) per cell; one zero cell for procedural weather.
+        let cells: Vec<f32> = if weather.grid_cells.is_empty() {
+            vec![0.0, 0.0]
+        } else {
+            weather.grid_cells.iter().flatten().copied().collect()
+        };
+        let weather_bytes = cells.len() as u64 * 4;
+        if weather_bytes > limit {
+            return Err(MarchGpuError::BufferTooLarge {
+                what: "weather grid",
+                bytes: weather_bytes,
+                limit,
+            });
+        }
+        let weather_grid = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("cloudlight march shell weather grid"),
+            size: weather_bytes,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        queue.write_buffer(&weather_grid, 0, bytemuck::cast_slice(&cells));
         let words = shell_params_words(
             shell,
-            weather,
+            &weather,
             camera,
             size,
             settings,
@@ -908,6 +934,10 @@ impl MarchShellPass {
                     binding: 2,
                     resource: distance.as_entire_binding(),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: weather_grid.as_entire_binding(),
+                },
             ],
         });
         self.prepared = Some(PreparedShell {
@@ -917,6 +947,7 @@ impl MarchShellPass {
             image,
             _params: params,
             _distance: distance,
+            _weather: weather_grid,
             _outside: outside,
         });
         Ok(())

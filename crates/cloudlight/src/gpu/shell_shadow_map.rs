@@ -1,5 +1,7 @@
 //! [`ShellShadowMapPass`]: the ground's cloud shadow map of a procedural cloud shell on a
-//! GPU (`shaders/cloudlight/shell_shadow_map_pass.wgsl`), bring your own device.
+//! GPU (`shaders/cloudlight/shell_shadow_map_pass.wgsl`), bring your own device. The
+//! weather is procedural or a user grid (its cells uploaded in `prepare` to a storage
+//! buffer, binding 2).
 //!
 //! [`ShellShadowMapPass::new`] builds the pipeline; [`ShellShadowMapPass::prepare`]
 //! uploads the shell's parameters ([`ShellField`]) and the plan and creates the output
@@ -23,7 +25,7 @@ use super::shadow_map::SHADOW_WORKGROUP_SIZE;
 use crate::shadow_map::ShadowMapPlan;
 use crate::shell_shadow::ShellField;
 
-const PARAMS_BYTES: u64 = 112;
+const PARAMS_BYTES: u64 = 128;
 
 /// Errors of the shell's shadow-map pass, naming the field and value.
 #[derive(Debug, thiserror::Error)]
@@ -78,6 +80,7 @@ struct Prepared {
     resolution: [u32; 2],
     output: wgpu::Buffer,
     _params: wgpu::Buffer,
+    _weather: wgpu::Buffer,
 }
 
 /// The shell's cloud shadow map on a GPU (see the module documentation).
@@ -116,6 +119,12 @@ impl ShellShadowMapPass {
                     1,
                     wgpu::BufferBindingType::Storage { read_only: false },
                     None,
+                ),
+                // shell_shadow.wgsl's weather grid (a placeholder for procedural weather).
+                entry(
+                    2,
+                    wgpu::BufferBindingType::Storage { read_only: true },
+                    Some(8),
                 ),
             ],
         });
@@ -178,7 +187,7 @@ impl ShellShadowMapPass {
         let f = |x: f64| (x as f32).to_bits();
         let b = f32::to_bits;
         let l = plan.to_sun();
-        let words: [u32; 28] = [
+        let words: [u32; 32] = [
             f(grid.origin()[0]),
             f(grid.origin()[1]),
             f(grid.cell_size()),
@@ -198,7 +207,7 @@ impl ShellShadowMapPass {
             b(field.coverage_contrast),
             b(field.cloud_type_mean),
             b(field.cloud_type_contrast),
-            0,
+            b(field.grid_cell_size),
             field.seed,
             field.weather_seed,
             field.weather_cells,
@@ -206,6 +215,10 @@ impl ShellShadowMapPass {
             resolution[0],
             resolution[1],
             0,
+            0,
+            field.weather_kind,
+            field.grid_size[0],
+            field.grid_size[1],
             0,
         ];
         let params = device.create_buffer(&wgpu::BufferDescriptor {
@@ -221,6 +234,26 @@ impl ShellShadowMapPass {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
+        // The grid's (coverage, cloud type) per cell; one zero cell for procedural weather.
+        let cells: Vec<f32> = if field.grid_cells.is_empty() {
+            vec![0.0, 0.0]
+        } else {
+            field.grid_cells.iter().flatten().copied().collect()
+        };
+        let weather_bytes = cells.len() as u64 * 4;
+        if weather_bytes > limit {
+            return Err(ShellShadowMapGpuError::BufferTooLarge {
+                bytes: weather_bytes,
+                limit,
+            });
+        }
+        let weather = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("cloudlight shell shadow map weather grid"),
+            size: weather_bytes,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        queue.write_buffer(&weather, 0, bytemuck::cast_slice(&cells));
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("cloudlight shell shadow map"),
             layout: &self.layout,
@@ -233,6 +266,10 @@ impl ShellShadowMapPass {
                     binding: 1,
                     resource: output.as_entire_binding(),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: weather.as_entire_binding(),
+                },
             ],
         });
         self.prepared = Some(Prepared {
@@ -241,6 +278,7 @@ impl ShellShadowMapPass {
             resolution,
             output,
             _params: params,
+            _weather: weather,
         });
         Ok(())
     }

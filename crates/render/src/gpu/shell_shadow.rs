@@ -64,9 +64,7 @@ impl ShellShadowGpu {
         let Some(cloud) = &scene.shell_cloud else {
             return Ok(None);
         };
-        let Ok(field) = ShellField::<f32>::of(&cloud.shell) else {
-            return Ok(None);
-        };
+        let field = ShellField::<f32>::of(&cloud.shell);
         let (light, map, toward) = match (&cloud.shadow, &cloud.moon_shadow, &scene.moonlit) {
             (Some(map), _, _) => (0, map, scene.sun),
             (None, Some(map), Some(moon)) => (1, map, moon.direction),

@@ -153,8 +153,8 @@ fn texel_bound(field: &ShellField<f64>, p: [f64; 3], l: [f64; 3], n: u32, t_ref:
 
 fn shell_shadow_cpu(case: usize) -> Result<PassCpu, String> {
     let (shell, plan) = plan(case)?;
-    let field64 = ShellField::<f64>::of(&shell).map_err(|e| e.to_string())?;
-    let field32 = ShellField::<f32>::of(&shell).map_err(|e| e.to_string())?;
+    let field64 = ShellField::<f64>::of(&shell);
+    let field32 = ShellField::<f32>::of(&shell);
     let reference = shell_shadow_map(&field64, &plan);
     let cpu = shell_shadow_map(&field32, &plan);
     let shaded = reference.iter().filter(|&&t| t < 0.5).count();
@@ -195,7 +195,7 @@ fn shell_shadow_cpu(case: usize) -> Result<PassCpu, String> {
 
 fn shell_shadow_gpu(gpu: &skyscape_harness::GpuContext, case: usize) -> Result<Vec<f32>, String> {
     let (shell, plan) = plan(case)?;
-    let field = ShellField::<f32>::of(&shell).map_err(|e| e.to_string())?;
+    let field = ShellField::<f32>::of(&shell);
     let mut pass =
         cloudlight::gpu::ShellShadowMapPass::new(&gpu.device).map_err(|e| e.to_string())?;
     pass.prepare(&gpu.device, &gpu.queue, &field, &plan)
