@@ -108,8 +108,9 @@
 //! block for 38 % (6 km) and 48 % (2 km) of the texels, and every block's prefix
 //! hull is built and undone besides.
 //!
-//! A maximum distance of at most 128 steps (`K`; 3.84 km at 30 m on the axes) is
-//! baked row by row instead (`horizon_window.rs`): the brute force of every window,
+//! A maximum distance of at most 128 steps off the axes and diagonals (`K`; 3.8–5.4
+//! km at 30 m by azimuth) and 66 on them (1.98 km on the axes, 2.8 km on the
+//! diagonals) is baked row by row instead (`horizon_window.rs`): the brute force of every window,
 //! for a whole grid row at a time. Off the axes and diagonals the far sample `k` of
 //! every texel of grid row `u₀` lies on row `u₀ ± k` at the same fractional offset
 //! and the same distance, so each step is a loop over contiguous slices that the
@@ -120,7 +121,8 @@
 //! speed-study map (`examples/horizon_speed.rs`, 16 azimuths) a 2 km limit takes
 //! 0.8–1.0 × the CPU time of no limit (the windowed sweep: 1.3–1.6 ×; noisy runs at
 //! load 4–9, 2026-11-27); from about 4 km on the windowed sweep is the cheaper, and
-//! it is used.
+//! it is used; on the axes and diagonals, whose sweep keeps the unlimited hull in
+//! the same walk, from about 2 km (`EXACT_ROW_MAX_STEPS` in `horizon_window.rs`).
 //!
 //! Off the axes and diagonals, from `K` = 167 steps (about 5 km at 30 m) a maximum
 //! distance runs through the unlimited sweep first: a texel's tangent point on the

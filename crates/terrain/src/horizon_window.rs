@@ -21,12 +21,24 @@
 
 use super::{Lines, NEAR_STEPS, Sampler, View, angle_from_tangent, fl, lerp_row};
 
-/// Most steps `K` for which a limited bake runs row by row rather than as a windowed
-/// hull sweep. Measured on the 1024² speed-study map (`examples/horizon_speed.rs`, 16
+/// Most steps `K` for which a limited bake off the axes and diagonals runs row by
+/// row rather than as a windowed hull sweep. Measured on the 1024² speed-study map (`examples/horizon_speed.rs`, 16
 /// azimuths, 1 thread, CPU time, best of 2): 3 km (`K` 100 on the axes) 2.0 s by
 /// rows against 2.8 s windowed, 4 km (`K` 133) 2.5–2.6 s against 2.4–2.7 s, 6 km
 /// (`K` 200) 3.3–4.1 s against 2.1–2.2 s.
 pub(crate) const ROW_MAX_STEPS: usize = 128;
+
+/// [`ROW_MAX_STEPS`] on the axes and diagonals, whose windowed sweep keeps the
+/// unlimited hull in the same walk (since 8a48205) and so costs less there.
+/// Measured on the 1024² speed-study map (`examples/horizon_speed.rs`, 16 azimuths,
+/// 1 thread, one build with a temporary switch, the two alternately in their own
+/// processes, 4 rounds of 3 bakes at load 4–7, 2026-11-27), rows against the sweep
+/// on these lines: 2 km (`K` 66 on the axes, 47 on the diagonals) 8.30 G
+/// instructions against 8.48 G (valgrind `--tool=cachegrind`, bake only); 3 km
+/// (`K` 100 and 70) 11.41 G against 10.29 G, CPU time 1.72–1.89 s against
+/// 1.51–1.72 s; 4 km (the diagonals' `K` 94; the axes' 133 were swept anyway)
+/// 12.66 G against 11.99 G, 1.91–2.10 s against 1.90–2.07 s.
+pub(crate) const EXACT_ROW_MAX_STEPS: usize = 66;
 
 /// How a hull-sweep bake with a maximum distance is run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -65,13 +77,19 @@ pub(crate) fn rows_apply(lines: &Lines, max_steps: usize) -> bool {
 pub(crate) const UNLIMITED_MIN_STEPS: usize = 167;
 
 /// How [`super::bake_horizon`]'s hull sweep runs a maximum distance of `max_steps`
-/// (`K`): row by row up to [`ROW_MAX_STEPS`], through the unlimited sweep from
-/// [`UNLIMITED_MIN_STEPS`], windowed in between; a window as long as the lines is
+/// (`K`): row by row up to [`ROW_MAX_STEPS`] ([`EXACT_ROW_MAX_STEPS`] on the axes
+/// and diagonals), through the unlimited sweep from [`UNLIMITED_MIN_STEPS`],
+/// windowed in between; a window as long as the lines is
 /// no limit (`Windowed`: the sweep of whole lines).
 pub(crate) fn choose(lines: &Lines, max_steps: usize) -> Method {
+    let row_max = if lines.exact {
+        EXACT_ROW_MAX_STEPS
+    } else {
+        ROW_MAX_STEPS
+    };
     if max_steps >= lines.n_dominant.saturating_sub(1) {
         Method::Windowed
-    } else if max_steps <= ROW_MAX_STEPS {
+    } else if max_steps <= row_max {
         Method::Rows
     } else if max_steps >= UNLIMITED_MIN_STEPS {
         Method::ByUnlimited
