@@ -28,6 +28,7 @@ pub mod present;
 pub mod projection;
 pub mod scene;
 pub mod shell_clouds;
+pub mod shell_weather;
 pub mod terrain_mesh;
 pub mod terrain_shading;
 pub mod tonemap;

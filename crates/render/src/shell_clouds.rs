@@ -84,7 +84,7 @@ pub const SHADOW_STEPS: u32 = 16;
 
 /// `[clouds.shell]`: seed 003's procedural cloud shell (`cloudlight::CloudShell`)
 /// between two altitudes, its coverage and cloud type from cloudlight's procedural
-/// weather, marched by `cloudlight` (seed 003's lighting). Defaults not given here are
+/// weather or a weather grid from a PNG ([`crate::shell_weather`]), marched by `cloudlight` (seed 003's lighting). Defaults not given here are
 /// cloudlight's (`ShellSettings::cumulus_over`, `ProceduralWeather::default`,
 /// `MarchConfig::default`).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -159,6 +159,14 @@ pub struct CloudShellSection {
     /// The octaves' phase eccentricity factor `c` in [0, 1].
     #[serde(default = "half")]
     pub octave_c: f64,
+    /// A weather grid from a PNG (relative to the scene file's folder; R coverage,
+    /// G cloud type, B precipitation; [`crate::shell_weather`]) instead of the
+    /// procedural weather (whose keys are then unused).
+    #[serde(default)]
+    pub weather_image: Option<std::path::PathBuf>,
+    /// The weather image's pixel edge on the ground, metres (> 0; with `weather_image`).
+    #[serde(default)]
+    pub weather_cell_m: Option<f64>,
 }
 
 fn default_shell() -> ShellSettings {
@@ -355,6 +363,8 @@ impl CloudShellSection {
             "octave_a" => self.octave_a.to_string(),
             "octave_b" => self.octave_b.to_string(),
             "octave_c" => self.octave_c.to_string(),
+            "weather_image" => format!("{:?}", self.weather_image),
+            "weather_cell_m" => format!("{:?} m", self.weather_cell_m),
             _ => String::new(),
         }
     }
@@ -426,7 +436,11 @@ impl Scene {
                 ));
             }
         }
-        let shell = CloudShell::new(atmosphere, s.shell_settings(atmosphere.planet_radius))
+        let mut shell_settings = s.shell_settings(atmosphere.planet_radius);
+        if let Some(grid) = self.shell_weather_grid(s)? {
+            shell_settings.weather = WeatherMap::Grid(grid);
+        }
+        let shell = CloudShell::new(atmosphere, shell_settings)
             .map_err(|e| self.shell_error(s, shell_key(&e), Box::new(e)))?;
         let settings = MarchSettings::new(MarchConfig {
             view_steps: s.view_steps,
