@@ -8,6 +8,7 @@ use super::compare::Tolerance;
 mod atmos_drop_in_passes;
 mod atmos_passes;
 mod cloudlight_march_passes;
+mod cloudlight_march_shell_passes;
 mod cloudlight_noise_passes;
 mod cloudlight_passes;
 mod cloudlight_shadow_passes;
@@ -59,6 +60,7 @@ pub fn all() -> Vec<PassCase> {
         cloudsim_passes::cases(),
         cloudlight_passes::cases(),
         cloudlight_march_passes::cases(),
+        cloudlight_march_shell_passes::cases(),
         cloudlight_noise_passes::cases(),
         cloudlight_shadow_passes::cases(),
         cloudlight_shell_shadow_passes::cases(),
