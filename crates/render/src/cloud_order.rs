@@ -65,6 +65,7 @@
 use cloudlight::march::{Lighting, MarchResult};
 
 use crate::cpu_renderer::PixelRadiance;
+use crate::mutual_shadow::Light;
 use crate::scene::{Illuminant, PreparedScene};
 use crate::shell_clouds::PreparedShell;
 use crate::volume_clouds::{AirTables, MarchedCloud, PreparedVolume};
@@ -156,33 +157,33 @@ pub fn composite_clouds_by_depth(
         crate::volume_clouds::pinhole_camera(camera, scene.atmosphere.planet_radius)?;
     let shell_camera = crate::shell_clouds::shell_camera(camera)?;
     // Each lit through the other's shadow map for the same light (crate::mutual_shadow):
-    // a march lit by anything but the cloud's sun lighting is its moon's.
-    let march_volume = |lighting: &Lighting<f32>, xy: [u32; 2], behind: f32| -> MarchResult<f32> {
-        let moon = !std::ptr::eq(lighting, &volume.lighting);
-        let deck = crate::mutual_shadow::deck_on_volume(shell, moon);
-        crate::mutual_shadow::march_volume_pixel(
-            volume,
-            lighting,
-            &volume_camera,
-            size,
-            xy,
-            behind,
-            deck,
-        )
-    };
-    let march_shell = |lighting: &Lighting<f32>, xy: [u32; 2], behind: f32| -> MarchResult<f32> {
-        let moon = !std::ptr::eq(lighting, &shell.lighting);
-        let cumulus = crate::mutual_shadow::volume_on_deck(volume, moon);
-        crate::mutual_shadow::march_deck_pixel(
-            shell,
-            lighting,
-            &shell_camera,
-            size,
-            xy,
-            behind,
-            cumulus,
-        )
-    };
+    // `MarchedCloud::seen` names the light of each march.
+    let march_volume =
+        |light: Light, lighting: &Lighting<f32>, xy: [u32; 2], behind: f32| -> MarchResult<f32> {
+            let deck = crate::mutual_shadow::deck_on_volume(shell, light);
+            crate::mutual_shadow::march_volume_pixel(
+                volume,
+                lighting,
+                &volume_camera,
+                size,
+                xy,
+                behind,
+                deck,
+            )
+        };
+    let march_shell =
+        |light: Light, lighting: &Lighting<f32>, xy: [u32; 2], behind: f32| -> MarchResult<f32> {
+            let cumulus = crate::mutual_shadow::volume_on_deck(volume, light);
+            crate::mutual_shadow::march_deck_pixel(
+                shell,
+                lighting,
+                &shell_camera,
+                size,
+                xy,
+                behind,
+                cumulus,
+            )
+        };
     let volume_moon = match (&volume.moon, moon) {
         (Some(moonlit), Some((light, moon_tables))) => {
             Some((&moonlit.lighting, light, moon_tables))

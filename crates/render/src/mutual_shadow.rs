@@ -48,8 +48,9 @@
 //! second, small map over the volume cloud ([`PreparedShell::over_volume`],
 //! [`deck_over_volume`]): the grid's footprint swept along the light to the deck's base
 //! from the grid's altitudes below the deck's top, baked on the CPU at prepare, also
-//! for the GPU renderer, which uploads it and the volume's map into a buffer each per
-//! prepare (the `tests/cloud_order.rs` scene with the cumulus reaching into the deck:
+//! for the GPU renderer, which uploads it and the volume's map into a buffer each and
+//! keeps them across prepares while their values are unchanged (`ShadowValues`, one per light in each march's pass state; the
+//! `tests/cloud_order.rs` scene with the cumulus reaching into the deck:
 //! the deck's 56×55 map on the volume, the volume's 30×29 on the deck, `skyscape
 //! explain`'s "mutual cloud shadows" line). A scene with one cloud kind bakes neither
 //! extra map and marches as before: `outside_depth` 0 is the plain march on the CPU, and
@@ -121,13 +122,37 @@ pub fn deck_extent(shell: &CloudShell) -> [f32; 2] {
     ]
 }
 
-/// The volume cloud's shadow on the deck toward the sun (`moon` false) or the moon:
-/// its map for that light, `None` without one.
-pub fn volume_on_deck(volume: &PreparedVolume, moon: bool) -> Option<ShadowOnCloud<'_>> {
-    let map = if moon {
-        volume.moon.as_ref()?.shadow.as_ref()?
-    } else {
-        volume.shadow.as_ref()?
+/// Which light a cloud's march is lit by: the sun's march always, the moon's at night
+/// (the clouds' `moon` lighting). The code that runs a cloud's marches names the light
+/// of each (`crate::volume_clouds`' CPU composite, the GPU's per-light march hook), so a
+/// march reads the other cloud's map for its own light.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Light {
+    /// The sun (the clouds' `lighting`).
+    Sun,
+    /// The moon (the clouds' `moon` lighting, at night).
+    Moon,
+}
+
+impl Light {
+    /// Both lights, the sun's first (the order the marches run in).
+    pub const ALL: [Light; 2] = [Light::Sun, Light::Moon];
+
+    /// "sun" or "moon".
+    pub fn name(self) -> &'static str {
+        match self {
+            Light::Sun => "sun",
+            Light::Moon => "moon",
+        }
+    }
+}
+
+/// The volume cloud's shadow on the deck toward `light`: its map for that light, `None`
+/// without one.
+pub fn volume_on_deck(volume: &PreparedVolume, light: Light) -> Option<ShadowOnCloud<'_>> {
+    let map = match light {
+        Light::Sun => volume.shadow.as_ref()?,
+        Light::Moon => volume.moon.as_ref()?.shadow.as_ref()?,
     };
     Some(ShadowOnCloud {
         map,
@@ -135,11 +160,16 @@ pub fn volume_on_deck(volume: &PreparedVolume, moon: bool) -> Option<ShadowOnClo
     })
 }
 
-/// The deck's shadow on the volume cloud toward the sun (`moon` false) or the moon:
-/// its map over the volume for that light ([`PreparedShell::over_volume`]).
-pub fn deck_on_volume(shell: &PreparedShell, moon: bool) -> Option<ShadowOnCloud<'_>> {
+/// The deck's shadow on the volume cloud toward `light`: its map over the volume for
+/// that light ([`PreparedShell::over_volume`], the sun's first).
+pub fn deck_on_volume(shell: &PreparedShell, light: Light) -> Option<ShadowOnCloud<'_>> {
+    let [sun, moon] = &shell.over_volume;
+    let map = match light {
+        Light::Sun => sun,
+        Light::Moon => moon,
+    };
     Some(ShadowOnCloud {
-        map: shell.over_volume[usize::from(moon)].as_ref()?,
+        map: map.as_ref()?,
         extent: deck_extent(&shell.shell),
     })
 }
@@ -235,34 +265,59 @@ pub fn march_deck_pixel(
     cloudlight::march::faded(result, shell.shell.horizon_fade(result.depth))
 }
 
-/// The GPU march's view of `shadow` (`cloudlight::gpu::OutsideShadow`, the same map
-/// and lookup as [`ShadowOnCloud::outside`]'s `outside_depth`): its values uploaded into a new storage
-/// buffer (a few thousand texels, once per prepare), and the march frame's height of
-/// altitude 0 `frame_height` (0 for the volume's frame, the planet's radius for the
-/// deck's). `None` without a map.
+/// One light's march's copy of the other cloud's shadow map values on the GPU (the
+/// storage buffer `cloudlight::gpu::OutsideShadow` binds), kept in the march's pass
+/// state across prepares: the map depends on the prepared scene only, so a prepare
+/// whose map holds the same values (compared bit for bit, a few thousand texels)
+/// reuses the buffer, and any other map gets a new one. A new buffer rather than a
+/// rewrite: a frame recorded before this prepare still reads the values it was
+/// prepared with.
 #[cfg(feature = "gpu")]
-pub(crate) fn upload<'a>(
-    device: &wgpu::Device,
-    queue: &wgpu::Queue,
-    shadow: Option<ShadowOnCloud<'a>>,
-) -> Option<(ShadowOnCloud<'a>, wgpu::Buffer)> {
-    let shadow = shadow?;
-    let values = &shadow.map.values;
-    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("render mutual shadow values"),
-        size: (values.len().max(1) * 4) as u64,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    queue.write_buffer(&buffer, 0, bytemuck::cast_slice(values));
-    Some((shadow, buffer))
+#[derive(Debug, Default)]
+pub(crate) struct ShadowValues {
+    /// The values uploaded last (their bits) and the buffer holding them.
+    kept: Option<(Vec<u32>, wgpu::Buffer)>,
 }
 
-/// [`upload`]'s map as the march pass binds it, in a march frame whose altitude 0 lies
-/// at height `frame_height`.
+#[cfg(feature = "gpu")]
+impl ShadowValues {
+    /// `shadow` with its values on the GPU: the kept buffer when it holds them, else a
+    /// new one written with them (then kept). `None` without a map (the kept buffer
+    /// stays for a later prepare).
+    pub(crate) fn upload<'s>(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        shadow: Option<ShadowOnCloud<'s>>,
+    ) -> Option<(ShadowOnCloud<'s>, &wgpu::Buffer)> {
+        let shadow = shadow?;
+        let values = &shadow.map.values;
+        let bits: &[u32] = bytemuck::cast_slice(values);
+        let kept = match self.kept.take() {
+            Some((kept, buffer)) if kept == bits => (kept, buffer),
+            _ => {
+                let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("render mutual shadow values"),
+                    size: (values.len().max(1) * 4) as u64,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                });
+                queue.write_buffer(&buffer, 0, bytemuck::cast_slice(values));
+                (bits.to_vec(), buffer)
+            }
+        };
+        let (_, buffer) = self.kept.insert(kept);
+        Some((shadow, buffer))
+    }
+}
+
+/// [`ShadowValues::upload`]'s map as the march pass binds it, in a march frame whose
+/// altitude 0 lies at height `frame_height` (0 for the volume's frame, the planet's
+/// radius for the deck's): `cloudlight::gpu::OutsideShadow`, the same map and lookup as
+/// [`ShadowOnCloud::outside`]'s `outside_depth`.
 #[cfg(feature = "gpu")]
 pub(crate) fn outside<'a>(
-    (shadow, values): &'a (ShadowOnCloud<'_>, wgpu::Buffer),
+    (shadow, values): (ShadowOnCloud<'_>, &'a wgpu::Buffer),
     frame_height: f32,
 ) -> cloudlight::gpu::OutsideShadow<'a> {
     shadow.outside(frame_height).with_values(values)
@@ -279,17 +334,17 @@ pub fn plan(scene: &crate::scene::PreparedScene) -> (&'static str, Result<String
             Err("not both [clouds.shell] and a marched [clouds.volume]".into()),
         );
     };
-    let lights = [(false, "sun"), (true, "moon")];
-    let read: Vec<String> = lights
-        .iter()
-        .flat_map(|&(moon, light)| {
-            let on_volume = deck_on_volume(shell, moon).map(|s| {
+    let read: Vec<String> = Light::ALL
+        .into_iter()
+        .flat_map(|light| {
+            let lit_by = light.name();
+            let on_volume = deck_on_volume(shell, light).map(|s| {
                 let [w, h] = s.map.resolution;
-                format!("the deck's {w}×{h} map on the volume ({light})")
+                format!("the deck's {w}×{h} map on the volume ({lit_by})")
             });
-            let on_deck = volume_on_deck(volume, moon).map(|s| {
+            let on_deck = volume_on_deck(volume, light).map(|s| {
                 let [w, h] = s.map.resolution;
-                format!("the volume's {w}×{h} map on the deck ({light})")
+                format!("the volume's {w}×{h} map on the deck ({lit_by})")
             });
             [on_volume, on_deck].into_iter().flatten()
         })

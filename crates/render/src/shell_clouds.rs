@@ -797,15 +797,15 @@ impl ShellCloudPass {
             depth_view,
             &cloud.lighting,
             cloud.moon.as_ref(),
-            |march, lighting, distances| {
+            |march, light, lighting, distances, kept| {
                 // Lit through the volume cloud's shadow map for this light
-                // (crate::mutual_shadow), read the planet's radius below the march's frame.
-                let moon = !std::ptr::eq(lighting, &cloud.lighting);
+                // (crate::mutual_shadow; uploaded once, kept while unchanged), read the
+                // planet's radius below the march's frame.
                 let volume = scene
                     .volume_cloud
                     .as_ref()
-                    .and_then(|volume| crate::mutual_shadow::volume_on_deck(volume, moon));
-                let volume = crate::mutual_shadow::upload(device, queue, volume);
+                    .and_then(|volume| crate::mutual_shadow::volume_on_deck(volume, light));
+                let volume = kept.upload(device, queue, volume);
                 let planet = cloud.shell.planet_radius() as f32;
                 // The march stops at the terrain: a hill hides the deck behind it.
                 Ok(march.prepare_lit_through(
@@ -818,7 +818,6 @@ impl ShellCloudPass {
                     lighting,
                     Some(distances),
                     volume
-                        .as_ref()
                         .map(|v| crate::mutual_shadow::outside(v, planet))
                         .as_ref(),
                 )?)

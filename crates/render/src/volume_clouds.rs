@@ -738,6 +738,10 @@ pub(crate) fn composite_marched_cloud(
     out: &mut [crate::cpu_renderer::PixelRadiance],
 ) -> Result<(), crate::RenderError> {
     let sun = scene.sun_light();
+    // One cloud alone: its march is the same function for either light.
+    let march = |_: crate::mutual_shadow::Light, lighting: &Lighting<f32>, xy, behind| {
+        march(lighting, xy, behind)
+    };
     let cloud = MarchedCloud {
         lighting,
         tables,
@@ -751,7 +755,9 @@ pub(crate) fn composite_marched_cloud(
 
 /// A marched cloud as the CPU composites it (the volume's, the shell's): the sun's
 /// lighting and tables, at night the moon's lighting, light and tables, and its march
-/// per pixel (`march(lighting, pixel, behind)`, up to `behind` metres).
+/// per pixel (`march(light, lighting, pixel, behind)`, up to `behind` metres: `light`
+/// says which of the two `lighting` is, so a march can pick what else depends on it,
+/// the other cloud's shadow map for that light, `crate::mutual_shadow`).
 pub(crate) struct MarchedCloud<'a, M> {
     pub(crate) lighting: &'a Lighting<f32>,
     pub(crate) tables: AirTables<'a>,
@@ -763,7 +769,10 @@ pub(crate) struct MarchedCloud<'a, M> {
     pub(crate) march: &'a M,
 }
 
-impl<M: Fn(&Lighting<f32>, [u32; 2], f32) -> MarchResult<f32>> MarchedCloud<'_, M> {
+impl<M> MarchedCloud<'_, M>
+where
+    M: Fn(crate::mutual_shadow::Light, &Lighting<f32>, [u32; 2], f32) -> MarchResult<f32>,
+{
     /// The cloud at pixel `xy` in front of a scene `behind` metres away (`sun`: the
     /// scene's sun light): `None` where it has no opacity in front ([`cloud_in_front`]),
     /// else its light seen through the air ([`cloud_through_air`] with the sun's air
@@ -777,7 +786,7 @@ impl<M: Fn(&Lighting<f32>, [u32; 2], f32) -> MarchResult<f32>> MarchedCloud<'_, 
         behind: f32,
     ) -> Result<Option<crate::cloud_order::SeenCloud>, crate::RenderError> {
         let march = self.march;
-        let result = march(self.lighting, xy, behind);
+        let result = march(crate::mutual_shadow::Light::Sun, self.lighting, xy, behind);
         if !cloud_in_front(&result, behind) {
             return Ok(None);
         }
@@ -785,7 +794,7 @@ impl<M: Fn(&Lighting<f32>, [u32; 2], f32) -> MarchResult<f32>> MarchedCloud<'_, 
         let (transmittance, radiance) = air_in_front(scene, sun, self.tables, view, result.depth)?;
         let mut seen = cloud_through_air(&result, transmittance, radiance);
         if let Some((moon_lighting, light, moon_tables)) = self.moon {
-            let lit = march(moon_lighting, xy, behind);
+            let lit = march(crate::mutual_shadow::Light::Moon, moon_lighting, xy, behind);
             let (transmittance, radiance) =
                 air_in_front(scene, light, moon_tables, view, lit.depth)?;
             let added = cloud_through_air(&lit, transmittance, radiance);
@@ -963,14 +972,14 @@ impl VolumeCloudPass {
             depth_view,
             &cloud.lighting,
             moon,
-            |march, lighting, distances| {
-                // Lit through the deck's shadow map for this light (crate::mutual_shadow).
-                let moon = !std::ptr::eq(lighting, &cloud.lighting);
+            |march, light, lighting, distances, kept| {
+                // Lit through the deck's shadow map for this light (crate::mutual_shadow),
+                // its values uploaded once and kept while unchanged.
                 let deck = scene
                     .shell_cloud
                     .as_ref()
-                    .and_then(|shell| crate::mutual_shadow::deck_on_volume(shell, moon));
-                let deck = crate::mutual_shadow::upload(device, queue, deck);
+                    .and_then(|shell| crate::mutual_shadow::deck_on_volume(shell, light));
+                let deck = kept.upload(device, queue, deck);
                 // The march stops at the terrain: a ridge cuts the cloud where it stands.
                 Ok(march.prepare_lit_through(
                     device,
@@ -981,9 +990,7 @@ impl VolumeCloudPass {
                     &cloud.settings,
                     lighting,
                     Some(distances),
-                    deck.as_ref()
-                        .map(|d| crate::mutual_shadow::outside(d, 0.0))
-                        .as_ref(),
+                    deck.map(|d| crate::mutual_shadow::outside(d, 0.0)).as_ref(),
                 )?)
             },
         )

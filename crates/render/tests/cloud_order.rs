@@ -12,6 +12,7 @@ mod common;
 
 use common::{gpu_or_skip, gpu_pixels, lsb, within_two_over};
 use render::cpu_renderer::render_cpu;
+use render::mutual_shadow::{self, Light};
 use render::scene::{PreparedScene, Scene};
 use render::shell_clouds::{march_shell_pixel, shell_camera};
 use render::volume_clouds::{march_pixel, pinhole_camera};
@@ -76,8 +77,16 @@ fn scene(view: &View) -> PreparedScene {
 
 /// [`scene`] on the atmosphere rung `rung`.
 fn scene_on(view: &View, rung: &str) -> PreparedScene {
+    Scene::parse(&scene_text(view, rung), ".")
+        .unwrap()
+        .prepare()
+        .unwrap()
+}
+
+/// [`scene_on`]'s scene file.
+fn scene_text(view: &View, rung: &str) -> String {
     let [x, y, z] = view.look_at;
-    let text = format!(
+    format!(
         "[camera]\nposition = [0.0, {camera}, 0.0]\nlook_at = [{x}, {y}, {z}]\n\
          vertical_fov_deg = 60.0\nnear = 1.0\nfar = 100000.0\n\
          [sun]\nelevation_deg = 40.0\nazimuth_deg = 230.0\n\
@@ -92,8 +101,7 @@ fn scene_on(view: &View, rung: &str) -> PreparedScene {
          [output]\nwidth = {WIDTH}\nheight = {HEIGHT}\nexposure = 12.0\n",
         camera = view.camera_m,
         base = view.volume_base_m,
-    );
-    Scene::parse(&text, ".").unwrap().prepare().unwrap()
+    )
 }
 
 /// Per pixel, each cloud's march alone (transmittance, depth): the volume's, then the
@@ -161,8 +169,8 @@ fn the_nearer_cloud_goes_over_the_farther_on_the_cpu_and_the_gpu() {
         // Each cloud's shadow on the other: the volume's map on the deck always (the sun
         // at 40°), the deck's on the volume where the volume reaches below its top.
         let (volume, shell) = (&scene.volume_cloud, &scene.shell_cloud);
-        assert!(render::mutual_shadow::volume_on_deck(volume.as_ref().unwrap(), false).is_some());
-        let deck_on_volume = render::mutual_shadow::deck_on_volume(shell.as_ref().unwrap(), false);
+        assert!(mutual_shadow::volume_on_deck(volume.as_ref().unwrap(), Light::Sun).is_some());
+        let deck_on_volume = mutual_shadow::deck_on_volume(shell.as_ref().unwrap(), Light::Sun);
         assert_eq!(deck_on_volume.is_some(), view.volume_base_m < 1800.0);
         let both = render_cpu(&scene).unwrap().pixels;
         let (volume_only, shell_only) = alone(&mut scene);
@@ -296,5 +304,101 @@ fn both_clouds_agree_under_the_other_gpu_rungs() {
             VIEWS[2].name
         );
         assert!(ok as f64 >= 0.999 * n as f64, "{rung}");
+    }
+}
+
+/// At night both clouds are marched a second time lit by the moon, each through the
+/// other's shadow map toward the moon (the sun, 60° down, has none). Two views from
+/// below the deck at 48×27: a volume at 700–1,300 m, its top in the deck (the deck's
+/// map shades it), and one at 1,400–2,000 m (its map shades the deck). In each, taking
+/// the moon's map out changes the CPU image (the march is told it is the moon's and
+/// reads that light's map), and the GPU agrees with the CPU on the pixels it changes
+/// (its march hooks told the same).
+#[test]
+fn the_moons_marches_read_the_moons_maps() {
+    let gpu = gpu_or_skip("the moon's marches on the GPU");
+    for (base, look_up, deck_map) in [(700.0, 1000.0, true), (1400.0, 1600.0, false)] {
+        let view = View {
+            name: "night, below the deck",
+            camera_m: 200.0,
+            look_at: [0.0, look_up, -4000.0],
+            volume_base_m: base,
+            front: Front::Volume,
+        };
+        let text = scene_text(&view, "precomputed")
+            .replace(
+                "[sun]\nelevation_deg = 40.0\nazimuth_deg = 230.0\n",
+                "[time]\nutc = \"2024-12-15T21:00:00Z\"\nlatitude_deg = 46.5\n\
+                 longitude_deg = 8.0\n",
+            )
+            .replace("exposure = 12.0", "exposure = 3.0e5")
+            .replace(
+                &format!("width = {WIDTH}\nheight = {HEIGHT}"),
+                "width = 48\nheight = 27",
+            );
+        assert!(text.contains("[time]") && text.contains("width = 48"));
+        let mut scene = Scene::parse(&text, ".").unwrap().prepare().unwrap();
+        let (volume, shell) = (
+            scene.volume_cloud.as_ref().unwrap(),
+            scene.shell_cloud.as_ref().unwrap(),
+        );
+        assert!(
+            volume.moon.is_some() && shell.moon.is_some(),
+            "both moonlit"
+        );
+        for (light, some) in [(Light::Sun, false), (Light::Moon, true)] {
+            assert_eq!(mutual_shadow::deck_on_volume(shell, light).is_some(), some);
+            assert_eq!(mutual_shadow::volume_on_deck(volume, light).is_some(), some);
+        }
+        let full = render_cpu(&scene).unwrap().pixels;
+        // The moon's map on the one cloud taken out, the scene rendered, the map put back.
+        let without = if deck_map {
+            let map = &mut scene.shell_cloud.as_mut().unwrap().over_volume[1];
+            let kept = map.take();
+            let without = render_cpu(&scene).unwrap().pixels;
+            scene.shell_cloud.as_mut().unwrap().over_volume[1] = kept;
+            without
+        } else {
+            let moonlit = scene.volume_cloud.as_mut().unwrap().moon.as_mut().unwrap();
+            let kept = moonlit.shadow.take();
+            let without = render_cpu(&scene).unwrap().pixels;
+            scene
+                .volume_cloud
+                .as_mut()
+                .unwrap()
+                .moon
+                .as_mut()
+                .unwrap()
+                .shadow = kept;
+            without
+        };
+        let changed: Vec<usize> = (0..full.len())
+            .filter(|&i| lsb(full[i], without[i]) > 2)
+            .collect();
+        let which = if deck_map {
+            "the deck's moon map on the volume"
+        } else {
+            "the volume's moon map on the deck"
+        };
+        println!(
+            "{}, volume at {base} m (48×27): {} pixels > 2 LSB changed by {which}",
+            view.name,
+            changed.len()
+        );
+        assert!(changed.len() >= 10, "{which}");
+
+        let Some(gpu) = gpu else {
+            continue;
+        };
+        let gpu_image = gpu_pixels(gpu, &scene);
+        let (n, ok, worst) = within_two_over(&gpu_image, &full, changed.iter().copied());
+        let all = render::tonemap::fraction_within_lsb(&gpu_image, &full, 2).unwrap();
+        println!(
+            "{}, volume at {base} m GPU vs CPU: {ok} of {n} pixels {which} changes within \
+             2 LSB (worst {worst}); {:.3} % of all pixels",
+            view.name,
+            100.0 * all
+        );
+        assert!(ok as f64 >= 0.99 * n as f64, "{which}");
     }
 }

@@ -39,7 +39,7 @@ use cloudlight::march::{
 use cloudlight::union::UnionField;
 use rayon::prelude::*;
 use render::cloud_order::{SeenCloud, in_depth_order};
-use render::mutual_shadow::{self, ShadowOnCloud};
+use render::mutual_shadow::{self, Light, ShadowOnCloud};
 use render::scene::{PreparedScene, Scene};
 use render::tonemap::{linear_to_srgb, tonemap_exposure};
 
@@ -218,8 +218,9 @@ fn pixels(scene: &PreparedScene, lighting: &Lighting<f64>) -> Vec<Pixel> {
     let tan_half = camera.tan_half(size);
     let origin = camera.origin();
     let to_sun = lighting.sun_direction();
-    let deck_map = mutual_shadow::deck_on_volume(scene.shell_cloud.as_ref().unwrap(), false);
-    let volume_map = mutual_shadow::volume_on_deck(scene.volume_cloud.as_ref().unwrap(), false);
+    let deck_map = mutual_shadow::deck_on_volume(scene.shell_cloud.as_ref().unwrap(), Light::Sun);
+    let volume_map =
+        mutual_shadow::volume_on_deck(scene.volume_cloud.as_ref().unwrap(), Light::Sun);
     assert!(
         deck_map.is_some() || volume_map.is_some(),
         "no mutual shadow map"

@@ -9,6 +9,7 @@
 //! records only their marches and air here ([`CloudComposite::encode_marches`]) and
 //! composites the two by depth in one pass (`super::cloud_order`).
 
+use crate::mutual_shadow::Light;
 use crate::volume_clouds::{
     VolumeAirParams, VolumeComposite, VolumeDistanceParams, buffer_entry, compute_pipeline,
     depth_entry,
@@ -56,6 +57,9 @@ struct LitMarch<M> {
     /// The air per pixel and its bind group (after `prepare`; kept across frames of one
     /// size).
     air: Option<(wgpu::Buffer, wgpu::BindGroup)>,
+    /// The other cloud's shadow map for this light on the GPU (`crate::mutual_shadow`;
+    /// kept across prepares while its values are unchanged).
+    shadow: crate::mutual_shadow::ShadowValues,
 }
 
 /// The timestamp writes of one cloud's passes (each `None` when untimed).
@@ -219,6 +223,7 @@ impl<M: CloudMarch> CloudComposite<M> {
                 march: march()?,
                 air_pipeline: luts.pipeline(device, label, &air_layout)?,
                 air: None,
+                shadow: Default::default(),
             })
         };
         let sun = lit(luts, &air_label)?;
@@ -271,9 +276,11 @@ impl<M: CloudMarch> CloudComposite<M> {
     }
 
     /// The frame's air and composite uniforms and bind groups, and the marches prepared
-    /// by `prepare_march` (each march with its light: the sun's `lighting`, the moon's
-    /// `moon_lighting` when the cloud was built moonlit, and `distance`'s buffer it stops
-    /// at: the terrain cuts the cloud where it stands; `distance` prepared this frame).
+    /// by `prepare_march` (each march with which light it is and that light's lighting:
+    /// the sun's `lighting`, the moon's `moon_lighting` when the cloud was built moonlit;
+    /// `distance`'s buffer it stops at: the terrain cuts the cloud where it stands,
+    /// `distance` prepared this frame; and that light's kept upload of the other cloud's
+    /// shadow map, `crate::mutual_shadow::ShadowValues`).
     #[allow(clippy::too_many_arguments)] // the frame's resources and the two lights
     pub(crate) fn prepare(
         &mut self,
@@ -286,8 +293,10 @@ impl<M: CloudMarch> CloudComposite<M> {
         moon_lighting: Option<&Lighting<f32>>,
         mut prepare_march: impl FnMut(
             &mut M,
+            Light,
             &Lighting<f32>,
             &wgpu::Buffer,
+            &mut crate::mutual_shadow::ShadowValues,
         ) -> Result<(), crate::RenderError>,
     ) -> Result<(), crate::RenderError> {
         let name = self.name;
@@ -341,12 +350,12 @@ impl<M: CloudMarch> CloudComposite<M> {
             .as_ref()
             .ok_or(crate::RenderError::NotPrepared)?;
         let air_label = format!("render {name} air");
-        let mut lights = vec![(&mut self.sun, lighting)];
+        let mut lights = vec![(&mut self.sun, Light::Sun, lighting)];
         if let (Some(moon), Some(lighting)) = (self.moon.as_mut(), moon_lighting) {
-            lights.push((moon, lighting));
+            lights.push((moon, Light::Moon, lighting));
         }
-        for (lit, lighting) in lights {
-            prepare_march(&mut lit.march, lighting, distances)?;
+        for (lit, light, lighting) in lights {
+            prepare_march(&mut lit.march, light, lighting, distances, &mut lit.shadow)?;
             let image = lit.march.image().ok_or(crate::RenderError::NotPrepared)?;
             let air = storage(
                 &air_label,
