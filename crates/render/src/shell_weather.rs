@@ -7,8 +7,9 @@
 //! 16-bit RGB or RGBA (alpha ignored), each value divided by 255 or 65535. Pixel column
 //! `i` is cell `i` along the shell's x (east), and the image's bottom row is cell row 0
 //! along y (north), so the image reads as a map with north up. Cell `(i, j)`'s centre is
-//! at `((i + ½)·cell, (j + ½)·cell)` in the shell's frame (the camera's ground point is
-//! the origin) and the grid repeats over its extent; cloudlight looks it up bilinearly
+//! at `((i + ½)·cell, (j + ½)·cell)` east and north of the scene's world origin (the
+//! terrain's centre: the shell's horizontal frame is the world's, `x` east and `y = −z`
+//! north), and the grid repeats over its extent; cloudlight looks it up bilinearly
 //! (`CloudShell::weather_at`, on the GPU `weather_grid_taps` / `weather_grid_bilinear`).
 //!
 //! Errors name the field and its value: a missing or unreadable file, a file that is not
