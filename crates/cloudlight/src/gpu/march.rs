@@ -865,27 +865,18 @@ impl MarchShellPass {
                 limit,
             });
         }
-        // The grid's (coverage, cloud type) per cell; one zero cell for procedural weather.
-        let cells: Vec<f32> = if weather.grid_cells.is_empty() {
-            vec![0.0, 0.0]
-        } else {
-            weather.grid_cells.iter().flatten().copied().collect()
-        };
-        let weather_bytes = cells.len() as u64 * 4;
-        if weather_bytes > limit {
-            return Err(MarchGpuError::BufferTooLarge {
-                what: "weather grid",
-                bytes: weather_bytes,
-                limit,
-            });
-        }
-        let weather_grid = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("cloudlight march shell weather grid"),
-            size: weather_bytes,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        queue.write_buffer(&weather_grid, 0, bytemuck::cast_slice(&cells));
+        let weather_grid = super::weather_grid_buffer(
+            device,
+            queue,
+            &weather,
+            "cloudlight march shell weather grid",
+            limit,
+        )
+        .map_err(|bytes| MarchGpuError::BufferTooLarge {
+            what: "weather grid",
+            bytes,
+            limit,
+        })?;
         let words = shell_params_words(
             shell,
             &weather,

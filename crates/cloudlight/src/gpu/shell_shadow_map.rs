@@ -234,26 +234,14 @@ impl ShellShadowMapPass {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        // The grid's (coverage, cloud type) per cell; one zero cell for procedural weather.
-        let cells: Vec<f32> = if field.grid_cells.is_empty() {
-            vec![0.0, 0.0]
-        } else {
-            field.grid_cells.iter().flatten().copied().collect()
-        };
-        let weather_bytes = cells.len() as u64 * 4;
-        if weather_bytes > limit {
-            return Err(ShellShadowMapGpuError::BufferTooLarge {
-                bytes: weather_bytes,
-                limit,
-            });
-        }
-        let weather = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("cloudlight shell shadow map weather grid"),
-            size: weather_bytes,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        queue.write_buffer(&weather, 0, bytemuck::cast_slice(&cells));
+        let weather = super::weather_grid_buffer(
+            device,
+            queue,
+            field,
+            "cloudlight shell shadow map weather grid",
+            limit,
+        )
+        .map_err(|bytes| ShellShadowMapGpuError::BufferTooLarge { bytes, limit })?;
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("cloudlight shell shadow map"),
             layout: &self.layout,
