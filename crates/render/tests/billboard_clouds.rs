@@ -723,23 +723,15 @@ fn the_shadowed_side_is_lit_by_the_sky() {
 /// The shipped night (the full moon 56° up in the east-south-east, the sun 60° down)
 /// looking west-north-west at a billboard cumulus 10 km away, 3.8 km up.
 fn night_billboards(width: u32, height: u32) -> Scene {
-    let text = std::fs::read_to_string(common::scene_path("night")).unwrap();
-    let start = text.find("[camera]").unwrap();
-    let end = text.find("[time]").unwrap();
-    let text = format!(
-        "{}[camera]\nposition = [-14000.0, 2500.0, 0.0]\n\
-         look_direction = [-0.852, 0.423, -0.310]\nvertical_fov_deg = 40.0\nnear = 1.0\n\
-         far = 120000.0\n{}\n[clouds.volume]\nseed = 2026\nsteps = 300\n\
-         grid = [32, 32, 16]\ncell_size_m = 100.0\nbase_m = 3800.0\n\
-         centre_m = [-23400.0, -3420.0]\nsigma_t_per_density = 0.005\n\
-         draw = \"billboards\"\n[clouds.volume.billboards]\nsize_m_per_density = 250.0\n",
-        &text[..start],
-        &text[end..]
-    );
-    let mut scene = Scene::parse(&text, ".").unwrap();
-    scene.file.output.width = width;
-    scene.file.output.height = height;
-    scene
+    common::night_with(
+        "position = [-14000.0, 2500.0, 0.0]\nlook_direction = [-0.852, 0.423, -0.310]\n\
+         vertical_fov_deg = 40.0\nnear = 1.0\nfar = 120000.0",
+        "seed = 2026\nsteps = 300\ngrid = [32, 32, 16]\ncell_size_m = 100.0\n\
+         base_m = 3800.0\ncentre_m = [-23400.0, -3420.0]\nsigma_t_per_density = 0.005\n\
+         draw = \"billboards\"\n[clouds.volume.billboards]\nsize_m_per_density = 250.0",
+        width,
+        height,
+    )
 }
 
 /// At night the moon lights the billboards (slices toward the moon, its phase and the
@@ -831,4 +823,96 @@ fn the_moon_lights_the_billboards() {
         within as f64 >= 0.999 * pixels as f64,
         "{within} of {pixels}, worst {worst}"
     );
+}
+
+/// The billboards' shadow map along the moon shades the moonlit terrain, as the marched
+/// cloud's does (`volume_night`), and the GPU's moonlit terrain draw reads the same map.
+#[test]
+fn the_billboards_shadow_the_moonlit_terrain() {
+    // A billboard cumulus 3 km up over the range's middle; its moon shadow falls
+    // west-north-west.
+    let volume = "seed = 2026\nsteps = 300\ngrid = [32, 32, 16]\ncell_size_m = 100.0\n\
+                  base_m = 3000.0\ncentre_m = [0.0, 0.0]\nsigma_t_per_density = 0.03\n\
+                  draw = \"billboards\"\n[clouds.volume.billboards]\nsize_m_per_density = 250.0";
+    let probe_camera = "position = [-14000.0, 2500.0, 0.0]\nlook_direction = [-0.852, 0.423, -0.310]\n\
+                        vertical_fov_deg = 40.0\nnear = 1.0\nfar = 120000.0";
+    let probe = common::night_with(probe_camera, volume, 32, 18)
+        .prepare()
+        .unwrap();
+    let moon = probe.moonlit.as_ref().unwrap().direction;
+    let cloud = probe.billboard_cloud.as_ref().unwrap();
+    let map = cloud
+        .moon
+        .as_ref()
+        .expect("the moon lights the billboards")
+        .shadow
+        .as_ref()
+        .expect("moonlit billboards over terrain have a shadow map");
+    let darkest = map.values.iter().fold(1.0f32, |m, &v| m.min(v));
+    assert!(darkest < 0.5, "the moon map's darkest texel {darkest}");
+    // Looking down at where the shadow falls: from the cloud's middle (3.8 km) along
+    // −moon to 1.2 km.
+    let reach = (3800.0 - 1200.0) / moon.y;
+    let at = [-moon.x * reach, 1200.0, -moon.z * reach];
+    let camera = format!(
+        "position = [{:.1}, 9000.0, {:.1}]\nlook_at = [{:.1}, {:.1}, {:.1}]\n\
+         vertical_fov_deg = 60.0\nnear = 1.0\nfar = 120000.0",
+        at[0] - 3000.0,
+        at[2] + 2000.0,
+        at[0],
+        at[1],
+        at[2]
+    );
+    let scene = common::night_with(&camera, volume, 96, 54);
+    let mut prepared = scene.prepare().unwrap();
+    let shaded = render::cpu_renderer::render_radiance(&prepared).unwrap();
+    let kept = prepared
+        .billboard_cloud
+        .as_mut()
+        .unwrap()
+        .moon
+        .as_mut()
+        .unwrap()
+        .shadow
+        .take();
+    assert!(kept.is_some());
+    let unshaded = render::cpu_renderer::render_radiance(&prepared).unwrap();
+    let (mut darker, mut terrain, mut worst) = (0, 0, 1.0f32);
+    for (a, b) in shaded.iter().zip(&unshaded) {
+        if a.terrain_distance.is_some() {
+            terrain += 1;
+            let (la, lb) = (luminance(a.radiance), luminance(b.radiance));
+            assert!(
+                la <= lb * (1.0 + 1e-6) + 1e-15,
+                "brighter in shadow: {la} vs {lb}"
+            );
+            darker += usize::from(la < 0.9 * lb);
+            worst = worst.min(la / lb.max(1e-30));
+        }
+    }
+    eprintln!(
+        "moonlit terrain under billboards: {darker} of {terrain} pixels over 10 % darker in \
+         the billboards' moon shadow (darkest ratio {worst:.3})"
+    );
+    assert!(darker >= 20, "{darker} terrain pixels in the moon shadow");
+    assert!(worst < 0.5, "darkest ratio {worst}");
+    // The GPU's moonlit terrain draw reads the same map.
+    let prepared = scene.prepare().unwrap();
+    let Some(gpu) = common::gpu_or_skip("render::billboard_clouds moon shadow") else {
+        return;
+    };
+    let gpu = common::gpu_pixels(gpu, &prepared);
+    let cpu = common::cpu_pixels(&prepared);
+    let (mut shadowed, mut agree) = (0usize, 0usize);
+    for (i, (a, b)) in shaded.iter().zip(&unshaded).enumerate() {
+        if a.terrain_distance.is_some() && luminance(a.radiance) < 0.9 * luminance(b.radiance) {
+            shadowed += 1;
+            agree += usize::from(lsb(gpu[i], cpu[i]) <= 2);
+        }
+    }
+    eprintln!(
+        "GPU vs CPU over the billboards' moon shadow: {agree} of {shadowed} shadowed pixels \
+         within 2 LSB"
+    );
+    assert!(agree * 10 >= shadowed * 9, "{agree} of {shadowed}");
 }

@@ -11,22 +11,9 @@ use render::cpu_renderer::{display_pixels, render_cpu, render_radiance};
 use render::scene::{PreparedScene, Scene};
 use render::volume_clouds::{march_pixel, pinhole_camera};
 
-/// The shipped night (2024-12-15 21:00 UTC, 46.5° N 8° E: the sun 60° down, the full
-/// moon 56° up in the east-south-east) with the camera `camera` and a cumulus
-/// `volume` (TOML lines of `[clouds.volume]`).
+/// The shipped night with the camera `camera` and a cumulus `volume` ([`common::night_with`]).
 fn night(camera: &str, volume: &str, width: u32, height: u32) -> Scene {
-    let text = std::fs::read_to_string(common::scene_path("night")).unwrap();
-    let start = text.find("[camera]").unwrap();
-    let end = text.find("[time]").unwrap();
-    let text = format!(
-        "{}[camera]\n{camera}\n{}\n[clouds.volume]\n{volume}\n",
-        &text[..start],
-        &text[end..]
-    );
-    let mut scene = Scene::parse(&text, ".").unwrap();
-    scene.file.output.width = width;
-    scene.file.output.height = height;
-    scene
+    common::night_with(camera, volume, width, height)
 }
 
 /// A 3.2 × 3.2 × 1.6 km cumulus (the shipped `cumulus`' automaton) centred at world

@@ -37,6 +37,24 @@ pub fn shipped(name: &str, width: u32, height: u32) -> Scene {
     scene
 }
 
+/// The shipped night (2024-12-15 21:00 UTC, 46.5° N 8° E: the sun 60° down, the full
+/// moon 56° up in the east-south-east) with its camera replaced by `camera` (TOML lines
+/// of `[camera]`) and a `[clouds.volume]` of `volume`'s lines, drawn at `width`×`height`.
+pub fn night_with(camera: &str, volume: &str, width: u32, height: u32) -> Scene {
+    let text = std::fs::read_to_string(scene_path("night")).unwrap();
+    let start = text.find("[camera]").unwrap();
+    let end = text.find("[time]").unwrap();
+    let text = format!(
+        "{}[camera]\n{camera}\n{}\n[clouds.volume]\n{volume}\n",
+        &text[..start],
+        &text[end..]
+    );
+    let mut scene = Scene::parse(&text, ".").unwrap();
+    scene.file.output.width = width;
+    scene.file.output.height = height;
+    scene
+}
+
 /// The error of parsing `text`, or else of preparing it.
 pub fn parse_error(text: &str) -> SceneError {
     match Scene::parse(text, ".") {
