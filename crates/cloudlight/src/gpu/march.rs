@@ -172,16 +172,15 @@ pub fn compose_march_shader() -> Result<String, skyscape_wgsl::ComposeError> {
     crate::composer().compose_module("cloudlight::march_pass")
 }
 
+/// What either march pass keeps from `prepare`: the bind group, the dispatch and the
+/// output image; `_inputs` keeps the bound buffers alive.
 #[derive(Debug)]
 struct Prepared {
     bind_group: wgpu::BindGroup,
     workgroups: [u32; 2],
     size: [u32; 2],
     image: wgpu::Buffer,
-    _params: wgpu::Buffer,
-    _density: wgpu::Buffer,
-    _distance: wgpu::Buffer,
-    _outside: (wgpu::Buffer, wgpu::Buffer),
+    _inputs: Vec<wgpu::Buffer>,
 }
 
 /// The view march on a GPU (see the module documentation).
@@ -450,28 +449,17 @@ impl MarchPass {
         max_distance: Option<&wgpu::Buffer>,
         outside: Option<&OutsideShadow<'_>>,
     ) -> Result<(), MarchGpuError> {
-        let limits = device.limits();
-        let mut workgroups = [0u32; 2];
-        for (k, (field, value)) in ["size.x", "size.y"].into_iter().zip(size).enumerate() {
-            let groups = value.div_ceil(MARCH_WORKGROUP_SIZE);
-            let limit = limits.max_compute_workgroups_per_dimension;
-            if value == 0 || groups > limit {
-                return Err(MarchGpuError::ImageSize {
-                    field,
-                    value,
-                    limit,
-                });
-            }
-            workgroups[k] = groups;
-        }
-        let limit = limits.max_storage_buffer_binding_size;
+        let workgroups = march_workgroups(device, size)?;
+        let limit = device.limits().max_storage_buffer_binding_size;
         let density_bytes = volume.density().len() as u64 * 4;
-        let image_bytes = u64::from(size[0]) * u64::from(size[1]) * 32;
-        for (what, bytes) in [("density", density_bytes), ("image", image_bytes)] {
-            if bytes > limit {
-                return Err(MarchGpuError::BufferTooLarge { what, bytes, limit });
-            }
+        if density_bytes > limit {
+            return Err(MarchGpuError::BufferTooLarge {
+                what: "density",
+                bytes: density_bytes,
+                limit,
+            });
         }
+        let image = march_image(device, "cloudlight march image", size, limit)?;
         let words = params_words(
             volume,
             camera,
@@ -494,53 +482,27 @@ impl MarchPass {
             mapped_at_creation: false,
         });
         queue.write_buffer(&density, 0, bytemuck::cast_slice(volume.density()));
-        let image = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("cloudlight march image"),
-            size: image_bytes,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
         let distance = distance_binding(device, max_distance, size)?;
-        let outside = outside_bindings(device, queue, outside)?;
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("cloudlight march"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 8,
-                    resource: outside.0.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 9,
-                    resource: outside.1.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: params.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: density.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: image.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: distance.as_entire_binding(),
-                },
+        let (outside_params, outside_values) = outside_bindings(device, queue, outside)?;
+        let bind_group = march_bind_group(
+            device,
+            &self.layout,
+            "cloudlight march",
+            &[
+                (0, &params),
+                (1, &density),
+                (2, &image),
+                (3, &distance),
+                (8, &outside_params),
+                (9, &outside_values),
             ],
-        });
+        );
         self.prepared = Some(Prepared {
             bind_group,
             workgroups,
             size,
             image,
-            _params: params,
-            _density: density,
-            _distance: distance,
-            _outside: outside,
+            _inputs: vec![params, density, distance, outside_params, outside_values],
         });
         Ok(())
     }
@@ -560,13 +522,14 @@ impl MarchPass {
             .prepared
             .as_ref()
             .ok_or(MarchGpuError::EncodeBeforePrepare)?;
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("cloudlight march"),
+        super::dispatch_2d(
+            encoder,
+            "cloudlight march",
             timestamp_writes,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &prepared.bind_group, &[]);
-        pass.dispatch_workgroups(prepared.workgroups[0], prepared.workgroups[1], 1);
+            &self.pipeline,
+            &prepared.bind_group,
+            prepared.workgroups,
+        );
         Ok(())
     }
 
@@ -582,11 +545,7 @@ impl MarchPass {
 
     /// Turns the output buffer's bytes into one [`MarchResult`] per pixel (x fastest).
     pub fn decode(&self, bytes: &[u8]) -> Result<Vec<MarchResult<f32>>, MarchGpuError> {
-        let expected = self
-            .prepared
-            .as_ref()
-            .map_or(0, |p| p.size[0] as usize * p.size[1] as usize * 32);
-        decode_pixels(bytes, expected)
+        decode_pixels(bytes, self.prepared.as_ref())
     }
 }
 
@@ -721,18 +680,6 @@ fn shell_params_words(
 
 const SHELL_PARAMS_BYTES: u64 = 272;
 
-#[derive(Debug)]
-struct PreparedShell {
-    bind_group: wgpu::BindGroup,
-    workgroups: [u32; 2],
-    size: [u32; 2],
-    image: wgpu::Buffer,
-    _params: wgpu::Buffer,
-    _distance: wgpu::Buffer,
-    _weather: wgpu::Buffer,
-    _outside: (wgpu::Buffer, wgpu::Buffer),
-}
-
 /// The view march of a procedural [`CloudShell`] on a GPU
 /// (`shaders/cloudlight/march_shell_pass.wgsl`): the same output layout as
 /// [`MarchPass`], each pixel faded toward the horizon at its depth. The f32 CPU twin is
@@ -745,7 +692,7 @@ struct PreparedShell {
 pub struct MarchShellPass {
     pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
-    prepared: Option<PreparedShell>,
+    prepared: Option<Prepared>,
 }
 
 impl MarchShellPass {
@@ -842,29 +789,9 @@ impl MarchShellPass {
         outside: Option<&OutsideShadow<'_>>,
     ) -> Result<(), MarchGpuError> {
         let weather = ShellField::<f32>::of(shell);
-        let limits = device.limits();
-        let mut workgroups = [0u32; 2];
-        for (k, (field, value)) in ["size.x", "size.y"].into_iter().zip(size).enumerate() {
-            let groups = value.div_ceil(MARCH_WORKGROUP_SIZE);
-            let limit = limits.max_compute_workgroups_per_dimension;
-            if value == 0 || groups > limit {
-                return Err(MarchGpuError::ImageSize {
-                    field,
-                    value,
-                    limit,
-                });
-            }
-            workgroups[k] = groups;
-        }
-        let limit = limits.max_storage_buffer_binding_size;
-        let image_bytes = u64::from(size[0]) * u64::from(size[1]) * 32;
-        if image_bytes > limit {
-            return Err(MarchGpuError::BufferTooLarge {
-                what: "image",
-                bytes: image_bytes,
-                limit,
-            });
-        }
+        let workgroups = march_workgroups(device, size)?;
+        let limit = device.limits().max_storage_buffer_binding_size;
+        let image = march_image(device, "cloudlight march shell image", size, limit)?;
         let weather_grid = super::weather_grid_buffer(
             device,
             queue,
@@ -893,53 +820,33 @@ impl MarchShellPass {
             mapped_at_creation: false,
         });
         queue.write_buffer(&params, 0, bytemuck::cast_slice(&words));
-        let image = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("cloudlight march shell image"),
-            size: image_bytes,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
         let distance = distance_binding(device, max_distance, size)?;
-        let outside = outside_bindings(device, queue, outside)?;
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("cloudlight march shell"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 8,
-                    resource: outside.0.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 9,
-                    resource: outside.1.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: params.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: image.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: distance.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: weather_grid.as_entire_binding(),
-                },
+        let (outside_params, outside_values) = outside_bindings(device, queue, outside)?;
+        let bind_group = march_bind_group(
+            device,
+            &self.layout,
+            "cloudlight march shell",
+            &[
+                (0, &params),
+                (1, &image),
+                (2, &distance),
+                (3, &weather_grid),
+                (8, &outside_params),
+                (9, &outside_values),
             ],
-        });
-        self.prepared = Some(PreparedShell {
+        );
+        self.prepared = Some(Prepared {
             bind_group,
             workgroups,
             size,
             image,
-            _params: params,
-            _distance: distance,
-            _weather: weather_grid,
-            _outside: outside,
+            _inputs: vec![
+                params,
+                distance,
+                weather_grid,
+                outside_params,
+                outside_values,
+            ],
         });
         Ok(())
     }
@@ -959,13 +866,14 @@ impl MarchShellPass {
             .prepared
             .as_ref()
             .ok_or(MarchGpuError::EncodeBeforePrepare)?;
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("cloudlight march shell"),
+        super::dispatch_2d(
+            encoder,
+            "cloudlight march shell",
             timestamp_writes,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &prepared.bind_group, &[]);
-        pass.dispatch_workgroups(prepared.workgroups[0], prepared.workgroups[1], 1);
+            &self.pipeline,
+            &prepared.bind_group,
+            prepared.workgroups,
+        );
         Ok(())
     }
 
@@ -981,11 +889,7 @@ impl MarchShellPass {
 
     /// Turns the output buffer's bytes into one [`MarchResult`] per pixel (x fastest).
     pub fn decode(&self, bytes: &[u8]) -> Result<Vec<MarchResult<f32>>, MarchGpuError> {
-        let expected = self
-            .prepared
-            .as_ref()
-            .map_or(0, |p| p.size[0] as usize * p.size[1] as usize * 32);
-        decode_pixels(bytes, expected)
+        decode_pixels(bytes, self.prepared.as_ref())
     }
 }
 
@@ -1016,7 +920,77 @@ fn distance_binding(
     Ok(buffer.clone())
 }
 
-fn decode_pixels(bytes: &[u8], expected: usize) -> Result<Vec<MarchResult<f32>>, MarchGpuError> {
+/// The workgroups of a `size` image ([`MARCH_WORKGROUP_SIZE`]² pixels each), within the
+/// device's limit per dimension.
+fn march_workgroups(device: &wgpu::Device, size: [u32; 2]) -> Result<[u32; 2], MarchGpuError> {
+    let limit = device.limits().max_compute_workgroups_per_dimension;
+    let mut workgroups = [0u32; 2];
+    for (k, (field, value)) in ["size.x", "size.y"].into_iter().zip(size).enumerate() {
+        let groups = value.div_ceil(MARCH_WORKGROUP_SIZE);
+        if value == 0 || groups > limit {
+            return Err(MarchGpuError::ImageSize {
+                field,
+                value,
+                limit,
+            });
+        }
+        workgroups[k] = groups;
+    }
+    Ok(workgroups)
+}
+
+/// The output buffer of a `size` image (two `vec4<f32>` per pixel), within the storage
+/// binding `limit`.
+fn march_image(
+    device: &wgpu::Device,
+    label: &str,
+    size: [u32; 2],
+    limit: u64,
+) -> Result<wgpu::Buffer, MarchGpuError> {
+    let bytes = u64::from(size[0]) * u64::from(size[1]) * 32;
+    if bytes > limit {
+        return Err(MarchGpuError::BufferTooLarge {
+            what: "image",
+            bytes,
+            limit,
+        });
+    }
+    Ok(device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: bytes,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    }))
+}
+
+/// A march pass's bind group: each buffer whole at its binding.
+fn march_bind_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    label: &str,
+    buffers: &[(u32, &wgpu::Buffer)],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry<'_>> = buffers
+        .iter()
+        .map(|&(binding, buffer)| wgpu::BindGroupEntry {
+            binding,
+            resource: buffer.as_entire_binding(),
+        })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &entries,
+    })
+}
+
+/// The output buffer's bytes as one [`MarchResult`] per pixel of `prepared`'s image
+/// (none before `prepare`: a size error).
+fn decode_pixels(
+    bytes: &[u8],
+    prepared: Option<&Prepared>,
+) -> Result<Vec<MarchResult<f32>>, MarchGpuError> {
+    let expected = prepared.map_or(0, |p| p.size[0] as usize * p.size[1] as usize * 32);
     if bytes.len() != expected || expected == 0 {
         return Err(MarchGpuError::ReadbackSize {
             got: bytes.len(),

@@ -166,6 +166,26 @@ fn weather_grid_buffer(
     Ok(buffer)
 }
 
+/// Records one compute pass labelled `label` that dispatches `pipeline` over
+/// `workgroups` (x, y) with `bind_group` as group 0: the whole of a single-dispatch
+/// pass's `encode`.
+fn dispatch_2d(
+    encoder: &mut wgpu::CommandEncoder,
+    label: &str,
+    timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    pipeline: &wgpu::ComputePipeline,
+    bind_group: &wgpu::BindGroup,
+    workgroups: [u32; 2],
+) {
+    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+        label: Some(label),
+        timestamp_writes,
+    });
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, bind_group, &[]);
+    pass.dispatch_workgroups(workgroups[0], workgroups[1], 1);
+}
+
 fn uniform(dynamic: bool, size: u64) -> wgpu::BindingType {
     wgpu::BindingType::Buffer {
         ty: wgpu::BufferBindingType::Uniform,

@@ -318,13 +318,14 @@ impl ShadowMapPass {
             .prepared
             .as_ref()
             .ok_or(ShadowMapGpuError::EncodeBeforePrepare)?;
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("cloudlight shadow map"),
+        super::dispatch_2d(
+            encoder,
+            "cloudlight shadow map",
             timestamp_writes,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &prepared.bind_group, &[]);
-        pass.dispatch_workgroups(prepared.workgroups[0], prepared.workgroups[1], 1);
+            &self.pipeline,
+            &prepared.bind_group,
+            prepared.workgroups,
+        );
         Ok(())
     }
 

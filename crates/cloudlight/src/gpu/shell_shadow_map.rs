@@ -286,13 +286,14 @@ impl ShellShadowMapPass {
             .prepared
             .as_ref()
             .ok_or(ShellShadowMapGpuError::EncodeBeforePrepare)?;
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("cloudlight shell shadow map"),
+        super::dispatch_2d(
+            encoder,
+            "cloudlight shell shadow map",
             timestamp_writes,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &prepared.bind_group, &[]);
-        pass.dispatch_workgroups(prepared.workgroups[0], prepared.workgroups[1], 1);
+            &self.pipeline,
+            &prepared.bind_group,
+            prepared.workgroups,
+        );
         Ok(())
     }
 
