@@ -926,7 +926,9 @@ fn shell_shadow_plan(cloud: &PreparedShell) -> Result<String, String> {
     Ok(format!(
         "cloudlight's shadow map of the deck over the terrain on the plane of its base \
          ({}; {} steps per texel), {baked} (cloudlight's ShellShadowMapPass, the same \
-         formula), read by the terrain pass times the volume's",
+         formula; timed on the frame whose map changed, the first or a new light, and \
+         as an empty pass on a frame that reuses it), read by the terrain pass times the \
+         volume's",
         maps.join(", "),
         SHADOW_STEPS,
     ))

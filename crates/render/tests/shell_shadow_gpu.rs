@@ -120,3 +120,47 @@ fn a_scene_prepared_for_the_gpu_leaves_the_bake_to_it() {
     assert!(rebaked.shadows_baked_on_cpu() && rebaked.shadow_seconds > 0.0);
     assert_eq!(rebaked.shadow.as_ref().unwrap().values, map.values);
 }
+
+/// The GPU renderer times the deck's bake as "shell cloud shadow" (`skyscape explain`):
+/// a span on the frame that bakes the map and on a frame that reuses it (an empty pass
+/// then, not the last bake's figure). Only where the device has timestamps.
+#[test]
+fn the_gpu_bake_is_a_timed_pass() {
+    use render::gpu::{SceneRenderer, SceneRendererSettings};
+    let Some(gpu) = common::gpu_or_skip("render::shell_shadow_gpu timed bake") else {
+        return;
+    };
+    let scene = common::shipped("stratocumulus", 48, 27)
+        .prepare_for_gpu()
+        .unwrap();
+    let settings = SceneRendererSettings {
+        timestamps: true,
+        ..Default::default()
+    };
+    let mut renderer = SceneRenderer::new(&gpu.device, &gpu.queue, &scene, settings).unwrap();
+    let mut spans = Vec::new();
+    for _ in 0..2 {
+        renderer.prepare(&gpu.queue, &scene).unwrap();
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        renderer.encode(&mut encoder).unwrap();
+        gpu.queue.submit([encoder.finish()]);
+        let Some(seconds) = renderer.pass_seconds() else {
+            eprintln!("the device has no timestamps: nothing to check");
+            return;
+        };
+        let seconds = seconds.unwrap();
+        let bake = seconds
+            .iter()
+            .find(|(label, _)| *label == "shell cloud shadow");
+        spans.push(bake.expect("the bake has a span").1);
+    }
+    eprintln!(
+        "\"shell cloud shadow\" span: {:.3} ms baking, {:.3} ms reusing the map",
+        spans[0] * 1e3,
+        spans[1] * 1e3
+    );
+    assert!(
+        spans.iter().all(|s| s.is_finite() && *s >= 0.0),
+        "{spans:?}"
+    );
+}

@@ -835,6 +835,9 @@ impl SceneRenderer {
             if scene.moonlit.is_some() && rung.is_none() {
                 labels.push("moonlit sky LUT bakes");
             }
+            if terrain.as_ref().is_some_and(|t| t.shell_shadow.is_some()) {
+                labels.push("shell cloud shadow");
+            }
             if terrain.is_some() {
                 labels.push("terrain");
             }
@@ -1588,7 +1591,11 @@ impl SceneRenderer {
         if let Some(terrain) = &mut self.terrain
             && let Some(shell_shadow) = &mut terrain.shell_shadow
         {
-            shell_shadow.encode(encoder, &terrain.volume_shadow_values)?;
+            shell_shadow.encode(
+                encoder,
+                &terrain.volume_shadow_values,
+                times.and_then(|t| t.compute_writes("shell cloud shadow")),
+            )?;
         }
         if let Some(terrain) = &self.terrain {
             // Per vertex with a rung without tables: the vertices' segments first.

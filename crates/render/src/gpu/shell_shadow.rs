@@ -8,8 +8,10 @@
 //!
 //! Baked when a prepared scene's map differs from the one in the buffer (the first
 //! prepare; a new sun), not every frame: `prepare` fills the pass's inputs, the
-//! renderer's `encode` records the dispatch and the copy (no submit of its own). A deck with a grid weather map (the GPU shell
-//! passes compute procedural weather only) keeps the CPU's values.
+//! renderer's `encode` records the dispatch and the copy (no submit of its own), timed
+//! as "shell cloud shadow" when the renderer records timestamps (an empty pass on a
+//! frame that reuses the map). Procedural weather and a weather grid alike (the pass uploads the
+//! grid).
 
 use cloudlight::gpu::ShellShadowMapPass;
 use cloudlight::shadow_map::ShadowMapPlan;
@@ -51,8 +53,7 @@ impl ShellShadowGpu {
     /// Prepares the bake of the deck's map toward the light that has one into `values`
     /// at element `offset`, unless the buffer already holds it: [`Self::encode`] records
     /// it (no submit here). Returns that light (0 the sun, 1 the moon), or `None` when
-    /// the scene has no deck map or its weather is a grid (then the caller uploads the
-    /// CPU's values).
+    /// the scene has no deck map (then the caller uploads the CPU's values, if any).
     pub(crate) fn prepare(
         &mut self,
         device: &wgpu::Device,
@@ -91,17 +92,29 @@ impl ShellShadowGpu {
     }
 
     /// Records the bake `prepare` made ready, and its copy into `values`, into
-    /// `encoder` (nothing when the buffer already holds the map). Recorded before the
-    /// terrain pass that reads `values`.
+    /// `encoder`, with `timestamp_writes` on the bake's compute pass (an empty pass when
+    /// the buffer already holds the map). Recorded before the terrain pass
+    /// that reads `values`.
     pub(crate) fn encode(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
         values: &wgpu::Buffer,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), RenderError> {
         let Some((offset, bytes)) = self.pending.take() else {
+            // An empty pass keeps the span this frame's (an unwritten query would
+            // resolve to the last frame that baked).
+            if timestamp_writes.is_some() {
+                encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("shell cloud shadow (kept)"),
+                    timestamp_writes,
+                });
+            }
             return Ok(());
         };
-        self.pass.encode(encoder).map_err(bake_error)?;
+        self.pass
+            .encode_timed(encoder, timestamp_writes)
+            .map_err(bake_error)?;
         let baked = self
             .pass
             .buffer()
