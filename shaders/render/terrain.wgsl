@@ -57,7 +57,7 @@ struct TerrainUniform {
 // to VolumeShadowUniform): texel (0, 0)'s corner east/north, the texel edge, the plane's
 // altitude, the direction toward the light (east/north/up), whether a map is bound (0:
 // no such cloud, or none toward this draw's light), the texels east × north, where its
-// values start in volume_shadow_values.
+// values start in volume_shadow_values, the casting cloud's top altitude.
 struct VolumeShadowUniform {
     origin: vec2<f32>,
     cell_size: f32,
@@ -66,7 +66,7 @@ struct VolumeShadowUniform {
     enabled: u32,
     resolution: vec2<u32>,
     offset: u32,
-    padding: u32,
+    top: f32,
 }
 // The marched clouds' shadow maps: [0] the volume's (or its billboards'), [1] the
 // [clouds.shell] deck's; the terrain reads their product.
@@ -160,15 +160,20 @@ fn volume_shadow_value(map: VolumeShadowUniform, index: i32) -> f32 {
 }
 
 // One cloud's shadow at world position `world` (x east, y up, z south). Twin:
-// render::volume_clouds::CloudShadow::at (the same map; cloudlight's lookup,
-// shadow_map_taps then shadow_map_bilinear: between texel centres, 1 outside it).
+// render::volume_clouds::CloudShadow::on_terrain (the same map; cloudlight's lookup,
+// shadow_map_taps then shadow_map_bilinear: between texel centres, 1 outside it; above
+// the plane, exp(−τ) of cloudlight's shadow_depth_above fade, 1 above the top).
 fn shadow_map_at(map: VolumeShadowUniform, world: vec3<f32>) -> f32 {
     if map.enabled == 0u {
         return 1.0;
     }
     let texel = volume_shadow_texel(vec3<f32>(world.x, -world.z, world.y), map.to_sun, map.plane, map.origin, map.cell_size);
     let taps = shadow_map_taps(texel, map.resolution);
-    return shadow_map_bilinear(vec4<f32>(volume_shadow_value(map, taps.index.x), volume_shadow_value(map, taps.index.y), volume_shadow_value(map, taps.index.z), volume_shadow_value(map, taps.index.w)), taps.fraction);
+    let transmittance = shadow_map_bilinear(vec4<f32>(volume_shadow_value(map, taps.index.x), volume_shadow_value(map, taps.index.y), volume_shadow_value(map, taps.index.z), volume_shadow_value(map, taps.index.w)), taps.fraction);
+    if world.y <= map.plane {
+        return transmittance;
+    }
+    return exp(-shadow_depth_above(transmittance, world.y, map.plane, map.top));
 }
 
 // The marched clouds' shadow at `world`: the volume's times the shell's. Twin:

@@ -591,11 +591,14 @@ fn precomputed_frame<'a>(
 
 /// The marched clouds' shadow at world point `world` (x east, y up, z south, metres
 /// from the camera's ground point) toward `light`: the volume's map times the shell's
-/// (each 1 without its map). The GPU terrain pass's `volume_cloud_shadow` does the same
-/// in f32, in the same order.
+/// (each 1 without its map; `CloudShadow::on_terrain`, faded inside the cloud's
+/// altitudes). The GPU terrain pass's `volume_cloud_shadow` does the same in f32, in the
+/// same order.
 fn volume_shadow_at(light: &TerrainLight<'_>, world: Vec3) -> f32 {
     let at = |map: Option<&crate::volume_clouds::CloudShadow>| {
-        map.map_or(1.0, |shadow| shadow.at([world.x, -world.z, world.y]))
+        map.map_or(1.0, |shadow| {
+            shadow.on_terrain([world.x, -world.z, world.y])
+        })
     };
     at(light.illuminant.volume_shadow) * at(light.illuminant.shell_shadow)
 }

@@ -363,7 +363,7 @@ mod wgsl_tests {
                     enabled,
                     resolution,
                     offset,
-                    padding,
+                    top,
                 }),
                 wgsl("render::terrain", "VolumeShadowUniform"),
             ));

@@ -156,7 +156,7 @@ pub fn volume_on_deck(volume: &PreparedVolume, light: Light) -> Option<ShadowOnC
     };
     Some(ShadowOnCloud {
         map,
-        extent: volume_extent(&volume.volume),
+        extent: [map.plane, map.top],
     })
 }
 
@@ -168,9 +168,10 @@ pub fn deck_on_volume(shell: &PreparedShell, light: Light) -> Option<ShadowOnClo
         Light::Sun => sun,
         Light::Moon => moon,
     };
+    let map = map.as_ref()?;
     Some(ShadowOnCloud {
-        map: map.as_ref()?,
-        extent: deck_extent(&shell.shell),
+        map,
+        extent: [map.plane, map.top],
     })
 }
 
@@ -208,6 +209,7 @@ pub fn deck_over_volume(
         [lo, hi],
         DECK_OVER_VOLUME_CELL_M,
         [base, shell.planet_radius()],
+        top,
         to_light,
         crate::shell_clouds::SHADOW_STEPS,
     )

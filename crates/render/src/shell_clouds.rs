@@ -41,7 +41,8 @@
 //! cloudlight's `ShellShadowMapPass` over [`shell_shadow_map_plan`], whose f32 twin
 //! `cloudlight::shell_shadow::shell_shadow_map` equals the CPU bake bit for bit) and
 //! uses it instead of the CPU's values. Both renderers read the map with the same
-//! bilinear lookup (`CloudShadow::at`, the terrain pass's `shadow_map_at`) and multiply
+//! bilinear lookup, faded inside the deck's altitudes (`CloudShadow::on_terrain`, the
+//! terrain pass's `shadow_map_at`) and multiply
 //! the terrain's direct light by it times the volume cloud's map (the terrain pass holds
 //! one map per marched cloud: `crate::gpu::cloud_shadow`). At night the map is the
 //! moon's.
@@ -562,8 +563,8 @@ impl Scene {
 /// along the light to that plane from its lowest and highest points ([`SHADOW_SIDE`]
 /// texels along its longer side, none finer than the heightfield's). Every terrain point below the base reads its exact
 /// transmittance up to the map's sampling (clear air between it and the plane); a peak
-/// standing in the deck reads the whole column above the base along the light, the deck
-/// below it included (a darker shadow than the truth there). The plane is flat and the
+/// standing in the deck is shaded by the faded column of [`CloudShadow::on_terrain`]
+/// (none above the deck's top). The plane is flat and the
 /// shell's base a sphere: at `d` metres from the camera's ground point the plane lies
 /// `d²/2R` inside the deck (5 m at 8 km), where the march starts a few metres in.
 pub fn shell_shadow(
@@ -636,6 +637,7 @@ fn shell_shadow_of<D: cloudlight::DensityField<f32> + Sync + ?Sized>(
         [lo, hi],
         hf.spacing().max(longer / f64::from(SHADOW_SIDE)),
         [plane, planet],
+        shell.settings().outer_radius - planet,
         to_light,
         SHADOW_STEPS,
     )

@@ -111,9 +111,12 @@ pub struct MoonlitVolume {
 /// grid (the footprint swept away from the sun by the grid's height). A terrain point is
 /// carried along the sun ray to that plane and the map read there, bilinearly between
 /// texel centres (1 outside the map): exact, up to the map's sampling, for terrain
-/// below the cloud's base (the ray between the point and the plane is clear air); a peak
-/// reaching into the cloud reads the shadow of the cloud's part above the plane.
-/// Both renderers read the same map (the GPU's terrain pass uploads it).
+/// below the cloud's base (the ray between the point and the plane is clear air). A
+/// peak reaching into the cloud's altitudes ([`CloudShadow::on_terrain`]) is shaded by
+/// the part of the column above it only, which the map does not hold: cloudlight's
+/// `shadow_depth_above` fade of the column, the clouds' mutual shadows' (`f²`,
+/// `render::mutual_shadow`), none above the cloud's top. Both renderers read the same
+/// map (the GPU's terrain pass uploads it).
 #[derive(Debug, Clone)]
 pub struct CloudShadow {
     /// East/north of texel (0, 0)'s corner, metres (the volume's frame).
@@ -124,6 +127,8 @@ pub struct CloudShadow {
     pub resolution: [u32; 2],
     /// The plane's altitude (the grid's base), metres.
     pub plane: f32,
+    /// The casting cloud's top altitude, metres (above `plane`).
+    pub top: f32,
     /// Unit direction toward the sun, east/north/up.
     pub to_sun: [f32; 3],
     /// Transmittance toward the sun per texel, east fastest.
@@ -159,6 +164,7 @@ impl CloudShadow {
             [lo, hi],
             size,
             [o[2], 0.0],
+            o[2] + height,
             to_sun,
             SHADOW_MAP_STEPS,
         )
@@ -171,12 +177,14 @@ impl CloudShadow {
     /// samples per span toward unit `to_sun` (east/north/up). `plane[1]` is the field's
     /// frame's height of altitude 0 (0 for the volume's frame, the planet's radius for
     /// the shell's planet-centred one): the map's texels are at `plane[0] + plane[1]` in
-    /// the field's frame and at altitude `plane[0]` in [`CloudShadow::at`]'s.
+    /// the field's frame and at altitude `plane[0]` in [`CloudShadow::at`]'s. `top` is the
+    /// field's highest altitude (metres, above `plane[0]`; [`CloudShadow::on_terrain`]).
     pub fn over<D: cloudlight::DensityField<f32> + Sync + ?Sized>(
         field: &D,
         footprint: [[f64; 2]; 2],
         finest: f64,
         plane: [f64; 2],
+        top: f64,
         to_sun: [f64; 3],
         steps: u32,
     ) -> Option<Self> {
@@ -219,6 +227,7 @@ impl CloudShadow {
             cell_size: cell as f32,
             resolution,
             plane: plane[0] as f32,
+            top: top as f32,
             to_sun: to_sun.map(|c| c as f32),
             values,
         })
@@ -226,12 +235,32 @@ impl CloudShadow {
 
     /// The transmittance toward the sun at `point` (east/north/up, metres):
     /// cloudlight's lookup ([`cloudlight::shadow_map::shadow_map_lookup`]: bilinear
-    /// between texel centres, 1 outside the map). The WGSL twin is `shadow_map_at` in
-    /// `shaders/render/terrain.wgsl`.
+    /// between texel centres, 1 outside the map): the whole column above the plane,
+    /// wherever `point` lies (the terrain reads [`CloudShadow::on_terrain`]).
     pub fn at(&self, point: [f32; 3]) -> f32 {
         let texel =
             volume_shadow_texel(point, self.to_sun, self.plane, self.origin, self.cell_size);
         cloudlight::shadow_map::shadow_map_lookup(&self.values, self.resolution, texel)
+    }
+
+    /// The transmittance toward the light at terrain point `point` (east/north/up,
+    /// metres): [`CloudShadow::at`] at or below the plane; above it, `exp(−τ)` of the
+    /// part of the column above the point by cloudlight's
+    /// [`shadow_depth_above`](cloudlight::shadow_map::shadow_depth_above) (the clouds'
+    /// mutual shadows' fade; 1 at and above the cloud's top). The WGSL twin is
+    /// `shadow_map_at` in `shaders/render/terrain.wgsl`.
+    pub fn on_terrain(&self, point: [f32; 3]) -> f32 {
+        let transmittance = self.at(point);
+        if point[2] <= self.plane {
+            return transmittance;
+        }
+        let depth = cloudlight::shadow_map::shadow_depth_above(
+            transmittance,
+            point[2],
+            self.plane,
+            self.top,
+        );
+        (-depth).exp()
     }
 }
 

@@ -164,3 +164,93 @@ fn the_gpu_bake_is_a_timed_pass() {
         "{spans:?}"
     );
 }
+
+/// A terrain point inside a cloud's altitudes is shaded by the faded column of its map
+/// (cloudlight's `shadow_depth_above`, as the clouds' mutual shadows), one below the base
+/// by the whole column, one at or above the top not at all.
+#[test]
+fn a_peak_in_the_cloud_reads_the_column_above_it() {
+    let map = render::volume_clouds::CloudShadow {
+        origin: [0.0, 0.0],
+        cell_size: 100.0,
+        resolution: [4, 4],
+        plane: 1000.0,
+        top: 1800.0,
+        to_sun: [0.0, 0.0, 1.0],
+        values: vec![0.1; 16],
+    };
+    let at = |height: f32| map.on_terrain([200.0, 200.0, height]);
+    assert_eq!(at(600.0), 0.1);
+    assert_eq!(at(1000.0), 0.1);
+    assert_eq!(at(1800.0), 1.0);
+    assert_eq!(at(2500.0), 1.0);
+    // Halfway up: f = ½, τ = −ln 0.1 · ¼.
+    let half = at(1400.0);
+    assert!((half - 0.1f32.powf(0.25)).abs() < 1e-6, "{half}");
+    // Monotone from the base to the top.
+    let steps: Vec<f32> = (0..=8).map(|k| at(1000.0 + 100.0 * k as f32)).collect();
+    assert!(steps.windows(2).all(|w| w[0] <= w[1]), "{steps:?}");
+}
+
+/// The shipped `stratocumulus` with its deck lowered to 200–500 m, under all of its
+/// terrain (600–1,200 m): the deck's map is baked and dark, but no terrain point lies
+/// below the deck's top, so the terrain is drawn as without the map, on the CPU and on the
+/// GPU. (Before, every point read the whole column along the light.)
+#[test]
+fn terrain_above_the_deck_is_not_in_its_shadow() {
+    let mut scene = common::shipped("stratocumulus", 64, 36);
+    let shell = scene.file.clouds.as_mut().unwrap().shell.as_mut().unwrap();
+    shell.bottom_m = 200.0;
+    shell.top_m = 500.0;
+    let mut prepared = scene.prepare().unwrap();
+    let terrain = prepared.terrain.as_ref().unwrap();
+    let low = terrain
+        .heightfield
+        .elevations()
+        .into_iter()
+        .fold(f64::INFINITY, f64::min);
+    assert!(low > 500.0, "the terrain's lowest point {low}");
+    let map = prepared
+        .shell_cloud
+        .as_ref()
+        .unwrap()
+        .shadow
+        .as_ref()
+        .expect("the deck's map over the terrain");
+    let (dark, texels) = (
+        map.values.iter().filter(|&&v| v < 0.5).count(),
+        map.values.len(),
+    );
+    assert!(dark > 100, "{dark} dark texels");
+    let with = render::cpu_renderer::render_radiance(&prepared).unwrap();
+    let gpu = common::gpu_or_skip("render::shell_shadow_gpu terrain above the deck").map(|gpu| {
+        (
+            common::gpu_pixels(gpu, &prepared),
+            common::cpu_pixels(&prepared),
+        )
+    });
+    prepared.shell_cloud.as_mut().unwrap().shadow = None;
+    let without = render::cpu_renderer::render_radiance(&prepared).unwrap();
+    let terrain_pixels: Vec<usize> = (0..with.len())
+        .filter(|&i| with[i].terrain_distance.is_some())
+        .collect();
+    assert!(terrain_pixels.len() > 500, "{}", terrain_pixels.len());
+    for &i in &terrain_pixels {
+        assert_eq!(with[i].radiance, without[i].radiance, "pixel {i}");
+    }
+    eprintln!(
+        "deck at 200-500 m under terrain of {low:.0} m and up: {dark} of {} map texels below \
+         0.5, {} terrain pixels as without the map",
+        texels,
+        terrain_pixels.len()
+    );
+    if let Some((gpu, cpu)) = gpu {
+        let (pixels, within, worst) = common::within_two_over(&gpu, &cpu, terrain_pixels);
+        eprintln!("GPU vs CPU: {within} of {pixels} terrain pixels within 2 LSB, worst {worst}");
+        // A whole column on the GPU leaves 19 of 965 within 2 LSB (worst 50).
+        assert!(
+            within as f64 >= 0.99 * pixels as f64,
+            "{within} of {pixels}"
+        );
+    }
+}

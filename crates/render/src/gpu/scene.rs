@@ -123,8 +123,8 @@ pub struct VolumeShadowUniform {
     pub resolution: [u32; 2],
     /// Where the map's values start in the terrain pass's values buffer (elements).
     pub offset: u32,
-    /// Alignment.
-    pub padding: u32,
+    /// The casting cloud's top altitude, metres (the fade above the plane).
+    pub top: f32,
 }
 
 impl VolumeShadowUniform {
@@ -137,7 +137,7 @@ impl VolumeShadowUniform {
         enabled: 0,
         resolution: [1, 1],
         offset: 0,
-        padding: 0,
+        top: 1.0,
     };
 
     /// The parameters of `shadow`'s map, its values from element `offset` on.
@@ -150,7 +150,7 @@ impl VolumeShadowUniform {
             enabled: 1,
             resolution: shadow.resolution,
             offset,
-            padding: 0,
+            top: shadow.top,
         }
     }
 }
