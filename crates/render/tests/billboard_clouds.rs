@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{VALID, compare, lsb, parse_error, within_two_over};
+use common::{VALID, compare, lsb, luminance, parse_error, within_two_over};
 use render::billboard_clouds::{VolumeDraw, particles};
 use render::scene::{Rung, Scene};
 
@@ -155,10 +155,6 @@ fn the_billboard_camera_is_the_scene_camera() {
         eprintln!("{look} {size:?}: largest pixel-centre offset {worst:e} px");
         assert!(worst < 1e-4, "{look}: {worst}");
     }
-}
-
-fn luminance(rgb: [f32; 3]) -> f32 {
-    0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]
 }
 
 /// The sun in the east, the camera south of the cloud looking north: the cloud's east
@@ -853,16 +849,7 @@ fn the_billboards_shadow_the_moonlit_terrain() {
     // Looking down at where the shadow falls: from the cloud's middle (3.8 km) along
     // −moon to 1.2 km.
     let reach = (3800.0 - 1200.0) / moon.y;
-    let at = [-moon.x * reach, 1200.0, -moon.z * reach];
-    let camera = format!(
-        "position = [{:.1}, 9000.0, {:.1}]\nlook_at = [{:.1}, {:.1}, {:.1}]\n\
-         vertical_fov_deg = 60.0\nnear = 1.0\nfar = 120000.0",
-        at[0] - 3000.0,
-        at[2] + 2000.0,
-        at[0],
-        at[1],
-        at[2]
-    );
+    let camera = common::camera_looking_down_at([-moon.x * reach, 1200.0, -moon.z * reach]);
     let scene = common::night_with(&camera, volume, 96, 54);
     let mut prepared = scene.prepare().unwrap();
     let shaded = render::cpu_renderer::render_radiance(&prepared).unwrap();
@@ -877,24 +864,21 @@ fn the_billboards_shadow_the_moonlit_terrain() {
         .take();
     assert!(kept.is_some());
     let unshaded = render::cpu_renderer::render_radiance(&prepared).unwrap();
-    let (mut darker, mut terrain, mut worst) = (0, 0, 1.0f32);
-    for (a, b) in shaded.iter().zip(&unshaded) {
-        if a.terrain_distance.is_some() {
-            terrain += 1;
-            let (la, lb) = (luminance(a.radiance), luminance(b.radiance));
-            assert!(
-                la <= lb * (1.0 + 1e-6) + 1e-15,
-                "brighter in shadow: {la} vs {lb}"
-            );
-            darker += usize::from(la < 0.9 * lb);
-            worst = worst.min(la / lb.max(1e-30));
-        }
-    }
+    let common::TerrainDarkening {
+        terrain,
+        darker,
+        worst,
+    } = common::terrain_darkening(&shaded, &unshaded);
     eprintln!(
-        "moonlit terrain under billboards: {darker} of {terrain} pixels over 10 % darker in \
-         the billboards' moon shadow (darkest ratio {worst:.3})"
+        "moonlit terrain under billboards: {} of {terrain} pixels over 10 % darker in the \
+         billboards' moon shadow (darkest ratio {worst:.3})",
+        darker.len()
     );
-    assert!(darker >= 20, "{darker} terrain pixels in the moon shadow");
+    assert!(
+        darker.len() >= 20,
+        "{} terrain pixels in the moon shadow",
+        darker.len()
+    );
     assert!(worst < 0.5, "darkest ratio {worst}");
     // The GPU's moonlit terrain draw reads the same map.
     let prepared = scene.prepare().unwrap();
@@ -903,13 +887,7 @@ fn the_billboards_shadow_the_moonlit_terrain() {
     };
     let gpu = common::gpu_pixels(gpu, &prepared);
     let cpu = common::cpu_pixels(&prepared);
-    let (mut shadowed, mut agree) = (0usize, 0usize);
-    for (i, (a, b)) in shaded.iter().zip(&unshaded).enumerate() {
-        if a.terrain_distance.is_some() && luminance(a.radiance) < 0.9 * luminance(b.radiance) {
-            shadowed += 1;
-            agree += usize::from(lsb(gpu[i], cpu[i]) <= 2);
-        }
-    }
+    let (shadowed, agree, _) = within_two_over(&gpu, &cpu, darker);
     eprintln!(
         "GPU vs CPU over the billboards' moon shadow: {agree} of {shadowed} shadowed pixels \
          within 2 LSB"

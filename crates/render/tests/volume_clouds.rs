@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{VALID, compare, cpu_pixels, gpu_pixels, lsb, parse_error, within_two_over};
+use common::{VALID, compare, cpu_pixels, gpu_pixels, luminance, parse_error, within_two_over};
 use render::scene::Scene;
 use render::volume_clouds::{march_pixel, pinhole_camera, world_to_enu};
 
@@ -128,10 +128,6 @@ fn the_march_rays_are_the_scene_cameras_rays() {
         eprintln!("{look} {size:?}: largest component difference {worst:e}");
         assert!(worst < 1e-6, "{look}: {worst:e}");
     }
-}
-
-fn luminance(rgb: [f32; 3]) -> f32 {
-    0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]
 }
 
 #[test]
@@ -311,38 +307,22 @@ fn the_volume_cloud_shadows_the_terrain() {
     let shaded = render::cpu_renderer::render_radiance(&prepared).unwrap();
     prepared.volume_cloud.as_mut().unwrap().shadow = None;
     let unshaded = render::cpu_renderer::render_radiance(&prepared).unwrap();
-    let luminance = |p: [f32; 3]| 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
-    let (mut darker, mut terrain, mut worst) = (0, 0, 1.0f32);
-    for (a, b) in shaded.iter().zip(&unshaded) {
-        if a.terrain_distance.is_some() {
-            terrain += 1;
-            let (la, lb) = (luminance(a.radiance), luminance(b.radiance));
-            assert!(
-                la <= lb * (1.0 + 1e-6) + 1e-12,
-                "brighter in shadow: {la} vs {lb}"
-            );
-            if la < 0.9 * lb {
-                darker += 1;
-            }
-            worst = worst.min(la / lb.max(1e-30));
-        }
-    }
+    let common::TerrainDarkening {
+        terrain,
+        darker,
+        worst,
+    } = common::terrain_darkening(&shaded, &unshaded);
     eprintln!(
-        "{darker} of {terrain} terrain pixels over 10 % darker in the cloud's shadow (darkest ratio {worst})"
+        "{} of {terrain} terrain pixels over 10 % darker in the cloud's shadow (darkest ratio {worst})",
+        darker.len()
     );
-    assert!(darker > 0, "no terrain pixel in the cloud's shadow");
+    assert!(!darker.is_empty(), "no terrain pixel in the cloud's shadow");
     // The GPU terrain pass reads the same map: its shadowed pixels agree with the CPU's.
     prepared = scene.prepare().unwrap();
     if let Some(gpu) = common::gpu_or_skip("render::volume_clouds shadow") {
         let gpu_image = gpu_pixels(gpu, &prepared);
         let cpu_image = cpu_pixels(&prepared);
-        let (mut shadowed, mut agree) = (0usize, 0usize);
-        for (i, (a, b)) in shaded.iter().zip(&unshaded).enumerate() {
-            if a.terrain_distance.is_some() && luminance(a.radiance) < 0.9 * luminance(b.radiance) {
-                shadowed += 1;
-                agree += usize::from(lsb(gpu_image[i], cpu_image[i]) <= 2);
-            }
-        }
+        let (shadowed, agree, _) = within_two_over(&gpu_image, &cpu_image, darker);
         let everywhere = render::tonemap::fraction_within_lsb(&gpu_image, &cpu_image, 2).unwrap();
         eprintln!(
             "GPU vs CPU, looking down at the shadow: {agree} of {shadowed} shadowed pixels within 2 LSB; {:.3} % of all pixels",

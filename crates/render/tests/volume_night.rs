@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::lsb;
+use common::{lsb, luminance};
 use render::cpu_renderer::{display_pixels, render_cpu, render_radiance};
 use render::scene::{PreparedScene, Scene};
 use render::volume_clouds::{march_pixel, pinhole_camera};
@@ -25,10 +25,6 @@ fn cumulus(centre: [f64; 2], base: f64, cell: f64) -> String {
          view_steps = 48\nlight_steps = 8\noctaves = 8\noctave_b = 0.65\n",
         centre[0], centre[1]
     )
-}
-
-fn luminance(rgb: [f32; 3]) -> f32 {
-    0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]
 }
 
 /// The scene on the GPU (the harness's adapter), RGBA8; `None` when skipped.
@@ -163,16 +159,7 @@ fn the_volume_cloud_shadows_the_moonlit_terrain() {
     // Looking down at where the shadow falls: from the cloud's middle (3.8 km) along
     // −moon to 1.2 km.
     let reach = (3800.0 - 1200.0) / moon.y;
-    let at = [-moon.x * reach, 1200.0, -moon.z * reach];
-    let camera = format!(
-        "position = [{:.1}, 9000.0, {:.1}]\nlook_at = [{:.1}, {:.1}, {:.1}]\n\
-         vertical_fov_deg = 60.0\nnear = 1.0\nfar = 120000.0",
-        at[0] - 3000.0,
-        at[2] + 2000.0,
-        at[0],
-        at[1],
-        at[2]
-    );
+    let camera = common::camera_looking_down_at([-moon.x * reach, 1200.0, -moon.z * reach]);
     let scene = night(&camera, &volume, 96, 54);
     let mut prepared = scene.prepare().unwrap();
     let shaded = render_radiance(&prepared).unwrap();
@@ -187,34 +174,33 @@ fn the_volume_cloud_shadows_the_moonlit_terrain() {
         .take();
     assert!(kept.is_some());
     let unshaded = render_radiance(&prepared).unwrap();
-    let (mut darker, mut terrain, mut worst) = (0, 0, 1.0f32);
-    let (mut in_shadow, mut beside) = ((0.0f64, 0usize), (0.0f64, 0usize));
-    for (a, b) in shaded.iter().zip(&unshaded) {
-        if a.terrain_distance.is_some() {
-            terrain += 1;
-            let (la, lb) = (luminance(a.radiance), luminance(b.radiance));
-            assert!(
-                la <= lb * (1.0 + 1e-6) + 1e-15,
-                "brighter in shadow: {la} vs {lb}"
-            );
-            if la < 0.9 * lb {
-                darker += 1;
-                in_shadow.0 += f64::from(la);
-                in_shadow.1 += 1;
-            } else {
-                beside.0 += f64::from(la);
-                beside.1 += 1;
-            }
-            worst = worst.min(la / lb.max(1e-30));
-        }
-    }
+    let common::TerrainDarkening {
+        terrain,
+        darker,
+        worst,
+    } = common::terrain_darkening(&shaded, &unshaded);
+    let mean = |pixels: &[usize]| {
+        let sum: f64 = pixels
+            .iter()
+            .map(|&i| f64::from(luminance(shaded[i].radiance)))
+            .sum();
+        sum / pixels.len().max(1) as f64
+    };
+    let beside: Vec<usize> = (0..shaded.len())
+        .filter(|i| shaded[*i].terrain_distance.is_some() && !darker.contains(i))
+        .collect();
     eprintln!(
-        "moonlit terrain: {darker} of {terrain} pixels over 10 % darker in the cloud's moon \
+        "moonlit terrain: {} of {terrain} pixels over 10 % darker in the cloud's moon \
          shadow (darkest ratio {worst:.3}); mean luminance in it {:.3e}, beside it {:.3e}",
-        in_shadow.0 / in_shadow.1.max(1) as f64,
-        beside.0 / beside.1.max(1) as f64
+        darker.len(),
+        mean(&darker),
+        mean(&beside)
     );
-    assert!(darker >= 20, "{darker} terrain pixels in the moon shadow");
+    assert!(
+        darker.len() >= 20,
+        "{} terrain pixels in the moon shadow",
+        darker.len()
+    );
     assert!(worst < 0.5, "darkest ratio {worst}");
     // The GPU's moonlit terrain draw reads the same map.
     let prepared = scene.prepare().unwrap();
@@ -222,13 +208,7 @@ fn the_volume_cloud_shadows_the_moonlit_terrain() {
         return;
     };
     let cpu = render_cpu(&prepared).unwrap().pixels;
-    let (mut shadowed, mut agree) = (0usize, 0usize);
-    for (i, (a, b)) in shaded.iter().zip(&unshaded).enumerate() {
-        if a.terrain_distance.is_some() && luminance(a.radiance) < 0.9 * luminance(b.radiance) {
-            shadowed += 1;
-            agree += usize::from(lsb(gpu[i], cpu[i]) <= 2);
-        }
-    }
+    let (shadowed, agree, _) = common::within_two_over(&gpu, &cpu, darker);
     let everywhere = render::tonemap::fraction_within_lsb(&gpu, &cpu, 2).unwrap();
     eprintln!(
         "GPU vs CPU over the moon shadow: {agree} of {shadowed} shadowed pixels within 2 LSB; \

@@ -55,6 +55,64 @@ pub fn night_with(camera: &str, volume: &str, width: u32, height: u32) -> Scene 
     scene
 }
 
+/// Relative luminance (Rec. 709 weights) of linear RGB radiance.
+pub fn luminance(rgb: [f32; 3]) -> f32 {
+    0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]
+}
+
+/// A cloud's shadow on the terrain: the same view drawn with its map and without.
+#[derive(Debug)]
+pub struct TerrainDarkening {
+    /// Terrain pixels.
+    pub terrain: usize,
+    /// The terrain pixels over 10 % darker with the map.
+    pub darker: Vec<usize>,
+    /// The smallest luminance ratio, with the map over without.
+    pub worst: f32,
+}
+
+/// Compares the terrain pixels of `shaded` (drawn with a cloud's shadow map) with
+/// `unshaded` (without it); panics where the map brightens one.
+pub fn terrain_darkening(
+    shaded: &[render::cpu_renderer::PixelRadiance],
+    unshaded: &[render::cpu_renderer::PixelRadiance],
+) -> TerrainDarkening {
+    let mut out = TerrainDarkening {
+        terrain: 0,
+        darker: Vec::new(),
+        worst: 1.0,
+    };
+    for (i, (a, b)) in shaded.iter().zip(unshaded).enumerate() {
+        if a.terrain_distance.is_some() {
+            out.terrain += 1;
+            let (la, lb) = (luminance(a.radiance), luminance(b.radiance));
+            assert!(
+                la <= lb * (1.0 + 1e-6) + 1e-12,
+                "pixel {i} brighter in shadow: {la} vs {lb}"
+            );
+            if la < 0.9 * lb {
+                out.darker.push(i);
+            }
+            out.worst = out.worst.min(la / lb.max(1e-30));
+        }
+    }
+    out
+}
+
+/// `[camera]` lines 9 km up, 3 km west and 2 km south of `at` (x east, y up, z south),
+/// looking down at it: where a cloud's shadow falls.
+pub fn camera_looking_down_at(at: [f64; 3]) -> String {
+    format!(
+        "position = [{:.1}, 9000.0, {:.1}]\nlook_at = [{:.1}, {:.1}, {:.1}]\n\
+         vertical_fov_deg = 60.0\nnear = 1.0\nfar = 120000.0",
+        at[0] - 3000.0,
+        at[2] + 2000.0,
+        at[0],
+        at[1],
+        at[2]
+    )
+}
+
 /// The error of parsing `text`, or else of preparing it.
 pub fn parse_error(text: &str) -> SceneError {
     match Scene::parse(text, ".") {
