@@ -19,7 +19,7 @@
 //!
 //! (`cloudlight::shadow_map::shadow_depth_above`, WGSL twin of the same name; the
 //! lookup and it together are `cloudlight::shadow_map::OutsideShadowMap::outside_depth`,
-//! [`ShadowOnCloud::outside`], whose WGSL twin `outside_depth` in
+//! [`CloudShadow::outside`], whose WGSL twin `outside_depth` in
 //! `shaders/cloudlight/outside_shadow.wgsl` both GPU march passes call;
 //! `cloudlight::march::march_view_lit_through` adds it).
 //! Below B's base it is B's whole column along the light, exact up to the map's
@@ -58,7 +58,6 @@
 //! branch per view sample.
 
 use cloudlight::march::{Lighting, MarchResult, PinholeCamera};
-use cloudlight::shadow_map::OutsideShadowMap;
 use cloudlight::{CloudShell, CloudVolume};
 
 use crate::shell_clouds::PreparedShell;
@@ -67,43 +66,6 @@ use crate::volume_clouds::{CloudShadow, PreparedVolume};
 /// Texel edge of the deck's map over the volume cloud (m): a sixteenth of the shipped
 /// deck's 800 m detail period, finer than its terrain map's 125 m.
 pub const DECK_OVER_VOLUME_CELL_M: f64 = 50.0;
-
-/// One cloud's shadow map as the other cloud's march reads it: the map and the
-/// altitudes `[base, top]` (m) of the cloud that cast it.
-#[derive(Debug, Clone, Copy)]
-pub struct ShadowOnCloud<'a> {
-    /// The map (its plane at `extent[0]`).
-    pub map: &'a CloudShadow,
-    /// The casting cloud's lowest and highest altitude (m).
-    pub extent: [f32; 2],
-}
-
-impl<'a> ShadowOnCloud<'a> {
-    /// The map as a march in a frame whose altitude 0 lies at height `frame_height`
-    /// reads it (0 for the volume's frame, the planet's radius for the deck's):
-    /// cloudlight's CPU twin of the GPU march's uniform and values (the GPU renderer
-    /// fills those from it).
-    pub fn outside(&self, frame_height: f32) -> OutsideShadowMap<&'a [f32], f32> {
-        let map = self.map;
-        OutsideShadowMap {
-            origin: map.origin,
-            cell_size: map.cell_size,
-            resolution: map.resolution,
-            plane: map.plane,
-            to_light: map.to_sun,
-            extent: self.extent,
-            frame_height,
-            values: &map.values,
-        }
-    }
-
-    /// The casting cloud's optical depth toward the map's light above `point`
-    /// (east/north/up about the camera's ground point, `point[2]` the altitude):
-    /// cloudlight's `outside_depth` in the volume's frame (module docs).
-    pub fn depth_at(&self, point: [f32; 3]) -> f32 {
-        self.outside(0.0).outside_depth(point)
-    }
-}
 
 /// The volume cloud's altitudes `[base, top]` (m): its grid's.
 pub fn volume_extent(volume: &CloudVolume) -> [f32; 2] {
@@ -149,30 +111,23 @@ impl Light {
 
 /// The volume cloud's shadow on the deck toward `light`: its map for that light, `None`
 /// without one.
-pub fn volume_on_deck(volume: &PreparedVolume, light: Light) -> Option<ShadowOnCloud<'_>> {
+pub fn volume_on_deck(volume: &PreparedVolume, light: Light) -> Option<&CloudShadow> {
     let map = match light {
         Light::Sun => volume.shadow.as_ref()?,
         Light::Moon => volume.moon.as_ref()?.shadow.as_ref()?,
     };
-    Some(ShadowOnCloud {
-        map,
-        extent: [map.plane, map.top],
-    })
+    Some(map)
 }
 
 /// The deck's shadow on the volume cloud toward `light`: its map over the volume for
 /// that light ([`PreparedShell::over_volume`], the sun's first).
-pub fn deck_on_volume(shell: &PreparedShell, light: Light) -> Option<ShadowOnCloud<'_>> {
+pub fn deck_on_volume(shell: &PreparedShell, light: Light) -> Option<&CloudShadow> {
     let [sun, moon] = &shell.over_volume;
     let map = match light {
         Light::Sun => sun,
         Light::Moon => moon,
     };
-    let map = map.as_ref()?;
-    Some(ShadowOnCloud {
-        map,
-        extent: [map.plane, map.top],
-    })
+    map.as_ref()
 }
 
 /// The deck's shadow map over `volume` toward unit `to_light` (east/north/up), or `None`
@@ -225,7 +180,7 @@ pub fn march_volume_pixel(
     size: [u32; 2],
     pixel: [u32; 2],
     max_distance: f32,
-    deck: Option<ShadowOnCloud<'_>>,
+    deck: Option<&CloudShadow>,
 ) -> MarchResult<f32> {
     let deck = deck.map(|d| d.outside(0.0));
     crate::volume_clouds::march_field_pixel_through(
@@ -251,7 +206,7 @@ pub fn march_deck_pixel(
     size: [u32; 2],
     pixel: [u32; 2],
     max_distance: f32,
-    volume: Option<ShadowOnCloud<'_>>,
+    volume: Option<&CloudShadow>,
 ) -> MarchResult<f32> {
     let volume = volume.map(|v| v.outside(shell.shell.planet_radius() as f32));
     let result = crate::volume_clouds::march_field_pixel_through(
@@ -290,10 +245,10 @@ impl ShadowValues {
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
-        shadow: Option<ShadowOnCloud<'s>>,
-    ) -> Option<(ShadowOnCloud<'s>, &wgpu::Buffer)> {
+        shadow: Option<&'s CloudShadow>,
+    ) -> Option<(&'s CloudShadow, &wgpu::Buffer)> {
         let shadow = shadow?;
-        let values = &shadow.map.values;
+        let values = &shadow.values;
         let bits: &[u32] = bytemuck::cast_slice(values);
         let kept = match self.kept.take() {
             Some((kept, buffer)) if kept == bits => (kept, buffer),
@@ -316,10 +271,10 @@ impl ShadowValues {
 /// [`ShadowValues::upload`]'s map as the march pass binds it, in a march frame whose
 /// altitude 0 lies at height `frame_height` (0 for the volume's frame, the planet's
 /// radius for the deck's): `cloudlight::gpu::OutsideShadow`, the same map and lookup as
-/// [`ShadowOnCloud::outside`]'s `outside_depth`.
+/// [`CloudShadow::outside`]'s `outside_depth`.
 #[cfg(feature = "gpu")]
 pub(crate) fn outside<'a>(
-    (shadow, values): (ShadowOnCloud<'_>, &'a wgpu::Buffer),
+    (shadow, values): (&CloudShadow, &'a wgpu::Buffer),
     frame_height: f32,
 ) -> cloudlight::gpu::OutsideShadow<'a> {
     shadow.outside(frame_height).with_values(values)
@@ -341,11 +296,11 @@ pub fn plan(scene: &crate::scene::PreparedScene) -> (&'static str, Result<String
         .flat_map(|light| {
             let lit_by = light.name();
             let on_volume = deck_on_volume(shell, light).map(|s| {
-                let [w, h] = s.map.resolution;
+                let [w, h] = s.resolution;
                 format!("the deck's {w}×{h} map on the volume ({lit_by})")
             });
             let on_deck = volume_on_deck(volume, light).map(|s| {
-                let [w, h] = s.map.resolution;
+                let [w, h] = s.resolution;
                 format!("the volume's {w}×{h} map on the deck ({lit_by})")
             });
             [on_volume, on_deck].into_iter().flatten()

@@ -55,6 +55,7 @@ use cloudlight::CloudVolume;
 use cloudlight::march::{
     Jitter, LightMarch, Lighting, MarchConfig, MarchResult, MarchSettings, Octaves, PinholeCamera,
 };
+use cloudlight::shadow_map::OutsideShadowMap;
 
 use crate::scene::{CloudVolumeSection, Scene, SceneError};
 
@@ -250,17 +251,36 @@ impl CloudShadow {
     /// mutual shadows' fade; 1 at and above the cloud's top). The WGSL twin is
     /// `shadow_map_at` in `shaders/render/terrain.wgsl`.
     pub fn on_terrain(&self, point: [f32; 3]) -> f32 {
-        let transmittance = self.at(point);
         if point[2] <= self.plane {
-            return transmittance;
+            return self.at(point);
         }
-        let depth = cloudlight::shadow_map::shadow_depth_above(
-            transmittance,
-            point[2],
-            self.plane,
-            self.top,
-        );
-        (-depth).exp()
+        (-self.depth_at(point)).exp()
+    }
+
+    /// The map as a march in a frame whose altitude 0 lies at height `frame_height`
+    /// reads it (0 for the volume's frame, the planet's radius for the deck's), the
+    /// casting cloud spanning `[plane, top]`: cloudlight's CPU twin of the GPU march's
+    /// uniform and values (the GPU renderer fills those from it;
+    /// `crate::mutual_shadow`).
+    pub fn outside(&self, frame_height: f32) -> OutsideShadowMap<&[f32], f32> {
+        OutsideShadowMap {
+            origin: self.origin,
+            cell_size: self.cell_size,
+            resolution: self.resolution,
+            plane: self.plane,
+            to_light: self.to_sun,
+            extent: [self.plane, self.top],
+            frame_height,
+            values: &self.values,
+        }
+    }
+
+    /// The casting cloud's optical depth toward the map's light above `point`
+    /// (east/north/up about the camera's ground point, `point[2]` the altitude):
+    /// cloudlight's `outside_depth` in the volume's frame ([`CloudShadow::at`]'s lookup,
+    /// then `shadow_depth_above`).
+    pub fn depth_at(&self, point: [f32; 3]) -> f32 {
+        self.outside(0.0).outside_depth(point)
     }
 }
 

@@ -39,9 +39,10 @@ use cloudlight::march::{
 use cloudlight::union::UnionField;
 use rayon::prelude::*;
 use render::cloud_order::{SeenCloud, in_depth_order};
-use render::mutual_shadow::{self, Light, ShadowOnCloud};
+use render::mutual_shadow::{self, Light};
 use render::scene::{PreparedScene, Scene};
 use render::tonemap::{linear_to_srgb, tonemap_exposure};
+use render::volume_clouds::CloudShadow;
 
 const WIDTH: u32 = 64;
 const HEIGHT: u32 = 36;
@@ -249,7 +250,7 @@ fn pixels(scene: &PreparedScene, lighting: &Lighting<f64>) -> Vec<Pixel> {
             let s = march_view(shell, s_origin, direction, &s_settings, lighting);
             // The renderer's mutual shadowing: each march's light through the other
             // cloud's map (the volume's frame is the maps'; the deck's sits R above).
-            let depth = |map: Option<ShadowOnCloud<'_>>, p: [f64; 3]| {
+            let depth = |map: Option<&CloudShadow>, p: [f64; 3]| {
                 map.map_or(0.0, |m| f64::from(m.depth_at(p.map(|c| c as f32))))
             };
             let v_mapped = march_view_lit_through(
