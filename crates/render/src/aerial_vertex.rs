@@ -46,7 +46,7 @@ use glam::{DVec2, DVec3, Vec3};
 use serde::Deserialize;
 
 use crate::RenderError;
-use crate::scene::prepare::{Illuminant, PreparedScene, PreparedTerrain};
+use crate::scene::prepare::{PreparedScene, PreparedTerrain};
 use crate::terrain_mesh::{TILE_CELLS, TerrainLod, Tile};
 
 /// Where the terrain's aerial perspective is evaluated (`[terrain] aerial_perspective`).
@@ -407,41 +407,6 @@ fn plane_crossing(
     let weights = [1.0 - wb - wc, wb, wc];
     // Within a rounding of the triangle's edges.
     weights.iter().all(|&w| w >= -1e-9).then_some((t, weights))
-}
-
-/// The segment camera → the point `offset` metres from it (world axes) by `light`'s
-/// model: the precomputed rung's tables (`atmos::lut::drop_in::aerial_perspective`, the
-/// twin of the WGSL the vertex stage calls), else the rung's segment model.
-pub fn segment_to(
-    scene: &PreparedScene,
-    light: &Illuminant<'_>,
-    tables: Option<(&atmos::lut::StaticLuts, &atmos::lut::FrameLuts)>,
-    offset: [f32; 3],
-) -> Result<ScatteringSegment, RenderError> {
-    if let Some((luts, frame)) = tables {
-        return Ok(atmos::lut::drop_in::aerial_perspective(luts, frame, offset));
-    }
-    let vector = DVec3::from_array(offset.map(f64::from));
-    let distance = vector.length();
-    if distance <= 0.0 {
-        return Ok(ScatteringSegment {
-            radiance: [0.0; 3],
-            transmittance: [1.0; 3],
-        });
-    }
-    let query = atmos::SkyQuery::with_max_distance(
-        scene.atmosphere.planet_radius,
-        scene.camera_position,
-        vector / distance,
-        light.direction,
-        distance,
-    )
-    .map_err(RenderError::Atmosphere)?;
-    let sample = light.segment_model.evaluate(&query);
-    Ok(ScatteringSegment {
-        radiance: sample.radiance.map(|v| v as f32),
-        transmittance: sample.transmittance.map(|v| v as f32),
-    })
 }
 
 /// A surface radiance seen through `segment`: `surface × transmittance + in-scatter`

@@ -486,7 +486,7 @@ pub fn world_offset(relative: [f64; 3]) -> [f32; 3] {
 
 /// At night (the cloud lit by the moon and the scene's moonlit sky), the moonlit air in
 /// front of each particle: its in-scattered radiance between the camera and the
-/// particle's centre from the moon's segment model (`SkyQuery::with_max_distance`,
+/// particle's centre from the moon's segment model ([`crate::air::segment_to`],
 /// f32), the same values for both renderers (the GPU's vertex stage adds them to the
 /// sun's air, the CPU twin likewise). `None` otherwise.
 pub fn moonlit_air(
@@ -500,26 +500,12 @@ pub fn moonlit_air(
     particles
         .iter()
         .map(|p| {
-            let v = DVec3::from_array(world_offset(p.relative).map(f64::from));
-            let query = atmos::SkyQuery::with_max_distance(
-                scene.atmosphere.planet_radius,
-                scene.camera_position,
-                v.normalize(),
-                moon.direction,
-                v.length(),
-            )?;
-            Ok(moon
-                .segment_model
-                .evaluate(&query)
-                .radiance
-                .map(|l| l as f32))
+            let offset = world_offset(p.relative);
+            Ok(crate::air::segment_to(scene, &moon, None, offset)?.radiance)
         })
         .collect::<Result<Vec<_>, RenderError>>()
         .map(Some)
 }
-
-/// The precomputed rung's tables of a frame, as the CPU renderer holds them.
-pub type FrameTables<'a> = (&'a atmos::lut::StaticLuts, &'a atmos::lut::FrameLuts);
 
 /// The twin of the GPU's billboard pass: `cloud`'s particles seen through the air
 /// (the precomputed rung's `tables`, else the segment model), rasterised by
@@ -528,34 +514,16 @@ pub type FrameTables<'a> = (&'a atmos::lut::StaticLuts, &'a atmos::lut::FrameLut
 pub fn composite_billboards_cpu(
     scene: &PreparedScene,
     cloud: &PreparedBillboards,
-    tables: Option<FrameTables<'_>>,
+    tables: crate::air::AirTables<'_>,
     out: &mut [PixelRadiance],
 ) -> Result<(), RenderError> {
     let (camera, mut particles) = particles(scene, cloud)?;
     let moon_air = moonlit_air(scene, cloud, &particles)?;
+    let sun = scene.sun_light();
     for (i, p) in particles.iter_mut().enumerate() {
         let offset = world_offset(p.relative);
-        let (transmittance, radiance) = match tables {
-            Some((luts, frame)) => {
-                let s = atmos::lut::drop_in::aerial_perspective(luts, frame, offset);
-                (s.transmittance, s.radiance)
-            }
-            None => {
-                let v = DVec3::from_array(offset.map(f64::from));
-                let query = atmos::SkyQuery::with_max_distance(
-                    scene.atmosphere.planet_radius,
-                    scene.camera_position,
-                    v.normalize(),
-                    scene.sun,
-                    v.length(),
-                )?;
-                let air = scene.segment_model.evaluate(&query);
-                (
-                    air.transmittance.map(|t| t as f32),
-                    air.radiance.map(|l| l as f32),
-                )
-            }
-        };
+        let air = crate::air::segment_to(scene, &sun, tables, offset)?;
+        let (transmittance, radiance) = (air.transmittance, air.radiance);
         // At night the moonlit air is added to the sun's, as the GPU's vertex stage does.
         let radiance = match &moon_air {
             Some(air) => std::array::from_fn(|k| radiance[k] + air[i][k]),

@@ -64,11 +64,12 @@
 
 use cloudlight::march::{Lighting, MarchResult};
 
+use crate::air::AirTables;
 use crate::cpu_renderer::PixelRadiance;
 use crate::mutual_shadow::Light;
 use crate::scene::{Illuminant, PreparedScene};
 use crate::shell_clouds::PreparedShell;
-use crate::volume_clouds::{AirTables, MarchedCloud, PreparedVolume};
+use crate::volume_clouds::{MarchedCloud, PreparedVolume};
 
 /// One marched cloud seen at a pixel as if alone: the radiance it adds in front of what
 /// is behind it (its light through the air in front of it and the air's in-scatter it

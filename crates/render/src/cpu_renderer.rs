@@ -350,7 +350,7 @@ fn composite_volume_cloud(
         }
         _ => None,
     };
-    fn tables<'a>(p: Option<&'a PrecomputedFrame<'_>>) -> crate::volume_clouds::AirTables<'a> {
+    fn tables<'a>(p: Option<&'a PrecomputedFrame<'_>>) -> crate::air::AirTables<'a> {
         p.map(|p| (p.luts, &p.frame))
     }
     composite_marched_cloud(
@@ -704,7 +704,7 @@ fn shade_terrain(
         if let Some(vertex) = &light.vertex_aerial {
             let tables = Some((p.luts, &p.frame));
             let segment = vertex.segment(hit.texel, view, |offset| {
-                crate::aerial_vertex::segment_to(scene, &light.illuminant, tables, offset)
+                crate::air::segment_to(scene, &light.illuminant, tables, offset)
             })?;
             return Ok(crate::aerial_vertex::seen_through(
                 surface.to_array(),
@@ -739,25 +739,18 @@ fn shade_terrain(
     );
     if let Some(vertex) = &light.vertex_aerial {
         let segment = vertex.segment(hit.texel, view, |offset| {
-            crate::aerial_vertex::segment_to(scene, &light.illuminant, None, offset)
+            crate::air::segment_to(scene, &light.illuminant, None, offset)
         })?;
         return Ok(crate::aerial_vertex::seen_through(
             surface.to_array(),
             &segment,
         ));
     }
-    let query = atmos::SkyQuery::with_max_distance(
-        planet,
-        scene.camera_position,
-        view,
-        light.illuminant.direction,
-        hit.distance,
-    )
-    .map_err(atmos_error)?;
-    let segment = light.illuminant.segment_model.evaluate(&query);
-    Ok(std::array::from_fn(|k| {
-        surface[k] * segment.transmittance[k] as f32 + segment.radiance[k] as f32
-    }))
+    let segment = crate::air::segment_along(scene, &light.illuminant, view, hit.distance)?;
+    Ok(crate::aerial_vertex::seen_through(
+        surface.to_array(),
+        &segment,
+    ))
 }
 
 /// Writes `frame` as an 8-bit RGBA PNG, atomically: to a temporary file beside

@@ -16,6 +16,7 @@
 //! ```
 
 pub mod aerial_vertex;
+pub mod air;
 pub mod billboard_clouds;
 pub mod cloud_order;
 pub mod clouds;

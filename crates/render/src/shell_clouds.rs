@@ -707,25 +707,18 @@ pub fn march_shell_pixel_lit(
     cloudlight::march::faded(result, cloud.shell.horizon_fade(result.depth))
 }
 
-/// The air in front of the deck: the volume cloud's
-/// ([`crate::volume_clouds::air_in_front`]).
-pub use crate::volume_clouds::air_in_front;
-
 /// The CPU twin of the GPU's shell march and composite: per pixel, the f32 march through
 /// the shell up to the terrain's hit (`PixelRadiance::terrain_distance`; the sky: no
 /// limit), faded toward the horizon, in the volume cloud's composite
 /// (`crate::volume_clouds::composite_marched_cloud`: drawn where it has opacity in front
-/// of the scene, seen through the air of [`air_in_front`] with the sun's `tables`). At
+/// of the scene, seen through the air of [`crate::air::air_in_front`] with the sun's `tables`). At
 /// night (`moon`: the moon's light and its tables) the deck's march lit by the moon,
 /// seen through the moonlit air, is added.
 pub fn composite_shell_cloud(
     scene: &crate::scene::PreparedScene,
     cloud: &PreparedShell,
-    tables: crate::volume_clouds::AirTables<'_>,
-    moon: Option<(
-        &crate::scene::Illuminant<'_>,
-        crate::volume_clouds::AirTables<'_>,
-    )>,
+    tables: crate::air::AirTables<'_>,
+    moon: Option<(&crate::scene::Illuminant<'_>, crate::air::AirTables<'_>)>,
     out: &mut [crate::cpu_renderer::PixelRadiance],
 ) -> Result<(), crate::RenderError> {
     let camera = &scene.camera;

@@ -57,6 +57,7 @@ use cloudlight::march::{
 };
 use cloudlight::shadow_map::OutsideShadowMap;
 
+use crate::air::AirTables;
 use crate::scene::{CloudVolumeSection, Scene, SceneError};
 
 /// The largest grid side along east and north (cells).
@@ -731,51 +732,11 @@ pub fn cloud_through_air(
     })
 }
 
-/// A light's precomputed tables as the CPU renderer holds them (`None`: the light's
-/// segment model).
-pub type AirTables<'a> = Option<(&'a atmos::lut::StaticLuts, &'a atmos::lut::FrameLuts)>;
-
-/// The air between the camera and `depth` metres along unit world `view` lit by `light`
-/// (the sun, or the moon at night): its transmittance and in-scattered radiance, from
-/// the precomputed rung's aerial-perspective tables of that light when `tables` is given
-/// (`atmos::lut::drop_in::aerial_perspective`, the twin of the GPU's air pass), else
-/// from the light's segment model.
-pub fn air_in_front(
-    scene: &crate::scene::PreparedScene,
-    light: &crate::scene::Illuminant<'_>,
-    tables: AirTables<'_>,
-    view: [f32; 3],
-    depth: f32,
-) -> Result<([f32; 3], [f32; 3]), crate::RenderError> {
-    Ok(match tables {
-        Some((luts, frame)) => {
-            let offset = view.map(|v| v * depth);
-            let segment = atmos::lut::drop_in::aerial_perspective(luts, frame, offset);
-            (segment.transmittance, segment.radiance)
-        }
-        None => {
-            let view = DVec3::from_array(view.map(f64::from)).normalize();
-            let query = atmos::SkyQuery::with_max_distance(
-                scene.atmosphere.planet_radius,
-                scene.camera_position,
-                view,
-                light.direction,
-                f64::from(depth),
-            )?;
-            let air = light.segment_model.evaluate(&query);
-            (
-                air.transmittance.map(|t| t as f32),
-                air.radiance.map(|l| l as f32),
-            )
-        }
-    })
-}
-
 /// The CPU twin of the GPU's composite of a marched cloud (the volume's, the shell's):
 /// per pixel `march(lighting, pixel, behind)` up to the terrain's hit
 /// (`PixelRadiance::terrain_distance`; the sky: no limit), drawn where it has opacity in
 /// front of the scene ([`cloud_in_front`]) as `L_c·T_air + L_air·(1 − T_c) + T_c·L`
-/// ([`cloud_through_air`], the air from [`air_in_front`] with the sun's `tables`). At
+/// ([`cloud_through_air`], the air from [`crate::air::air_in_front`] with the sun's `tables`). At
 /// night (`moon`: the moon's lighting, light and tables) the march lit by the moon,
 /// seen through the moonlit air, is added.
 pub(crate) fn composite_marched_cloud(
@@ -825,7 +786,7 @@ where
     /// The cloud at pixel `xy` in front of a scene `behind` metres away (`sun`: the
     /// scene's sun light): `None` where it has no opacity in front ([`cloud_in_front`]),
     /// else its light seen through the air ([`cloud_through_air`] with the sun's air
-    /// from [`air_in_front`], plus the moon's at night), its transmittance and depth;
+    /// from [`crate::air::air_in_front`], plus the moon's at night), its transmittance and depth;
     /// the caller adds `T_c · L_behind`.
     pub(crate) fn seen(
         &self,
@@ -840,12 +801,13 @@ where
             return Ok(None);
         }
         let view = atmos::frame::frame_view_direction(xy, &scene.camera);
-        let (transmittance, radiance) = air_in_front(scene, sun, self.tables, view, result.depth)?;
+        let (transmittance, radiance) =
+            crate::air::air_in_front(scene, sun, self.tables, view, result.depth)?;
         let mut seen = cloud_through_air(&result, transmittance, radiance);
         if let Some((moon_lighting, light, moon_tables)) = self.moon {
             let lit = march(crate::mutual_shadow::Light::Moon, moon_lighting, xy, behind);
             let (transmittance, radiance) =
-                air_in_front(scene, light, moon_tables, view, lit.depth)?;
+                crate::air::air_in_front(scene, light, moon_tables, view, lit.depth)?;
             let added = cloud_through_air(&lit, transmittance, radiance);
             for (value, a) in seen.iter_mut().zip(added) {
                 *value += a;

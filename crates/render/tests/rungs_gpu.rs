@@ -192,7 +192,7 @@ fn the_reference_rungs_keep_their_error_and_the_tables_are_not_baked() {
 /// The shipped cumulus (`[clouds.volume]`, marched) under the closed form and single
 /// scattering (the precomputed rung first, as the baseline): the cloud's air is the
 /// rung's own functions on the GPU (`render::gpu::cloud_air`, a compute pass) and the
-/// rung's segment model on the CPU (`volume_clouds::air_in_front`); the cloud's pixels
+/// rung's segment model on the CPU (`air::air_in_front`); the cloud's pixels
 /// (the march's transmittance below 1) agree within 2 LSB as the precomputed rung's do
 /// (`tests/volume_clouds.rs`), and the whole image with scene_gpu's metric.
 #[test]

@@ -8,7 +8,7 @@
 //! `render::air_segment_closed_form` / `render::air_segment_single` as the billboards'
 //! air passes do: the formulas of the terrain's aerial-perspective pass of
 //! `super::rungs`), the twin of
-//! the CPU's `volume_clouds::air_in_front` without tables (the light's segment model
+//! the CPU's `air::air_in_front` without tables (the light's segment model
 //! over the segment camera → the cloud's transmittance-weighted depth). Both write the
 //! same buffer (group 2, `render::cloud_air_io`'s layout), which the composite reads.
 

@@ -20,7 +20,7 @@
 //!
 //! The segments are bound in group 0 of the terrain pipeline (the precomputed rung's
 //! tables' group, which these rungs leave unbound). CPU twin:
-//! [`crate::aerial_vertex::VertexAerial`] with [`crate::aerial_vertex::segment_to`]
+//! [`crate::aerial_vertex::VertexAerial`] with [`crate::air::segment_to`]
 //! without tables (the same vertices and the same segment, interpolated at the
 //! triangle the pixel's ray crosses).
 
