@@ -716,7 +716,7 @@ fn the_shadowed_side_is_lit_by_the_sky() {
     assert!(mean(&west_with) > 1.05 * mean(&west_without));
 }
 
-/// The shipped night (the full moon 56° up in the east-south-east, the sun 60° down)
+/// The shipped night (the full moon 56° up in the east-south-east, the sun 53° down)
 /// looking west-north-west at a billboard cumulus 10 km away, 3.8 km up.
 fn night_billboards(width: u32, height: u32) -> Scene {
     common::night_with(
