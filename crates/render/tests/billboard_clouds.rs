@@ -496,7 +496,7 @@ fn shown_billboard_pixels(
 }
 
 /// At night under every GPU rung: the shipped night (2024-12-15 21:00 UTC, 46.5° N
-/// 8° E, the full moon 56° up) looking west-north-west at a cumulus 10 km away, 3.8 km
+/// 8° E, the full moon 51° up) looking west-north-west at a cumulus 10 km away, 3.8 km
 /// up, drawn as billboards lit by the moon; on the GPU the moon's air in front of each
 /// particle is the rung's pass run for the moon (the closed form, single scattering) or
 /// the CPU's segment model (the precomputed rung), on the CPU the moon's segment model.
@@ -716,7 +716,7 @@ fn the_shadowed_side_is_lit_by_the_sky() {
     assert!(mean(&west_with) > 1.05 * mean(&west_without));
 }
 
-/// The shipped night (the full moon 56° up in the east-south-east, the sun 53° down)
+/// The shipped night (the full moon 51° up in the east-south-east, the sun 53° down)
 /// looking west-north-west at a billboard cumulus 10 km away, 3.8 km up.
 fn night_billboards(width: u32, height: u32) -> Scene {
     common::night_with(

@@ -48,7 +48,7 @@ fn cloud_pixels(scene: &PreparedScene, limit: f32) -> Vec<usize> {
         .collect()
 }
 
-/// Looking west-north-west from the night scene's camera, away from the moon (56° up
+/// Looking west-north-west from the night scene's camera, away from the moon (51° up
 /// behind the camera): the cloud's moonlit face over the night sky.
 const WEST_CAMERA: &str = "position = [-14000.0, 2500.0, 0.0]\n\
                            look_direction = [-0.852, 0.423, -0.310]\n\
