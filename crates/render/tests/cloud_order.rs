@@ -308,7 +308,7 @@ fn both_clouds_agree_under_the_other_gpu_rungs() {
 }
 
 /// At night both clouds are marched a second time lit by the moon, each through the
-/// other's shadow map toward the moon (the sun, 60° down, has none). Two views from
+/// other's shadow map toward the moon (the sun, 53° down, has none). Two views from
 /// below the deck at 48×27: a volume at 700–1,300 m, its top in the deck (the deck's
 /// map shades it), and one at 1,400–2,000 m (its map shades the deck). In each, taking
 /// the moon's map out changes the CPU image (the march is told it is the moon's and

@@ -378,7 +378,7 @@ fn a_full_moon_night_is_a_dim_blue_sky_with_the_moon_and_stars() {
     let mut values: Vec<f64> = radiance.iter().map(|p| luminance(p.radiance)).collect();
     values.sort_by(f64::total_cmp);
     let median = values[values.len() / 2];
-    // The sky and the ridges are dark (the sun is 60° down); the moon and the stars
+    // The sky and the ridges are dark (the sun is 53° down); the moon and the stars
     // stand out by orders of magnitude.
     let day = default_scene(16, 9).prepare().unwrap();
     let day_median = {
@@ -437,7 +437,7 @@ fn a_full_moon_night_is_a_dim_blue_sky_with_the_moon_and_stars() {
 /// horizon maps' self-shadow, the sky it lights, the aerial perspective — scaled by its
 /// irradiance: the night scene's terrain equals, per channel, the same view lit by a
 /// sun standing where the moon stands, times the moon's irradiance over the sun's (the
-/// sun 60° down adds nothing). Only the light's angular radius differs (the soft
+/// sun 53° down adds nothing). Only the light's angular radius differs (the soft
 /// shadow's edge).
 #[test]
 fn the_moon_lights_the_terrain_as_a_sun_of_its_irradiance_would() {

@@ -37,7 +37,7 @@ pub fn shipped(name: &str, width: u32, height: u32) -> Scene {
     scene
 }
 
-/// The shipped night (2024-12-15 21:00 UTC, 46.5° N 8° E: the sun 60° down, the full
+/// The shipped night (2024-12-15 21:00 UTC, 46.5° N 8° E: the sun 53° down, the full
 /// moon 51° up in the east-south-east) with its camera replaced by `camera` (TOML lines
 /// of `[camera]`) and a `[clouds.volume]` of `volume`'s lines, drawn at `width`×`height`.
 pub fn night_with(camera: &str, volume: &str, width: u32, height: u32) -> Scene {
