@@ -76,9 +76,7 @@ pub fn air_in_front(
     depth: f32,
 ) -> Result<([f32; 3], [f32; 3]), RenderError> {
     let segment = match tables {
-        Some((luts, frame)) => {
-            atmos::lut::drop_in::aerial_perspective(luts, frame, view.map(|v| v * depth))
-        }
+        Some(_) => segment_to(scene, light, tables, view.map(|v| v * depth))?,
         None => {
             let view = DVec3::from_array(view.map(f64::from)).normalize();
             segment_along(scene, light, view, f64::from(depth))?
