@@ -197,6 +197,25 @@ pub trait SkyModel {
     }
 }
 
+/// A model behind a reference, a `Box` or an `Arc` is the model: callers keep one
+/// boxed or shared model and lend it to functions generic over `SkyModel`.
+macro_rules! forward_sky_model {
+    ($($pointer:ty),*) => {$(
+        impl<M: SkyModel + ?Sized> SkyModel for $pointer {
+            fn label(&self) -> String {
+                (**self).label()
+            }
+            fn evaluate(&self, query: &SkyQuery) -> SkySample {
+                (**self).evaluate(query)
+            }
+            fn evaluate_batch(&self, queries: &[SkyQuery]) -> Vec<SkySample> {
+                (**self).evaluate_batch(queries)
+            }
+        }
+    )*};
+}
+forward_sky_model!(&M, Box<M>, std::sync::Arc<M>);
+
 #[cfg(test)]
 mod tests {
     use super::*;

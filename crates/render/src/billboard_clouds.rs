@@ -67,7 +67,7 @@ use cloudlight::march::Lighting;
 use cloudlight::propagate::{SliceMode, SlicePlan};
 
 use crate::RenderError;
-use crate::cpu_renderer::PixelRadiance;
+use crate::cpu_frame::PixelRadiance;
 use crate::scene::{CloudVolumeSection, PreparedScene, Scene, SceneError};
 use crate::volume_clouds::{CloudShadow, world_to_enu};
 

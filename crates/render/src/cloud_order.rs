@@ -65,7 +65,7 @@
 use cloudlight::march::{Lighting, MarchResult};
 
 use crate::air::AirTables;
-use crate::cpu_renderer::PixelRadiance;
+use crate::cpu_frame::PixelRadiance;
 use crate::mutual_shadow::Light;
 use crate::scene::{Illuminant, PreparedScene};
 use crate::shell_clouds::PreparedShell;

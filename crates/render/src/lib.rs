@@ -20,11 +20,13 @@ pub mod air;
 pub mod billboard_clouds;
 pub mod cloud_order;
 pub mod clouds;
+pub mod cpu_frame;
 pub mod cpu_renderer;
 pub mod error;
 #[cfg(feature = "gpu")]
 pub mod gpu;
 pub mod mutual_shadow;
+pub mod passes;
 pub mod present;
 pub mod projection;
 pub mod scene;
@@ -317,9 +319,9 @@ mod wgsl_tests {
         ];
         #[cfg(feature = "gpu")]
         let twins = {
-            use crate::gpu::scene::{
-                CloudComposite, DisplayParameters, TerrainUniform, VolumeShadowUniform,
-            };
+            use crate::passes::cloud_layers::CloudComposite;
+            use crate::passes::display::DisplayParameters;
+            use crate::passes::terrain::uniforms::{TerrainUniform, VolumeShadowUniform};
             use crate::volume_clouds::VolumeDistanceParams;
             let mut twins = twins.to_vec();
             twins.push((

@@ -66,7 +66,7 @@ use cloudlight::shell::{ProceduralWeather, WeatherMap};
 use cloudlight::{CloudShell, ShellError, ShellSettings};
 
 use crate::scene::{Scene, SceneError};
-use crate::volume_clouds::{CloudShadow, ModelRef, world_to_enu};
+use crate::volume_clouds::{CloudShadow, world_to_enu};
 
 /// The most view-march steps per pixel.
 pub const MAX_VIEW_STEPS: u32 = 1024;
@@ -489,7 +489,7 @@ impl Scene {
                         toward: DVec3| {
             let light_error = |e: MarchError| self.shell_error(section, "bottom_m", Box::new(e));
             let light = cloudlight::march::atmos_light(
-                &ModelRef(model),
+                &model,
                 atmosphere,
                 point,
                 toward,
@@ -719,7 +719,7 @@ pub fn composite_shell_cloud(
     cloud: &PreparedShell,
     tables: crate::air::AirTables<'_>,
     moon: Option<(&crate::scene::Illuminant<'_>, crate::air::AirTables<'_>)>,
-    out: &mut [crate::cpu_renderer::PixelRadiance],
+    out: &mut [crate::cpu_frame::PixelRadiance],
 ) -> Result<(), crate::RenderError> {
     let camera = &scene.camera;
     let size = [camera.width, camera.height];
@@ -821,18 +821,14 @@ impl ShellCloudPass {
     }
 }
 
-/// What `skyscape explain` says of the shell's steps (the shadow maps' bake at prepare,
-/// the march, the moon's march at night, the composite).
+/// What `skyscape explain` says of the shell's steps (the march, the moon's march at
+/// night, the composite; the shadow maps' bake is the terrain pass's).
 pub fn shell_pass_plans(
     scene: &crate::scene::PreparedScene,
-) -> [(&'static str, Result<String, String>); 4] {
+) -> [(&'static str, Result<String, String>); 3] {
     let Some(cloud) = &scene.shell_cloud else {
         let none = || Err("no [clouds.shell]: no march".to_string());
         return [
-            (
-                "shell cloud shadow",
-                Err("no [clouds.shell]: no shadow map baked".into()),
-            ),
             ("shell cloud march", none()),
             ("moonlit shell march", none()),
             (
@@ -849,7 +845,6 @@ pub fn shell_pass_plans(
         LightMarch::Cone { .. } => 7,
     };
     [
-        ("shell cloud shadow", shell_shadow_plan(cloud)),
         (
             "shell cloud march",
             Ok(format!(
@@ -892,7 +887,7 @@ pub fn shell_pass_plans(
 
 /// What `skyscape explain` says of the deck's shadow maps: baked at prepare (measured
 /// here), or why none is.
-fn shell_shadow_plan(cloud: &PreparedShell) -> Result<String, String> {
+pub(crate) fn shell_shadow_plan(cloud: &PreparedShell) -> Result<String, String> {
     let maps: Vec<String> = [("the sun", &cloud.shadow), ("the moon", &cloud.moon_shadow)]
         .into_iter()
         .filter_map(|(light, map)| {

@@ -300,18 +300,6 @@ pub fn volume_shadow_texel(
     cloudlight::shadow_map::shadow_map_texel(point, to_sun, plane, origin, cell_size)
 }
 
-/// `ground_irradiance` takes a sized model; this lends it the scene's boxed one.
-pub(crate) struct ModelRef<'a>(pub(crate) &'a (dyn atmos::SkyModel + Send + Sync));
-
-impl atmos::SkyModel for ModelRef<'_> {
-    fn label(&self) -> String {
-        self.0.label()
-    }
-    fn evaluate(&self, query: &atmos::SkyQuery) -> atmos::SkySample {
-        self.0.evaluate(query)
-    }
-}
-
 fn deg_free(value: f64, unit: &str) -> String {
     format!("{value}{unit}")
 }
@@ -564,7 +552,7 @@ impl Scene {
             s.centre_m[1],
         );
         let light = cloudlight::march::atmos_light(
-            &ModelRef(model),
+            &model,
             atmosphere,
             centre,
             toward,
@@ -745,7 +733,7 @@ pub(crate) fn composite_marched_cloud(
     tables: AirTables<'_>,
     moon: Option<(&Lighting<f32>, &crate::scene::Illuminant<'_>, AirTables<'_>)>,
     march: impl Fn(&Lighting<f32>, [u32; 2], f32) -> MarchResult<f32> + Sync,
-    out: &mut [crate::cpu_renderer::PixelRadiance],
+    out: &mut [crate::cpu_frame::PixelRadiance],
 ) -> Result<(), crate::RenderError> {
     let sun = scene.sun_light();
     // One cloud alone: its march is the same function for either light.

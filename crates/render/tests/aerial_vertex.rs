@@ -543,7 +543,7 @@ fn smooth_hills_with(variant: AerialPerspective, rung: Rung) -> PreparedScene {
 fn per_vertex_agrees_on_the_gpu_and_the_cpu_under_the_rungs_without_tables() {
     for rung in [Rung::ClosedForm, Rung::ClosedFormVertex, Rung::Single] {
         let scene = smooth_hills_with(AerialPerspective::PerVertex, rung);
-        let plan = render::gpu::scene::planned_passes(&scene);
+        let plan = render::passes::planned_passes(&scene);
         let air = plan
             .iter()
             .find(|(name, _)| *name == "terrain aerial perspective")

@@ -101,11 +101,11 @@ fn only_the_drawing_asked_for_is_prepared() {
     // `skyscape explain`'s plan says so, on either side.
     #[cfg(feature = "gpu")]
     {
-        let plan = render::gpu::scene::planned_passes(&prepared);
+        let plan = render::passes::planned_passes(&prepared);
         let billboards = plan.iter().find(|(name, _)| *name == "billboard clouds");
         assert!(matches!(billboards, Some((_, Err(_)))), "{plan:?}");
         let prepared = shipped(64, 36).prepare().unwrap();
-        let plan = render::gpu::scene::planned_passes(&prepared);
+        let plan = render::passes::planned_passes(&prepared);
         let billboards = plan.iter().find(|(name, _)| *name == "billboard clouds");
         assert!(
             matches!(billboards, Some((_, Ok(reason))) if reason.contains("slice propagation")),
@@ -431,7 +431,7 @@ fn the_billboards_agree_on_the_gpu_and_the_cpu_under_every_gpu_rung() {
         );
         // `skyscape explain` names the rung's air pass.
         if rung != Rung::Precomputed {
-            let plan = render::gpu::scene::planned_passes(&scene);
+            let plan = render::passes::planned_passes(&scene);
             let entry = plan.iter().find(|(name, _)| *name == "billboard clouds");
             assert!(
                 matches!(entry, Some((_, Ok(text))) if text.contains("particle per light")),

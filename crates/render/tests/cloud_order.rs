@@ -261,7 +261,7 @@ fn the_nearer_cloud_goes_over_the_farther_on_the_cpu_and_the_gpu() {
 #[test]
 fn explain_plans_one_composite_by_depth() {
     let planned = |scene: &PreparedScene, pass: &str| {
-        render::gpu::scene::planned_passes(scene)
+        render::passes::planned_passes(scene)
             .into_iter()
             .find(|(name, _)| *name == pass)
             .map(|(_, plan)| plan.is_ok())

@@ -163,7 +163,7 @@ fn the_reference_rungs_keep_their_error_and_the_tables_are_not_baked() {
     let scene = shipped("default", 16, 9, Rung::ClosedForm)
         .prepare()
         .unwrap();
-    let plan = render::gpu::scene::planned_passes(&scene);
+    let plan = render::passes::planned_passes(&scene);
     let bakes = plan
         .iter()
         .find(|(name, _)| *name == "atmosphere LUT bakes")
@@ -206,7 +206,7 @@ fn the_cumulus_agrees_on_the_gpu_and_the_cpu_under_every_gpu_rung() {
         let scene = shipped("cumulus", width, height, rung).prepare().unwrap();
         let (gpu_image, cpu_image, agreement) = compare(gpu, &scene);
         // `skyscape explain` names the rung's air, not the tables, for the cloud.
-        let plan = render::gpu::scene::planned_passes(&scene);
+        let plan = render::passes::planned_passes(&scene);
         let (_, composite) = plan.iter().find(|(n, _)| *n == "volume clouds").unwrap();
         let composite = composite.as_ref().unwrap();
         assert_eq!(

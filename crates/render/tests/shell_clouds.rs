@@ -132,7 +132,7 @@ fn shell_errors_name_the_key_and_its_line() {
 
 /// Whether `skyscape explain` plans the pass called `name`.
 fn planned(scene: &PreparedScene, name: &str) -> Option<bool> {
-    render::gpu::scene::planned_passes(scene)
+    render::passes::planned_passes(scene)
         .into_iter()
         .find(|(n, _)| *n == name)
         .map(|(_, plan)| plan.is_ok())

@@ -141,7 +141,7 @@ fn the_shipped_cumulus_is_lit_hidden_by_the_hills_in_front_and_finite() {
     assert!(clear.volume_cloud.is_none());
     // Only the scene with the section plans the pass (`skyscape explain`).
     let volume_pass = |scene: &render::scene::PreparedScene| {
-        render::gpu::scene::planned_passes(scene)
+        render::passes::planned_passes(scene)
             .into_iter()
             .find(|(name, _)| *name == "volume clouds")
             .map(|(_, plan)| plan.is_ok())

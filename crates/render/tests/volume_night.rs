@@ -67,7 +67,7 @@ fn the_moon_lights_the_volume_cloud() {
     let moon = lit.volume_cloud.as_ref().unwrap().moon.as_ref();
     assert!(moon.is_some(), "the moon lights the night's cloud");
     // `skyscape explain` lists the moonlit march and why.
-    let plan = render::gpu::scene::planned_passes(&lit);
+    let plan = render::passes::planned_passes(&lit);
     let moonlit = plan.iter().find(|(name, _)| *name == "moonlit cloud march");
     assert!(
         matches!(moonlit, Some((_, Ok(_)))),

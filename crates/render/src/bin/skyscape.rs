@@ -720,7 +720,7 @@ fn cpu_faces(
 
 fn print_passes(scene: &PreparedScene, rendered: &Rendered) {
     println!("passes ({}):", rendered.device);
-    for (pass, plan) in render::gpu::scene::planned_passes(scene) {
+    for (pass, plan) in render::passes::planned_passes(scene) {
         let time = rendered
             .pass_seconds
             .iter()
@@ -911,7 +911,7 @@ fn explain_command(name: &str, backend: Option<&str>) -> Result<(), Failure> {
         Ok(rendered) => print_passes(&prepared, &rendered),
         Err(reason) => {
             println!("no GPU passes ({reason}): the CPU reference renderer would draw it");
-            for (pass, plan) in render::gpu::scene::planned_passes(&prepared) {
+            for (pass, plan) in render::passes::planned_passes(&prepared) {
                 match plan {
                     Ok(what) => println!("  (run) {pass:<22} {what}"),
                     Err(why) => println!("  skip  {pass:<22} {why}"),

@@ -11,11 +11,11 @@
 pub(crate) mod cloud_air;
 pub(crate) mod cloud_composite;
 pub(crate) mod cloud_order;
-pub(crate) mod cloud_shadow;
+pub(crate) mod frame;
+pub(crate) mod layout;
 pub mod present;
 pub mod rungs;
 pub mod scene;
-pub(crate) mod shell_shadow;
 pub mod timer;
 pub(crate) mod validation;
 pub(crate) mod vertex_air;

@@ -645,7 +645,7 @@ impl RungPasses {
             });
             let light_table = device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(&format!("render {label} terrain light table")),
-                size: (crate::cpu_renderer::SUN_TABLE_SIZE * 16) as u64,
+                size: (crate::passes::terrain::lighting::SUN_TABLE_SIZE * 16) as u64,
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             });
@@ -775,11 +775,11 @@ impl RungPasses {
             if rung != Rung::Single || scene.terrain.is_none() {
                 return Ok(None);
             }
-            let n = crate::cpu_renderer::SUN_TABLE_SIZE;
+            let n = crate::passes::terrain::lighting::SUN_TABLE_SIZE;
             (0..n)
                 .map(|k| {
                     let elevation = range[0] + (range[1] - range[0]) * k as f64 / (n - 1) as f64;
-                    crate::cpu_renderer::light_irradiance_at(scene, light, elevation)
+                    crate::passes::terrain::lighting::light_irradiance_at(scene, light, elevation)
                         .map(|e| [e.x, e.y, e.z, 0.0])
                 })
                 .collect::<Result<Vec<_>, _>>()

@@ -10,6 +10,9 @@ pub struct PassTimes {
     resolve: wgpu::Buffer,
     readback: wgpu::Buffer,
     period_ns: f32,
+    /// The spans whose timestamp writes were handed out since [`Self::begin_frame`], in
+    /// order: what the frame recorded.
+    recorded: std::sync::Mutex<Vec<&'static str>>,
 }
 
 impl PassTimes {
@@ -48,6 +51,7 @@ impl PassTimes {
             resolve,
             readback,
             period_ns: queue.get_timestamp_period(),
+            recorded: std::sync::Mutex::new(Vec::new()),
         })
     }
 
@@ -59,9 +63,34 @@ impl PassTimes {
             .map(|i| i as u32)
     }
 
+    /// Starts a frame: forgets the spans recorded so far.
+    pub fn begin_frame(&self) {
+        self.recorded_spans().clear();
+    }
+
+    /// The spans whose timestamp writes were handed out since [`Self::begin_frame`], in
+    /// order.
+    pub fn recorded(&self) -> Vec<&'static str> {
+        self.recorded_spans().clone()
+    }
+
+    fn recorded_spans(&self) -> std::sync::MutexGuard<'_, Vec<&'static str>> {
+        // A poisoned lock only means a panic elsewhere; the list is still a list.
+        self.recorded
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+
+    /// The span of `label`, noted as recorded.
+    fn record(&self, label: &str) -> Option<u32> {
+        let span = self.span(label)?;
+        self.recorded_spans().push(self.labels[span as usize]);
+        Some(span)
+    }
+
     /// Timestamp writes of a compute pass for `label`'s span.
     pub fn compute_writes(&self, label: &str) -> Option<wgpu::ComputePassTimestampWrites<'_>> {
-        self.span(label)
+        self.record(label)
             .map(|span| wgpu::ComputePassTimestampWrites {
                 query_set: &self.query_set,
                 beginning_of_pass_write_index: Some(2 * span),
@@ -71,7 +100,7 @@ impl PassTimes {
 
     /// Timestamp writes of a render pass for `label`'s span.
     pub fn render_writes(&self, label: &str) -> Option<wgpu::RenderPassTimestampWrites<'_>> {
-        self.span(label)
+        self.record(label)
             .map(|span| wgpu::RenderPassTimestampWrites {
                 query_set: &self.query_set,
                 beginning_of_pass_write_index: Some(2 * span),

@@ -898,13 +898,9 @@ impl Scene {
                 let sky = std::sync::Arc::new(
                     atmos::lut::PrecomputedSky::new(atmosphere, &Default::default()).map_err(e)?,
                 );
-                let model: SharedSkyModel = Box::new(ArcModel(sky.clone()));
+                let model: SharedSkyModel = Box::new(sky.clone());
                 let shared = std::sync::Arc::new(model);
-                return Ok((
-                    Box::new(SharedModel(shared.clone())),
-                    Box::new(SharedModel(shared)),
-                    Some(sky),
-                ));
+                return Ok((Box::new(shared.clone()), Box::new(shared), Some(sky)));
             }
             Rung::Reference => Box::new(
                 atmos::reference::ReferenceSky::new(atmosphere, Default::default()).map_err(e)?,
@@ -916,11 +912,7 @@ impl Scene {
         };
         // One model for both roles: share it through a reference-counted wrapper.
         let shared = std::sync::Arc::new(model);
-        Ok((
-            Box::new(SharedModel(shared.clone())),
-            Box::new(SharedModel(shared)),
-            None,
-        ))
+        Ok((Box::new(shared.clone()), Box::new(shared), None))
     }
 
     /// The heightfield, normals, horizon maps and albedo, or `None` without `[terrain]`.
@@ -1063,35 +1055,5 @@ fn terrain_field(error: &terrain::TerrainError) -> &'static str {
         | E::ZeroSize { field, .. }
         | E::TooLarge { field, .. } => field,
         _ => "",
-    }
-}
-
-/// One model serving as both the sky and the segment model.
-struct SharedModel(std::sync::Arc<SharedSkyModel>);
-
-impl atmos::SkyModel for SharedModel {
-    fn label(&self) -> String {
-        self.0.label()
-    }
-    fn evaluate(&self, query: &atmos::SkyQuery) -> atmos::SkySample {
-        self.0.evaluate(query)
-    }
-    fn evaluate_batch(&self, queries: &[atmos::SkyQuery]) -> Vec<atmos::SkySample> {
-        self.0.evaluate_batch(queries)
-    }
-}
-
-/// The precomputed sky behind an `Arc`, as a model.
-struct ArcModel(std::sync::Arc<atmos::lut::PrecomputedSky>);
-
-impl atmos::SkyModel for ArcModel {
-    fn label(&self) -> String {
-        self.0.label()
-    }
-    fn evaluate(&self, query: &atmos::SkyQuery) -> atmos::SkySample {
-        self.0.evaluate(query)
-    }
-    fn evaluate_batch(&self, queries: &[atmos::SkyQuery]) -> Vec<atmos::SkySample> {
-        self.0.evaluate_batch(queries)
     }
 }

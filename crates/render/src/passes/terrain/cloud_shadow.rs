@@ -8,7 +8,7 @@
 //! `shaders/render/terrain.wgsl`, whose `volume_cloud_shadow` multiplies them, as
 //! `render::cpu_renderer` does). A slot has room only when the scene has that cloud.
 
-use super::scene::VolumeShadowUniform;
+use super::uniforms::VolumeShadowUniform;
 use crate::RenderError;
 use crate::scene::PreparedScene;
 use crate::volume_clouds::{CloudShadow, SHADOW_MAP_MAX_SIDE};

@@ -1,0 +1,108 @@
+//! What the GPU passes of a frame share: the render targets, the atmosphere of each
+//! light (atmos' tables, or a rung's own passes), and the interface every pass of
+//! [`crate::passes::FRAME`] implements on the GPU.
+
+use atmos::gpu::AtmosphereLuts;
+
+use super::timer::PassTimes;
+use crate::RenderError;
+use crate::scene::prepare::PreparedScene;
+
+/// The HDR target's format: radiance × the scene's exposure.
+pub(crate) const HDR: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// The depth target's format (reverse z: near 1, infinitely far 0).
+pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// Quality choices of the GPU renderer.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SceneRendererSettings {
+    /// The terrain's largest projected geometric error (pixels): smaller draws more
+    /// tiles.
+    pub terrain_error_px: f64,
+    /// Record GPU timestamps per pass (when the device has `TIMESTAMP_QUERY`).
+    pub timestamps: bool,
+}
+
+impl Default for SceneRendererSettings {
+    fn default() -> Self {
+        Self {
+            terrain_error_px: crate::aerial_vertex::TERRAIN_ERROR_PX,
+            timestamps: false,
+        }
+    }
+}
+
+/// The resources the frame's passes share: the device, the targets and each light's
+/// atmosphere on the GPU.
+#[derive(Debug)]
+pub(crate) struct GpuShared {
+    pub(crate) device: wgpu::Device,
+    pub(crate) width: u32,
+    pub(crate) height: u32,
+    pub(crate) settings: SceneRendererSettings,
+    /// Radiance × exposure (`rgba16float`).
+    pub(crate) hdr: wgpu::Texture,
+    pub(crate) hdr_view: wgpu::TextureView,
+    pub(crate) depth_view: wgpu::TextureView,
+    /// The precomputed rung's tables lit by the sun (`None` for a rung without tables).
+    pub(crate) luts: Option<AtmosphereLuts>,
+    /// The tables lit by the moon, on a moonlit night of the precomputed rung.
+    pub(crate) moon_luts: Option<AtmosphereLuts>,
+    /// The sky, terrain and air passes of a rung without tables (both lights).
+    pub(crate) rung: Option<super::rungs::RungPasses>,
+    /// The scene's rung.
+    pub(crate) rung_kind: crate::scene::Rung,
+}
+
+impl GpuShared {
+    /// The marched clouds' air (the sun's, and the moon's on a moonlit night): the
+    /// tables or the rung's functions (`super::cloud_air`).
+    pub(crate) fn cloud_airs(
+        &self,
+    ) -> Result<
+        (
+            super::cloud_air::CloudAir<'_>,
+            Option<super::cloud_air::CloudAir<'_>>,
+        ),
+        RenderError,
+    > {
+        super::cloud_air::cloud_airs(
+            self.luts.as_ref(),
+            self.moon_luts.as_ref(),
+            self.rung.as_ref(),
+            self.rung_kind,
+        )
+    }
+}
+
+/// A pass of the frame on the GPU: built by its [`crate::passes::PassEntry`] for a
+/// scene that runs it.
+pub(crate) trait GpuPass: std::any::Any + std::fmt::Debug + Send + Sync {
+    /// Writes the frame's uniforms and (re)binds what changed (`shared` is mutable for
+    /// the tables pass, which prepares each light's atmosphere).
+    fn prepare(
+        &mut self,
+        shared: &mut GpuShared,
+        queue: &wgpu::Queue,
+        scene: &PreparedScene,
+    ) -> Result<(), RenderError>;
+
+    /// Records the pass into the caller's encoder, each step timed under its plan line's
+    /// label.
+    fn encode(
+        &mut self,
+        shared: &GpuShared,
+        encoder: &mut wgpu::CommandEncoder,
+        times: Option<&PassTimes>,
+    ) -> Result<(), RenderError>;
+}
+
+/// The error of a scene prepared on a renderer built for another: `field` given
+/// (`built` false) or absent (`built` true).
+pub(crate) fn differs(field: &'static str, built: bool) -> RenderError {
+    RenderError::InvalidParameter {
+        field,
+        value: if built { "absent" } else { "given" }.into(),
+        reason: "differs from the scene the renderer was built for",
+    }
+}
