@@ -95,14 +95,18 @@ impl GpuPass for MarchedClouds {
         self.distance.encode(encoder)?;
         let (sun, moon) = shared.cloud_airs()?;
         let compute = |label| times.and_then(|t| t.compute_writes(label));
+        // The moon's march is a step only where the moon lights the cloud.
+        let moon_compute = |moonlit: bool, label| if moonlit { compute(label) } else { None };
         if let (Some(order), Some(shell), Some(volume)) = (&self.order, &self.shell, &self.volume) {
             // Both marched clouds: their marches and air, then one composite by depth.
-            let (march, moon_march) =
-                (compute("shell cloud march"), compute("moonlit shell march"));
+            let (march, moon_march) = (
+                compute("shell cloud march"),
+                moon_compute(shell.moonlit(), "moonlit shell march"),
+            );
             shell.encode_marches(encoder, sun, moon, march, moon_march)?;
             let (march, moon_march) = (
                 compute("volume cloud march"),
-                compute("moonlit cloud march"),
+                moon_compute(volume.moonlit(), "moonlit cloud march"),
             );
             volume.encode_marches(encoder, sun, moon, march, moon_march)?;
             let composite = times.and_then(|t| t.render_writes("clouds by depth"));
@@ -116,7 +120,7 @@ impl GpuPass for MarchedClouds {
                 moon,
                 CloudTimes {
                     march: compute("shell cloud march"),
-                    moon: compute("moonlit shell march"),
+                    moon: moon_compute(shell.moonlit(), "moonlit shell march"),
                     composite: times.and_then(|t| t.render_writes("shell clouds")),
                 },
             )?;
@@ -129,7 +133,7 @@ impl GpuPass for MarchedClouds {
                 moon,
                 CloudTimes {
                     march: compute("volume cloud march"),
-                    moon: compute("moonlit cloud march"),
+                    moon: moon_compute(volume.moonlit(), "moonlit cloud march"),
                     composite: times.and_then(|t| t.render_writes("volume clouds")),
                 },
             )?;
