@@ -66,76 +66,12 @@ use cloudlight::march::{Lighting, MarchResult};
 
 use crate::air::AirTables;
 use crate::cpu_frame::PixelRadiance;
-use crate::mutual_shadow::Light;
+use crate::light::Light;
+use crate::marched_cloud::{MarchedCloud, draw_seen_clouds};
+pub use crate::marched_cloud::{SeenCloud, in_depth_order};
 use crate::scene::{Illuminant, PreparedScene};
 use crate::shell_clouds::PreparedShell;
-use crate::volume_clouds::{MarchedCloud, PreparedVolume};
-
-/// One marched cloud seen at a pixel as if alone: the radiance it adds in front of what
-/// is behind it (its light through the air in front of it and the air's in-scatter it
-/// hides, `L_c·T_air + L_air·(1 − T_c)`, summed over its lights), its transmittance
-/// `T_c` and its opacity-weighted depth (m). Behind it, `T_c · L_behind` is added.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SeenCloud {
-    /// What the cloud adds in front of what is behind it.
-    pub radiance: [f32; 3],
-    /// The light from behind that arrives through it, in [0, 1].
-    pub transmittance: f32,
-    /// The opacity-weighted depth of its density along the ray (m).
-    pub depth: f32,
-}
-
-impl SeenCloud {
-    /// No cloud at the pixel: adds nothing and lets everything through.
-    pub const NONE: Self = Self {
-        radiance: [0.0; 3],
-        transmittance: 1.0,
-        depth: 0.0,
-    };
-}
-
-/// Two clouds at one pixel in depth order (module docs): the one with the smaller
-/// opacity-weighted depth over the other (`a` over `b` when the depths tie), as one
-/// cloud `S_near + T_near·S_far` with transmittance `T_near·T_far` and the nearer one's
-/// depth. With either [`SeenCloud::NONE`] it is the other exactly. WGSL twin
-/// `clouds_in_depth_order` in `shaders/render/cloud_order.wgsl`.
-pub fn in_depth_order(a: SeenCloud, b: SeenCloud) -> SeenCloud {
-    let (near, far) = if b.depth < a.depth { (b, a) } else { (a, b) };
-    SeenCloud {
-        radiance: std::array::from_fn(|k| near.radiance[k] + near.transmittance * far.radiance[k]),
-        transmittance: near.transmittance * far.transmittance,
-        depth: near.depth,
-    }
-}
-
-/// Draws clouds over an image of `width`-pixel rows (rows in parallel): per pixel,
-/// `seen(xy, behind)` (`behind`: the terrain's hit, `PixelRadiance::terrain_distance`;
-/// the sky: infinity) over what the pixel holds, `L = S + T_c · L`; a pixel where it is
-/// `None` is kept. The loop of both CPU cloud composites, the one cloud's
-/// (`crate::volume_clouds::composite_marched_cloud`) and the two by depth
-/// ([`composite_clouds_by_depth`]); the first error stops it.
-pub(crate) fn draw_seen_clouds(
-    width: u32,
-    out: &mut [PixelRadiance],
-    seen: impl Fn([u32; 2], f32) -> Result<Option<SeenCloud>, crate::RenderError> + Sync,
-) -> Result<(), crate::RenderError> {
-    use rayon::prelude::*;
-    out.par_chunks_mut(width as usize)
-        .enumerate()
-        .try_for_each(|(row, pixels)| {
-            for (column, pixel) in pixels.iter_mut().enumerate() {
-                let xy = [column as u32, row as u32];
-                let behind = pixel.terrain_distance.unwrap_or(f32::INFINITY);
-                let Some(seen) = seen(xy, behind)? else {
-                    continue;
-                };
-                for (value, s) in pixel.radiance.iter_mut().zip(seen.radiance) {
-                    *value = s + seen.transmittance * *value;
-                }
-            }
-            Ok(())
-        })
-}
+use crate::volume_clouds::PreparedVolume;
 
 /// The CPU twin of the GPU's composite of both marched clouds by depth
 /// (`shaders/render/cloud_order_composite.wgsl`): per pixel the volume's and the deck's
@@ -221,38 +157,4 @@ pub fn composite_clouds_by_depth(
             shell.unwrap_or(SeenCloud::NONE),
         )))
     })
-}
-
-/// What `skyscape explain` says of the composite by depth (`planned_passes` of
-/// `render::gpu::scene` calls it after the clouds' own entries): with both marched clouds,
-/// "clouds by depth" runs and the "volume clouds" and "shell clouds" composites are
-/// replaced by it (their marches still run); otherwise it is skipped.
-pub fn adjust_plan(scene: &PreparedScene, plan: &mut Vec<(&'static str, Result<String, String>)>) {
-    if scene.shell_cloud.is_none() || scene.volume_cloud.is_none() {
-        plan.push((
-            "clouds by depth",
-            Err(
-                "not both [clouds.shell] and a marched [clouds.volume]: each marched cloud \
-                 composites alone"
-                    .into(),
-            ),
-        ));
-        plan.push(crate::mutual_shadow::plan(scene));
-        return;
-    }
-    for (pass, entry) in plan.iter_mut() {
-        if matches!(*pass, "volume clouds" | "shell clouds") {
-            *entry = Err("with both marched clouds, composited in \"clouds by depth\"".into());
-        }
-    }
-    plan.push((
-        "clouds by depth",
-        Ok(
-            "the shell's and the volume cloud's marches and air composited by depth per \
-            pixel in one full-screen pass: the one with the smaller opacity-weighted depth \
-            over the other"
-                .into(),
-        ),
-    ));
-    plan.push(crate::mutual_shadow::plan(scene));
 }

@@ -44,7 +44,7 @@ pub enum RenderError {
     #[cfg(feature = "gpu")]
     #[error(
         "{what} on {adapter}: the device rejected it: {}",
-        crate::gpu::validation::one_line(.source)
+        one_line(.source)
     )]
     Device {
         /// The entry point that failed (e.g. `SceneRenderer::new`).
@@ -71,6 +71,28 @@ pub(crate) fn check(
             value: value.to_string(),
             reason,
         })
+    }
+}
+
+#[cfg(feature = "gpu")]
+/// `error`'s message on one line: wgpu's descriptions span several, indented, under a
+/// "Validation Error / Caused by:" header (whatever the error's kind), which is dropped.
+pub(crate) fn one_line(error: &wgpu::Error) -> String {
+    let (kind, text) = match error {
+        // Its message is only "Out of Memory": the source names the call and label.
+        wgpu::Error::OutOfMemory { source } => ("out of memory", source.to_string()),
+        wgpu::Error::Validation { .. } => ("validation error", error.to_string()),
+        wgpu::Error::Internal { .. } => ("internal error", error.to_string()),
+    };
+    let causes: Vec<&str> = text
+        .lines()
+        .map(str::trim)
+        .filter(|line| !line.is_empty() && *line != "Validation Error" && *line != "Caused by:")
+        .collect();
+    if causes.is_empty() {
+        kind.to_owned()
+    } else {
+        format!("{kind}: {}", causes.join(": "))
     }
 }
 

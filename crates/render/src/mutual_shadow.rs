@@ -60,8 +60,9 @@
 use cloudlight::march::{Lighting, MarchResult, PinholeCamera};
 use cloudlight::{CloudShell, CloudVolume};
 
+use crate::cloud_shadow::CloudShadow;
 use crate::shell_clouds::PreparedShell;
-use crate::volume_clouds::{CloudShadow, PreparedVolume};
+use crate::volume_clouds::PreparedVolume;
 
 /// Texel edge of the deck's map over the volume cloud (m): a sixteenth of the shipped
 /// deck's 800 m detail period, finer than its terrain map's 125 m.
@@ -84,30 +85,7 @@ pub fn deck_extent(shell: &CloudShell) -> [f32; 2] {
     ]
 }
 
-/// Which light a cloud's march is lit by: the sun's march always, the moon's at night
-/// (the clouds' `moon` lighting). The code that runs a cloud's marches names the light
-/// of each (`crate::volume_clouds`' CPU composite, the GPU's per-light march hook), so a
-/// march reads the other cloud's map for its own light.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Light {
-    /// The sun (the clouds' `lighting`).
-    Sun,
-    /// The moon (the clouds' `moon` lighting, at night).
-    Moon,
-}
-
-impl Light {
-    /// Both lights, the sun's first (the order the marches run in).
-    pub const ALL: [Light; 2] = [Light::Sun, Light::Moon];
-
-    /// "sun" or "moon".
-    pub fn name(self) -> &'static str {
-        match self {
-            Light::Sun => "sun",
-            Light::Moon => "moon",
-        }
-    }
-}
+pub use crate::light::Light;
 
 /// The volume cloud's shadow on the deck toward `light`: its map for that light, `None`
 /// without one.
@@ -281,7 +259,7 @@ pub(crate) fn outside<'a>(
 }
 
 /// What `skyscape explain` says of the clouds' shadows on each other
-/// (`crate::cloud_order::adjust_plan` adds it after "clouds by depth"): which maps each
+/// (the marched clouds' pass lists it after "clouds by depth"): which maps each
 /// march reads, or why none.
 pub fn plan(scene: &crate::scene::PreparedScene) -> (&'static str, Result<String, String>) {
     let name = "mutual cloud shadows";

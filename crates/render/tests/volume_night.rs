@@ -251,7 +251,7 @@ fn a_cloud_beyond_the_aerial_perspective_range_agrees() {
         let xy = [i as u32 % size[0], i as u32 / size[0]];
         let behind = pixel.terrain_distance.unwrap_or(f32::INFINITY);
         let m = march_pixel(cloud, &pinhole, size, xy, behind);
-        if !render::volume_clouds::cloud_in_front(&m, behind) {
+        if !render::marched_cloud::cloud_in_front(&m, behind) {
             continue;
         }
         drawn.push(i);

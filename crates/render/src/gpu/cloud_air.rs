@@ -158,7 +158,7 @@ impl RungCloudAir {
             module,
             [&self.camera_layout, &self.parameters_layout],
             air_layout,
-            &super::rungs::air_constants(self.rung),
+            &super::rung_kind::air_constants(self.rung),
         )
     }
 
@@ -200,25 +200,4 @@ fn air_pipeline(
             cache: None,
         }),
     )
-}
-
-/// A marched cloud's air for the sun and, on a moonlit night, the moon: the precomputed
-/// rung's tables (`luts`, `moon_luts`) or the passes of a rung without tables (`rung`);
-/// an error naming `rung_name` when there are neither (the reference rungs).
-pub(crate) fn cloud_airs<'a>(
-    luts: Option<&'a atmos::gpu::AtmosphereLuts>,
-    moon_luts: Option<&'a atmos::gpu::AtmosphereLuts>,
-    rung: Option<&'a super::rungs::RungPasses>,
-    rung_name: Rung,
-) -> Result<(CloudAir<'a>, Option<CloudAir<'a>>), RenderError> {
-    match (luts, rung) {
-        (Some(luts), _) => Ok((CloudAir::Tables(luts), moon_luts.map(CloudAir::Tables))),
-        (None, Some(rung)) => {
-            let sun = rung
-                .cloud_air(false)
-                .ok_or_else(|| super::rungs::volume_needs_tables(rung_name))?;
-            Ok((sun, rung.cloud_air(true)))
-        }
-        (None, None) => Err(super::rungs::volume_needs_tables(rung_name)),
-    }
 }

@@ -9,11 +9,8 @@
 //! records only their marches and air here ([`CloudComposite::encode_marches`]) and
 //! composites the two by depth in one pass (`super::cloud_order`).
 
+use crate::gpu::layout::{buffer_entry, compute_pipeline, depth_entry};
 use crate::mutual_shadow::Light;
-use crate::volume_clouds::{
-    VolumeAirParams, VolumeComposite, VolumeDistanceParams, buffer_entry, compute_pipeline,
-    depth_entry,
-};
 use cloudlight::march::Lighting;
 
 /// A march whose image the composite reads (one `MarchResult` of 32 bytes per pixel).
@@ -611,4 +608,50 @@ pub(crate) fn over_transmittance_blend() -> wgpu::BlendState {
             operation: wgpu::BlendOperation::Add,
         },
     }
+}
+
+/// The composite pass's uniform (layout identical to WGSL `VolumeComposite`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct VolumeComposite {
+    /// The scene's camera.
+    pub camera: atmos::frame::FrameCamera,
+    /// The reverse-z projection's near plane (m).
+    pub near: f32,
+    /// Multiplies the cloud's own light (the HDR target holds radiance × exposure).
+    pub radiance_scale: f32,
+    /// The march image's width (pixels).
+    pub width: u32,
+    /// 1: the moonlit march is added (night), 0: the sun's only.
+    pub moonlit: u32,
+}
+
+/// The uniform of the distance pass (layout identical to WGSL `VolumeDistanceParams` in
+/// `shaders/render/volume_distance.wgsl`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct VolumeDistanceParams {
+    /// The scene's camera.
+    pub camera: atmos::frame::FrameCamera,
+    /// The reverse-z projection's near plane (m).
+    pub near: f32,
+    /// Pixels.
+    pub width: u32,
+    /// Pixels.
+    pub height: u32,
+    /// Keeps the struct a multiple of 16 bytes.
+    pub padding0: u32,
+}
+
+/// The uniform of the cloud air passes (layout identical to WGSL `CloudAirParams` in
+/// `shaders/render/cloud_air_io.wgsl`, group 2 of every cloud air pass).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct VolumeAirParams {
+    /// Pixels.
+    pub width: u32,
+    /// Pixels.
+    pub height: u32,
+    /// Keeps the struct 16 bytes.
+    pub padding: [u32; 2],
 }

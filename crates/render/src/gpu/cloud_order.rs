@@ -6,7 +6,7 @@
 //! (`CloudComposite::encode_marches`).
 
 use super::cloud_composite::{CloudComposite, CloudMarch, draw_fullscreen, fullscreen_pipeline};
-use crate::volume_clouds::{buffer_entry, depth_entry};
+use crate::gpu::layout::{buffer_entry, depth_entry};
 
 /// The composite's uniform (layout identical to WGSL `CloudOrderComposite` in
 /// `shaders/render/cloud_order_composite.wgsl`).

@@ -4,6 +4,7 @@
 
 use atmos::gpu::AtmosphereLuts;
 
+use super::cloud_air::CloudAir;
 use super::timer::PassTimes;
 use crate::RenderError;
 use crate::scene::prepare::PreparedScene;
@@ -55,23 +56,24 @@ pub(crate) struct GpuShared {
 }
 
 impl GpuShared {
-    /// The marched clouds' air (the sun's, and the moon's on a moonlit night): the
-    /// tables or the rung's functions (`super::cloud_air`).
-    pub(crate) fn cloud_airs(
-        &self,
-    ) -> Result<
-        (
-            super::cloud_air::CloudAir<'_>,
-            Option<super::cloud_air::CloudAir<'_>>,
-        ),
-        RenderError,
-    > {
-        super::cloud_air::cloud_airs(
-            self.luts.as_ref(),
-            self.moon_luts.as_ref(),
-            self.rung.as_ref(),
-            self.rung_kind,
-        )
+    /// A marched cloud's air for the sun and, on a moonlit night, the moon: the
+    /// precomputed rung's tables or the passes of a rung without tables
+    /// (`super::cloud_air`); an error naming the rung when there are neither (the
+    /// reference rungs).
+    pub(crate) fn cloud_airs(&self) -> Result<(CloudAir<'_>, Option<CloudAir<'_>>), RenderError> {
+        match (&self.luts, &self.rung) {
+            (Some(luts), _) => Ok((
+                CloudAir::Tables(luts),
+                self.moon_luts.as_ref().map(CloudAir::Tables),
+            )),
+            (None, Some(rung)) => {
+                let sun = rung
+                    .cloud_air(false)
+                    .ok_or_else(|| super::rung_kind::volume_needs_tables(self.rung_kind))?;
+                Ok((sun, rung.cloud_air(true)))
+            }
+            (None, None) => Err(super::rung_kind::volume_needs_tables(self.rung_kind)),
+        }
     }
 }
 

@@ -14,6 +14,7 @@ pub(crate) mod cloud_order;
 pub(crate) mod frame;
 pub(crate) mod layout;
 pub mod present;
+pub(crate) mod rung_kind;
 pub mod rungs;
 pub mod scene;
 pub mod timer;

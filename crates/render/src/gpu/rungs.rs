@@ -43,6 +43,9 @@ use crate::present::PresentParameters;
 use crate::scene::Rung;
 use crate::scene::prepare::PreparedScene;
 
+use super::rung_kind::air_constants;
+pub use super::rung_kind::{has_rung_passes, no_gpu_passes, volume_needs_tables};
+
 /// The light of a rung's terrain draw (layout identical to WGSL `RungLight` in
 /// `shaders/render/terrain_rung.wgsl`).
 #[repr(C)]
@@ -79,14 +82,6 @@ pub struct RungAirUniform {
     pub radiance_scale: f32,
     /// Alignment.
     pub padding: [f32; 2],
-}
-
-/// Whether `rung` is drawn by these passes (the closed form and single scattering).
-pub fn has_rung_passes(rung: Rung) -> bool {
-    matches!(
-        rung,
-        Rung::ClosedForm | Rung::ClosedFormVertex | Rung::Single
-    )
 }
 
 /// `atmos`' frame renderer of the rung.
@@ -145,44 +140,6 @@ impl SkyRenderer {
             Self::Single(r) => r.encode(encoder, timestamp_writes)?,
         }
         Ok(())
-    }
-}
-
-/// The error of a rung without GPU passes.
-pub fn no_gpu_passes(rung: Rung) -> RenderError {
-    RenderError::InvalidParameter {
-        field: "atmosphere.rung",
-        value: format!("\"{}\"", rung.name()),
-        reason: "the reference rungs (f64) have no GPU passes; render them on the CPU (--cpu)",
-    }
-}
-
-/// The error of a scene with GPU marched clouds (`[clouds.volume]`'s march,
-/// `[clouds.shell]`) on a rung with neither tables nor passes of its own (the reference
-/// rungs): their air is the precomputed rung's tables or the rung's functions
-/// (`super::cloud_air`).
-pub fn volume_needs_tables(rung: Rung) -> RenderError {
-    RenderError::InvalidParameter {
-        field: "atmosphere.rung",
-        value: format!("\"{}\"", rung.name()),
-        reason: "the GPU's volume and shell clouds see their air through the precomputed \
-                 rung's tables or the closed form's or single scattering's passes; render \
-                 this scene with one of those rungs, or on the CPU (--cpu)",
-    }
-}
-
-/// The override constants of a rung's aerial-perspective shader (single scattering's
-/// sample counts, those of the CPU's `SingleScatteringSky`).
-pub(crate) fn air_constants(rung: Rung) -> Vec<(&'static str, f64)> {
-    match rung {
-        Rung::Single => {
-            let settings = atmos::single_scattering::SingleScatteringSettings::default();
-            vec![
-                ("view_samples", f64::from(settings.view_samples)),
-                ("light_samples", f64::from(settings.light_samples)),
-            ]
-        }
-        _ => Vec::new(),
     }
 }
 
@@ -906,130 +863,4 @@ impl RungPasses {
         }
         labels
     }
-}
-
-/// What `skyscape explain` prints for a rung without tables: the LUT bakes skipped with
-/// the reason, the rung's sky evaluation, the terrain's light (edits `plan` in place).
-pub fn adjust_plan(scene: &PreparedScene, plan: &mut Vec<(&'static str, Result<String, String>)>) {
-    let rung = scene.rung;
-    if !has_rung_passes(rung) {
-        return;
-    }
-    let (model, evaluation) = match rung {
-        Rung::ClosedForm => (
-            "the closed form",
-            "atmos' ClosedFormRenderer, seed 000's closed form per pixel (compute)".to_owned(),
-        ),
-        Rung::ClosedFormVertex => (
-            "the closed form",
-            format!(
-                "atmos' ClosedFormRenderer per vertex of a {}×{} dome, interpolated per pixel \
-                 (compute, two dispatches)",
-                crate::scene::prepare::DOME.rings,
-                crate::scene::prepare::DOME.segments
-            ),
-        ),
-        _ => {
-            let s = atmos::single_scattering::SingleScatteringSettings::default();
-            (
-                "single scattering",
-                format!(
-                    "atmos' SingleScatteringRenderer per pixel, {} view × {} light samples \
-                     (compute)",
-                    s.view_samples, s.light_samples
-                ),
-            )
-        }
-    };
-    let mut adjusted = Vec::with_capacity(plan.len() + 2);
-    for (name, entry) in plan.drain(..) {
-        match name {
-            "atmosphere LUT bakes" => {
-                adjusted.push((
-                    name,
-                    Err(format!(
-                        "rung `{}` has no tables: nothing baked or allocated",
-                        rung.name()
-                    )),
-                ));
-                adjusted.push(("sky evaluation", Ok(evaluation.clone())));
-            }
-            "sky" => adjusted.push((
-                name,
-                Ok(format!(
-                    "{model}'s radiance per pixel with the sun's disc through its \
-                     transmittance, drawn first with depth writes off (seed 000)"
-                )),
-            )),
-            "moonlit sky LUT bakes" => {
-                adjusted.push((name, Err(format!("rung `{}` has no tables", rung.name()))));
-                adjusted.push((
-                    "moonlit sky evaluation",
-                    if scene.moonlit.is_some() {
-                        Ok(format!(
-                            "{model} lit by the moon (celestial's MoonLight), added to the sky"
-                        ))
-                    } else {
-                        Err("no [time], or the sun is up or the moon below −2°".into())
-                    },
-                ));
-            }
-            "terrain" => {
-                let drawn = entry.is_ok();
-                adjusted.push((
-                    name,
-                    entry.map(|_| {
-                        format!(
-                            "instanced quadtree tiles, seed 000's shading (render::terrain's \
-                             terrain_surface), lit through {model}'s transmittance to the top \
-                             of the atmosphere and by its sky's irradiance (once per frame){}",
-                            if scene.moonlit.is_some() {
-                                "; drawn again lit by the moon, added (timed with \"terrain\")"
-                            } else {
-                                ""
-                            }
-                        )
-                    }),
-                ));
-                adjusted.push((
-                    "terrain aerial perspective",
-                    if let (true, Some(terrain)) = (drawn, &scene.terrain) {
-                        Ok(crate::aerial_vertex::rung_plan(
-                            terrain.aerial_perspective,
-                            model,
-                        ))
-                    } else {
-                        Err("no terrain".into())
-                    },
-                ));
-            }
-            // The marched cloud's air: the rung's functions, not atmos' tables.
-            "volume clouds" => adjusted.push((
-                name,
-                entry.map(
-                    |text| match text.split_once(", through atmos' aerial perspective") {
-                        Some((composite, _)) => format!(
-                            "{composite}, through {model}'s in-scatter and transmittance of the \
-                         segment to its depth per pixel and light (a compute pass, untimed: \
-                         render::gpu::cloud_air)"
-                        ),
-                        None => text,
-                    },
-                ),
-            )),
-            // The billboards' air: the rung's functions per particle, not atmos' tables.
-            "billboard clouds" => adjusted.push((
-                name,
-                entry.map(|text| {
-                    format!(
-                        "{text} ({model}'s in-scatter and transmittance of the segment to each \
-                         particle per light: a compute pass before the draw, untimed, \
-                         render::billboard_clouds)"
-                    )
-                }),
-            )),
-            _ => adjusted.push((name, entry)),
-        }
-    }
-    *plan = adjusted;
 }

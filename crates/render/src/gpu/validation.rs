@@ -60,30 +60,9 @@ pub(crate) fn scoped<T>(
     }
 }
 
-/// `error`'s message on one line: wgpu's descriptions span several, indented, under a
-/// "Validation Error / Caused by:" header (whatever the error's kind), which is dropped.
-pub(crate) fn one_line(error: &wgpu::Error) -> String {
-    let (kind, text) = match error {
-        // Its message is only "Out of Memory": the source names the call and label.
-        wgpu::Error::OutOfMemory { source } => ("out of memory", source.to_string()),
-        wgpu::Error::Validation { .. } => ("validation error", error.to_string()),
-        wgpu::Error::Internal { .. } => ("internal error", error.to_string()),
-    };
-    let causes: Vec<&str> = text
-        .lines()
-        .map(str::trim)
-        .filter(|line| !line.is_empty() && *line != "Validation Error" && *line != "Caused by:")
-        .collect();
-    if causes.is_empty() {
-        kind.to_owned()
-    } else {
-        format!("{kind}: {}", causes.join(": "))
-    }
-}
-
 #[cfg(test)]
 mod tests {
-    use super::one_line;
+    use crate::error::one_line;
 
     #[test]
     fn one_line_joins_wgpu_descriptions() {

@@ -27,10 +27,10 @@
 use wgpu::util::DeviceExt as _;
 
 use crate::RenderError;
+use crate::gpu::layout::buffer_entry;
 use crate::scene::Rung;
 use crate::scene::prepare::PreparedScene;
 use crate::terrain_mesh::{Tile, tile_mesh};
-use crate::volume_clouds::buffer_entry;
 
 /// The light and the dispatch of a pass (layout identical to WGSL `VertexAirUniform` in
 /// `shaders/render/vertex_air.wgsl`).
@@ -89,7 +89,7 @@ pub(crate) fn wanted(scene: &PreparedScene) -> bool {
         .as_ref()
         .is_some_and(|t| t.aerial_perspective.per_vertex())
         && scene.rung != Rung::Precomputed
-        && super::rungs::has_rung_passes(scene.rung)
+        && super::rung_kind::has_rung_passes(scene.rung)
 }
 
 /// What the per-vertex passes need of the scene, taken when the rung's passes are built
@@ -195,7 +195,7 @@ impl VertexAir {
             bind_group_layouts: &[Some(&compute_layout), None, Some(terrain_layout)],
             immediate_size: 0,
         });
-        let constants = super::rungs::air_constants(plan.rung);
+        let constants = super::rung_kind::air_constants(plan.rung);
         let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some("render terrain vertex air"),
             layout: Some(&pipeline_layout),

@@ -3,32 +3,7 @@
 
 use std::path::PathBuf;
 
-/// A place in the scene text (1-based).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Location {
-    /// Line, from 1.
-    pub line: usize,
-    /// Column in characters, from 1.
-    pub column: usize,
-}
-
-impl Location {
-    /// The line and column of byte `offset` in `source`.
-    pub fn of_offset(source: &str, offset: usize) -> Self {
-        let offset = offset.min(source.len());
-        let mut end = offset.min(source.len());
-        while !source.is_char_boundary(end) {
-            end -= 1;
-        }
-        let before = &source[..end];
-        let line = before.matches('\n').count() + 1;
-        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
-        Self {
-            line,
-            column: before[line_start..].chars().count() + 1,
-        }
-    }
-}
+pub use super::locate::Location;
 
 /// `line L, column C: ` or nothing when the value is a default (not in the file).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -3,7 +3,32 @@
 
 use toml::de::{DeTable, DeValue};
 
-use super::Location;
+/// A place in the scene text (1-based).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Location {
+    /// Line, from 1.
+    pub line: usize,
+    /// Column in characters, from 1.
+    pub column: usize,
+}
+
+impl Location {
+    /// The line and column of byte `offset` in `source`.
+    pub fn of_offset(source: &str, offset: usize) -> Self {
+        let offset = offset.min(source.len());
+        let mut end = offset.min(source.len());
+        while !source.is_char_boundary(end) {
+            end -= 1;
+        }
+        let before = &source[..end];
+        let line = before.matches('\n').count() + 1;
+        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+        Self {
+            line,
+            column: before[line_start..].chars().count() + 1,
+        }
+    }
+}
 
 /// Where the value of the key at `path` (`["camera", "near"]`) is written.
 pub(crate) fn locate(source: &str, path: &[&str]) -> Option<Location> {

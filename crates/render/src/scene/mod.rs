@@ -41,6 +41,7 @@
 //! assert!(scene.file.terrain.is_none());
 //! ```
 
+mod assemble;
 mod error;
 mod locate;
 pub mod prepare;

@@ -18,7 +18,7 @@ pub fn cases() -> Vec<Case> {
                 transmittance: x[3],
                 depth: 0.0,
             };
-            render::volume_clouds::cloud_through_air(&cloud, [x[4], x[5], x[6]], [x[7], x[8], x[9]])
+            render::marched_cloud::cloud_through_air(&cloud, [x[4], x[5], x[6]], [x[7], x[8], x[9]])
                 .to_vec()
         },
         reference: |x| {

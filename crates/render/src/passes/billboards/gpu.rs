@@ -20,13 +20,12 @@ pub(crate) fn build(
         .billboard_cloud
         .as_ref()
         .is_some_and(|cloud| cloud.moon.is_some());
-    let airs = crate::gpu::cloud_air::cloud_airs(
-        shared.luts.as_ref(),
-        None,
-        shared.rung.as_ref(),
-        shared.rung_kind,
-    )
-    .ok();
+    // The moon's tables are not the billboards' (the CPU lights its particles by the
+    // moon: `MoonlitBillboards`); a rung without tables gives the moon's air pass.
+    let airs = shared.cloud_airs().ok().map(|(sun, moon)| {
+        let moon = moon.filter(|air| !matches!(air, crate::gpu::cloud_air::CloudAir::Tables(_)));
+        (sun, moon)
+    });
     Ok(Box::new(Billboards(BillboardCloudPass::new(
         &shared.device,
         airs.map(|(sun, _)| sun),

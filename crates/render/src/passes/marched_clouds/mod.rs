@@ -44,10 +44,7 @@ fn plan(scene: &PreparedScene) -> Vec<PlanLine> {
                 None => Err("no [clouds.volume] to march (none, or draw = \"billboards\")".into()),
             },
         ),
-        PlanLine::timed(
-            "moonlit cloud march",
-            crate::volume_clouds::moonlit_march_plan(scene),
-        ),
+        PlanLine::timed("moonlit cloud march", moonlit_march_plan(scene)),
         PlanLine::timed(
             "volume clouds",
             match &scene.volume_cloud {
@@ -168,7 +165,8 @@ fn composite_volume_cloud(
     moon: Option<(&crate::scene::Illuminant<'_>, crate::air::AirTables<'_>)>,
     out: &mut [crate::cpu_frame::PixelRadiance],
 ) -> Result<(), RenderError> {
-    use crate::volume_clouds::{composite_marched_cloud, march_pixel_lit, pinhole_camera};
+    use crate::marched_cloud::composite_marched_cloud;
+    use crate::volume_clouds::{march_pixel_lit, pinhole_camera};
     let camera = &scene.camera;
     let size = [camera.width, camera.height];
     let pinhole = pinhole_camera(camera, scene.atmosphere.planet_radius)?;
@@ -184,4 +182,30 @@ fn composite_volume_cloud(
         |lighting, xy, behind| march_pixel_lit(cloud, lighting, &pinhole, size, xy, behind),
         out,
     )
+}
+
+/// What `skyscape explain` says of the moonlit march (a pass of the GPU renderer, and
+/// the second march of the CPU's): run when the scene's cloud is lit by the moon.
+fn moonlit_march_plan(scene: &PreparedScene) -> Result<String, String> {
+    let Some(cloud) = &scene.volume_cloud else {
+        return Err("no [clouds.volume] to march (none, or draw = \"billboards\")".into());
+    };
+    match (&cloud.moon, &scene.moonlit) {
+        (Some(moon), Some(sky)) => Ok(format!(
+            "the [clouds.volume] cloud marched again lit by the moon ({:.1}° up; the terrain's \
+             moonlit draw's light: celestial's MoonLight through atmos), added through the \
+             moonlit air; {}",
+            sky.direction.y.clamp(-1.0, 1.0).asin().to_degrees(),
+            if moon.shadow.is_some() {
+                "its shadow map along the moon shades the moonlit terrain"
+            } else {
+                "no shadow map (no terrain, or the moon below 1°)"
+            }
+        )),
+        _ => Err(
+            "the moon does not light the scene (no [time], or the sun up or the moon \
+                  below −2°, as for the terrain's moonlit draw): the sun's march only"
+                .into(),
+        ),
+    }
 }

@@ -10,8 +10,8 @@
 
 use super::uniforms::VolumeShadowUniform;
 use crate::RenderError;
+use crate::cloud_shadow::{CloudShadow, SHADOW_MAP_MAX_SIDE};
 use crate::scene::PreparedScene;
-use crate::volume_clouds::{CloudShadow, SHADOW_MAP_MAX_SIDE};
 
 /// The largest map's texels (a slot's room).
 const SLOT_TEXELS: u32 = SHADOW_MAP_MAX_SIDE * SHADOW_MAP_MAX_SIDE;

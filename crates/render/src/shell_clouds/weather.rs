@@ -20,8 +20,8 @@ use std::path::Path;
 
 use cloudlight::shell::WeatherGrid;
 
+use super::CloudShellSection;
 use crate::scene::{Scene, SceneError};
-use crate::shell_clouds::CloudShellSection;
 
 impl Scene {
     /// `[clouds.shell]`'s weather grid from `weather_image` and `weather_cell_m`, or

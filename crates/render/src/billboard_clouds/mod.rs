@@ -1,0 +1,135 @@
+//! `[clouds.volume]` drawn as seed 002's billboards (`draw = "billboards"`): `cloudsim`
+//! grows the cumulus (the same growth, grid and placement as the marched cloud,
+//! `crate::volume_clouds`), `cloudlight`'s slice propagation lights every cell toward the
+//! scene's sun, and each cell denser than the threshold becomes a soft splat
+//! (`cloudlight::billboard`), sorted back to front, depth-tested against the terrain and
+//! seen through the aerial perspective. This module owns only the composition: which
+//! camera and sun the particles see, the air in front of each, and where the image meets
+//! the scene.
+//!
+//! # Lighting
+//!
+//! Once per scene: `cloudlight::propagate::propagate::<f32>` (the slices' f32 twin,
+//! physical Beer–Lambert mode with Catmull–Rom resampling by default, or seed 002's
+//! faithful mode) through the grown volume toward the sun gives every cell its
+//! transmittance `T` toward the sun. The light is the marched cloud's
+//! (`crate::volume_clouds`, `PreparedVolume::lighting`), at the grid's centre: the
+//! sun's irradiance `E` through the scene's rung (`cloudlight::march::atmos_light`: the
+//! atmosphere's sun irradiance × the rung's transmittance toward the sun) and the
+//! ambient sky radiance `L_amb` (atmos' sky irradiance on a horizontal surface / π).
+//! Each drawn cell's sky visibility `V_amb` is the march's
+//! (`cloudlight::march::ambient_visibility`: `e^{−τ}` straight up, the march's
+//! `ambient_steps` midpoint steps). Per frame a particle's colour is
+//! `cloudlight::billboard::particle_radiance`: `albedo · (E · P(τ, cos θ) + L_amb ·
+//! V_amb)` with `P` the march's `octave_scattering` of `τ = −ln T` (its dual-lobe
+//! Henyey–Greenstein phase and `[clouds.volume]`'s octaves, 8 by default; one octave is
+//! `T · p(cos θ)`, Dobashi 2000's single scattering; seed 002 itself had `E · T` alone)
+//! and the march's albedo, `θ` between the view ray to the particle and the sun. At night — when the scene has a
+//! moonlit sky (`PreparedScene::moonlit`, as the marched cloud) — the slices run a
+//! second time toward the moon and the moon's term and its moonlit ambient sky are
+//! added ([`MoonlitBillboards`]); its shadow map along the moon shades the moonlit
+//! terrain. The particle's colour is computed on the CPU for both renderers (the
+//! particles are selected and sorted there per frame): the GPU's instances carry it.
+//!
+//! # Drawing
+//!
+//! Per frame the particles are selected and sorted for the scene's camera
+//! (`cloudlight::billboard::billboards`, the camera rotated into the volume's
+//! east/north/up frame, [`billboard_camera`]). Each particle is seen through the air
+//! between the camera and its centre (`atmos::lut::drop_in::aerial_perspective` on the
+//! precomputed rung, WGSL `aerial_perspective`, else the rung's
+//! `SkyQuery::with_max_distance`; on the GPU a compute pass of the rung's own functions
+//! per particle before the draw, `shaders/render/billboard_air_closed_form.wgsl`,
+//! `billboard_air_single.wgsl`, read per instance by `billboard_clouds_rung.wgsl`):
+//! `colour' = colour · T_air + L_air`
+//! ([`billboard_seen_through_air`]), so the premultiplied splat adds
+//! `α · (colour · T_air + L_air)` over `(1 − α)` of what is behind, the marched cloud's
+//! `L_c · T_air + L_air · (1 − T_c)`. At night the moonlit air in front of each particle
+//! is added to `L_air` ([`moonlit_air`]: the moon's segment model, computed on the CPU
+//! and, on the precomputed rung, read by the GPU's vertex stage per instance; under the
+//! closed form and single scattering the GPU runs the rung's pass for the moon instead;
+//! the sun's air comes from the tables or the rung's pass). A particle covers a pixel
+//! only where its view depth is less than the terrain's: on the CPU `cloudlight::billboard::rasterise_limited`
+//! with the ray-cast terrain's view depth per pixel, on the GPU a depth test `Greater`
+//! of `near / z` against the terrain's reverse-z depth (`shaders/render/billboard_clouds.wgsl`,
+//! which draws cloudlight's instanced quads with `cloudlight::billboard`'s
+//! `billboard_screen` and `splat_alpha`).
+
+mod cpu;
+#[cfg(feature = "gpu")]
+mod gpu;
+mod prepare;
+mod section;
+
+use cloudlight::CloudVolume;
+use cloudlight::billboard::{BillboardSettings, ParticleScattering};
+use cloudlight::march::Lighting;
+use cloudlight::propagate::SliceMode;
+
+use crate::cloud_shadow::CloudShadow;
+
+pub use cpu::{
+    billboard_camera, billboard_near, composite_billboards_cpu, explain, moonlit_air, particles,
+    world_offset,
+};
+#[cfg(feature = "gpu")]
+pub(crate) use gpu::BillboardCloudPass;
+#[cfg(feature = "gpu")]
+pub use gpu::{PARAMS_BYTES, params_bytes};
+pub use section::{BillboardsSection, DEFAULT_CELLS_PER_DENSITY, SlicesName, VolumeDraw};
+
+/// The scene's billboard cloud, built once per scene.
+#[derive(Debug, Clone)]
+pub struct PreparedBillboards {
+    /// The grown density in the east/north/up frame (as `PreparedVolume::volume`).
+    pub volume: CloudVolume,
+    /// The slices' light at every cell centre, x fastest (`propagate::<f32>`).
+    pub light: Vec<f32>,
+    /// The particles' settings: threshold, size, opacity, the sun's colour (its
+    /// irradiance at the cloud / π), the near plane.
+    pub settings: BillboardSettings,
+    /// The slices' mode.
+    pub slices: SliceMode,
+    /// The automaton steps grown.
+    pub steps: u32,
+    /// Cells denser than the threshold (billboards before the camera's culling).
+    pub dense_cells: usize,
+    /// Its shadow on the terrain (as the marched cloud's, `CloudShadow`).
+    pub shadow: Option<CloudShadow>,
+    /// The sun and the ambient sky at the grid's centre, east/north/up (the marched
+    /// cloud's `PreparedVolume::lighting`).
+    pub lighting: Lighting<f32>,
+    /// The ambient sky's visibility at every cell centre denser than the threshold
+    /// (`cloudlight::march::ambient_visibility`), x fastest; 0 at the cells not drawn.
+    pub ambient_visibility: Vec<f32>,
+    /// The particles' albedo and phase: the march's (`ParticleScattering::of_march`).
+    pub scattering: ParticleScattering,
+    /// The cloud lit by the moon too: only in scenes with a moonlit sky
+    /// (`PreparedScene::moonlit`), else `None` and no second propagation runs.
+    pub moon: Option<MoonlitBillboards>,
+}
+
+/// The billboards' second light at night: the moon, as the sun is
+/// ([`PreparedBillboards::lighting`] and `light`), from the marched cloud's
+/// `MoonlitVolume`.
+#[derive(Debug, Clone)]
+pub struct MoonlitBillboards {
+    /// The moon and the moonlit ambient sky at the grid's centre, east/north/up.
+    pub lighting: Lighting<f32>,
+    /// The slices' light toward the moon at every cell centre, x fastest.
+    pub light: Vec<f32>,
+    /// Its shadow on the terrain under the moon (`None` with the moon below 1° or no
+    /// terrain in the scene).
+    pub shadow: Option<CloudShadow>,
+}
+
+/// The air in front of a particle: `colour · T_air + L_air` per channel (the colour the
+/// premultiplied splat carries, module docs). WGSL twin of the same name in
+/// `shaders/render/billboard_air.wgsl` (parity case `render::billboard_seen_through_air`).
+pub fn billboard_seen_through_air(
+    colour: [f32; 3],
+    air_transmittance: [f32; 3],
+    air_radiance: [f32; 3],
+) -> [f32; 3] {
+    std::array::from_fn(|k| colour[k] * air_transmittance[k] + air_radiance[k])
+}

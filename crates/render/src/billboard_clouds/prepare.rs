@@ -1,0 +1,213 @@
+//! `[clouds.volume]` drawn as billboards, prepared: grown, lit by slice propagation
+//! toward the sun (and the moon on a moonlit night), its particles' lighting baked.
+
+use glam::DVec3;
+
+use cloudlight::CloudVolume;
+use cloudlight::billboard::{BillboardSettings, Opacity, ParticleScattering, SizeRule};
+use cloudlight::march::Lighting;
+use cloudlight::propagate::{SliceMode, SlicePlan};
+
+use crate::scene::{CloudVolumeSection, Scene, SceneError};
+
+use super::*;
+
+impl Scene {
+    fn billboards_invalid(&self, key: &str, value: String, reason: &str) -> SceneError {
+        self.invalid(
+            &["clouds", "volume", "billboards", key],
+            value,
+            reason.into(),
+        )
+    }
+
+    /// Checks `[clouds.volume]`'s drawing keys (cheap: before anything is built).
+    pub(crate) fn check_billboard_cloud(
+        &self,
+        section: &CloudVolumeSection,
+    ) -> Result<(), SceneError> {
+        let b = match (section.draw, &section.billboards) {
+            (VolumeDraw::March, None) => return Ok(()),
+            (VolumeDraw::March, Some(_)) => {
+                return Err(self.invalid(
+                    &["clouds", "volume", "billboards"],
+                    "a table".into(),
+                    "billboard settings need draw = \"billboards\" in [clouds.volume] \
+                     (draw is \"march\")"
+                        .into(),
+                ));
+            }
+            (VolumeDraw::Billboards, b) => b.unwrap_or_default(),
+        };
+        if !(0.0..=1.0).contains(&b.density_threshold) {
+            return Err(self.billboards_invalid(
+                "density_threshold",
+                b.density_threshold.to_string(),
+                "must be in [0, 1]",
+            ));
+        }
+        if let Some(m) = b.size_m_per_density
+            && !(m.is_finite() && m > 0.0 && m <= 1e5)
+        {
+            return Err(self.billboards_invalid(
+                "size_m_per_density",
+                format!("{m} m"),
+                "must be finite, > 0 m and ≤ 100,000 m",
+            ));
+        }
+        if let Some(k) = b.seed_k {
+            if b.size_m_per_density.is_some() {
+                return Err(self.billboards_invalid(
+                    "seed_k",
+                    k.to_string(),
+                    "give either seed_k (seed 002's size rule) or size_m_per_density, not both",
+                ));
+            }
+            if !(k.is_finite() && k > 0.0) {
+                return Err(self.billboards_invalid(
+                    "seed_k",
+                    k.to_string(),
+                    "must be finite and > 0 (pixel·metres)",
+                ));
+            }
+        }
+        if !(b.opacity_cells.is_finite() && b.opacity_cells > 0.0 && b.opacity_cells <= 1e3) {
+            return Err(self.billboards_invalid(
+                "opacity_cells",
+                b.opacity_cells.to_string(),
+                "must be finite, > 0 and ≤ 1000 cells",
+            ));
+        }
+        if !(0.0..=1.0).contains(&b.attenuation_ratio) {
+            return Err(self.billboards_invalid(
+                "attenuation_ratio",
+                b.attenuation_ratio.to_string(),
+                "must be in [0, 1]",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Grows `[clouds.volume]`'s cloud (`Scene::volume_cloud`: the same automaton,
+    /// placement, sun and shadow) and lights it with the slices, for drawing as
+    /// billboards.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn billboard_cloud(
+        &self,
+        section: &CloudVolumeSection,
+        atmosphere: &atmos::Atmosphere,
+        model: &(dyn atmos::SkyModel + Send + Sync),
+        sun: DVec3,
+        near: f64,
+        shadows_on_terrain: bool,
+        moonlit: Option<&crate::scene::prepare::MoonlitSky>,
+    ) -> Result<PreparedBillboards, SceneError> {
+        self.check_billboard_cloud(section)?;
+        let b = section.billboards.unwrap_or_default();
+        // The marched cloud's growth, placement, lights (the moon's at night) and shadows.
+        let grown =
+            self.volume_cloud(section, atmosphere, model, sun, shadows_on_terrain, moonlit)?;
+        let slices = match b.slices {
+            SlicesName::Physical => SliceMode::Physical,
+            SlicesName::Faithful => SliceMode::Faithful {
+                attenuation_ratio: b.attenuation_ratio,
+            },
+        };
+        let propagate = |toward: [f32; 3]| {
+            let plan =
+                SlicePlan::new(&grown.volume, toward.map(f64::from), slices).map_err(|e| {
+                    self.billboards_invalid("slices", format!("{:?}", b.slices), &e.to_string())
+                })?;
+            cloudlight::propagate::propagate::<f32>(&grown.volume, &plan).map_err(|e| {
+                self.billboards_invalid("slices", format!("{:?}", b.slices), &e.to_string())
+            })
+        };
+        let light = propagate(grown.lighting.sun_direction())?;
+        let moon = match grown.moon {
+            Some(moon) => Some(MoonlitBillboards {
+                light: propagate(moon.lighting.sun_direction())?,
+                lighting: moon.lighting,
+                shadow: moon.shadow,
+            }),
+            None => None,
+        };
+        let size = match b.seed_k {
+            Some(k) => SizeRule::Seed { k },
+            None => SizeRule::World {
+                metres_per_density: b
+                    .size_m_per_density
+                    .unwrap_or(DEFAULT_CELLS_PER_DENSITY * section.cell_size_m),
+            },
+        };
+        let settings = BillboardSettings {
+            density_threshold: b.density_threshold,
+            size,
+            opacity: Opacity::Slab {
+                cells: b.opacity_cells,
+            },
+            // Seed 002's colour (the light alone): `particles` replaces it with
+            // `particle_radiance`.
+            sun_colour: [1.0; 3],
+            near: billboard_near(near),
+        };
+        settings.validate().map_err(|e| {
+            self.billboards_invalid("density_threshold", b.density_threshold.to_string(), &{
+                e.to_string()
+            })
+        })?;
+        let dense_cells = grown
+            .volume
+            .density()
+            .iter()
+            .filter(|&&d| f64::from(d) > b.density_threshold)
+            .count();
+        let ambient_visibility = sky_visibility(
+            &grown.volume,
+            &grown.lighting,
+            &grown.settings,
+            b.density_threshold,
+        );
+        Ok(PreparedBillboards {
+            ambient_visibility,
+            scattering: ParticleScattering::of_march(&grown.settings),
+            lighting: grown.lighting,
+            moon,
+            volume: grown.volume,
+            light,
+            settings,
+            slices,
+            steps: grown.steps,
+            dense_cells,
+            shadow: grown.shadow,
+        })
+    }
+}
+
+/// The ambient sky's visibility at the centre of every cell of `volume` denser than
+/// `threshold` (0 at the others): the march's (`cloudlight::march::ambient_visibility`
+/// along `lighting`'s up with `settings`' ambient steps), x fastest.
+fn sky_visibility(
+    volume: &CloudVolume,
+    lighting: &Lighting<f32>,
+    settings: &cloudlight::march::MarchSettings,
+    threshold: f64,
+) -> Vec<f32> {
+    let [nx, ny, _] = volume.dims().map(|n| n as usize);
+    let origin = volume.origin();
+    let voxel = volume.voxel_size();
+    let steps = settings.config().ambient_steps;
+    volume
+        .density()
+        .iter()
+        .enumerate()
+        .map(|(cell, &rho)| {
+            if f64::from(rho) <= threshold {
+                return 0.0;
+            }
+            let index = [cell % nx, (cell / nx) % ny, cell / (nx * ny)];
+            let centre: [f32; 3] =
+                std::array::from_fn(|a| (origin[a] + (index[a] as f64 + 0.5) * voxel) as f32);
+            cloudlight::march::ambient_visibility::<f32>(volume, centre, lighting.up(), steps)
+        })
+        .collect()
+}

@@ -1,0 +1,738 @@
+//! From a parsed [`Scene`] to a [`PreparedScene`]: the `atmos` atmosphere, rung,
+//! camera and display constants, the `terrain` heightfield with its normal and horizon
+//! maps, and each cloud kind's preparation. Every value is checked by the crate that
+//! owns it; this module only says which scene key a rejected value came from.
+
+use glam::DVec3;
+use terrain::generate::{Fractal, GeneratorParams};
+use terrain::{Algorithm, Heightfield, HorizonOptions, NormalMap};
+
+use super::prepare::*;
+use super::{HorizonVariant, Rung, Scene, SceneError};
+use crate::present::PresentParameters;
+use crate::terrain_shading::AlbedoRamp;
+
+fn deg(value: f64) -> String {
+    format!("{value}°")
+}
+fn metres(value: f64) -> String {
+    format!("{value} m")
+}
+fn triple(v: [f64; 3]) -> String {
+    format!("[{}, {}, {}]", v[0], v[1], v[2])
+}
+
+impl Scene {
+    /// Validates the scene and builds its atmosphere, rung, camera and terrain.
+    pub fn prepare(&self) -> Result<PreparedScene, SceneError> {
+        self.prepare_with(true)
+    }
+
+    /// [`Scene::prepare`] for the GPU renderer: the `[clouds.shell]` deck's shadow maps
+    /// are left as grids for the GPU to bake (`crate::shell_clouds::shell_shadow_unbaked`);
+    /// the CPU renderer refuses such a scene until
+    /// [`PreparedScene::bake_shell_shadow_on_cpu`].
+    pub fn prepare_for_gpu(&self) -> Result<PreparedScene, SceneError> {
+        self.prepare_with(false)
+    }
+
+    fn prepare_with(&self, cpu_shell_shadow: bool) -> Result<PreparedScene, SceneError> {
+        let atmosphere = self.atmosphere()?;
+        let file = &self.file;
+
+        let (sun, mut sky) = self.sun()?;
+
+        let out = &file.output;
+        for (key, value) in [("width", out.width), ("height", out.height)] {
+            if value == 0 || value > MAX_OUTPUT_SIDE {
+                return Err(self.invalid(
+                    &["output", key],
+                    format!("{value} pixels"),
+                    format!("must be in 1..={MAX_OUTPUT_SIDE}"),
+                ));
+            }
+        }
+        match out.projection {
+            crate::projection::Projection::Cubemap if out.width != 6 * out.height => {
+                return Err(self.invalid(
+                    &["output", "width"],
+                    format!("{} pixels", out.width),
+                    format!(
+                        "a cubemap strip is six square faces: width must be 6 × height = {}",
+                        6 * u64::from(out.height)
+                    ),
+                ));
+            }
+            crate::projection::Projection::Fisheye
+                if !(out.fisheye_fov_deg > 0.0 && out.fisheye_fov_deg <= 360.0) =>
+            {
+                return Err(self.invalid(
+                    &["output", "fisheye_fov_deg"],
+                    deg(out.fisheye_fov_deg),
+                    "must be in (0°, 360°]".into(),
+                ));
+            }
+            _ => {}
+        }
+        let pixels = u64::from(out.width) * u64::from(out.height);
+        if pixels > MAX_OUTPUT_PIXELS {
+            return Err(self.invalid(
+                &["output", "height"],
+                format!("{} pixels ({}×{})", pixels, out.width, out.height),
+                format!("width × height must be ≤ {MAX_OUTPUT_PIXELS}"),
+            ));
+        }
+        let mut present = PresentParameters::new(&atmosphere, out.exposure, out.dither_seed)
+            .map_err(|e| {
+                self.invalid(
+                    &["output", "exposure"],
+                    out.exposure.to_string(),
+                    e.to_string(),
+                )
+            })?;
+
+        let cam = &file.camera;
+        let (forward, look_key) = match (cam.look_at, cam.look_direction) {
+            (Some(target), None) => (
+                DVec3::from_array(target) - DVec3::from_array(cam.position),
+                "look_at",
+            ),
+            (None, Some(direction)) => (DVec3::from_array(direction), "look_direction"),
+            (Some(target), Some(_)) => {
+                return Err(self.invalid(
+                    &["camera", "look_at"],
+                    triple(target),
+                    "give either look_at or look_direction, not both".into(),
+                ));
+            }
+            (None, None) => {
+                return Err(self.invalid(
+                    &["camera", "position"],
+                    triple(cam.position),
+                    "the camera needs look_at or look_direction".into(),
+                ));
+            }
+        };
+        let look_value = triple(cam.look_at.or(cam.look_direction).unwrap_or_default());
+        let planet = atmosphere.planet_radius;
+        let camera_position = DVec3::from_array(cam.position) + DVec3::new(0.0, planet, 0.0);
+        let camera = atmos::frame::FrameCamera::look_at(
+            camera_position,
+            forward,
+            up_hint(forward),
+            cam.vertical_fov_deg.to_radians(),
+            out.width,
+            out.height,
+            sun,
+            None,
+        )
+        .map_err(|e| {
+            let field = atmos_field(&e);
+            if field.starts_with("fov_y") {
+                self.atmos_error(
+                    &["camera", "vertical_fov_deg"],
+                    deg(cam.vertical_fov_deg),
+                    e,
+                )
+            } else if field.starts_with("position") {
+                self.atmos_error(&["camera", "position"], triple(cam.position), e)
+            } else {
+                self.atmos_error(&["camera", look_key], look_value.clone(), e)
+            }
+        })?;
+        // The viewer must be where atmos accepts one (not deep under the ground).
+        atmos::SkyQuery::new(planet, camera_position, DVec3::Y, sun)
+            .map_err(|e| self.atmos_error(&["camera", "position"], triple(cam.position), e))?;
+        if !(cam.near.is_finite() && cam.near >= 0.0) {
+            return Err(self.invalid(
+                &["camera", "near"],
+                metres(cam.near),
+                "must be finite and ≥ 0 m".into(),
+            ));
+        }
+        if cam.far.is_nan() || cam.far <= cam.near {
+            return Err(self.invalid(
+                &["camera", "far"],
+                metres(cam.far),
+                format!("must be > near ({} m)", cam.near),
+            ));
+        }
+
+        if let Some(section) = file.clouds.as_ref().and_then(|c| c.volume.as_ref()) {
+            self.check_volume_cloud(section)?;
+            self.check_billboard_cloud(section)?;
+        }
+        if let Some(section) = file.clouds.as_ref().and_then(|c| c.shell.as_ref()) {
+            self.check_shell_cloud(section, &atmosphere)?;
+        }
+        // The expensive parts last, once every cheap check has passed.
+        let (sky_model, segment_model, precomputed) = self.models(&atmosphere)?;
+        let terrain = self.terrain()?;
+        let (sky_objects, cloud_layers) = match sky.as_mut() {
+            Some(sky) => self.sky_objects_and_clouds(sky, &*sky_model, forward, cam, out)?,
+            None => {
+                if let Some(clouds) = file.clouds.as_ref().filter(|c| !c.layers.is_empty()) {
+                    return Err(self.invalid(
+                        &["clouds", "layers"],
+                        format!("{} layers", clouds.layers.len()),
+                        "cloud layers are lit by celestial's sky, placed by [time] (a date, \
+                         time and place): give [time] instead of [sun]"
+                            .into(),
+                    ));
+                }
+                (None, Vec::new())
+            }
+        };
+        let moonlit = match &sky {
+            Some(sky) => self.moonlit_sky(sky, &atmosphere, sun, &cloud_layers)?,
+            None => None,
+        };
+        let billboard_cloud = match file.clouds.as_ref().and_then(|c| c.volume.as_ref()) {
+            Some(section) if section.draw == crate::billboard_clouds::VolumeDraw::Billboards => {
+                Some(self.billboard_cloud(
+                    section,
+                    &atmosphere,
+                    &*sky_model,
+                    sun,
+                    cam.near,
+                    terrain.is_some(),
+                    moonlit.as_ref(),
+                )?)
+            }
+            _ => None,
+        };
+        let volume_cloud = match file
+            .clouds
+            .as_ref()
+            .and_then(|c| c.volume.as_ref())
+            .filter(|v| v.draw == crate::billboard_clouds::VolumeDraw::March)
+        {
+            Some(section) => Some(self.volume_cloud(
+                section,
+                &atmosphere,
+                &*sky_model,
+                sun,
+                // Its shadow map shades the terrain and the deck (crate::mutual_shadow).
+                terrain.is_some() || file.clouds.as_ref().is_some_and(|c| c.shell.is_some()),
+                moonlit.as_ref(),
+            )?),
+            None => None,
+        };
+        let shell_cloud = match file.clouds.as_ref().and_then(|c| c.shell.as_ref()) {
+            Some(section) => Some(self.shell_cloud(
+                section,
+                &atmosphere,
+                &*sky_model,
+                camera_position,
+                sun,
+                moonlit.as_ref(),
+                terrain.as_ref(),
+                cpu_shell_shadow,
+                volume_cloud.as_ref().map(|v| &v.volume),
+            )?),
+            None => None,
+        };
+        if sky_objects.is_some() {
+            // celestial draws the sun's limb-darkened disc: atmos' uniform one is off.
+            present.sun_disc_radiance = [0.0; 3];
+        }
+        Ok(PreparedScene {
+            atmosphere,
+            rung: file.atmosphere.rung,
+            sky_model,
+            segment_model,
+            camera,
+            camera_position,
+            sun,
+            present,
+            near: cam.near,
+            far: cam.far,
+            terrain,
+            precomputed,
+            sky_objects,
+            cloud_layers,
+            viewer_radius: planet + cam.position[1],
+            billboard_cloud,
+            moonlit,
+            volume_cloud,
+            shell_cloud,
+            celestial_sky: sky,
+        })
+    }
+
+    /// The moonlit sky (celestial's `MoonLight`: the same atmosphere lit by the moon's
+    /// irradiance from the moon's direction, any rung), when it can matter: the sun
+    /// below the horizon and the moon above −2° (in daylight it is ~10⁻⁶ of the sky).
+    fn moonlit_sky(
+        &self,
+        sky: &celestial::sky::Sky,
+        atmosphere: &atmos::Atmosphere,
+        sun: DVec3,
+        cloud_layers: &[celestial::clouds::CloudLayerUniforms],
+    ) -> Result<Option<MoonlitSky>, SceneError> {
+        let Some(placement) = sky.placement() else {
+            return Ok(None);
+        };
+        let light = &placement.moon_light;
+        let [east, north, up] = light.direction;
+        if sun.y >= 0.0 || up < (-2f64).to_radians().sin() {
+            return Ok(None);
+        }
+        let moon_atmosphere = light.atmosphere(atmosphere);
+        let (sky_model, segment_model, precomputed) = self.models(&moon_atmosphere)?;
+        // The layers' light is in their east–north–up frame, as the moon's direction.
+        let toward_moon = light.direction.map(|c| c as f32);
+        let cloud_layers = cloud_layers
+            .iter()
+            .map(|layer| celestial::clouds::CloudLayerUniforms {
+                sun_direction: toward_moon,
+                ..*layer
+            })
+            .collect();
+        Ok(Some(MoonlitSky {
+            atmosphere: moon_atmosphere,
+            direction: DVec3::new(east, up, -north),
+            sky_model,
+            segment_model,
+            precomputed,
+            cloud_layers,
+        }))
+    }
+
+    /// The sun's world direction from `[sun]` or from `[time]` (then also the placed
+    /// `celestial` sky, when `[sky_objects]` draws it).
+    fn sun(&self) -> Result<(DVec3, Option<celestial::sky::Sky>), SceneError> {
+        let file = &self.file;
+        match (&file.sun, &file.time) {
+            (Some(section), None) => {
+                if section.elevation_deg.is_nan() || section.elevation_deg.abs() > 90.0 {
+                    return Err(self.invalid(
+                        &["sun", "elevation_deg"],
+                        deg(section.elevation_deg),
+                        "must be in [−90°, 90°]".into(),
+                    ));
+                }
+                if !section.azimuth_deg.is_finite() {
+                    return Err(self.invalid(
+                        &["sun", "azimuth_deg"],
+                        deg(section.azimuth_deg),
+                        "must be finite (degrees clockwise from north)".into(),
+                    ));
+                }
+                if file.sky_objects.is_some_and(|o| o.enabled) {
+                    return Err(self.invalid(
+                        &["sky_objects", "enabled"],
+                        "true".into(),
+                        "the sky objects are placed by [time] (a date, time and place), \
+                         not by an explicit [sun]"
+                            .into(),
+                    ));
+                }
+                let sun = world_direction(
+                    section.elevation_deg.to_radians(),
+                    section.azimuth_deg.to_radians(),
+                );
+                Ok((sun, None))
+            }
+            (None, Some(time)) => {
+                let celestial = |key: &'static str, value: String| {
+                    move |e| self.celestial_error(&["time", key], value, e)
+                };
+                let mut instant = celestial::Instant::parse(&time.utc)
+                    .map_err(celestial("utc", format!("\"{}\"", time.utc)))?;
+                if time.offset_s != 0.0 {
+                    let offset =
+                        chrono::Duration::try_milliseconds((time.offset_s * 1e3).round() as i64)
+                            .filter(|_| time.offset_s.is_finite())
+                            .ok_or_else(|| {
+                                self.invalid(
+                                    &["time", "offset_s"],
+                                    format!("{} s", time.offset_s),
+                                    "must be a finite number of seconds".into(),
+                                )
+                            })?;
+                    instant = celestial::Instant::from_utc(instant.utc() + offset)
+                        .map_err(celestial("offset_s", format!("{} s", time.offset_s)))?;
+                }
+                let observer = celestial::Observer::new(
+                    celestial::Angle::from_degrees(time.latitude_deg),
+                    celestial::Angle::from_degrees(time.longitude_deg),
+                    file.camera.position[1],
+                )
+                .map_err(|e| {
+                    let (key, value) = match e.to_string() {
+                        m if m.contains("latitude") => ("latitude_deg", deg(time.latitude_deg)),
+                        m if m.contains("longitude") => ("longitude_deg", deg(time.longitude_deg)),
+                        _ => ("utc", time.utc.clone()),
+                    };
+                    self.celestial_error(&["time", key], value, e)
+                })?;
+                let options = celestial::sky::SkyOptions {
+                    star_limit_magnitude: file.sky_objects.and_then(|o| o.star_limit_magnitude),
+                    ..Default::default()
+                };
+                let atmosphere = self.atmosphere()?;
+                let mut sky = celestial::sky::Sky::build(atmosphere, options).map_err(|e| {
+                    let value = file
+                        .sky_objects
+                        .and_then(|o| o.star_limit_magnitude)
+                        .map_or_else(|| "(default)".to_owned(), |m| m.to_string());
+                    self.celestial_error(&["sky_objects", "star_limit_magnitude"], value, e)
+                })?;
+                let placement = sky
+                    .reposition(&observer, &instant)
+                    .map_err(celestial("utc", format!("\"{}\"", time.utc)))?;
+                let sun = world_direction(
+                    placement.sun.airless.elevation.radians(),
+                    placement.sun.airless.azimuth.radians(),
+                );
+                Ok((sun, Some(sky)))
+            }
+            (Some(section), Some(time)) => Err(self.invalid(
+                &["time", "utc"],
+                format!("\"{}\"", time.utc),
+                format!(
+                    "give either [time] or [sun] (elevation {}°), not both",
+                    section.elevation_deg
+                ),
+            )),
+            (None, None) => Err(self.invalid(
+                &["sun"],
+                "(missing)".into(),
+                "the scene needs a sun: a [sun] section (elevation_deg, azimuth_deg) or a \
+                 [time] section (utc, latitude_deg, longitude_deg)"
+                    .into(),
+            )),
+        }
+    }
+
+    /// The sky objects of the placed `sky` (when drawn) and its cloud layers, painted
+    /// from `model`, seen by the scene's camera (the same pixel rays in celestial's
+    /// east/north/up frame), the objects depth-tested against reverse-z terrain.
+    #[allow(clippy::type_complexity)]
+    fn sky_objects_and_clouds(
+        &self,
+        sky: &mut celestial::sky::Sky,
+        model: &(dyn atmos::SkyModel + Send + Sync),
+        forward: DVec3,
+        cam: &super::CameraSection,
+        out: &super::OutputSection,
+    ) -> Result<
+        (
+            Option<celestial::objects::SkyObjectsFrame>,
+            Vec<celestial::clouds::CloudLayerUniforms>,
+        ),
+        SceneError,
+    > {
+        let at_time = |e| {
+            self.celestial_error(
+                &["time", "utc"],
+                self.file
+                    .time
+                    .as_ref()
+                    .map_or_else(String::new, |t| format!("\"{}\"", t.utc)),
+                e,
+            )
+        };
+        if let Some(clouds) = &self.file.clouds {
+            for (index, layer) in clouds.layers.iter().enumerate() {
+                let field = |e: celestial::CelestialError| {
+                    let message = e.to_string();
+                    let key = [
+                        "base_m",
+                        "thickness_m",
+                        "transition_m",
+                        "span_m",
+                        "coverage",
+                    ]
+                    .into_iter()
+                    .find(|k| message.contains(k.trim_end_matches("_m")))
+                    .unwrap_or("kind");
+                    self.celestial_error(
+                        &["clouds", "layers", &format!("{index}"), key],
+                        format!("{layer:?}"),
+                        e,
+                    )
+                };
+                let mut built = celestial::clouds::CloudLayer::new(
+                    layer.base_m,
+                    layer.thickness_m,
+                    layer.transition_m,
+                    layer.span_m,
+                    layer.kind.into(),
+                )
+                .map_err(field)?;
+                if let Some(coverage) = layer.coverage {
+                    built.coverage = coverage;
+                }
+                built.seed = layer.seed;
+                if layer.flat {
+                    built.shape = celestial::clouds::LayerShape::Flat;
+                }
+                built.validate().map_err(field)?;
+                sky.add_cloud_layer(built).map_err(field)?;
+            }
+        }
+        sky.repaint(model).map_err(at_time)?;
+        let cloud_layers = sky
+            .cloud_layers_in_draw_order(cam.position[1])
+            .map_err(at_time)?
+            .into_iter()
+            .map(|(_, uniforms)| uniforms)
+            .collect();
+        if !self.file.sky_objects.is_none_or(|o| o.enabled) {
+            return Ok((None, cloud_layers));
+        }
+        // World x east, y up, z south → east, north, up: a rotation, so the pixel rays
+        // are the scene camera's.
+        let enu = |v: DVec3| [v.x, -v.z, v.y];
+        let camera = sky
+            .camera(
+                enu(forward),
+                enu(up_hint(forward)),
+                celestial::Angle::from_degrees(cam.vertical_fov_deg),
+                out.width,
+                out.height,
+            )
+            .map_err(at_time)?;
+        let mut frame = sky.sky_objects_frame(&camera).map_err(at_time)?;
+        // Reverse z: the sky is at depth 0, terrain in front of it hides the objects.
+        frame.uniforms.far_depth = 0.0;
+        Ok((Some(frame), cloud_layers))
+    }
+
+    /// Earth's atmosphere with the scene's overrides, validated by atmos.
+    fn atmosphere(&self) -> Result<atmos::Atmosphere, SceneError> {
+        let section = &self.file.atmosphere;
+        let mut atmosphere = atmos::Atmosphere::earth();
+        if let Some(scale) = section.mie_scale {
+            atmosphere.mie_scattering = atmosphere.mie_scattering.map(|b| b * scale);
+            atmosphere.mie_extinction = atmosphere.mie_extinction.map(|b| b * scale);
+        }
+        if let Some(g) = section.mie_g {
+            atmosphere.mie_g = g;
+        }
+        if let Some(h) = section.rayleigh_scale_height {
+            atmosphere.rayleigh_scale_height = h;
+        }
+        if let Some(h) = section.mie_scale_height {
+            atmosphere.mie_scale_height = h;
+        }
+        if let Some(albedo) = section.ground_albedo {
+            atmosphere.ground_albedo = [albedo; 3];
+        }
+        atmosphere.validate().map_err(|e| {
+            let field = atmos_field(&e);
+            let (key, value) =
+                if field.starts_with("mie_scattering") || field.starts_with("mie_extinction") {
+                    ("mie_scale", section.mie_scale)
+                } else if field.starts_with("mie_g") {
+                    ("mie_g", section.mie_g)
+                } else if field.starts_with("rayleigh_scale_height") {
+                    ("rayleigh_scale_height", section.rayleigh_scale_height)
+                } else if field.starts_with("mie_scale_height") {
+                    ("mie_scale_height", section.mie_scale_height)
+                } else {
+                    ("ground_albedo", section.ground_albedo)
+                };
+            let value = value.map_or_else(|| "(default)".to_owned(), |v| v.to_string());
+            self.atmos_error(&["atmosphere", key], value, e)
+        })?;
+        Ok(atmosphere)
+    }
+
+    /// The rung's models (sky, finite segments).
+    #[allow(clippy::type_complexity)]
+    fn models(
+        &self,
+        atmosphere: &atmos::Atmosphere,
+    ) -> Result<
+        (
+            SharedSkyModel,
+            SharedSkyModel,
+            Option<std::sync::Arc<atmos::lut::PrecomputedSky>>,
+        ),
+        SceneError,
+    > {
+        use atmos::closed_form_sky::ClosedFormSky;
+        let rung = self.file.atmosphere.rung;
+        let e = |e| self.atmos_error(&["atmosphere", "rung"], format!("\"{}\"", rung.name()), e);
+        let model: SharedSkyModel = match rung {
+            Rung::ClosedForm => Box::new(ClosedFormSky::new(atmosphere).map_err(e)?),
+            Rung::ClosedFormVertex => {
+                let dome = atmos::dome::DomeInterpolated::new(
+                    ClosedFormSky::new(atmosphere).map_err(e)?,
+                    DOME,
+                    atmosphere,
+                )
+                .map_err(e)?;
+                let per_pixel = Box::new(ClosedFormSky::new(atmosphere).map_err(e)?);
+                return Ok((Box::new(dome), per_pixel, None));
+            }
+            Rung::Single => Box::new(
+                atmos::single_scattering::SingleScatteringSky::new(atmosphere, Default::default())
+                    .map_err(e)?,
+            ),
+            Rung::Precomputed => {
+                let sky = std::sync::Arc::new(
+                    atmos::lut::PrecomputedSky::new(atmosphere, &Default::default()).map_err(e)?,
+                );
+                let model: SharedSkyModel = Box::new(sky.clone());
+                let shared = std::sync::Arc::new(model);
+                return Ok((Box::new(shared.clone()), Box::new(shared), Some(sky)));
+            }
+            Rung::Reference => Box::new(
+                atmos::reference::ReferenceSky::new(atmosphere, Default::default()).map_err(e)?,
+            ),
+            Rung::ReferenceSpectral => Box::new(
+                atmos::reference::SpectralReferenceSky::new(atmosphere, Default::default())
+                    .map_err(e)?,
+            ),
+        };
+        // One model for both roles: share it through a reference-counted wrapper.
+        let shared = std::sync::Arc::new(model);
+        Ok((Box::new(shared.clone()), Box::new(shared), None))
+    }
+
+    /// The heightfield, normals, horizon maps and albedo, or `None` without `[terrain]`.
+    fn terrain(&self) -> Result<Option<PreparedTerrain>, SceneError> {
+        let Some(section) = &self.file.terrain else {
+            return Ok(None);
+        };
+        let given = [
+            section.procedural.is_some(),
+            section.png16.is_some(),
+            section.raw_f32.is_some(),
+        ];
+        if given.iter().filter(|&&g| g).count() != 1 {
+            return Err(self.invalid(
+                &["terrain"],
+                format!("{} sources", given.iter().filter(|&&g| g).count()),
+                "give exactly one of [terrain.procedural], [terrain.png16], [terrain.raw_f32]"
+                    .into(),
+            ));
+        }
+        let heightfield = if let Some(p) = &section.procedural {
+            let mut params = GeneratorParams::new(p.size, p.size, p.cell_size, p.seed);
+            params.amplitude = p.relief;
+            params.octaves = p.octaves;
+            if let Some(w) = p.wavelength {
+                params.wavelength = w;
+            }
+            if p.ridged {
+                params.fractal = Fractal::Ridged;
+            }
+            terrain::generate::generate(&params).map_err(|e| {
+                let (key, value) = match terrain_field(&e) {
+                    "width" | "height" | "width * height" => ("size", p.size.to_string()),
+                    "spacing" => ("cell_size", metres(p.cell_size)),
+                    "amplitude" => ("relief", metres(p.relief)),
+                    "wavelength" => ("wavelength", metres(params.wavelength)),
+                    "octaves" => ("octaves", p.octaves.to_string()),
+                    _ => ("seed", p.seed.to_string()),
+                };
+                self.terrain_error(&["terrain", "procedural", key], value, e)
+            })?
+        } else if let Some(p) = &section.png16 {
+            let path = self.resolve(&p.path);
+            Heightfield::open_png16(&path, p.cell_size, p.height_scale, p.height_offset).map_err(
+                |e| {
+                    let (key, value) = match terrain_field(&e) {
+                        "spacing" => ("cell_size", metres(p.cell_size)),
+                        "scale" | "scale_m_per_count" => {
+                            ("height_scale", p.height_scale.to_string())
+                        }
+                        "offset" => ("height_offset", metres(p.height_offset)),
+                        _ => ("path", format!("\"{}\"", path.display())),
+                    };
+                    self.terrain_error(&["terrain", "png16", key], value, e)
+                },
+            )?
+        } else if let Some(p) = &section.raw_f32 {
+            let path = self.resolve(&p.path);
+            Heightfield::open_raw_f32_le(&path, p.width, p.height, p.cell_size)
+                .and_then(|hf| hf.with_vertical_scale(p.height_scale))
+                .map_err(|e| {
+                    let (key, value) = match terrain_field(&e) {
+                        "width" => ("width", p.width.to_string()),
+                        "height" => ("height", p.height.to_string()),
+                        "spacing" => ("cell_size", metres(p.cell_size)),
+                        "vertical_scale" => ("height_scale", p.height_scale.to_string()),
+                        _ => ("path", format!("\"{}\"", path.display())),
+                    };
+                    self.terrain_error(&["terrain", "raw_f32", key], value, e)
+                })?
+        } else {
+            unreachable!("exactly one source was checked above")
+        };
+        if heightfield.width() < 2 || heightfield.height() < 2 {
+            return Err(self.invalid(
+                &["terrain"],
+                format!("{}×{} texels", heightfield.width(), heightfield.height()),
+                "a surface needs at least 2×2 texels".into(),
+            ));
+        }
+        // The renderer places the heightfield flat (no Earth curvature), so its
+        // shadows are baked flat too.
+        let options = HorizonOptions::flat();
+        let horizon = match (section.horizon, section.horizon_azimuths) {
+            (HorizonVariant::EastWest, None) => HorizonMaps::EastWest(
+                terrain::bake_east_west(&heightfield, &options, Algorithm::HullSweep).map_err(
+                    |e| self.terrain_error(&["terrain", "horizon"], "\"east-west\"".into(), e),
+                )?,
+            ),
+            (HorizonVariant::EastWest, Some(n)) => {
+                return Err(self.invalid(
+                    &["terrain", "horizon_azimuths"],
+                    n.to_string(),
+                    "only used with horizon = \"azimuths\"".into(),
+                ));
+            }
+            (HorizonVariant::Azimuths, None) => {
+                return Err(self.invalid(
+                    &["terrain", "horizon"],
+                    "\"azimuths\"".into(),
+                    "needs horizon_azimuths = N".into(),
+                ));
+            }
+            (HorizonVariant::Azimuths, Some(n)) => HorizonMaps::Azimuths(
+                terrain::bake_azimuths(&heightfield, n, &options, Algorithm::HullSweep).map_err(
+                    |e| self.terrain_error(&["terrain", "horizon_azimuths"], n.to_string(), e),
+                )?,
+            ),
+        };
+        let albedo = AlbedoRamp::new(&section.albedo).map_err(|(key, value, reason)| {
+            self.invalid(&["terrain", "albedo", key], value, reason)
+        })?;
+        let normals = NormalMap::from_heightfield(&heightfield);
+        Ok(Some(PreparedTerrain {
+            heightfield,
+            normals,
+            horizon,
+            albedo,
+            aerial_perspective: section.aerial_perspective,
+        }))
+    }
+}
+
+/// The field an atmos error names: its message's first `quoted` name (every
+/// parameter variant of `AtmosError` starts with it), or "".
+fn atmos_field(error: &atmos::AtmosError) -> String {
+    error
+        .to_string()
+        .split('`')
+        .nth(1)
+        .unwrap_or_default()
+        .to_owned()
+}
+
+/// The field a terrain error names, or "" when it names none.
+fn terrain_field(error: &terrain::TerrainError) -> &'static str {
+    use terrain::TerrainError as E;
+    match error {
+        E::InvalidParameter { field, .. }
+        | E::ZeroSize { field, .. }
+        | E::TooLarge { field, .. } => field,
+        _ => "",
+    }
+}
