@@ -1,6 +1,6 @@
 //! A maximum distance of `K` steps, row by row: the brute force of every texel's
 //! window, computed for a whole grid row at a time (`horizon` module docs,
-//! "Algorithms").
+//! "A maximum distance").
 //!
 //! Off the axes and diagonals, texel `(u₀, m)` lies on line `c = m − round(u₀·t)` and
 //! its far sample `k` (`NEAR_STEPS < k ≤ K`) is the line's sample on grid row
@@ -19,25 +19,20 @@
 //! The cost is `O(K)` per texel with no branches, against the windowed hull sweep's
 //! two hulls and searches; [`choose`] picks it for short windows.
 
-use super::{Lines, NEAR_STEPS, Sampler, View, angle_from_tangent, fl, lerp_row};
+use super::lines::{Lines, lerp_row};
+use super::sampler::{NEAR_STEPS, Sampler, View};
+use super::{angle_from_tangent, fl};
 
 /// Most steps `K` for which a limited bake off the axes and diagonals runs row by
-/// row rather than as a windowed hull sweep. Measured on the 1024² speed-study map (`examples/horizon_speed.rs`, 16
-/// azimuths, 1 thread, CPU time, best of 2): 3 km (`K` 100 on the axes) 2.0 s by
-/// rows against 2.8 s windowed, 4 km (`K` 133) 2.5–2.6 s against 2.4–2.7 s, 6 km
-/// (`K` 200) 3.3–4.1 s against 2.1–2.2 s.
+/// row rather than as a windowed hull sweep: the rows' cost grows with `K`, the
+/// sweep's does not, and they cross at about 4 km at 30 m (`K` 133 on the axes;
+/// the timings are in `docs/tradeoffs/terrain_max_distance.md`).
 pub(crate) const ROW_MAX_STEPS: usize = 128;
 
 /// [`ROW_MAX_STEPS`] on the axes and diagonals, whose windowed sweep keeps the
-/// unlimited hull in the same walk (since 8a48205) and so costs less there.
-/// Measured on the 1024² speed-study map (`examples/horizon_speed.rs`, 16 azimuths,
-/// 1 thread, one build with a temporary switch, the two alternately in their own
-/// processes, 4 rounds of 3 bakes at load 4–7, 2026-11-27), rows against the sweep
-/// on these lines: 2 km (`K` 66 on the axes, 47 on the diagonals) 8.30 G
-/// instructions against 8.48 G (valgrind `--tool=cachegrind`, bake only); 3 km
-/// (`K` 100 and 70) 11.41 G against 10.29 G, CPU time 1.72–1.89 s against
-/// 1.51–1.72 s; 4 km (the diagonals' `K` 94; the axes' 133 were swept anyway)
-/// 12.66 G against 11.99 G, 1.91–2.10 s against 1.90–2.07 s.
+/// unlimited hull in the same walk and so costs less there: rows are the cheaper up
+/// to about 2 km at 30 m (`K` 66 on the axes, 47 on the diagonals). The instruction
+/// counts and CPU times are in `docs/tradeoffs/terrain_max_distance.md`.
 pub(crate) const EXACT_ROW_MAX_STEPS: usize = 66;
 
 /// How a hull-sweep bake with a maximum distance is run.
@@ -64,16 +59,10 @@ pub(crate) fn rows_apply(lines: &Lines, max_steps: usize) -> bool {
 
 /// Fewest steps `K` for which a limited bake runs through the unlimited sweep
 /// ([`Method::ByUnlimited`]) rather than the windowed one (`K` is per azimuth: at
-/// 6 km, 200 on the axes, 184 at 22.5° off them, 141 on the diagonals). Measured on
-/// the 1024² speed-study map (`examples/horizon_speed.rs`, 16 azimuths, 1 thread,
-/// CPU time, one build with a temporary switch of method, the methods alternately
-/// in their own processes, load 4–9, 2026-11-27): 4 km 2.40–2.46 s through the
-/// unlimited sweep against 1.95–2.06 s windowed; 5 km 2.00–2.76 s against
-/// 1.72–2.62 s; 6 km 1.82–2.74 s (median 2.10) against 1.75–2.60 s (2.22); 8 km
-/// 1.84–2.35 s (2.03) against 1.77–2.51 s (2.00); 12 km 1.86–2.37 s (2.03) against
-/// 2.01–2.57 s (2.37); 20 km 1.65–2.10 s against 2.20–2.39 s. The crossover lies
-/// about 5 km (`K` 166 on the axes); up to 12 km the difference is within the
-/// noise of a loaded machine.
+/// 6 km, 200 on the axes, 184 at 22.5° off them, 141 on the diagonals). Below about
+/// 5 km at 30 m (`K` 166 on the axes) the unlimited sweep first costs more than the
+/// windowed sweep alone, up to 12 km the two are about even, and at 20 km it is the
+/// cheaper (the timings are in `docs/tradeoffs/terrain_max_distance.md`).
 pub(crate) const UNLIMITED_MIN_STEPS: usize = 167;
 
 /// How [`super::bake_horizon`]'s hull sweep runs a maximum distance of `max_steps`
