@@ -6,10 +6,7 @@
 
 use celestial::clouds::CloudLayerUniforms;
 
-/// A world direction (x east, y up, z south) in celestial's east/north/up frame.
-pub fn world_to_enu(view: [f32; 3]) -> [f32; 3] {
-    [view[0], -view[2], view[1]]
-}
+pub use crate::frames::world_to_enu;
 
 /// Distance (m) along `view` (east/north/up) from radius `r` to the layer's near
 /// surface — its base seen from below, its top from above — or −1 when the view does

@@ -184,7 +184,7 @@ pub fn explain(scene: &PreparedScene) -> Result<String, String> {
             let [nx, ny, nz] = cloud.volume.dims();
             let drawn = particles(scene, cloud).map_or(0, |(_, p)| p.len());
             Ok(format!(
-                "seed 002's billboards of the [clouds.volume] cumulus ({nx}×{ny}×{nz} cells grown \
+                "Dobashi et al. 2000's billboards of the [clouds.volume] cumulus ({nx}×{ny}×{nz} cells grown \
                  by cloudsim in {} steps, lit on the CPU by cloudlight's {} slice propagation \
                  toward the sun{}, the march's phase and octaves and the ambient sky): \
                  {drawn} of {} cells denser than {} drawn back to front, depth-tested against \

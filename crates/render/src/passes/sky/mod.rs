@@ -1,6 +1,6 @@
 //! The sky: each light's sky radiance where no terrain hides it, the sun's disc through
 //! its transmittance (unless celestial draws the sun), drawn first with depth writes
-//! off (seed 000's sky hemisphere); on a moonlit night the moon's sky added.
+//! off (the sky dome of Hoffman and Preetham 2002); on a moonlit night the moon's sky added.
 
 #[cfg(feature = "gpu")]
 pub(crate) mod gpu;
@@ -25,10 +25,10 @@ pub(crate) const ENTRY: PassEntry = PassEntry {
 
 fn plan(scene: &PreparedScene) -> Vec<PlanLine> {
     let what = match rung_model(scene) {
-        None => "atmos' sky pass, drawn first with depth writes off (seed 000)".to_owned(),
+        None => "atmos' sky pass, drawn first with depth writes off".to_owned(),
         Some(model) => format!(
             "{model}'s radiance per pixel with the sun's disc through its transmittance, \
-             drawn first with depth writes off (seed 000)"
+             drawn first with depth writes off"
         ),
     };
     vec![PlanLine::timed("sky", Ok(what))]

@@ -51,7 +51,8 @@ fn plan(scene: &PreparedScene) -> Vec<PlanLine> {
     let rung = scene.rung;
     let evaluation = match rung {
         crate::scene::Rung::ClosedForm => {
-            "atmos' ClosedFormRenderer, seed 000's closed form per pixel (compute)".to_owned()
+            "atmos' ClosedFormRenderer, Hoffman and Preetham's closed form per pixel (compute)"
+                .to_owned()
         }
         crate::scene::Rung::ClosedFormVertex => format!(
             "atmos' ClosedFormRenderer per vertex of a {}×{} dome, interpolated per pixel \

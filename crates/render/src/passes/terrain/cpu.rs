@@ -1,7 +1,7 @@
 //! The terrain pass's CPU twin: each pixel whose ray hit the terrain is shaded with
-//! seed 000's `terrain_shading` ([`crate::terrain_shading`]) for each light of the frame
-//! (the sun; at night the moon's light added, the twin of the GPU's second, additive
-//! draw), then seen through the atmosphere.
+//! Hoffman and Preetham's terrain colour ([`crate::terrain_shading`]) for each light of
+//! the frame (the sun; at night the moon's light added, the twin of the GPU's second,
+//! additive draw), then seen through the atmosphere.
 //!
 //! Per light and hit: bilinearly filtered normal and horizon angle at the hit (what a
 //! GPU's linear sampler gives), self-shadow by `terrain::shadow`'s soft shadow against

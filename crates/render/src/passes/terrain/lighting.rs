@@ -105,8 +105,9 @@ pub fn terrain_lighting_for(
         atmos::ground_irradiance::HemisphereQuadrature::default(),
     )
     .map_err(RenderError::Atmosphere)?;
-    let s = light.direction.as_vec3();
-    let sun_enu = Vec3::new(s.x, -s.z, s.y);
+    let sun_enu = Vec3::from_array(crate::frames::world_to_enu(
+        light.direction.as_vec3().to_array(),
+    ));
     Ok(TerrainLighting {
         sky_irradiance: Vec3::from_array(irradiance.sky.map(|v| v as f32)),
         sun_enu,

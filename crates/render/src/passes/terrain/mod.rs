@@ -1,4 +1,4 @@
-//! The terrain: an instanced quadtree of tiles shaded with seed 000's terrain colour
+//! The terrain: an instanced quadtree of tiles shaded as Hoffman and Preetham's terrain colour
 //! (`render::terrain`'s `terrain_surface`: self-shadows from the horizon maps, the
 //! cloud layers' and marched clouds' shadows), lit by each light of the frame and seen
 //! through the air to the camera. Before the draw, the `[clouds.shell]` deck's shadow
@@ -54,11 +54,11 @@ fn plan(scene: &PreparedScene) -> Vec<PlanLine> {
             "terrain",
             Ok(if moonlit {
                 format!(
-                    "instanced quadtree tiles, seed 000's shading, {aerial}; drawn again lit by \
+                    "instanced quadtree tiles, Hoffman–Preetham terrain shading, {aerial}; drawn again lit by \
                      the moon through the moonlit tables, added (timed with \"terrain\")"
                 )
             } else {
-                format!("instanced quadtree tiles, seed 000's shading, {aerial}")
+                format!("instanced quadtree tiles, Hoffman–Preetham terrain shading, {aerial}")
             }),
         ));
         return lines;
@@ -66,7 +66,7 @@ fn plan(scene: &PreparedScene) -> Vec<PlanLine> {
     let draw = PlanLine::timed(
         "terrain",
         Ok(format!(
-            "instanced quadtree tiles, seed 000's shading (render::terrain's terrain_surface), \
+            "instanced quadtree tiles, Hoffman–Preetham terrain shading (render::terrain's terrain_surface), \
              lit through {model}'s transmittance to the top of the atmosphere and by its sky's \
              irradiance (once per frame){}",
             if moonlit {

@@ -1,7 +1,7 @@
 //! The GPU passes of the rungs without tables: rung 1, the closed form per pixel
 //! (`closed-form`) or per vertex of seed 000's dome (`closed-form-vertex`), and rung 2,
 //! single scattering (`single`). The precomputed rung keeps `atmos`' tables and sky
-//! pass ([`super::scene`]); the reference rungs (f64, orders of scattering or Monte
+//! pass ([`crate::gpu::scene`]); the reference rungs (f64, orders of scattering or Monte
 //! Carlo) have no GPU passes and stay on the CPU.
 //!
 //! Per light (the sun, and the moon on a moonlit night):
@@ -21,11 +21,11 @@
 //!   pass per pixel after the draws (`shaders/render/air_closed_form.wgsl`,
 //!   `air_single.wgsl`), or per vertex (`[terrain] aerial_perspective = "per-vertex"`) a
 //!   compute pass over the drawn tiles' vertices before them, read by the vertex stage
-//!   (`super::vertex_air`);
+//!   (`crate::gpu::vertex_air`);
 //! * **marched clouds' air** (`[clouds.volume]`, `[clouds.shell]`): the light's
-//!   `super::cloud_air::RungCloudAir` (its camera and the rung's parameters of its
+//!   `crate::gpu::cloud_air::RungCloudAir` (its camera and the rung's parameters of its
 //!   atmosphere), bound by the clouds' air pass where the precomputed rung binds its
-//!   tables (`super::cloud_air`).
+//!   tables (`crate::gpu::cloud_air`).
 //!
 //! Separate pipelines rather than `override` constants: the closed form and single
 //! scattering read different uniforms (`ClosedFormSkyParameters`,
@@ -35,7 +35,11 @@
 //! binds what its rung reads, and the precomputed pipeline is unchanged. The single
 //! scattering's sample counts are `override` constants.
 
-use atmos::gpu::{ClosedFormRenderer, EvaluationFrequency, FrameOutput, SingleScatteringRenderer};
+mod air;
+mod sky;
+mod uniforms;
+
+use atmos::gpu::FrameOutput;
 use wgpu::util::DeviceExt as _;
 
 use crate::RenderError;
@@ -43,341 +47,13 @@ use crate::present::PresentParameters;
 use crate::scene::Rung;
 use crate::scene::prepare::PreparedScene;
 
-use super::rung_kind::air_constants;
-pub use super::rung_kind::{has_rung_passes, no_gpu_passes, volume_needs_tables};
+use crate::gpu::rung_kind::air_constants;
+pub use crate::gpu::rung_kind::{has_rung_passes, no_gpu_passes, volume_needs_tables};
 
-/// The light of a rung's terrain draw (layout identical to WGSL `RungLight` in
-/// `shaders/render/terrain_rung.wgsl`).
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct RungLightUniform {
-    /// The camera, planet-centred (m).
-    pub camera_position: [f32; 3],
-    /// The atmosphere's top (m from the planet's centre).
-    pub top_radius: f32,
-    /// Unit direction toward the light.
-    pub direction: [f32; 3],
-    /// The planet's radius (m).
-    pub planet_radius: f32,
-    /// The terrain's lowest and highest elevation (m): the light table's span.
-    pub elevation_range: [f32; 2],
-    /// Alignment.
-    pub padding: [f32; 2],
-}
-
-/// The terrain's aerial-perspective pass of a rung (layout identical to WGSL `RungAir`
-/// in `shaders/render/rung_air.wgsl`).
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct RungAirUniform {
-    /// The scene camera (its `sun` the sun's direction).
-    pub camera: atmos::frame::FrameCamera,
-    /// Unit direction toward the moon (when `moon` is 1).
-    pub moon_direction: [f32; 3],
-    /// 1: add the moonlit in-scatter.
-    pub moon: u32,
-    /// The reverse-z projection's near plane (m).
-    pub near: f32,
-    /// Multiplies the in-scatter written (the scene's exposure).
-    pub radiance_scale: f32,
-    /// Alignment.
-    pub padding: [f32; 2],
-}
-
-/// `atmos`' frame renderer of the rung.
-#[derive(Debug)]
-enum SkyRenderer {
-    ClosedForm(ClosedFormRenderer),
-    Single(SingleScatteringRenderer),
-}
-
-impl SkyRenderer {
-    fn new(
-        device: &wgpu::Device,
-        rung: Rung,
-        atmosphere: &atmos::Atmosphere,
-    ) -> Result<Self, RenderError> {
-        Ok(match rung {
-            Rung::ClosedForm => Self::ClosedForm(ClosedFormRenderer::new(
-                device,
-                atmosphere,
-                EvaluationFrequency::PerPixel,
-            )?),
-            Rung::ClosedFormVertex => Self::ClosedForm(ClosedFormRenderer::new(
-                device,
-                atmosphere,
-                EvaluationFrequency::PerVertex(crate::scene::prepare::DOME),
-            )?),
-            Rung::Single => Self::Single(SingleScatteringRenderer::new(
-                device,
-                atmosphere,
-                atmos::single_scattering::SingleScatteringSettings::default(),
-            )?),
-            other => return Err(no_gpu_passes(other)),
-        })
-    }
-
-    fn prepare(
-        &mut self,
-        queue: &wgpu::Queue,
-        camera: &atmos::frame::FrameCamera,
-        output: &FrameOutput,
-    ) -> Result<(), RenderError> {
-        match self {
-            Self::ClosedForm(r) => r.prepare(queue, camera, output)?,
-            Self::Single(r) => r.prepare(queue, camera, output)?,
-        }
-        Ok(())
-    }
-
-    fn encode(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) -> Result<(), RenderError> {
-        match self {
-            Self::ClosedForm(r) => r.encode(encoder, timestamp_writes)?,
-            Self::Single(r) => r.encode(encoder, timestamp_writes)?,
-        }
-        Ok(())
-    }
-}
-
-impl AirPass {
-    fn new(
-        device: &wgpu::Device,
-        scene: &PreparedScene,
-        hdr: wgpu::TextureFormat,
-        constants: &[(&'static str, f64)],
-    ) -> Result<Self, RenderError> {
-        let (module_name, entry) = match scene.rung {
-            Rung::Single => ("render::air_single", "air_single"),
-            _ => ("render::air_closed_form", "air_closed_form"),
-        };
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(module_name),
-            source: wgpu::ShaderSource::Wgsl(crate::composer().compose_module(module_name)?.into()),
-        });
-        let compute = wgpu::ShaderStages::COMPUTE;
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("render terrain air (rung)"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    visibility: compute,
-                    ..fragment_uniform(0)
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: compute,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Depth,
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    visibility: compute,
-                    ..fragment_texture(2)
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 3,
-                    visibility: compute,
-                    ty: wgpu::BindingType::StorageTexture {
-                        access: wgpu::StorageTextureAccess::WriteOnly,
-                        format: hdr,
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                    },
-                    count: None,
-                },
-            ],
-        });
-        let parameters_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("render terrain air parameters (rung)"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    visibility: compute,
-                    ..fragment_uniform(0)
-                },
-                wgpu::BindGroupLayoutEntry {
-                    visibility: compute,
-                    ..fragment_uniform(1)
-                },
-            ],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("render terrain air (rung)"),
-            bind_group_layouts: &[Some(&layout), Some(&parameters_layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("render terrain air (rung)"),
-            layout: Some(&pipeline_layout),
-            module: &module,
-            entry_point: Some(entry),
-            compilation_options: wgpu::PipelineCompilationOptions {
-                constants,
-                ..Default::default()
-            },
-            cache: None,
-        });
-        // The rung's parameters for the sun's and the moon's atmospheres (the sun's
-        // twice without a moon: the shader then reads only the first).
-        let parameters = |atmosphere: &atmos::Atmosphere| -> Result<Vec<u8>, RenderError> {
-            Ok(match scene.rung {
-                Rung::Single => bytemuck::bytes_of(&atmosphere.to_uniforms()?).to_vec(),
-                _ => bytemuck::bytes_of(
-                    &atmos::closed_form_sky::ClosedFormSkyParameters::from_atmosphere(atmosphere)?,
-                )
-                .to_vec(),
-            })
-        };
-        let sun = parameters(&scene.atmosphere)?;
-        let moon = match &scene.moonlit {
-            Some(moon) => parameters(&moon.atmosphere)?,
-            None => sun.clone(),
-        };
-        let buffer = |label: &str, contents: &[u8]| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage: wgpu::BufferUsages::UNIFORM,
-            })
-        };
-        let sun = buffer("render terrain air sun parameters", &sun);
-        let moon = buffer("render terrain air moon parameters", &moon);
-        let parameters = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("render terrain air parameters (rung)"),
-            layout: &parameters_layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: sun.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: moon.as_entire_binding(),
-                },
-            ],
-        });
-        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("render terrain air (rung)"),
-            size: std::mem::size_of::<RungAirUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let scratch = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("render terrain air (rung) target"),
-            size: wgpu::Extent3d {
-                width: scene.camera.width,
-                height: scene.camera.height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: hdr,
-            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
-        Ok(Self {
-            pipeline,
-            layout,
-            uniform,
-            parameters,
-            scratch_view: scratch.create_view(&Default::default()),
-            scratch,
-            targets: None,
-        })
-    }
-
-    /// Binds the scene's targets (once: the same every frame) and writes the frame's
-    /// camera and lights.
-    fn prepare(
-        &mut self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        scene: &PreparedScene,
-        hdr_view: &wgpu::TextureView,
-        depth_view: &wgpu::TextureView,
-    ) {
-        if self.targets.is_none() {
-            self.targets = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("render terrain air (rung)"),
-                layout: &self.layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: self.uniform.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::TextureView(depth_view),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: wgpu::BindingResource::TextureView(hdr_view),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 3,
-                        resource: wgpu::BindingResource::TextureView(&self.scratch_view),
-                    },
-                ],
-            }));
-        }
-        let air = RungAirUniform {
-            camera: scene.camera,
-            moon_direction: scene
-                .moonlit
-                .as_ref()
-                .map_or([0.0; 3], |moon| moon.direction.as_vec3().to_array()),
-            moon: u32::from(scene.moonlit.is_some()),
-            near: scene.near.max(0.01) as f32,
-            radiance_scale: scene.present.exposure,
-            padding: [0.0; 2],
-        };
-        queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&air));
-    }
-}
-
-/// One light's sky evaluation and draw, and its terrain group.
-#[derive(Debug)]
-struct LightPasses {
-    renderer: SkyRenderer,
-    output: FrameOutput,
-    sky_camera: wgpu::Buffer,
-    sky_present: wgpu::Buffer,
-    sky_group: wgpu::BindGroup,
-    terrain_light: wgpu::Buffer,
-    /// The light's irradiance at `cpu_renderer::SUN_TABLE_SIZE` elevations (filled for
-    /// single scattering).
-    light_table: wgpu::Buffer,
-    terrain_group: wgpu::BindGroup,
-    /// The air in front of a marched cloud lit by this light (its camera and the
-    /// rung's parameters of its atmosphere; `super::cloud_air`).
-    cloud_air: super::cloud_air::RungCloudAir,
-}
-
-impl LightPasses {
-    fn prepare(
-        &mut self,
-        queue: &wgpu::Queue,
-        camera: &atmos::frame::FrameCamera,
-        present: &PresentParameters,
-        light: &RungLightUniform,
-        table: Option<&[[f32; 4]]>,
-    ) -> Result<(), RenderError> {
-        self.renderer.prepare(queue, camera, &self.output)?;
-        if let Some(table) = table {
-            queue.write_buffer(&self.light_table, 0, bytemuck::cast_slice(table));
-        }
-        queue.write_buffer(&self.sky_camera, 0, bytemuck::bytes_of(camera));
-        queue.write_buffer(&self.sky_present, 0, bytemuck::bytes_of(present));
-        queue.write_buffer(&self.terrain_light, 0, bytemuck::bytes_of(light));
-        self.cloud_air.prepare(queue, camera);
-        Ok(())
-    }
-}
+use crate::gpu::layout::{fragment_texture, fragment_uniform};
+use air::AirPass;
+use sky::{LightPasses, SkyRenderer};
+pub use uniforms::{RungAirUniform, RungLightUniform};
 
 /// The sky and terrain passes of a rung without tables (see the module documentation).
 #[derive(Debug)]
@@ -391,47 +67,8 @@ pub struct RungPasses {
     moon: Option<LightPasses>,
     /// The terrain's aerial perspective per pixel; `None` per vertex (`vertex_air`).
     air: Option<AirPass>,
-    /// The terrain's aerial perspective per vertex (`super::vertex_air`), when asked for.
-    vertex_air: Option<super::vertex_air::VertexAirPlan>,
-}
-
-/// The terrain's aerial perspective: a compute pass reading the drawn surface and the
-/// depth, writing `scratch`, copied back into the scene's HDR target.
-#[derive(Debug)]
-struct AirPass {
-    pipeline: wgpu::ComputePipeline,
-    layout: wgpu::BindGroupLayout,
-    uniform: wgpu::Buffer,
-    parameters: wgpu::BindGroup,
-    scratch: wgpu::Texture,
-    scratch_view: wgpu::TextureView,
-    targets: Option<wgpu::BindGroup>,
-}
-
-fn fragment_uniform(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
-fn fragment_texture(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable: false },
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: false,
-        },
-        count: None,
-    }
+    /// The terrain's aerial perspective per vertex (`crate::gpu::vertex_air`), when asked for.
+    vertex_air: Option<crate::gpu::vertex_air::VertexAirPlan>,
 }
 
 impl RungPasses {
@@ -445,7 +82,7 @@ impl RungPasses {
         hdr: wgpu::TextureFormat,
         depth: wgpu::TextureFormat,
     ) -> Result<Option<Self>, RenderError> {
-        super::validation::scoped(device, "RungPasses::new", || {
+        crate::gpu::validation::scoped(device, "RungPasses::new", || {
             Self::new_unscoped(device, scene, hdr, depth)
         })
     }
@@ -624,7 +261,7 @@ impl RungPasses {
                     },
                 ],
             });
-            let cloud_air = super::cloud_air::RungCloudAir::new(device, rung, &parameters);
+            let cloud_air = crate::gpu::cloud_air::RungCloudAir::new(device, rung, &parameters);
             Ok::<_, RenderError>(LightPasses {
                 cloud_air,
                 renderer,
@@ -642,7 +279,7 @@ impl RungPasses {
             Some(moon) => Some(light(&moon.atmosphere, "moon")?),
             None => None,
         };
-        let vertex_air = super::vertex_air::VertexAirPlan::new(scene)?;
+        let vertex_air = crate::gpu::vertex_air::VertexAirPlan::new(scene)?;
         let air = match vertex_air {
             Some(_) => None,
             None => Some(AirPass::new(device, scene, hdr, &air_constants(rung))?),
@@ -660,9 +297,9 @@ impl RungPasses {
         }))
     }
 
-    /// The terrain's aerial perspective per vertex (`super::vertex_air`), when the scene
+    /// The terrain's aerial perspective per vertex (`crate::gpu::vertex_air`), when the scene
     /// asks for it.
-    pub(crate) fn vertex_air(&self) -> Option<&super::vertex_air::VertexAirPlan> {
+    pub(crate) fn vertex_air(&self) -> Option<&crate::gpu::vertex_air::VertexAirPlan> {
         self.vertex_air.as_ref()
     }
 
@@ -678,9 +315,9 @@ impl RungPasses {
 
     /// The air in front of a marched cloud lit by the sun, or by the moon (`moon`; `None`
     /// when the moon does not light the scene).
-    pub(crate) fn cloud_air(&self, moon: bool) -> Option<super::cloud_air::CloudAir<'_>> {
+    pub(crate) fn cloud_air(&self, moon: bool) -> Option<crate::gpu::cloud_air::CloudAir<'_>> {
         let light = if moon { self.moon.as_ref()? } else { &self.sun };
-        Some(super::cloud_air::CloudAir::Rung(&light.cloud_air))
+        Some(crate::gpu::cloud_air::CloudAir::Rung(&light.cloud_air))
     }
 
     /// The terrain pipeline's rung parts: its shader module (vertex `terrain_vertex`,
@@ -787,7 +424,7 @@ impl RungPasses {
     pub fn encode_sky_evaluation(
         &self,
         encoder: &mut wgpu::CommandEncoder,
-        times: Option<&super::timer::PassTimes>,
+        times: Option<&crate::gpu::timer::PassTimes>,
     ) -> Result<(), RenderError> {
         self.sun.renderer.encode(
             encoder,
@@ -808,9 +445,9 @@ impl RungPasses {
         &self,
         encoder: &mut wgpu::CommandEncoder,
         hdr: &wgpu::Texture,
-        times: Option<&super::timer::PassTimes>,
+        times: Option<&crate::gpu::timer::PassTimes>,
     ) -> Result<(), RenderError> {
-        // Per vertex, the terrain's draws applied it (`super::vertex_air`).
+        // Per vertex, the terrain's draws applied it (`crate::gpu::vertex_air`).
         let Some(air) = &self.air else {
             return Ok(());
         };

@@ -1,0 +1,112 @@
+//! The `render` command's arguments.
+
+use crate::*;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum Format {
+    /// 8-bit sRGB, tone-mapped and dithered.
+    Png,
+    /// 32-bit float linear radiance (the unit of the sun's irradiance per sr).
+    Exr,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum ProjectionArg {
+    Rectilinear,
+    Cubemap,
+    Equirectangular,
+    Fisheye,
+}
+
+#[derive(Debug, Args, Default)]
+pub(crate) struct RenderArgs {
+    /// The scene: a .toml file or a shipped scene's name (`skyscape scenes`).
+    pub(crate) scene: Option<String>,
+    #[command(flatten)]
+    pub(crate) output: OutputArgs,
+    #[command(flatten)]
+    pub(crate) overrides: SceneOverrides,
+    #[command(flatten)]
+    pub(crate) animation: AnimationArgs,
+    /// Render on the CPU reference renderer even if a GPU adapter exists.
+    #[arg(long)]
+    pub(crate) cpu: bool,
+    /// Render on the GPU and on the CPU and report how many pixels agree.
+    #[arg(long, conflicts_with = "cpu")]
+    pub(crate) compare: bool,
+    /// Print the passes that run and their measured GPU cost.
+    #[arg(long)]
+    pub(crate) explain: bool,
+    /// Restrict the adapter search to these backends (vulkan, gl, metal, dx12).
+    #[arg(long)]
+    pub(crate) backend: Option<String>,
+}
+
+/// Where and how the image is written.
+#[derive(Debug, Args, Default)]
+pub(crate) struct OutputArgs {
+    /// Where to write the image [the scene's output.path, else target/skyscape/NAME.png].
+    #[arg(short, long)]
+    pub(crate) output: Option<PathBuf>,
+    /// Output format [from the output's extension, else png].
+    #[arg(long, value_enum)]
+    pub(crate) format: Option<Format>,
+    /// Create the output's folder if it does not exist (otherwise a missing folder is
+    /// an error).
+    #[arg(long)]
+    pub(crate) mkdir: bool,
+}
+
+/// Values that override the scene file's.
+#[derive(Debug, Args, Default)]
+pub(crate) struct SceneOverrides {
+    /// Image width, pixels (overrides the scene's).
+    #[arg(long)]
+    pub(crate) width: Option<u32>,
+    /// Image height, pixels (overrides the scene's).
+    #[arg(long)]
+    pub(crate) height: Option<u32>,
+    /// The output's projection (overrides the scene's): rectilinear, cubemap (a 6:1
+    /// strip; width = 6 × height), equirectangular, fisheye.
+    #[arg(long, value_enum)]
+    pub(crate) projection: Option<ProjectionArg>,
+    /// The atmosphere's rung (overrides the scene's): closed-form, closed-form-vertex,
+    /// single, precomputed, reference, reference-spectral.
+    #[arg(long)]
+    pub(crate) rung: Option<String>,
+    /// The sun's elevation, degrees (overrides the scene's).
+    #[arg(long, allow_negative_numbers = true)]
+    pub(crate) sun_elevation_deg: Option<f64>,
+    /// The sun's azimuth clockwise from north, degrees (overrides the scene's).
+    #[arg(long, allow_negative_numbers = true)]
+    pub(crate) sun_azimuth_deg: Option<f64>,
+    /// Exposure before the 1 − exp(−x) tone map (overrides the scene's).
+    #[arg(long)]
+    pub(crate) exposure: Option<f32>,
+}
+
+/// Which frames of the scene's animation.
+#[derive(Debug, Args, Default)]
+pub(crate) struct AnimationArgs {
+    /// Render this many frames of the scene's animation (numbered files).
+    #[arg(long)]
+    pub(crate) frames: Option<u32>,
+    /// Only frames a..b (half-open) of the animation, to split it across machines.
+    #[arg(long, value_parser = parse_range)]
+    pub(crate) frame_range: Option<(u32, u32)>,
+}
+
+pub(crate) fn parse_range(text: &str) -> Result<(u32, u32), String> {
+    let (a, b) = text
+        .split_once("..")
+        .ok_or_else(|| format!("`{text}` is not a range a..b"))?;
+    let parse = |s: &str| {
+        s.parse::<u32>()
+            .map_err(|_| format!("`{s}` in `{text}` is not a frame number"))
+    };
+    let (a, b) = (parse(a)?, parse(b)?);
+    if a >= b {
+        return Err(format!("`{text}`: the range must not be empty (a < b)"));
+    }
+    Ok((a, b))
+}
