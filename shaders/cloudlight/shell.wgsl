@@ -7,6 +7,7 @@
 // Lengths in metres, planet-centred.
 #import atmos::geometry
 #import cloudlight::noise
+#import cloudlight::ray_spans
 
 // Height profile corners (a, b, c, d) over the height fraction.
 const STRATUS_GRADIENT: vec4<f32> = vec4<f32>(0.0, 0.1, 0.2, 0.3);
@@ -135,14 +136,8 @@ fn weather_grid_bilinear(values: array<vec2<f32>, 4>, fraction: vec2<f32>) -> ve
     return a + fraction.y * (b - a);
 }
 
-// A ray's parts inside the shell, nearest first: spans[i] = (t_enter, t_exit) for
-// i < count (0, 1 or 2).
-struct ShellSpans {
-    spans: array<vec2<f32>, 2>,
-    count: u32,
-}
-
-fn shell_push_span(spans: ptr<function, ShellSpans>, a: f32, b: f32) {
+// Appends the span (a, b) to a ray's spans inside the shell when it is not empty.
+fn shell_push_span(spans: ptr<function, RaySpans>, a: f32, b: f32) {
     if b > a {
         (*spans).spans[(*spans).count] = vec2<f32>(a, b);
         (*spans).count += 1u;
@@ -151,8 +146,8 @@ fn shell_push_span(spans: ptr<function, ShellSpans>, a: f32, b: f32) {
 
 // The spans of origin + t·direction (unit direction, t ≥ 0) inside the shell, the ray
 // stopping where it meets the planet; zero-length spans are dropped.
-fn shell_ray_spans(origin: vec3<f32>, direction: vec3<f32>, planet_radius: f32, inner_radius: f32, outer_radius: f32) -> ShellSpans {
-    var spans = ShellSpans(array<vec2<f32>, 2>(vec2<f32>(0.0), vec2<f32>(0.0)), 0u);
+fn shell_ray_spans(origin: vec3<f32>, direction: vec3<f32>, planet_radius: f32, inner_radius: f32, outer_radius: f32) -> RaySpans {
+    var spans = ray_spans_none();
     let r = sqrt(origin.x * origin.x + origin.y * origin.y + origin.z * origin.z);
     let mu = (origin.x * direction.x + origin.y * direction.y + origin.z * direction.z) / r;
     let outer = ray_sphere_intersect(r, mu, outer_radius);

@@ -149,6 +149,26 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/march.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "cloudlight::ray_spans",
+        source: include_str!("../shaders/ray_spans.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "cloudlight::density_source",
+        source: include_str!("../shaders/density_source.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "cloudlight::density_grid",
+        source: include_str!("../shaders/density_grid.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "cloudlight::density_shell",
+        source: include_str!("../shaders/density_shell.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "cloudlight::field_march",
+        source: include_str!("../shaders/field_march.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "cloudlight::march_pass",
         source: include_str!("../shaders/march_pass.wgsl"),
     },
@@ -197,10 +217,6 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/shadow_map_pass.wgsl"),
     },
     skyscape_wgsl::Module {
-        name: "cloudlight::shell_shadow",
-        source: include_str!("../shaders/shell_shadow.wgsl"),
-    },
-    skyscape_wgsl::Module {
         name: "cloudlight::shell_shadow_map_pass",
         source: include_str!("../shaders/shell_shadow_map_pass.wgsl"),
     },
@@ -231,6 +247,31 @@ mod wgsl_tests {
             listed,
             skyscape_wgsl::build::module_names("cloudlight", &folder).unwrap()
         );
+    }
+
+    /// Each pass composed as it runs, its `cloudlight::density_source` bound to its
+    /// field's module, validates (on its own each composes with the empty field).
+    #[test]
+    fn every_pass_validates_over_its_density_source() {
+        let composer = super::composer();
+        for (entry, source) in [
+            ("cloudlight::march_pass", "cloudlight::density_grid"),
+            ("cloudlight::march_shell_pass", "cloudlight::density_shell"),
+            ("cloudlight::shadow_map_pass", "cloudlight::density_grid"),
+            (
+                "cloudlight::shell_shadow_map_pass",
+                "cloudlight::density_shell",
+            ),
+        ] {
+            let wgsl = composer
+                .compose_module_bound(entry, &[("cloudlight::density_source", source)])
+                .unwrap();
+            assert!(
+                !wgsl.contains("begin cloudlight::density_source"),
+                "{entry}"
+            );
+            skyscape_wgsl::validate(entry, &wgsl).unwrap();
+        }
     }
 
     #[test]

@@ -11,7 +11,8 @@
 //!   [`DensityField`]: for each span of the sun ray where the field may be non-zero,
 //!   `steps` midpoint samples, `τ = Σ σ_t·h·Σρ`, light `exp(−τ)`. `shadow_map::<f32>` on a
 //!   [`CloudVolume`] is the twin of the GPU pass (`gpu::ShadowMapPass`,
-//!   `shaders/cloudlight/shadow_map_pass.wgsl`); the per-texel pieces
+//!   `shaders/cloudlight/shadow_map_pass.wgsl`, `field_march.wgsl`'s `shadow_texel` over
+//!   `density_grid.wgsl`); the per-texel pieces
 //!   ([`shadow_texel_centre`], [`shadow_box_span`], [`shadow_march_point`],
 //!   [`shadow_accumulate`], [`shadow_span_optical_depth`]) are WGSL twins in `shaders/cloudlight/shadow_map.wgsl`.
 //! * [`shadow_map_reference`] is the exact f64 transmittance of a [`CloudVolume`]

@@ -1,7 +1,7 @@
 //! The ground's cloud shadow map of a procedural cloud shell ([`crate::CloudShell`], its
 //! weather procedural or a user grid): the [`crate::shadow_map`] march with the shell's density
-//! evaluated per sample, as `shaders/cloudlight/shell_shadow.wgsl` does on a GPU
-//! ([`crate::gpu::ShellShadowMapPass`]).
+//! evaluated per sample, as the GPU does ([`crate::gpu::ShellShadowMapPass`]:
+//! `shaders/cloudlight/field_march.wgsl`'s `shadow_texel` over `density_shell.wgsl`).
 //!
 //! The shell's parameters travel as one [`ShellField`] (WGSL struct `ShellField`);
 //! [`shell_field_density`] is [`crate::DensityField::density`] of the shell written out
@@ -13,7 +13,7 @@
 //! bakes through this pass compute one formula.
 //!
 //! The noise is evaluated, not looked up in baked textures: that is what the GPU shell
-//! march (`cloudlight::gpu::MarchShellPass`, `march_shell_pass.wgsl`) does, so the map
+//! march (`cloudlight::gpu::MarchShellPass`, the same `density_shell.wgsl`) does, so the map
 //! and the march see the same deck.
 
 use atmos::real::Real;
@@ -77,7 +77,8 @@ pub struct ShellField<F> {
     /// The weather grid's cell edge, metres.
     pub grid_cell_size: F,
     /// The weather grid's `[coverage, cloud_type]` per cell, x fastest (empty for a
-    /// procedural weather); on the GPU the storage binding `shell_weather_grid`.
+    /// procedural weather); on the GPU the storage binding `shell_weather_grid`
+    /// (`density_shell.wgsl`).
     pub grid_cells: Vec<[f32; 2]>,
 }
 
@@ -184,7 +185,8 @@ pub fn shell_field_density<F: Real>(field: &ShellField<F>, p: [F; 3]) -> F {
 /// The marched transmittance toward the sun (unit `to_sun`) from `ground`
 /// (planet-centred) through the shell: `steps` midpoint samples on each of its spans
 /// ([`shell_ray_spans`]), `exp(−Σ τ)` ([`crate::shadow_map::shadow_texel`] over the
-/// shell). WGSL twin `shell_shadow_texel`.
+/// shell). WGSL twin: `field_march.wgsl`'s `shadow_texel` with `density_shell.wgsl`'s
+/// field.
 pub fn shell_shadow_texel<F: Real>(
     field: &ShellField<F>,
     ground: [F; 3],

@@ -18,6 +18,11 @@
 //!   the composed text is always plain, valid WGSL and naga sees every branch.
 //! * A forgotten composition step fails loudly: `#` is not a WGSL token, so naga
 //!   rejects an uncomposed source.
+//! * [`Composer::compose_module_bound`] binds an import to another module chosen by the
+//!   Rust side: every `#import slot` then emits the bound module instead. The slot is a
+//!   registered module itself (the default every module composes and validates with on
+//!   its own), so one module written against an interface (e.g. cloudlight's march over
+//!   `cloudlight::density_source`) serves every implementation without a copy.
 //!
 //! Why not naga_oil or WESL: both pin a naga version that trails wgpu's by a release or
 //! more, and skyscape needs nothing beyond ordered, deduplicated inclusion. Name
@@ -196,7 +201,31 @@ impl Composer {
                 module: name.to_owned(),
             })?;
         // The root is itself a module: importing itself is a cycle.
-        self.compose_with_stack(name, source, vec![name.to_owned()])
+        self.compose_with_stack(name, source, vec![name.to_owned()], &[])
+    }
+
+    /// [`Composer::compose_module`] with imports bound to other modules: for each
+    /// `(slot, module)` of `bindings`, every `#import slot` reached from `name` emits
+    /// the registered `module` instead (once, also when `module` is imported directly).
+    /// The slot is a registered module too: the default that every importer composes
+    /// and validates with on its own (e.g. an interface written as its trivial case),
+    /// so binding it chooses another implementation at composition time without a copy
+    /// of the importers. A bound module that is not registered is
+    /// [`ComposeError::UnknownModule`] naming the slot's importer and line.
+    pub fn compose_module_bound(
+        &self,
+        name: &str,
+        bindings: &[(&str, &str)],
+    ) -> Result<String, ComposeError> {
+        let source = self
+            .modules
+            .get(name)
+            .ok_or_else(|| ComposeError::UnknownModule {
+                importer: "<caller>".into(),
+                line: 0,
+                module: name.to_owned(),
+            })?;
+        self.compose_with_stack(name, source, vec![name.to_owned()], bindings)
     }
 
     /// Resolves the imports of `root_source` (named `root_name` in errors) and returns
@@ -205,7 +234,7 @@ impl Composer {
     /// `root_name` only labels errors: a free-standing root is not a module, so it may
     /// share a name with one it imports (e.g. a test kernel named after its function).
     pub fn compose(&self, root_name: &str, root_source: &str) -> Result<String, ComposeError> {
-        self.compose_with_stack(root_name, root_source, Vec::new())
+        self.compose_with_stack(root_name, root_source, Vec::new(), &[])
     }
 
     fn compose_with_stack(
@@ -213,10 +242,18 @@ impl Composer {
         root_name: &str,
         root_source: &str,
         mut stack: Vec<String>,
+        bindings: &[(&str, &str)],
     ) -> Result<String, ComposeError> {
         let mut out = String::new();
         let mut emitted = HashSet::new();
-        self.emit(root_name, root_source, &mut emitted, &mut stack, &mut out)?;
+        self.emit(
+            root_name,
+            root_source,
+            bindings,
+            &mut emitted,
+            &mut stack,
+            &mut out,
+        )?;
         Ok(out)
     }
 
@@ -224,6 +261,7 @@ impl Composer {
         &self,
         name: &str,
         source: &str,
+        bindings: &[(&str, &str)],
         emitted: &mut HashSet<String>,
         stack: &mut Vec<String>,
         out: &mut String,
@@ -239,7 +277,11 @@ impl Composer {
                         text: line.trim().to_owned(),
                     });
                 }
-                Line::Import(module) => {
+                Line::Import(imported) => {
+                    let module = bindings
+                        .iter()
+                        .find(|(slot, _)| *slot == imported)
+                        .map_or(imported, |&(_, bound)| bound);
                     if stack.iter().any(|s| s == module) {
                         let mut chain = stack.clone();
                         if chain.last().map(String::as_str) != Some(name) {
@@ -260,7 +302,7 @@ impl Composer {
                                 module: module.to_owned(),
                             })?;
                     stack.push(module.to_owned());
-                    self.emit(module, dependency, emitted, stack, out)?;
+                    self.emit(module, dependency, bindings, emitted, stack, out)?;
                     stack.pop();
                     emitted.insert(module.to_owned());
                 }
@@ -520,6 +562,60 @@ mod tests {
                 chain: vec!["t::s".into(), "t::s".into()]
             }
         );
+    }
+
+    #[test]
+    fn a_bound_import_emits_the_bound_module_once_instead_of_the_slot() {
+        let slot = Module {
+            name: "t::field",
+            source: "fn density() -> f32 { return 0.0; }\n",
+        };
+        let grid = Module {
+            name: "t::grid",
+            source: "#import t::a\nfn density() -> f32 { return a(); }\n",
+        };
+        let user = Module {
+            name: "t::user",
+            source: "#import t::field\nfn twice() -> f32 { return 2.0 * density(); }\n",
+        };
+        let root = Module {
+            name: "t::root",
+            source: "#import t::grid\n#import t::user\n#import t::field\nfn main_() {}\n",
+        };
+        let c = composer(&[A, slot, grid, user, root]);
+        // Unbound, the slot is an ordinary module: the default each module validates with.
+        let plain = c.compose_module("t::user").unwrap();
+        assert!(plain.contains("return 0.0"), "{plain}");
+        assert_eq!(plain, c.compose_module_bound("t::user", &[]).unwrap());
+        // Bound, every import of the slot emits the bound module, once, dependencies first.
+        let out = c
+            .compose_module_bound("t::root", &[("t::field", "t::grid")])
+            .unwrap();
+        assert!(!out.contains("return 0.0"), "{out}");
+        assert!(!out.contains("begin t::field"), "{out}");
+        assert_eq!(out.matches("fn density()").count(), 1, "{out}");
+        let (pa, pg, pu, pm) = (
+            out.find("fn a()").unwrap(),
+            out.find("return a()").unwrap(),
+            out.find("fn twice()").unwrap(),
+            out.find("fn main_()").unwrap(),
+        );
+        assert!(pa < pg && pg < pu && pu < pm, "{out}");
+        // Binding a module to an unregistered one names the slot's importer and line.
+        assert_eq!(
+            c.compose_module_bound("t::user", &[("t::field", "t::none")])
+                .unwrap_err(),
+            ComposeError::UnknownModule {
+                importer: "t::user".into(),
+                line: 1,
+                module: "t::none".into()
+            }
+        );
+        // A binding that leads back to an importer is a cycle.
+        assert!(matches!(
+            c.compose_module_bound("t::user", &[("t::field", "t::user")]),
+            Err(ComposeError::ImportCycle { .. })
+        ));
     }
 
     #[test]

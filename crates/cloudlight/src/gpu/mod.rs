@@ -15,10 +15,16 @@ use crate::propagate::{Resampling, SliceMode, SlicePlan};
 
 pub mod billboard;
 
+mod density_source;
+pub use density_source::GpuDensitySource;
+
+mod field_shadow;
+pub use field_shadow::SHADOW_WORKGROUP_SIZE;
+
 mod march;
 pub use march::{
-    MARCH_WORKGROUP_SIZE, MarchGpuError, MarchPass, MarchShellPass, OutsideShadow,
-    compose_march_shader, compose_march_shell_shader,
+    FieldMarchPass, MARCH_WORKGROUP_SIZE, MarchGpuError, MarchPass, MarchShellPass, MarchedField,
+    OutsideShadow, compose_march_shader, compose_march_shell_shader,
 };
 
 mod noise_bake;
@@ -134,36 +140,6 @@ fn storage(read_only: bool) -> wgpu::BindingType {
         has_dynamic_offset: false,
         min_binding_size: None,
     }
-}
-
-/// The shell's weather grid as both shell passes bind it (`weather_grid` in
-/// `march_shell_pass.wgsl`, `shell_weather_grid` in `shell_shadow.wgsl`): each cell's
-/// (coverage, cloud type), x fastest, or one zero cell for procedural weather (a
-/// binding cannot be empty). `Err(bytes)` when the buffer would exceed `limit` bytes.
-fn weather_grid_buffer(
-    device: &wgpu::Device,
-    queue: &wgpu::Queue,
-    field: &crate::shell_shadow::ShellField<f32>,
-    label: &str,
-    limit: u64,
-) -> Result<wgpu::Buffer, u64> {
-    let cells: Vec<f32> = if field.grid_cells.is_empty() {
-        vec![0.0, 0.0]
-    } else {
-        field.grid_cells.iter().flatten().copied().collect()
-    };
-    let bytes = cells.len() as u64 * 4;
-    if bytes > limit {
-        return Err(bytes);
-    }
-    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some(label),
-        size: bytes,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    queue.write_buffer(&buffer, 0, bytemuck::cast_slice(&cells));
-    Ok(buffer)
 }
 
 /// Records one compute pass labelled `label` that dispatches `pipeline` over

@@ -1,5 +1,6 @@
 //! [`ShadowMapPass`]: the ground's cloud shadow map of a [`CloudVolume`] on a GPU
-//! (`shaders/cloudlight/shadow_map_pass.wgsl`), bring your own device.
+//! (`shaders/cloudlight/shadow_map_pass.wgsl`: `field_march.wgsl`'s `shadow_texel` over
+//! the volume's grid, `density_grid.wgsl`), bring your own device.
 //!
 //! [`ShadowMapPass::new`] builds the pipeline; [`ShadowMapPass::prepare`] uploads the
 //! volume's density and the plan and creates the output texture and the bind group;
@@ -19,16 +20,13 @@
 //!
 //! [`ShadowGrid::texel_centre`]: crate::shadow_map::ShadowGrid::texel_centre
 
+use super::density_source::SourceBuffers;
+use super::field_shadow::{shadow_bind_group, shadow_params, shadow_pipeline, shadow_workgroups};
 use crate::CloudVolume;
 use crate::shadow_map::ShadowMapPlan;
 
-/// Texels per workgroup along each axis of the map.
-pub const SHADOW_WORKGROUP_SIZE: u32 = 8;
-
 /// The output texture's format (see the module documentation).
 pub const SHADOW_MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
-
-const PARAMS_BYTES: u64 = 96;
 
 /// Errors of the shadow-map pass, naming the field and value.
 #[derive(Debug, thiserror::Error)]
@@ -83,7 +81,7 @@ pub enum ShadowMapGpuError {
 
 /// The composed WGSL of the shadow-map pass (entry point `shadow_map_main`).
 pub fn compose_shadow_map_shader() -> Result<String, skyscape_wgsl::ComposeError> {
-    crate::composer().compose_module("cloudlight::shadow_map_pass")
+    super::density_source::compose_over::<CloudVolume>("cloudlight::shadow_map_pass")
 }
 
 #[derive(Debug)]
@@ -94,7 +92,7 @@ struct Prepared {
     texture: wgpu::Texture,
     view: wgpu::TextureView,
     _params: wgpu::Buffer,
-    _density: wgpu::Buffer,
+    _source: SourceBuffers,
 }
 
 /// The cloud shadow map on a GPU (see the module documentation).
@@ -108,59 +106,17 @@ pub struct ShadowMapPass {
 impl ShadowMapPass {
     /// Builds the pipeline on `device`.
     pub fn new(device: &wgpu::Device) -> Result<Self, ShadowMapGpuError> {
-        let source = compose_shadow_map_shader()?;
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("cloudlight::shadow_map_pass"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-        let entry = |binding: u32, ty: wgpu::BindingType| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty,
-            count: None,
-        };
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("cloudlight shadow map"),
-            entries: &[
-                entry(
-                    0,
-                    wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: wgpu::BufferSize::new(PARAMS_BYTES),
-                    },
-                ),
-                entry(
-                    1,
-                    wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: true },
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                ),
-                entry(
-                    2,
-                    wgpu::BindingType::StorageTexture {
-                        access: wgpu::StorageTextureAccess::WriteOnly,
-                        format: SHADOW_MAP_FORMAT,
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                    },
-                ),
-            ],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("cloudlight shadow map"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("cloudlight::shadow_map_main"),
-            layout: Some(&pipeline_layout),
-            module: &module,
-            entry_point: Some("shadow_map_main"),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
-            cache: None,
-        });
+        let (pipeline, layout) = shadow_pipeline::<CloudVolume>(
+            device,
+            "cloudlight::shadow_map_pass",
+            "shadow_map_main",
+            "cloudlight shadow map",
+            wgpu::BindingType::StorageTexture {
+                access: wgpu::StorageTextureAccess::WriteOnly,
+                format: SHADOW_MAP_FORMAT,
+                view_dimension: wgpu::TextureViewDimension::D2,
+            },
+        )?;
         Ok(Self {
             pipeline,
             layout,
@@ -184,12 +140,7 @@ impl ShadowMapPass {
             return Err(ShadowMapGpuError::BufferTooLarge { bytes, limit });
         }
         let resolution = plan.grid.resolution();
-        let mut workgroups = [0u32; 2];
-        for (k, (field, value)) in ["resolution.x", "resolution.y"]
-            .into_iter()
-            .zip(resolution)
-            .enumerate()
-        {
+        for (field, value) in ["resolution.x", "resolution.y"].into_iter().zip(resolution) {
             let limit = limits.max_texture_dimension_2d;
             if value > limit {
                 return Err(ShadowMapGpuError::TextureTooLarge {
@@ -198,64 +149,19 @@ impl ShadowMapPass {
                     limit,
                 });
             }
-            let groups = value.div_ceil(SHADOW_WORKGROUP_SIZE);
-            let limit = limits.max_compute_workgroups_per_dimension;
-            if groups > limit {
-                return Err(ShadowMapGpuError::TooManyWorkgroups {
+        }
+        let workgroups =
+            shadow_workgroups(device, resolution).map_err(|(field, value, groups, limit)| {
+                ShadowMapGpuError::TooManyWorkgroups {
                     field,
                     value,
                     groups,
                     limit,
-                });
-            }
-            workgroups[k] = groups;
-        }
-
-        let grid = &plan.grid;
-        let (lo, dims, voxel) = (volume.origin(), volume.dims(), volume.voxel_size());
-        let hi: [f64; 3] = [0, 1, 2].map(|a| lo[a] + f64::from(dims[a]) * voxel);
-        let f = |x: f64| (x as f32).to_bits();
-        let l = plan.to_sun();
-        let words: [u32; 24] = [
-            f(grid.origin()[0]),
-            f(grid.origin()[1]),
-            f(grid.cell_size()),
-            f(grid.ground_height()),
-            f(l[0]),
-            f(l[1]),
-            f(l[2]),
-            f(volume.extinction_per_density()),
-            f(lo[0]),
-            f(lo[1]),
-            f(lo[2]),
-            f(voxel),
-            f(hi[0]),
-            f(hi[1]),
-            f(hi[2]),
-            plan.steps(),
-            dims[0],
-            dims[1],
-            dims[2],
-            resolution[0],
-            resolution[1],
-            0,
-            0,
-            0,
-        ];
-        let params = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("cloudlight shadow map params"),
-            size: PARAMS_BYTES,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        queue.write_buffer(&params, 0, bytemuck::cast_slice(&words));
-        let density = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("cloudlight shadow map density"),
-            size: bytes,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        queue.write_buffer(&density, 0, bytemuck::cast_slice(volume.density()));
+                }
+            })?;
+        let params = shadow_params(device, queue, plan, "cloudlight shadow map params");
+        let source = SourceBuffers::upload(device, queue, volume, "cloudlight shadow map", limit)
+            .map_err(|bytes| ShadowMapGpuError::BufferTooLarge { bytes, limit })?;
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("cloudlight shadow map"),
             size: wgpu::Extent3d {
@@ -273,24 +179,14 @@ impl ShadowMapPass {
             view_formats: &[],
         });
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("cloudlight shadow map"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: params.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: density.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&view),
-                },
-            ],
-        });
+        let bind_group = shadow_bind_group(
+            device,
+            &self.layout,
+            "cloudlight shadow map",
+            &params,
+            wgpu::BindingResource::TextureView(&view),
+            &source,
+        );
         self.prepared = Some(Prepared {
             bind_group,
             workgroups,
@@ -298,7 +194,7 @@ impl ShadowMapPass {
             texture,
             view,
             _params: params,
-            _density: density,
+            _source: source,
         });
         Ok(())
     }

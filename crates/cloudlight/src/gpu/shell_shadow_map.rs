@@ -1,7 +1,8 @@
 //! [`ShellShadowMapPass`]: the ground's cloud shadow map of a procedural cloud shell on a
-//! GPU (`shaders/cloudlight/shell_shadow_map_pass.wgsl`), bring your own device. The
-//! weather is procedural or a user grid (its cells uploaded in `prepare` to a storage
-//! buffer, binding 2).
+//! GPU (`shaders/cloudlight/shell_shadow_map_pass.wgsl`: `field_march.wgsl`'s
+//! `shadow_texel` over the shell, `density_shell.wgsl`), bring your own device. The
+//! weather is procedural or a user grid (its cells uploaded in `prepare` to the source's
+//! storage buffer, binding 5).
 //!
 //! [`ShellShadowMapPass::new`] builds the pipeline; [`ShellShadowMapPass::prepare`]
 //! uploads the shell's parameters ([`ShellField`]) and the plan and creates the output
@@ -21,11 +22,10 @@
 //!
 //! [`ShadowGrid::texel_centre`]: crate::shadow_map::ShadowGrid::texel_centre
 
-use super::shadow_map::SHADOW_WORKGROUP_SIZE;
+use super::density_source::{SourceBuffers, compose_over};
+use super::field_shadow::{shadow_bind_group, shadow_params, shadow_pipeline, shadow_workgroups};
 use crate::shadow_map::ShadowMapPlan;
 use crate::shell_shadow::ShellField;
-
-const PARAMS_BYTES: u64 = 128;
 
 /// Errors of the shell's shadow-map pass, naming the field and value.
 #[derive(Debug, thiserror::Error)]
@@ -70,7 +70,7 @@ pub enum ShellShadowMapGpuError {
 
 /// The composed WGSL of the pass (entry point `shell_shadow_map_main`).
 pub fn compose_shell_shadow_map_shader() -> Result<String, skyscape_wgsl::ComposeError> {
-    crate::composer().compose_module("cloudlight::shell_shadow_map_pass")
+    compose_over::<ShellField<f32>>("cloudlight::shell_shadow_map_pass")
 }
 
 #[derive(Debug)]
@@ -80,7 +80,7 @@ struct Prepared {
     resolution: [u32; 2],
     output: wgpu::Buffer,
     _params: wgpu::Buffer,
-    _weather: wgpu::Buffer,
+    _source: SourceBuffers,
 }
 
 /// The shell's cloud shadow map on a GPU (see the module documentation).
@@ -94,53 +94,17 @@ pub struct ShellShadowMapPass {
 impl ShellShadowMapPass {
     /// Builds the pipeline on `device`.
     pub fn new(device: &wgpu::Device) -> Result<Self, ShellShadowMapGpuError> {
-        let source = compose_shell_shadow_map_shader()?;
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("cloudlight::shell_shadow_map_pass"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-        let entry = |binding: u32, ty: wgpu::BufferBindingType, size: Option<u64>| {
-            wgpu::BindGroupLayoutEntry {
-                binding,
-                visibility: wgpu::ShaderStages::COMPUTE,
-                ty: wgpu::BindingType::Buffer {
-                    ty,
-                    has_dynamic_offset: false,
-                    min_binding_size: size.and_then(wgpu::BufferSize::new),
-                },
-                count: None,
-            }
-        };
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("cloudlight shell shadow map"),
-            entries: &[
-                entry(0, wgpu::BufferBindingType::Uniform, Some(PARAMS_BYTES)),
-                entry(
-                    1,
-                    wgpu::BufferBindingType::Storage { read_only: false },
-                    None,
-                ),
-                // shell_shadow.wgsl's weather grid (a placeholder for procedural weather).
-                entry(
-                    2,
-                    wgpu::BufferBindingType::Storage { read_only: true },
-                    Some(8),
-                ),
-            ],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("cloudlight shell shadow map"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("cloudlight::shell_shadow_map_main"),
-            layout: Some(&pipeline_layout),
-            module: &module,
-            entry_point: Some("shell_shadow_map_main"),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
-            cache: None,
-        });
+        let (pipeline, layout) = shadow_pipeline::<ShellField<f32>>(
+            device,
+            "cloudlight::shell_shadow_map_pass",
+            "shell_shadow_map_main",
+            "cloudlight shell shadow map",
+            wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only: false },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+        )?;
         Ok(Self {
             pipeline,
             layout,
@@ -158,115 +122,46 @@ impl ShellShadowMapPass {
         field: &ShellField<f32>,
         plan: &ShadowMapPlan,
     ) -> Result<(), ShellShadowMapGpuError> {
-        let limits = device.limits();
         let resolution = plan.grid.resolution();
         let bytes = plan.grid.texels() as u64 * 4;
-        let limit = limits.max_storage_buffer_binding_size;
+        let limit = device.limits().max_storage_buffer_binding_size;
         if bytes > limit {
             return Err(ShellShadowMapGpuError::BufferTooLarge { bytes, limit });
         }
-        let mut workgroups = [0u32; 2];
-        for (k, (field, value)) in ["resolution.x", "resolution.y"]
-            .into_iter()
-            .zip(resolution)
-            .enumerate()
-        {
-            let groups = value.div_ceil(SHADOW_WORKGROUP_SIZE);
-            let limit = limits.max_compute_workgroups_per_dimension;
-            if groups > limit {
-                return Err(ShellShadowMapGpuError::TooManyWorkgroups {
+        let workgroups =
+            shadow_workgroups(device, resolution).map_err(|(field, value, groups, limit)| {
+                ShellShadowMapGpuError::TooManyWorkgroups {
                     field,
                     value,
                     groups,
                     limit,
-                });
-            }
-            workgroups[k] = groups;
-        }
-        let grid = &plan.grid;
-        let f = |x: f64| (x as f32).to_bits();
-        let b = f32::to_bits;
-        let l = plan.to_sun();
-        let words: [u32; 32] = [
-            f(grid.origin()[0]),
-            f(grid.origin()[1]),
-            f(grid.cell_size()),
-            f(grid.ground_height()),
-            f(l[0]),
-            f(l[1]),
-            f(l[2]),
-            b(field.extinction_per_density),
-            b(field.planet_radius),
-            b(field.inner_radius),
-            b(field.outer_radius),
-            b(field.shape_period),
-            b(field.detail_period),
-            b(field.erosion),
-            b(field.weather_period),
-            b(field.coverage_mean),
-            b(field.coverage_contrast),
-            b(field.cloud_type_mean),
-            b(field.cloud_type_contrast),
-            b(field.grid_cell_size),
-            field.seed,
-            field.weather_seed,
-            field.weather_cells,
-            plan.steps(),
-            resolution[0],
-            resolution[1],
-            0,
-            0,
-            field.weather_kind,
-            field.grid_size[0],
-            field.grid_size[1],
-            0,
-        ];
-        let params = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("cloudlight shell shadow map params"),
-            size: PARAMS_BYTES,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        queue.write_buffer(&params, 0, bytemuck::cast_slice(&words));
+                }
+            })?;
+        let params = shadow_params(device, queue, plan, "cloudlight shell shadow map params");
         let output = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("cloudlight shell shadow map"),
             size: bytes,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let weather = super::weather_grid_buffer(
+        let source =
+            SourceBuffers::upload(device, queue, field, "cloudlight shell shadow map", limit)
+                .map_err(|bytes| ShellShadowMapGpuError::BufferTooLarge { bytes, limit })?;
+        let bind_group = shadow_bind_group(
             device,
-            queue,
-            field,
-            "cloudlight shell shadow map weather grid",
-            limit,
-        )
-        .map_err(|bytes| ShellShadowMapGpuError::BufferTooLarge { bytes, limit })?;
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("cloudlight shell shadow map"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: params.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: output.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: weather.as_entire_binding(),
-                },
-            ],
-        });
+            &self.layout,
+            "cloudlight shell shadow map",
+            &params,
+            output.as_entire_binding(),
+            &source,
+        );
         self.prepared = Some(Prepared {
             bind_group,
             workgroups,
             resolution,
             output,
             _params: params,
-            _weather: weather,
+            _source: source,
         });
         Ok(())
     }

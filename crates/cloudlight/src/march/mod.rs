@@ -3,8 +3,8 @@
 //! [`DensityField`](crate::density::DensityField) (a [`CloudVolume`](crate::CloudVolume)
 //! grid or a procedural shell). Written once over the float type: `march_view::<f64>` is the
 //! reference-precision march, `march_view::<f32>` the twin of the WGSL march
-//! (`shaders/cloudlight/march.wgsl` holds the per-sample functions, `march_pass.wgsl` the
-//! GPU pass over a volume).
+//! (`shaders/cloudlight/march.wgsl` holds the per-sample functions, `field_march.wgsl`
+//! the march over any GPU density source, `march_pass.wgsl` its pass over a volume).
 //!
 //! # The model
 //!

@@ -76,8 +76,8 @@ pub fn march_view_with_offset<F: Real>(
     )
 }
 
-/// The field's spans along a ray clipped to `[0, max_distance]` (WGSL twins: the clip in
-/// `march_pass.wgsl` and `march_shell_pass.wgsl`). A span starting at or beyond the limit
+/// The field's spans along a ray clipped to `[0, max_distance]` (WGSL twin `clip_spans`
+/// in `field_march.wgsl`). A span starting at or beyond the limit
 /// is dropped, one crossing it ends there. `max_distance` of `+∞` (or at least the
 /// largest finite `f32`, the WGSL's "infinite") or NaN means no limit; a negative one
 /// clips everything, as 0 does.
@@ -131,8 +131,8 @@ pub fn march_view_limited<F: Real>(
 /// `render::mutual_shadow`), added to the light march's `τ_l` before the octaves and the
 /// powder, as one march over both would add it (`crate::union::UnionField`). The sun
 /// term only: the ambient visibility stays the field's own. With `|_| 0` it is
-/// [`march_view_limited`] exactly. WGSL twins: the `outside_depth` hooks of
-/// `march_pass.wgsl` and `march_shell_pass.wgsl`.
+/// [`march_view_limited`] exactly. WGSL twin: `march_view_lit_through` in
+/// `field_march.wgsl`, its `outside_depth` the `outside_shadow.wgsl` map.
 #[allow(clippy::too_many_arguments)] // the limited march's seven inputs and the hook
 pub fn march_view_lit_through<F: Real>(
     field: &impl DensityField<F>,

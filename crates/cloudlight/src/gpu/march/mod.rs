@@ -1,44 +1,44 @@
-//! [`MarchPass`]: the view ray-march (after Schneider's Nubis talks) of a [`CloudVolume`]
-//! on a GPU
-//! (`shaders/cloudlight/march_pass.wgsl`), bring your own device.
+//! [`FieldMarchPass`]: the view ray-march (after Schneider's Nubis talks) of a density
+//! field on a GPU, bring your own device: one pass over a
+//! [`GpuDensitySource`](crate::gpu::GpuDensitySource), the WGSL march written once
+//! (`shaders/cloudlight/field_march.wgsl`) and composed with the field's source module.
+//! [`MarchPass`] marches a [`CloudVolume`] (`march_pass.wgsl`, the volume's density a
+//! storage buffer read with manual trilinear interpolation, as the CPU's
+//! [`CloudVolume::density_at`] does), [`MarchShellPass`] a procedural [`CloudShell`]
+//! (`march_shell_pass.wgsl`, which fades each pixel toward the horizon).
 //!
-//! [`MarchPass::new`] builds the pipeline; [`MarchPass::prepare`] uploads the volume's
-//! density (a storage buffer read with manual trilinear interpolation, as the CPU's
-//! [`CloudVolume::density_at`] does), the camera, settings and lighting, and creates the
-//! output buffer and the bind group; [`MarchPass::encode`] only records one dispatch
-//! (8×8 pixels per workgroup; [`MarchPass::encode_timed`] adds timestamp writes).
-//! [`MarchPass::prepare_limited`] also binds a per-pixel distance buffer (`f32` metres
-//! along each pixel's ray, x fastest, row 0 at the top) where each march stops: terrain
-//! in front of or inside the cloud. A caller with a depth buffer converts depth to
-//! distance along the ray itself.
+//! [`FieldMarchPass::new`] builds the pipeline; [`FieldMarchPass::prepare`] uploads the
+//! field's source, the camera, settings and lighting, and creates the output buffer and
+//! the bind group; [`FieldMarchPass::encode`] only records one dispatch (8×8 pixels per
+//! workgroup; [`FieldMarchPass::encode_timed`] adds timestamp writes).
+//! [`FieldMarchPass::prepare_limited`] also binds a per-pixel distance buffer (`f32`
+//! metres along each pixel's ray, x fastest, row 0 at the top) where each march stops:
+//! terrain in front of or inside the cloud. A caller with a depth buffer converts depth
+//! to distance along the ray itself.
 //!
 //! The output is a storage buffer of two `vec4<f32>` per pixel (x fastest, row 0 at the
 //! top): `(radiance r, g, b, transmittance)` and `(depth, 0, 0, 0)` — the fields of
-//! [`MarchResult`]; [`MarchPass::decode`] turns its bytes into them. The f32 CPU twin is
-//! [`render_image::<f32>`](crate::march::render_image) on the same volume (whose density
-//! lookup is f64 rounded once; the shader's is f32).
-//!
-//! [`MarchShellPass`] marches a procedural [`CloudShell`] the same way
-//! (`shaders/cloudlight/march_shell_pass.wgsl`); both share the bindings, dispatch and
-//! output of `shared`.
+//! [`MarchResult`]; [`FieldMarchPass::decode`] turns its bytes into them. The f32 CPU
+//! twin is [`render_image::<f32>`](crate::march::render_image) on the same field.
 //!
 //! [`CloudVolume`]: crate::CloudVolume
 //! [`CloudVolume::density_at`]: crate::CloudVolume::density_at
 //! [`MarchResult`]: crate::march::MarchResult
 //! [`CloudShell`]: crate::CloudShell
 
+mod pass;
 mod shared;
-mod shell;
-mod volume;
 
-pub use shell::{MarchShellPass, compose_march_shell_shader};
-pub use volume::{MarchPass, compose_march_shader};
+pub use pass::{
+    FieldMarchPass, MarchPass, MarchShellPass, MarchedField, compose_march_shader,
+    compose_march_shell_shader,
+};
 
 /// Pixels per workgroup along each image axis.
 pub const MARCH_WORKGROUP_SIZE: u32 = 8;
 
 /// Another cloud's shadow map a march reads (`shaders/cloudlight/outside_shadow.wgsl`,
-/// bindings 8 and 9 of both passes): at each view sample `p` the light march's optical
+/// bindings 8 and 9 of the march pass): at each view sample `p` the light march's optical
 /// depth gains that cloud's above `p`, read where `p`'s light ray meets the map's plane
 /// ([`crate::shadow_map::shadow_map_texel`], bilinear between texel centres, 1 outside
 /// the map, then [`crate::shadow_map::shadow_depth_above`]). The CPU twin is
@@ -106,7 +106,7 @@ pub enum MarchGpuError {
     /// `encode` was called before `prepare`.
     #[error("encode before prepare: no image to march")]
     EncodeBeforePrepare,
-    /// Bytes handed to [`MarchPass::decode`] have the wrong length.
+    /// Bytes handed to [`FieldMarchPass::decode`] have the wrong length.
     #[error("readback has {got} bytes, expected {expected}")]
     ReadbackSize {
         /// Bytes given.

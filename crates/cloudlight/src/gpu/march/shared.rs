@@ -1,7 +1,8 @@
-//! What both march passes share: the outside-shadow bindings, the pipeline, the
-//! dispatch, the output image and its decoding.
+//! What the march pass holds whatever its field: the outside-shadow bindings, the
+//! pipeline, the dispatch, the output image and its decoding.
 
 use super::*;
+use crate::gpu::density_source::{GpuDensitySource, SourceBuffers, source_layout_entries};
 use crate::march::{Jitter, LightMarch, MarchResult, MarchSettings};
 
 /// Bytes of `outside_shadow.wgsl`'s `OutsideShadowParams`.
@@ -66,8 +67,8 @@ pub(super) fn outside_bindings(
     Ok((params, values))
 }
 
-/// What either march pass keeps from `prepare`: the bind group, the dispatch and the
-/// output image; `_inputs` keeps the bound buffers alive.
+/// What the march pass keeps from `prepare`: the bind group, the dispatch and the
+/// output image; `_inputs` and `_source` keep the bound buffers alive.
 #[derive(Debug)]
 pub(super) struct Prepared {
     pub(super) bind_group: wgpu::BindGroup,
@@ -75,12 +76,13 @@ pub(super) struct Prepared {
     pub(super) size: [u32; 2],
     pub(super) image: wgpu::Buffer,
     pub(super) _inputs: Vec<wgpu::Buffer>,
+    pub(super) _source: SourceBuffers,
 }
 
 /// A march pass's compute pipeline and its one bind group's layout: `bindings[i]` is
-/// binding `i`'s buffer type and minimum size (both passes bind buffers only), then
-/// bindings 8 and 9, another cloud's shadow ([`OutsideShadow`]).
-pub(super) fn march_pipeline(
+/// binding `i`'s buffer type and minimum size (buffers only), then the density source's
+/// bindings 4 and 5 and bindings 8 and 9, another cloud's shadow ([`OutsideShadow`]).
+pub(super) fn march_pipeline<S: GpuDensitySource + ?Sized>(
     device: &wgpu::Device,
     source: &str,
     label: &str,
@@ -104,9 +106,10 @@ pub(super) fn march_pipeline(
             },
             count: None,
         })
+        .chain(source_layout_entries::<S>())
         .chain(
             [
-                // outside_shadow.wgsl's uniform and values (both passes import it).
+                // outside_shadow.wgsl's uniform and values (field_march imports it).
                 (
                     8,
                     wgpu::BufferBindingType::Uniform,
@@ -250,12 +253,14 @@ pub(super) fn march_image(
     }))
 }
 
-/// A march pass's bind group: each buffer whole at its binding.
+/// A march pass's bind group: each buffer whole at its binding, and the density
+/// source's.
 pub(super) fn march_bind_group(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
     label: &str,
     buffers: &[(u32, &wgpu::Buffer)],
+    source: &SourceBuffers,
 ) -> wgpu::BindGroup {
     let entries: Vec<wgpu::BindGroupEntry<'_>> = buffers
         .iter()
@@ -263,6 +268,7 @@ pub(super) fn march_bind_group(
             binding,
             resource: buffer.as_entire_binding(),
         })
+        .chain(source.entries())
         .collect();
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(label),

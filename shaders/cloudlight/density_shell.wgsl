@@ -1,14 +1,12 @@
-// The ground's cloud shadow map of a procedural cloud shell: the shadow_map march with
-// the shell's density (procedural weather or a user grid, evaluated noise) per sample.
-// The grid's (coverage, cloud type) per cell, x fastest, is this module's binding 2
-// (a pass importing it binds a one-cell placeholder for procedural weather).
-// Twin: cloudlight::shell_shadow (Rust, generic over the float type: the f32
-// instantiation mirrors these operations, and equals shadow_map::shadow_texel::<f32> on
-// a CloudShell bit for bit).
-
-#import cloudlight::shadow_map
+// A procedural cloud shell as the density field a march reads (the source bound to
+// cloudlight::density_source): its parameters (ShellField) at binding 4 and, for a
+// weather grid, the grid's (coverage, cloud type) per cell, x fastest, at binding 5 (a
+// one-cell placeholder for procedural weather); the noise is evaluated per sample.
+// Planet-centred metres. Twin: cloudlight::shell_shadow (Rust, generic over the float
+// type: the f32 instantiation mirrors these operations, and is DensityField for
+// CloudShell in f32 bit for bit).
+#import cloudlight::ray_spans
 #import cloudlight::shell
-#import cloudlight::cone
 
 // A shell (lengths in metres, planet-centred); weather_kind 0: the procedural weather's
 // fields, 1: the grid's (grid_size cells of grid_cell_size metres).
@@ -33,7 +31,8 @@ struct ShellField {
     grid_cell_size: f32,
 }
 
-@group(0) @binding(2) var<storage, read> shell_weather_grid: array<vec2<f32>>;
+@group(0) @binding(4) var<uniform> shell_field: ShellField;
+@group(0) @binding(5) var<storage, read> shell_weather_grid: array<vec2<f32>>;
 
 // The shell's (coverage, cloud type) at xy (metres): the procedural weather, or the
 // grid's taps read from shell_weather_grid then weather_grid_bilinear.
@@ -81,20 +80,15 @@ fn shell_field_density(field: ShellField, p: vec3<f32>) -> f32 {
     );
 }
 
-// The marched transmittance toward the sun (unit to_sun) from ground (planet-centred)
-// through the shell: steps midpoint samples on each of its spans, exp(−Σ τ).
-fn shell_shadow_texel(field: ShellField, ground: vec3<f32>, to_sun: vec3<f32>, steps: u32) -> f32 {
-    let spans = shell_ray_spans(ground, to_sun, field.planet_radius, field.inner_radius, field.outer_radius);
-    let sigma_t = field.extinction_per_density;
-    var tau = 0.0;
-    for (var s = 0u; s < spans.count; s++) {
-        let span = spans.spans[s];
-        var sum = 0.0;
-        for (var k = 0u; k < steps; k++) {
-            let rho = shell_field_density(field, shadow_march_point(ground, to_sun, span, k, steps));
-            sum = shadow_accumulate(sum, rho);
-        }
-        tau = min(tau + shadow_span_optical_depth(sum, span, steps, sigma_t), SHADOW_SATURATION);
-    }
-    return beer_lambert(tau);
+fn field_density(p: vec3<f32>) -> f32 {
+    return shell_field_density(shell_field, p);
+}
+
+fn field_extinction_per_density() -> f32 {
+    return shell_field.extinction_per_density;
+}
+
+// The ray's spans inside the shell, stopping at the planet (shell_ray_spans).
+fn field_ray_spans(origin: vec3<f32>, direction: vec3<f32>) -> RaySpans {
+    return shell_ray_spans(origin, direction, shell_field.planet_radius, shell_field.inner_radius, shell_field.outer_radius);
 }

@@ -1,29 +1,75 @@
-//! [`MarchShellPass`]: the march over a procedural [`CloudShell`].
+//! [`FieldMarchPass`]: the view march over any [`MarchedField`], one pass whose fields
+//! differ only in their density source's bindings and their entry.
+
+use std::marker::PhantomData;
 
 use super::shared::*;
 use super::*;
-use crate::CloudShell;
+use crate::gpu::density_source::{GpuDensitySource, SourceBuffers, compose_over};
 use crate::march::{Lighting, MarchResult, MarchSettings, PinholeCamera};
-use crate::shell_shadow::ShellField;
+use crate::{CloudShell, CloudVolume};
+
+/// A field the view march runs over: its density source and the pass's entry (a thin
+/// WGSL file around `field_march.wgsl`'s `march_pixel`).
+pub trait MarchedField: GpuDensitySource {
+    /// The entry's module.
+    const ENTRY: &'static str;
+    /// The entry point.
+    const ENTRY_POINT: &'static str;
+    /// The pass's label.
+    const LABEL: &'static str;
+
+    /// The start and end (m) of the fade toward the horizon the entry applies at each
+    /// pixel's depth (`[0, 0]` for an entry that applies none).
+    fn horizon_fade(&self) -> [f64; 2];
+}
+
+/// `march_pass.wgsl`: the volume's image as marched.
+impl MarchedField for CloudVolume {
+    const ENTRY: &'static str = "cloudlight::march_pass";
+    const ENTRY_POINT: &'static str = "march_main";
+    const LABEL: &'static str = "cloudlight march";
+
+    fn horizon_fade(&self) -> [f64; 2] {
+        [0.0, 0.0]
+    }
+}
+
+/// `march_shell_pass.wgsl`: each pixel faded by [`CloudShell::horizon_fade`] of its depth.
+impl MarchedField for CloudShell {
+    const ENTRY: &'static str = "cloudlight::march_shell_pass";
+    const ENTRY_POINT: &'static str = "march_shell_main";
+    const LABEL: &'static str = "cloudlight march shell";
+
+    fn horizon_fade(&self) -> [f64; 2] {
+        let s = self.settings();
+        [s.horizon_fade_start, s.horizon_fade_end]
+    }
+}
+
+/// The composed WGSL of the march pass over a [`CloudVolume`] (entry point `march_main`).
+pub fn compose_march_shader() -> Result<String, skyscape_wgsl::ComposeError> {
+    compose_over::<CloudVolume>(CloudVolume::ENTRY)
+}
 
 /// The composed WGSL of the shell march pass (entry point `march_shell_main`).
 pub fn compose_march_shell_shader() -> Result<String, skyscape_wgsl::ComposeError> {
-    crate::composer().compose_module("cloudlight::march_shell_pass")
+    compose_over::<CloudShell>(CloudShell::ENTRY)
 }
 
-/// The uniform block of `march_shell_pass.wgsl` (`ShellMarchParams`), as 68 words; the
-/// weather's words from `weather` (the shell's [`ShellField`], procedural or grid).
-fn shell_params_words(
-    shell: &CloudShell,
-    weather: &ShellField<f32>,
+/// Bytes of `field_march.wgsl`'s `MarchParams`.
+const PARAMS_BYTES: u64 = 208;
+
+/// `field_march.wgsl`'s `MarchParams`, as 52 words.
+fn params_words(
     camera: &PinholeCamera,
     size: [u32; 2],
     settings: &MarchSettings,
     lighting: &Lighting<f32>,
+    horizon_fade: [f64; 2],
     limited: bool,
-) -> [u32; 68] {
+) -> [u32; 52] {
     let c = settings.config();
-    let s = shell.settings();
     let f = |x: f64| (x as f32).to_bits();
     let g = |x: f32| x.to_bits();
     let [forward, right, up] = camera.basis();
@@ -40,7 +86,7 @@ fn shell_params_words(
         f(origin[0]),
         f(origin[1]),
         f(origin[2]),
-        f(shell.planet_radius()),
+        f(c.albedo),
         f(forward[0]),
         f(forward[1]),
         f(forward[2]),
@@ -52,23 +98,7 @@ fn shell_params_words(
         f(up[0]),
         f(up[1]),
         f(up[2]),
-        f(s.extinction_per_density),
-        f(s.inner_radius),
-        f(s.outer_radius),
-        f(s.shape_period),
-        f(s.detail_period),
-        f(s.erosion),
-        f(s.horizon_fade_start),
-        f(s.horizon_fade_end),
         f(c.transmittance_epsilon),
-        g(weather.weather_period),
-        g(weather.coverage_mean),
-        g(weather.coverage_contrast),
-        g(weather.cloud_type_mean),
-        g(weather.cloud_type_contrast),
-        f(c.albedo),
-        f(cone_step),
-        f(spread),
         g(sun[0]),
         g(sun[1]),
         g(sun[2]),
@@ -84,15 +114,15 @@ fn shell_params_words(
         g(amb_up[0]),
         g(amb_up[1]),
         g(amb_up[2]),
-        g(weather.grid_cell_size),
+        f(cone_step),
         f(c.octaves.a),
         f(c.octaves.b),
         f(c.octaves.c),
-        g(if limited { 1.0 } else { 0.0 }),
-        s.seed,
-        weather.weather_seed,
-        weather.weather_cells,
-        c.view_steps,
+        f(spread),
+        f(horizon_fade[0]),
+        f(horizon_fade[1]),
+        0,
+        0,
         size[0],
         size[1],
         jitter,
@@ -101,85 +131,99 @@ fn shell_params_words(
         c.octaves.count,
         u32::from(c.powder),
         c.ambient_steps,
-        weather.weather_kind,
-        weather.grid_size[0],
-        weather.grid_size[1],
+        c.view_steps,
+        u32::from(limited),
+        0,
         0,
     ]
 }
 
-const SHELL_PARAMS_BYTES: u64 = 272;
+/// The view march of a field `F` on a GPU (see the module documentation):
+/// [`MarchPass`] for a [`CloudVolume`], [`MarchShellPass`] for a [`CloudShell`].
+#[derive(Debug)]
+pub struct FieldMarchPass<F> {
+    pipeline: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+    prepared: Option<Prepared>,
+    field: PhantomData<fn(&F)>,
+}
 
-/// The view march of a procedural [`CloudShell`] on a GPU
+/// The view march of a [`CloudVolume`] (`shaders/cloudlight/march_pass.wgsl`). The f32
+/// CPU twin is [`render_image::<f32>`](crate::march::render_image) on the same volume
+/// (whose density lookup is f64 rounded once; the shader's is f32).
+pub type MarchPass = FieldMarchPass<CloudVolume>;
+
+/// The view march of a procedural [`CloudShell`]
 /// (`shaders/cloudlight/march_shell_pass.wgsl`): the same output layout as
 /// [`MarchPass`], each pixel faded toward the horizon at its depth. The f32 CPU twin is
 /// [`render_image::<f32>`](crate::march::render_image) on the shell, each pixel then
 /// [`faded`](crate::march::faded) by [`CloudShell::horizon_fade`] of its depth. The camera
 /// is planet-centred (metres). The weather is procedural or a user grid
 /// ([`crate::shell::WeatherMap`]; a grid's coverage and cloud type uploaded in `prepare`
-/// to a storage buffer, binding 3, and looked up as [`CloudShell::weather_at`] does).
-#[derive(Debug)]
-pub struct MarchShellPass {
-    pipeline: wgpu::ComputePipeline,
-    layout: wgpu::BindGroupLayout,
-    prepared: Option<Prepared>,
-}
+/// to the source's storage buffer and looked up as [`CloudShell::weather_at`] does).
+pub type MarchShellPass = FieldMarchPass<CloudShell>;
 
-impl MarchShellPass {
+impl<F: MarchedField> FieldMarchPass<F> {
     /// Builds the pipeline on `device`.
     pub fn new(device: &wgpu::Device) -> Result<Self, MarchGpuError> {
         use wgpu::BufferBindingType::{Storage, Uniform};
-        let (pipeline, layout) = march_pipeline(
+        let (pipeline, layout) = march_pipeline::<F>(
             device,
-            &compose_march_shell_shader()?,
-            "cloudlight march shell",
-            "march_shell_main",
+            &compose_over::<F>(F::ENTRY)?,
+            F::LABEL,
+            F::ENTRY_POINT,
             &[
-                (Uniform, Some(SHELL_PARAMS_BYTES)),
+                (Uniform, Some(PARAMS_BYTES)),
                 (Storage { read_only: false }, None),
                 (Storage { read_only: true }, None),
-                // The weather grid's cells (a one-cell placeholder for procedural).
-                (Storage { read_only: true }, Some(8)),
             ],
         );
         Ok(Self {
             pipeline,
             layout,
             prepared: None,
+            field: PhantomData,
         })
     }
 
-    /// Uploads the shell, camera, settings and lighting, creates the output buffer
-    /// (`size[0] × size[1]` pixels) and the bind group. Takes effect at the next submit.
-    /// Unlimited rays: [`MarchShellPass::prepare_limited`] with no distance buffer.
+    /// Uploads the field (its density source), the camera, settings and lighting,
+    /// creates the output buffer (`size[0] × size[1]` pixels) and the bind group
+    /// [`FieldMarchPass::encode`] records with. Takes effect at the next submit.
+    /// Unlimited rays: [`FieldMarchPass::prepare_limited`] with no distance buffer.
     #[allow(clippy::too_many_arguments)] // device, queue and the twin's five inputs
     pub fn prepare(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
-        shell: &CloudShell,
+        field: &F,
         camera: &PinholeCamera,
         size: [u32; 2],
         settings: &MarchSettings,
         lighting: &Lighting<f32>,
     ) -> Result<(), MarchGpuError> {
-        self.prepare_limited(device, queue, shell, camera, size, settings, lighting, None)
+        self.prepare_limited(device, queue, field, camera, size, settings, lighting, None)
     }
 
-    /// [`MarchShellPass::prepare`] with each pixel's march stopped at a distance: the
-    /// per-pixel `max_distance` buffer as [`MarchPass::prepare_limited`]'s (one `f32`
-    /// per pixel, metres along the ray, x fastest, row 0 at the top; a caller with a depth
-    /// buffer converts depth to distance itself; `None` is unlimited). The spans are
-    /// clipped before the march and the horizon fade is applied at the limited march's
-    /// depth. The f32 CPU twin is
-    /// [`render_image_limited::<f32>`](crate::march::render_image_limited) on the shell,
-    /// each pixel then [`faded`](crate::march::faded).
+    /// [`FieldMarchPass::prepare`] with each pixel's march stopped at a distance:
+    /// `max_distance`, when given, holds one `f32` per pixel (x fastest, row 0 at the
+    /// top), the metres along that pixel's ray where the march stops (`+∞`, or any value
+    /// ≥ `f32::MAX`: no limit; ≤ 0: nothing marched; see
+    /// [`march_view_limited`](crate::march::march_view_limited), whose NaN-as-none only
+    /// holds on backends that keep NaN comparisons, so write `+∞`). It is bound
+    /// as a read-only storage buffer (usage `STORAGE`, at least `4·size[0]·size[1]`
+    /// bytes) and read when the pass runs, so the caller may write it on the GPU before
+    /// it. A caller with a depth buffer converts depth to distance along the ray itself
+    /// (the pass takes no projection). `None` is unlimited. The field's spans are clipped
+    /// before the march (a shell's horizon fade is applied at the limited march's depth).
+    /// The f32 CPU twin is
+    /// [`render_image_limited::<f32>`](crate::march::render_image_limited) (for a shell,
+    /// each pixel then [`faded`](crate::march::faded)).
     #[allow(clippy::too_many_arguments)] // device, queue, the twin's five inputs, the limit
     pub fn prepare_limited(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
-        shell: &CloudShell,
+        field: &F,
         camera: &PinholeCamera,
         size: [u32; 2],
         settings: &MarchSettings,
@@ -189,7 +233,7 @@ impl MarchShellPass {
         self.prepare_lit_through(
             device,
             queue,
-            shell,
+            field,
             camera,
             size,
             settings,
@@ -199,18 +243,19 @@ impl MarchShellPass {
         )
     }
 
-    /// [`MarchShellPass::prepare_limited`] with the light crossing another cloud too
-    /// (`outside`: its shadow map toward `lighting`'s light, [`OutsideShadow`], its
-    /// `frame_height` the planet's radius; `None` is
-    /// [`MarchShellPass::prepare_limited`]). The f32 CPU twin is
+    /// [`FieldMarchPass::prepare_limited`] with the light crossing another cloud too:
+    /// `outside`, when given, is its shadow map toward `lighting`'s light
+    /// ([`OutsideShadow`], its `frame_height` the march frame's height of altitude 0:
+    /// the planet's radius for a shell; `None` is [`FieldMarchPass::prepare_limited`]).
+    /// The f32 CPU twin is
     /// [`march_view_lit_through::<f32>`](crate::march::march_view_lit_through) with the
-    /// map's lookup as `outside_depth`, then [`faded`](crate::march::faded).
+    /// map's lookup as `outside_depth` (for a shell, then [`faded`](crate::march::faded)).
     #[allow(clippy::too_many_arguments)] // device, queue, the twin's inputs, limit, map
     pub fn prepare_lit_through(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
-        shell: &CloudShell,
+        field: &F,
         camera: &PinholeCamera,
         size: [u32; 2],
         settings: &MarchSettings,
@@ -218,34 +263,28 @@ impl MarchShellPass {
         max_distance: Option<&wgpu::Buffer>,
         outside: Option<&OutsideShadow<'_>>,
     ) -> Result<(), MarchGpuError> {
-        let weather = ShellField::<f32>::of(shell);
         let workgroups = march_workgroups(device, size)?;
         let limit = device.limits().max_storage_buffer_binding_size;
-        let image = march_image(device, "cloudlight march shell image", size, limit)?;
-        let weather_grid = crate::gpu::weather_grid_buffer(
-            device,
-            queue,
-            &weather,
-            "cloudlight march shell weather grid",
-            limit,
-        )
-        .map_err(|bytes| MarchGpuError::BufferTooLarge {
-            what: "weather grid",
-            bytes,
-            limit,
-        })?;
-        let words = shell_params_words(
-            shell,
-            &weather,
+        let source =
+            SourceBuffers::upload(device, queue, field, F::LABEL, limit).map_err(|bytes| {
+                MarchGpuError::BufferTooLarge {
+                    what: F::CELLS,
+                    bytes,
+                    limit,
+                }
+            })?;
+        let image = march_image(device, &format!("{} image", F::LABEL), size, limit)?;
+        let words = params_words(
             camera,
             size,
             settings,
             lighting,
+            field.horizon_fade(),
             max_distance.is_some(),
         );
         let params = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("cloudlight march shell params"),
-            size: SHELL_PARAMS_BYTES,
+            label: Some(&format!("{} params", F::LABEL)),
+            size: PARAMS_BYTES,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -255,28 +294,23 @@ impl MarchShellPass {
         let bind_group = march_bind_group(
             device,
             &self.layout,
-            "cloudlight march shell",
+            F::LABEL,
             &[
                 (0, &params),
                 (1, &image),
                 (2, &distance),
-                (3, &weather_grid),
                 (8, &outside_params),
                 (9, &outside_values),
             ],
+            &source,
         );
         self.prepared = Some(Prepared {
             bind_group,
             workgroups,
             size,
             image,
-            _inputs: vec![
-                params,
-                distance,
-                weather_grid,
-                outside_params,
-                outside_values,
-            ],
+            _inputs: vec![params, distance, outside_params, outside_values],
+            _source: source,
         });
         Ok(())
     }
@@ -286,7 +320,7 @@ impl MarchShellPass {
         self.encode_timed(encoder, None)
     }
 
-    /// [`MarchShellPass::encode`] with timestamp writes on its compute pass.
+    /// [`FieldMarchPass::encode`] with timestamp writes on its compute pass.
     pub fn encode_timed(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -298,7 +332,7 @@ impl MarchShellPass {
             .ok_or(MarchGpuError::EncodeBeforePrepare)?;
         crate::gpu::dispatch_2d(
             encoder,
-            "cloudlight march shell",
+            F::LABEL,
             timestamp_writes,
             &self.pipeline,
             &prepared.bind_group,
@@ -307,7 +341,7 @@ impl MarchShellPass {
         Ok(())
     }
 
-    /// The output buffer (as [`MarchPass`]'s); `None` before `prepare`.
+    /// The output buffer (module documentation); `None` before `prepare`.
     pub fn image_buffer(&self) -> Option<&wgpu::Buffer> {
         self.prepared.as_ref().map(|p| &p.image)
     }
