@@ -1,5 +1,5 @@
 //! `[clouds.shell]` with a weather grid from a PNG (`weather_image`, `weather_cell_m`;
-//! `render::shell_weather`): the shipped `stratocumulus` scene with its procedural
+//! `render::shell_clouds`): the shipped `stratocumulus` scene with its procedural
 //! weather replaced by an 8×6 RGB image of 2 km cells. The image becomes cloudlight's
 //! `WeatherGrid` (north up), the keys' errors name the field and value, and the GPU image
 //! (cloudlight's `MarchShellPass` and `ShellShadowMapPass` reading the grid) agrees with

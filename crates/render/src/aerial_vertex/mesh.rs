@@ -13,7 +13,7 @@ use crate::terrain_mesh::{TILE_CELLS, TerrainLod, Tile};
 /// Vertices per tile (the grid only: skirts are never hit by a ray).
 const TILE_VERTICES: usize = ((TILE_CELLS + 1) * (TILE_CELLS + 1)) as usize;
 
-/// The quadtree tiles a GPU renderer (with [`TERRAIN_ERROR_PX`]) draws for `scene`'s
+/// The quadtree tiles a GPU renderer (with [`TERRAIN_ERROR_PX`](super::TERRAIN_ERROR_PX)) draws for `scene`'s
 /// camera: the same call, with the same arguments, as `SceneRenderer::prepare`.
 pub fn selected_tiles(
     scene: &PreparedScene,

@@ -19,7 +19,7 @@
 //!
 //! The CPU reference renderer ray casts the bilinear heightfield, so it has no triangles
 //! of its own. Its twin of the per-vertex variant ([`VertexAerial`]) selects the tiles
-//! the GPU draws (the same [`TerrainLod::select`] with the camera the GPU renderer
+//! the GPU draws (the same [`TerrainLod::select`](crate::terrain_mesh::TerrainLod::select) with the camera the GPU renderer
 //! passes and its default error, [`TERRAIN_ERROR_PX`]), finds the tile under the
 //! ray's hit and the triangle the ray crosses there, evaluates the segment at that triangle's three vertices (world
 //! positions computed in f32 as the vertex shader computes them) and interpolates it

@@ -7,7 +7,7 @@ use super::{Face, Projection};
 use crate::RenderError;
 use crate::scene::prepare::world_direction;
 
-/// The scene of the cube face looking along `forward` ([`CUBE_FACES`]): the scene's
+/// The scene of the cube face looking along `forward` ([`CUBE_FACES`](super::CUBE_FACES)): the scene's
 /// camera position, a 90° square rectilinear view of `side` pixels.
 pub fn face_scene(
     scene: &crate::scene::Scene,
@@ -62,7 +62,7 @@ pub fn sample_faces(faces: &[Face], direction: DVec3) -> [f32; 3] {
 }
 
 /// The output image (row-major radiance, `width` × `height`) of `projection` from the
-/// six faces drawn along [`CUBE_FACES`]; `view` is the scene camera (the fisheye's
+/// six faces drawn along [`CUBE_FACES`](super::CUBE_FACES); `view` is the scene camera (the fisheye's
 /// axis and roll), `fisheye_fov` its field across the image's height (rad).
 pub fn assemble(
     projection: Projection,

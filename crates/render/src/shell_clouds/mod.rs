@@ -35,7 +35,7 @@
 //! Over a scene's terrain the deck shades it as the volume cloud does: cloudlight's
 //! shadow map of the shell's density field toward each light that is up ([`shell_shadow`],
 //! [`crate::volume_clouds::CloudShadow::over`]), baked once on the CPU at prepare (not by
-//! [`Scene::prepare_for_gpu`](crate::scene::Scene::prepare_for_gpu)), on the
+//! [`Scene::prepare_for_gpu`](crate::scene::Scene::prepare_for_gpu)(crate::scene::Scene::prepare_for_gpu)), on the
 //! plane of the shell's base over the heightfield's extent swept along the light. The
 //! GPU renderer bakes the same map again on the GPU (`crate::gpu::shell_shadow`:
 //! cloudlight's `ShellShadowMapPass` over [`shell_shadow_map_plan`], whose f32 twin
@@ -121,7 +121,7 @@ pub struct PreparedShell {
 
 impl PreparedShell {
     /// Whether the shadow maps hold their values (a scene from `Scene::prepare`), or only
-    /// their grids (from [`Scene::prepare_for_gpu`]: the GPU renderer bakes them; the CPU
+    /// their grids (from [`Scene::prepare_for_gpu`](crate::scene::Scene::prepare_for_gpu): the GPU renderer bakes them; the CPU
     /// renderer needs [`crate::scene::PreparedScene::bake_shell_shadow_on_cpu`] first).
     pub fn shadows_baked_on_cpu(&self) -> bool {
         [&self.shadow, &self.moon_shadow]

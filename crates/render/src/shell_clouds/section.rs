@@ -7,7 +7,7 @@ use serde::Deserialize;
 
 /// `[clouds.shell]`: seed 003's procedural cloud shell (`cloudlight::CloudShell`)
 /// between two altitudes, its coverage and cloud type from cloudlight's procedural
-/// weather or a weather grid from a PNG ([`crate::shell_weather`]), marched by `cloudlight` (seed 003's lighting). Defaults not given here are
+/// weather or a weather grid from a PNG ([`crate::shell_clouds`]), marched by `cloudlight` (seed 003's lighting). Defaults not given here are
 /// cloudlight's (`ShellSettings::cumulus_over`, `ProceduralWeather::default`,
 /// `MarchConfig::default`).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -83,7 +83,7 @@ pub struct CloudShellSection {
     #[serde(default = "half")]
     pub octave_c: f64,
     /// A weather grid from a PNG (relative to the scene file's folder; R coverage,
-    /// G cloud type, B precipitation; [`crate::shell_weather`]) instead of the
+    /// G cloud type, B precipitation; [`crate::shell_clouds`]) instead of the
     /// procedural weather (whose keys are then unused).
     #[serde(default)]
     pub weather_image: Option<std::path::PathBuf>,

@@ -28,7 +28,7 @@ pub fn shell_shadow(
 }
 
 /// A [`shell_shadow`]'s grid, plane and light without its values (`values` empty): what
-/// [`Scene::prepare_for_gpu`] keeps for the GPU renderer, which bakes the values itself
+/// [`Scene::prepare_for_gpu`](crate::scene::Scene::prepare_for_gpu) keeps for the GPU renderer, which bakes the values itself
 /// (`crate::gpu::shell_shadow`). Its texels cost nothing: the march runs over a field
 /// without spans.
 pub fn shell_shadow_unbaked(

@@ -38,7 +38,7 @@ pub fn march_pixel(
 }
 
 /// [`march_pixel`] lit by `lighting` (the sun's, [`PreparedVolume::lighting`], or the
-/// moon's, [`MoonlitVolume::lighting`]): the twin of the GPU's march with that light.
+/// moon's, [`MoonlitVolume::lighting`](super::MoonlitVolume::lighting)): the twin of the GPU's march with that light.
 pub fn march_pixel_lit(
     cloud: &PreparedVolume,
     lighting: &Lighting<f32>,
