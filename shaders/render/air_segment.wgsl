@@ -1,9 +1,10 @@
-// The segment camera → a point that every air pass in front of something evaluates
-// (per pixel in render::cloud_air_io and the terrain's render::rung_air, per particle
-// in render::billboard_air_io, per terrain vertex in render::vertex_air_compute): no
-// bindings of its own, so each of them, with its own groups, imports it, and so do the
-// rungs' functions over it (render::air_segment_closed_form,
-// render::air_segment_single) that every such pass calls.
+// The segments whose air a rung without tables evaluates (render::rung_sky): the
+// segment camera → a point that every air pass in front of something evaluates (per
+// pixel in render::cloud_air_io and the terrain's render::rung_air, per particle in
+// render::billboard_air_io, per terrain vertex in render::vertex_air_compute), and the
+// light's path from a terrain point (render::terrain_rung). No bindings of its own, so
+// each of those passes, with its own groups, imports it, and so does each rung's module
+// (render::rung_closed_form, render::rung_single) whose functions take them.
 #import atmos::frame
 
 // A segment: the index of its two vec4 in the pass's air output (unused where that is
@@ -21,8 +22,8 @@ struct AirSegment {
     has_air: bool,
 }
 
-// What a rung gives for a segment and one light (render::air_segment_closed_form,
-// render::air_segment_single): the in-scattered radiance and the transmittance.
+// What a rung gives for a segment and one light (render::rung_sky's segment_air): the
+// in-scattered radiance and the transmittance.
 struct SegmentAir {
     radiance: vec3<f32>,
     transmittance: vec3<f32>,
@@ -40,4 +41,15 @@ fn air_segment(index: u32, view: vec3<f32>, distance: f32, camera: FrameCamera) 
     s.distance = distance;
     s.has_air = true;
     return s;
+}
+
+// The light's path from a terrain point: its radius and zenith cosine, the distance to
+// the top of the atmosphere, and whether the planet hides the light
+// (render::terrain_rung's rung_light_path builds it; render::rung_sky's
+// terrain_light_irradiance reads it).
+struct RungLightPath {
+    r: f32,
+    mu_s: f32,
+    top: f32,
+    hidden: bool,
 }

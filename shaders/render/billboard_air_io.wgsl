@@ -1,7 +1,6 @@
-// What the rungs' billboard air passes (render::billboard_air_closed_form,
-// render::billboard_air_single) read and write (group 2), and each particle's segment
-// camera → its centre: the billboards' twin of render::cloud_air_io, per particle
-// rather than per pixel. CPU twin: render::billboard_clouds::composite_billboards_cpu
+// What the rungs' billboard air pass (render::billboard_air_rung) reads and writes
+// (group 2), and each particle's segment camera → its centre: the billboards' twin of
+// render::cloud_air_io, per particle rather than per pixel. CPU twin: render::billboard_clouds::composite_billboards_cpu
 // without tables (SkyQuery::with_max_distance toward the particle's world offset).
 #import atmos::frame
 #import render::air_segment

@@ -1,9 +1,9 @@
 // The billboards (render::billboard_clouds) under a rung without tables (the closed
 // form, single scattering): the same quads, depth test and blending, each particle seen
 // through the sun's air in front of it that the rung's billboard air pass
-// (render::billboard_air_closed_form, render::billboard_air_single) wrote per particle
-// before the draw, read here per instance; at night (moonlit = 2) the moon's air from
-// the same pass run for the moon is added.
+// (render::billboard_air_rung) wrote per particle before the draw, read here per
+// instance; at night (moonlit = 2) the moon's air from the same pass run for the moon
+// is added.
 // Twin: render::billboard_clouds::composite_billboards_cpu without tables (Rust).
 //
 // Bindings: group 2 only (groups 0 and 1 unused): render::billboard_clouds_io's

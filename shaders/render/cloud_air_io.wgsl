@@ -1,5 +1,5 @@
 // What every cloud air pass (render::volume_air with the precomputed tables,
-// render::cloud_air_closed_form, render::cloud_air_single) reads and writes: its
+// render::cloud_air_rung with a rung without tables) reads and writes: its
 // group 2 (the uniform, cloudlight's march output, the air per pixel: one layout,
 // `air_layout` of crates/render/src/gpu/cloud_composite.rs, whose air buffer the
 // composite reads) and each pixel's segment camera → the cloud's transmittance-weighted

@@ -1,15 +1,18 @@
 // The aerial perspective of the terrain for a rung without tables, per pixel in a
-// compute pass over the drawn frame (render::air_closed_form, render::air_single): where
-// the terrain's reverse-z depth shows a surface, the segment camera → surface along the
-// pixel's ray (render::air_segment; the CPU's SkyQuery::with_max_distance to the hit)
-// gives the rung's transmittance and in-scatter, and the pixel becomes surface ×
+// compute pass over the drawn frame: where the terrain's reverse-z depth shows a
+// surface, the segment camera → surface along the pixel's ray (render::air_segment; the
+// CPU's SkyQuery::with_max_distance to the hit) gives the rung's transmittance and
+// in-scatter (render::rung_sky's segment_air, bound to the rung's module, as the
+// clouds' and the billboards' air passes call it), and the pixel becomes surface ×
 // transmittance + in-scatter (the moon's in-scatter added on a moonlit night; its
 // atmosphere differs from the sun's in irradiance only, so the transmittance is the
-// same). Sky pixels are copied. Bindings in group 0; the rung's parameters in group 1.
+// same). Sky pixels are copied. Bindings in group 0; the rung's parameters of the sun's
+// and the moon's atmospheres in group 1.
 // Twin: render::cpu_renderer's shade_terrain (surface × T + L of the segment model).
 #import atmos::frame
 #import render::scene_distance
 #import render::air_segment
+#import render::rung_sky
 
 // Layout identical to render::gpu::rungs::RungAirUniform.
 struct RungAir {
@@ -31,6 +34,8 @@ struct RungAir {
 @group(0) @binding(1) var air_depth: texture_depth_2d;
 @group(0) @binding(2) var air_surface: texture_2d<f32>;
 @group(0) @binding(3) var air_out: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(0) var<uniform> air_sun: RungParameters;
+@group(1) @binding(1) var<uniform> air_moon: RungParameters;
 
 // A pixel's segment (render::air_segment): camera → the surface along the pixel's ray,
 // of no length on the sky. Its `index` is unused (0): the pass writes the pixel of a
@@ -73,4 +78,18 @@ fn air_pixel(gid: vec3<u32>) -> AirPixel {
 // (in-scatter) × the radiance scale.
 fn air_store(gid: vec3<u32>, p: AirPixel, transmittance: vec3<f32>, radiance: vec3<f32>) {
     textureStore(air_out, gid.xy, vec4<f32>(p.surface.xyz * transmittance + radiance * air.radiance_scale, 1.0));
+}
+
+@compute @workgroup_size(8, 8)
+fn rung_air(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let p = air_pixel(gid);
+    if !p.segment.has_air {
+        return;
+    }
+    let sun = segment_air(p.segment, air.camera.sun, air_sun);
+    var radiance = sun.radiance;
+    if air.moon != 0u {
+        radiance += segment_air(p.segment, air.moon_direction, air_moon).radiance;
+    }
+    air_store(gid, p, sun.transmittance, radiance);
 }

@@ -185,7 +185,7 @@ fn volume_cloud_shadow(world: vec3<f32>) -> f32 {
 // The terrain's own radiance at world position `world`, lit by `light_at_point` (the
 // light's irradiance through the atmosphere there, from the scene's rung) and the sky's
 // irradiance. Rungs without tables call it with their own light and aerial perspective
-// (render::terrain_closed_form, render::terrain_single).
+// (render::terrain_rung).
 fn terrain_surface(world: vec3<f32>, light_at_point: vec3<f32>) -> vec3<f32> {
     let map = vec2<f32>(world.x, world.z) + terrain.map_offset;
     let f = texel_footprint(map / terrain.spacing);

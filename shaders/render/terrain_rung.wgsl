@@ -1,10 +1,17 @@
-// What the terrain of a rung without tables (render::terrain_closed_form,
-// render::terrain_single) shares: the light in group 3 and the geometry of the light's
-// path from a terrain point to the top of the atmosphere, as render::cpu_renderer's
-// light_irradiance_at builds the query for the rung's SkyModel. Only cosines and
-// distances: each rung's own functions do the physics. The aerial perspective of these
-// rungs is a compute pass over the drawn terrain (render::rung_air).
+// The terrain of a scene drawn with a rung without tables (`closed-form`,
+// `closed-form-vertex`, `single`): the terrain pass of render::terrain (its vertices,
+// shading and bindings in group 2) lit by the rung's light (render::rung_sky's
+// terrain_light_irradiance, bound to the rung's module) instead of the precomputed
+// tables. It writes the surface's own radiance, and render::rung_air then applies the
+// aerial perspective per pixel (compute). Groups 0 and 1 (the tables) are declared by
+// render::terrain but not read by these entry points; group 3 holds the light, the
+// rung's parameters of its atmosphere, and the light tabulated over the terrain's
+// elevations, with the geometry of the light's path from a terrain point to the top of
+// the atmosphere as render::passes::terrain::lighting's light_irradiance_at builds the
+// query for the rung's SkyModel. Twin: render::cpu_renderer's shade_terrain for rungs
+// without tables, with the rung's SkyModel as the segment model.
 #import render::terrain
+#import render::rung_sky
 
 // Layout identical to render::gpu::rungs::RungLightUniform.
 struct RungLight {
@@ -21,6 +28,8 @@ struct RungLight {
 }
 
 @group(3) @binding(0) var<uniform> rung_light: RungLight;
+// The rung's parameters of the light's atmosphere.
+@group(3) @binding(1) var<uniform> rung_parameters: RungParameters;
 // The light's irradiance at evenly spaced elevations over elevation_range, first to
 // last (rungs whose light is tabulated per frame: single scattering).
 @group(3) @binding(2) var<storage, read> rung_light_table: array<vec4<f32>>;
@@ -40,16 +49,7 @@ fn rung_light_from_table(elevation: f32) -> vec3<f32> {
     return mix(rung_light_table[k].xyz, rung_light_table[k + 1u].xyz, t);
 }
 
-// The light's path from a terrain point: its radius and zenith cosine, the distance to
-// the top of the atmosphere, and whether the planet hides the light.
-struct RungLightPath {
-    r: f32,
-    mu_s: f32,
-    top: f32,
-    hidden: bool,
-}
-
-// The path from the point `elevation` metres above the camera's ground point (the
+// The light's path (render::air_segment's RungLightPath) from the point `elevation` metres above the camera's ground point (the
 // terrain is flat in the world frame, so only the elevation matters). Twin: the
 // geometry of render::cpu_renderer::light_irradiance_at.
 fn rung_light_path(elevation: f32) -> RungLightPath {
@@ -59,4 +59,17 @@ fn rung_light_path(elevation: f32) -> RungLightPath {
     let hidden = ray_sphere_intersect(r, mu_s, rung_light.planet_radius).x >= 0.0;
     let top = max(ray_sphere_intersect(r, mu_s, rung_light.top_radius).y, 0.0);
     return RungLightPath(r, mu_s, top, hidden);
+}
+
+// The light's irradiance at a terrain point `elevation` metres above the camera's
+// ground point, the rung's (render::rung_sky's terrain_light_irradiance over the path
+// and the table). Twin: render::passes::terrain::lighting::light_irradiance_at with the
+// rung's SkyModel.
+fn rung_light_at(elevation: f32) -> vec3<f32> {
+    return terrain_light_irradiance(rung_light_path(elevation), rung_light_from_table(elevation), rung_parameters);
+}
+
+@fragment
+fn terrain_rung_fragment(in: TerrainVarying) -> @location(0) vec4<f32> {
+    return vec4<f32>(terrain_surface(in.world, rung_light_at(in.world.y)) * terrain.radiance_scale, 1.0);
 }

@@ -3,9 +3,9 @@
 // reading its segment camera → vertex from the compute pass over the drawn tiles'
 // vertices (render::vertex_air_compute, this light's), interpolated to the fragments by
 // the rasteriser (perspective-correct), as render::terrain_aerial_vertex does with the
-// precomputed rung's tables. The fragments (render::terrain_closed_form_aerial_vertex,
-// render::terrain_single_aerial_vertex) shade the surface as the rung's per-pixel
-// fragments do and add the interpolated segment. The segments are bound in group 0 (the
+// precomputed rung's tables. The fragment shades the surface as the per-pixel fragment
+// (render::terrain_rung) does, lit by the rung's light, and adds the interpolated
+// segment. The segments are bound in group 0 (the
 // precomputed rung's tables' group, unbound for these rungs), bindings 4 and 5.
 // Twin: render::aerial_vertex::VertexAerial with segment_to without tables.
 #import render::terrain_rung
@@ -33,4 +33,9 @@ fn terrain_rung_aerial_vertex(@builtin(vertex_index) vertex: u32, @builtin(insta
 fn terrain_rung_aerial_radiance(in: TerrainRungAerialVarying, light_at_point: vec3<f32>) -> vec4<f32> {
     let surface = terrain_surface(in.world, light_at_point);
     return vec4<f32>((surface * in.transmittance + in.in_scatter) * terrain.radiance_scale, 1.0);
+}
+
+@fragment
+fn terrain_rung_aerial_fragment(in: TerrainRungAerialVarying) -> @location(0) vec4<f32> {
+    return terrain_rung_aerial_radiance(in, rung_light_at(in.world.y));
 }

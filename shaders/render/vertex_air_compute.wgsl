@@ -1,19 +1,20 @@
 // The compute pass of the terrain's aerial perspective per vertex for a rung without
-// tables (render::vertex_air_closed_form, render::vertex_air_single): one invocation per
-// vertex of each drawn tile (x: the tile mesh's vertex, y: the tile), its world position
+// tables (render::rung_sky's segment_air, bound to the rung's module, as
+// render::rung_air calls it per pixel): one invocation per vertex of each drawn tile (x: the tile mesh's vertex, y: the tile), its world position
 // from render::terrain's tile_vertex_world (what the draw's vertex stage computes), the
 // segment camera → vertex (render::air_segment; the CPU's SkyQuery::with_max_distance
 // from the camera along the vertex's direction, over its distance), written for the
 // draw to interpolate. A compute pass rather than the vertex stage: lavapipe (Mesa
 // 22.3) crashes compiling the closed form's path length and the single-scattering march
-// into a graphics stage (render::terrain_single, render::cloud_air_closed_form).
+// into a graphics stage (render::rung_single, render::cloud_air_rung).
 // Bindings: render::terrain's group 2 (its uniform and heights are read), and in group 0
-// (the tables' group of the precomputed rung, unbound here) bindings 4 to 7; each rung's
-// parameters at group 0 binding 8. Twin: render::aerial_vertex's VertexAerial with
+// (the tables' group of the precomputed rung, unbound here) bindings 4 to 7 and the
+// rung's parameters of the light's atmosphere at binding 8. Twin: render::aerial_vertex's VertexAerial with
 // segment_to without tables.
 #import render::terrain
 #import render::vertex_air
 #import render::air_segment
+#import render::rung_sky
 
 @group(0) @binding(4) var<uniform> vertex_air: VertexAirUniform;
 // Two vec4 per vertex (render::vertex_air's vertex_air_index).
@@ -22,6 +23,8 @@
 @group(0) @binding(6) var<storage, read> vertex_air_grid: array<vec4<u32>>;
 // The drawn tiles (render::terrain_mesh::Tile: origin, step, skirt as its bits).
 @group(0) @binding(7) var<storage, read> vertex_air_tiles: array<vec4<u32>>;
+// The rung's parameters of the light's atmosphere.
+@group(0) @binding(8) var<uniform> vertex_air_parameters: RungParameters;
 
 // The segment camera → a vertex (render::air_segment), its `index` the vertex's two
 // vec4 in the segments array (render::vertex_air's vertex_air_index); `has_air` is false
@@ -57,4 +60,13 @@ fn vertex_air_store(s: AirSegment, air: SegmentAir) {
         vertex_air_segments[s.index] = vec4<f32>(1.0, 1.0, 1.0, 0.0);
         vertex_air_segments[s.index + 1u] = vec4<f32>(0.0);
     }
+}
+
+@compute @workgroup_size(64)
+fn vertex_air_compute(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let s = vertex_air_segment(gid);
+    if !s.has_air {
+        return;
+    }
+    vertex_air_store(s, segment_air(s, vertex_air.light, vertex_air_parameters));
 }

@@ -35,24 +35,8 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/vertex_air_compute.wgsl"),
     },
     skyscape_wgsl::Module {
-        name: "render::vertex_air_closed_form",
-        source: include_str!("../shaders/vertex_air_closed_form.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "render::vertex_air_single",
-        source: include_str!("../shaders/vertex_air_single.wgsl"),
-    },
-    skyscape_wgsl::Module {
         name: "render::terrain_rung_aerial_vertex",
         source: include_str!("../shaders/terrain_rung_aerial_vertex.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "render::terrain_closed_form_aerial_vertex",
-        source: include_str!("../shaders/terrain_closed_form_aerial_vertex.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "render::terrain_single_aerial_vertex",
-        source: include_str!("../shaders/terrain_single_aerial_vertex.wgsl"),
     },
     skyscape_wgsl::Module {
         name: "render::sky_rung",
@@ -63,24 +47,8 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/terrain_rung.wgsl"),
     },
     skyscape_wgsl::Module {
-        name: "render::terrain_closed_form",
-        source: include_str!("../shaders/terrain_closed_form.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "render::terrain_single",
-        source: include_str!("../shaders/terrain_single.wgsl"),
-    },
-    skyscape_wgsl::Module {
         name: "render::rung_air",
         source: include_str!("../shaders/rung_air.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "render::air_closed_form",
-        source: include_str!("../shaders/air_closed_form.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "render::air_single",
-        source: include_str!("../shaders/air_single.wgsl"),
     },
     skyscape_wgsl::Module {
         name: "render::clouds",
@@ -107,24 +75,24 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/air_segment.wgsl"),
     },
     skyscape_wgsl::Module {
-        name: "render::air_segment_closed_form",
-        source: include_str!("../shaders/air_segment_closed_form.wgsl"),
+        name: "render::rung_sky",
+        source: include_str!("../shaders/rung_sky.wgsl"),
     },
     skyscape_wgsl::Module {
-        name: "render::air_segment_single",
-        source: include_str!("../shaders/air_segment_single.wgsl"),
+        name: "render::rung_closed_form",
+        source: include_str!("../shaders/rung_closed_form.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "render::rung_single",
+        source: include_str!("../shaders/rung_single.wgsl"),
     },
     skyscape_wgsl::Module {
         name: "render::cloud_air_io",
         source: include_str!("../shaders/cloud_air_io.wgsl"),
     },
     skyscape_wgsl::Module {
-        name: "render::cloud_air_closed_form",
-        source: include_str!("../shaders/cloud_air_closed_form.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "render::cloud_air_single",
-        source: include_str!("../shaders/cloud_air_single.wgsl"),
+        name: "render::cloud_air_rung",
+        source: include_str!("../shaders/cloud_air_rung.wgsl"),
     },
     skyscape_wgsl::Module {
         name: "render::volume_clouds",
@@ -159,12 +127,8 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../shaders/billboard_air_io.wgsl"),
     },
     skyscape_wgsl::Module {
-        name: "render::billboard_air_closed_form",
-        source: include_str!("../shaders/billboard_air_closed_form.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "render::billboard_air_single",
-        source: include_str!("../shaders/billboard_air_single.wgsl"),
+        name: "render::billboard_air_rung",
+        source: include_str!("../shaders/billboard_air_rung.wgsl"),
     },
     skyscape_wgsl::Module {
         name: "render::display",

@@ -342,7 +342,7 @@ fn the_billboards_agree_on_the_gpu_and_the_cpu() {
 /// The billboards under the rungs without tables (the closed form per pixel and per dome
 /// vertex, whose air is the closed form's either way, and single scattering):
 /// on the GPU each particle's air is a compute pass of the rung's own functions
-/// (`shaders/render/billboard_air_closed_form.wgsl`, `billboard_air_single.wgsl`), on
+/// (`shaders/render/billboard_air_rung.wgsl` with the rung's module), on
 /// the CPU the rung's segment model. The shipped `billboards` scene at 160×90 under each
 /// rung, GPU against CPU (the precomputed rung first, as the baseline): every pixel a
 /// billboard covers, and those clear of the terrain's silhouette; then the rungs'

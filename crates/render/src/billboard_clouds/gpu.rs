@@ -113,12 +113,12 @@ fn params_bind_group(
 pub const PARAMS_BYTES: u64 = 80;
 
 /// The particles per workgroup of the rungs' billboard air passes
-/// (`shaders/render/billboard_air_*.wgsl`).
+/// (`shaders/render/billboard_air_rung.wgsl`).
 const AIR_WORKGROUP: u32 = 64;
 
 /// The air in front of every particle under a rung without tables, per light (the sun,
 /// and the moon on a moonlit night): a compute pass of the rung's functions
-/// (`shaders/render/billboard_air_closed_form.wgsl`, `billboard_air_single.wgsl`) per
+/// (`shaders/render/billboard_air_rung.wgsl` with the rung's module) per
 /// particle, with the light's camera and the rung's parameters of its atmosphere
 /// (`crate::gpu::cloud_air::RungCloudAir`, written each frame by the rung's passes) in
 /// groups 0 and 1, the particles' world offsets in and their air out in group 2
@@ -190,11 +190,7 @@ impl RungBillboardAir {
             let pipeline = air.pipeline(
                 device,
                 label,
-                ("render::billboard_air_single", "billboard_air_single"),
-                (
-                    "render::billboard_air_closed_form",
-                    "billboard_air_closed_form",
-                ),
+                ("render::billboard_air_rung", "billboard_air_rung"),
                 &layout,
             )?;
             let light = air.groups().map(Clone::clone);

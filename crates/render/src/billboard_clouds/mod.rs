@@ -39,8 +39,8 @@
 //! between the camera and its centre (`atmos::lut::drop_in::aerial_perspective` on the
 //! precomputed rung, WGSL `aerial_perspective`, else the rung's
 //! `SkyQuery::with_max_distance`; on the GPU a compute pass of the rung's own functions
-//! per particle before the draw, `shaders/render/billboard_air_closed_form.wgsl`,
-//! `billboard_air_single.wgsl`, read per instance by `billboard_clouds_rung.wgsl`):
+//! per particle before the draw, `shaders/render/billboard_air_rung.wgsl` with the
+//! rung's module, read per instance by `billboard_clouds_rung.wgsl`):
 //! `colour' = colour · T_air + L_air`
 //! ([`billboard_seen_through_air`]), so the premultiplied splat adds
 //! `α · (colour · T_air + L_air)` over `(1 − α)` of what is behind, the marched cloud's

@@ -4,12 +4,11 @@
 //! `aerial_perspective`, the twin of `atmos::lut::drop_in::aerial_perspective`); a rung
 //! without tables binds a camera whose `sun` is the light's direction and the rung's
 //! parameters of the light's atmosphere ([`RungCloudAir`]:
-//! `shaders/render/cloud_air_closed_form.wgsl`, `cloud_air_single.wgsl`, which call
-//! `render::air_segment_closed_form` / `render::air_segment_single` as the billboards'
-//! air passes do: the formulas of the terrain's aerial-perspective pass of
-//! `super::rungs`), the twin of
-//! the CPU's `air::air_in_front` without tables (the light's segment model
-//! over the segment camera → the cloud's transmittance-weighted depth). Both write the
+//! `shaders/render/cloud_air_rung.wgsl` composed with the rung's module
+//! (`super::rung_kind`), whose `segment_air` the billboards' air pass and the terrain's
+//! aerial-perspective pass of `super::rungs` call too), the twin of the CPU's
+//! `air::air_in_front` without tables (the light's segment model over the segment
+//! camera → the cloud's transmittance-weighted depth). Both write the
 //! same buffer (group 2, `render::cloud_air_io`'s layout), which the composite reads.
 
 use crate::RenderError;
@@ -36,7 +35,10 @@ impl CloudAir<'_> {
             Self::Tables(luts) => air_pipeline(
                 device,
                 label,
-                ("render::volume_air", "volume_air_main"),
+                (
+                    crate::composer().compose_module("render::volume_air")?,
+                    "volume_air_main",
+                ),
                 [&luts.layouts().uniforms, &luts.layouts().tables],
                 air_layout,
                 &[],
@@ -44,8 +46,7 @@ impl CloudAir<'_> {
             Self::Rung(air) => air.pipeline(
                 device,
                 label,
-                ("render::cloud_air_single", "cloud_air_single"),
-                ("render::cloud_air_closed_form", "cloud_air_closed_form"),
+                ("render::cloud_air_rung", "cloud_air_rung"),
                 air_layout,
             ),
         }
@@ -136,26 +137,25 @@ impl RungCloudAir {
     }
 
     /// The pipeline of a pass of this rung's functions for one light with `air_layout`
-    /// (group 2) and this light's groups 0 and 1: `single`'s (module, entry point) for
-    /// single scattering (its constants `super::rungs::air_constants`), `closed_form`'s
-    /// otherwise. The clouds' air ([`CloudAir::pipeline`]) and the billboards' air
-    /// (`crate::billboard_clouds`) are such passes.
+    /// (group 2) and this light's groups 0 and 1: `entry`'s (rung-agnostic module, entry
+    /// point), composed with the rung's module (`super::rung_kind::compose_rung_entry`)
+    /// and its constants (`super::rung_kind::air_constants`). The clouds' air
+    /// ([`CloudAir::pipeline`]) and the billboards' air (`crate::billboard_clouds`) are
+    /// such passes.
     pub(crate) fn pipeline(
         &self,
         device: &wgpu::Device,
         label: &str,
-        single: (&str, &str),
-        closed_form: (&str, &str),
+        (module, entry): (&str, &str),
         air_layout: &wgpu::BindGroupLayout,
     ) -> Result<wgpu::ComputePipeline, RenderError> {
-        let module = match self.rung {
-            Rung::Single => single,
-            _ => closed_form,
-        };
         air_pipeline(
             device,
             label,
-            module,
+            (
+                super::rung_kind::compose_rung_entry(self.rung, module)?,
+                entry,
+            ),
             [&self.camera_layout, &self.parameters_layout],
             air_layout,
             &super::rung_kind::air_constants(self.rung),
@@ -168,19 +168,19 @@ impl RungCloudAir {
     }
 }
 
-/// The compute pipeline of `module`'s (composed module name, entry point) with groups 0
-/// and 1 `layouts` and group 2 `air_layout`, its overrides `constants`.
+/// The compute pipeline of `module`'s (composed WGSL, entry point) with groups 0 and 1
+/// `layouts` and group 2 `air_layout`, its overrides `constants`.
 fn air_pipeline(
     device: &wgpu::Device,
     label: &str,
-    (module_name, entry): (&str, &str),
+    (source, entry): (String, &str),
     layouts: [&wgpu::BindGroupLayout; 2],
     air_layout: &wgpu::BindGroupLayout,
     constants: &[(&str, f64)],
 ) -> Result<wgpu::ComputePipeline, RenderError> {
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(crate::composer().compose_module(module_name)?.into()),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
     });
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(label),

@@ -4,11 +4,10 @@
 //!
 //! The precomputed rung evaluates the segment camera → vertex in the terrain's vertex
 //! stage (`shaders/render/terrain_aerial_vertex.wgsl`, atmos' tables). These rungs
-//! evaluate it with their own functions (atmos' `closed_form_sky`, `single_scattering`:
-//! those `render::air_closed_form` and `render::air_single` evaluate per pixel) in a
-//! compute pass over the vertices of the tiles drawn this frame
-//! (`shaders/render/vertex_air_closed_form.wgsl`, `vertex_air_single.wgsl`, one
-//! invocation per tile vertex, its position from `render::terrain`'s
+//! evaluate it with their own functions (the rung's module bound to `render::rung_sky`,
+//! `super::rung_kind`: its `segment_air`, which `render::rung_air` evaluates per pixel)
+//! in a compute pass over the vertices of the tiles drawn this frame
+//! (`shaders/render/vertex_air_compute.wgsl`, one invocation per tile vertex, its position from `render::terrain`'s
 //! `tile_vertex_world`), one dispatch per light (the sun, and the moon on a moonlit
 //! night: each light's own segment, as the CPU twin adds each light's
 //! `surface × T + L`); the terrain draw's vertex stage reads its vertex's segment
@@ -70,7 +69,6 @@ pub(crate) struct VertexAir {
     compute_layout: wgpu::BindGroupLayout,
     draw_layout: wgpu::BindGroupLayout,
     draw_module: wgpu::ShaderModule,
-    fragment: &'static str,
     grid: wgpu::Buffer,
     grid_vertices: u32,
     tiles: wgpu::Buffer,
@@ -115,15 +113,7 @@ impl VertexAirPlan {
             return Ok(None);
         }
         // The rung's parameters of each light's atmosphere (those of `super::rungs`).
-        let parameters = |atmosphere: &atmos::Atmosphere| -> Result<Vec<u8>, RenderError> {
-            Ok(match scene.rung {
-                Rung::Single => bytemuck::bytes_of(&atmosphere.to_uniforms()?).to_vec(),
-                _ => bytemuck::bytes_of(
-                    &atmos::closed_form_sky::ClosedFormSkyParameters::from_atmosphere(atmosphere)?,
-                )
-                .to_vec(),
-            })
-        };
+        let parameters = |atmosphere| super::rung_kind::rung_parameters(scene.rung, atmosphere);
         let mut light_parameters = vec![parameters(&scene.atmosphere)?];
         if let Some(moon) = &scene.moonlit {
             light_parameters.push(parameters(&moon.atmosphere)?);
@@ -143,28 +133,14 @@ impl VertexAir {
         plan: &VertexAirPlan,
         terrain_layout: &wgpu::BindGroupLayout,
     ) -> Result<Self, RenderError> {
-        let composer = crate::composer();
-        let (compute_name, compute_entry, draw_name, fragment) = match plan.rung {
-            Rung::Single => (
-                "render::vertex_air_single",
-                "vertex_air_single",
-                "render::terrain_single_aerial_vertex",
-                "terrain_single_aerial_fragment",
-            ),
-            _ => (
-                "render::vertex_air_closed_form",
-                "vertex_air_closed_form",
-                "render::terrain_closed_form_aerial_vertex",
-                "terrain_closed_form_aerial_fragment",
-            ),
-        };
+        let compose = |entry| super::rung_kind::compose_rung_entry(plan.rung, entry);
         let compute_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(compute_name),
-            source: wgpu::ShaderSource::Wgsl(composer.compose_module(compute_name)?.into()),
+            label: Some("render::vertex_air_compute"),
+            source: wgpu::ShaderSource::Wgsl(compose("render::vertex_air_compute")?.into()),
         });
         let draw_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(draw_name),
-            source: wgpu::ShaderSource::Wgsl(composer.compose_module(draw_name)?.into()),
+            label: Some("render::terrain_rung_aerial_vertex"),
+            source: wgpu::ShaderSource::Wgsl(compose("render::terrain_rung_aerial_vertex")?.into()),
         });
         let compute = wgpu::ShaderStages::COMPUTE;
         let read = wgpu::BufferBindingType::Storage { read_only: true };
@@ -200,7 +176,7 @@ impl VertexAir {
             label: Some("render terrain vertex air"),
             layout: Some(&pipeline_layout),
             module: &compute_module,
-            entry_point: Some(compute_entry),
+            entry_point: Some("vertex_air_compute"),
             compilation_options: wgpu::PipelineCompilationOptions {
                 constants: &constants,
                 ..Default::default()
@@ -219,7 +195,6 @@ impl VertexAir {
             compute_layout,
             draw_layout,
             draw_module,
-            fragment,
             grid,
             grid_vertices,
             tiles: device.create_buffer(&wgpu::BufferDescriptor {
@@ -304,8 +279,8 @@ impl VertexAir {
         Ok(())
     }
 
-    /// The terrain pipeline's parts: group 0's layout, the shader module (vertex
-    /// `terrain_rung_aerial_vertex`) and the fragment entry point of the rung.
+    /// The terrain pipeline's parts: group 0's layout, the shader module (the rung's
+    /// `render::terrain_rung_aerial_vertex`) and its vertex and fragment entry points.
     pub(crate) fn draw_shader(
         &self,
     ) -> (
@@ -318,7 +293,7 @@ impl VertexAir {
             &self.draw_layout,
             &self.draw_module,
             "terrain_rung_aerial_vertex",
-            self.fragment,
+            "terrain_rung_aerial_fragment",
         )
     }
 

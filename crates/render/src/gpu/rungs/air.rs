@@ -6,7 +6,7 @@ use wgpu::util::DeviceExt as _;
 use super::uniforms::RungAirUniform;
 use crate::RenderError;
 use crate::gpu::layout::{fragment_texture, fragment_uniform};
-use crate::scene::Rung;
+use crate::gpu::rung_kind::{compose_rung_entry, rung_parameters};
 use crate::scene::prepare::PreparedScene;
 
 impl AirPass {
@@ -16,13 +16,11 @@ impl AirPass {
         hdr: wgpu::TextureFormat,
         constants: &[(&'static str, f64)],
     ) -> Result<Self, RenderError> {
-        let (module_name, entry) = match scene.rung {
-            Rung::Single => ("render::air_single", "air_single"),
-            _ => ("render::air_closed_form", "air_closed_form"),
-        };
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(module_name),
-            source: wgpu::ShaderSource::Wgsl(crate::composer().compose_module(module_name)?.into()),
+            label: Some("render::rung_air"),
+            source: wgpu::ShaderSource::Wgsl(
+                compose_rung_entry(scene.rung, "render::rung_air")?.into(),
+            ),
         });
         let compute = wgpu::ShaderStages::COMPUTE;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -80,7 +78,7 @@ impl AirPass {
             label: Some("render terrain air (rung)"),
             layout: Some(&pipeline_layout),
             module: &module,
-            entry_point: Some(entry),
+            entry_point: Some("rung_air"),
             compilation_options: wgpu::PipelineCompilationOptions {
                 constants,
                 ..Default::default()
@@ -89,18 +87,9 @@ impl AirPass {
         });
         // The rung's parameters for the sun's and the moon's atmospheres (the sun's
         // twice without a moon: the shader then reads only the first).
-        let parameters = |atmosphere: &atmos::Atmosphere| -> Result<Vec<u8>, RenderError> {
-            Ok(match scene.rung {
-                Rung::Single => bytemuck::bytes_of(&atmosphere.to_uniforms()?).to_vec(),
-                _ => bytemuck::bytes_of(
-                    &atmos::closed_form_sky::ClosedFormSkyParameters::from_atmosphere(atmosphere)?,
-                )
-                .to_vec(),
-            })
-        };
-        let sun = parameters(&scene.atmosphere)?;
+        let sun = rung_parameters(scene.rung, &scene.atmosphere)?;
         let moon = match &scene.moonlit {
-            Some(moon) => parameters(&moon.atmosphere)?,
+            Some(moon) => rung_parameters(scene.rung, &moon.atmosphere)?,
             None => sun.clone(),
         };
         let buffer = |label: &str, contents: &[u8]| {

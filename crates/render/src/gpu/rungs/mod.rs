@@ -13,27 +13,30 @@
 //!   full-screen triangle (`shaders/render/sky_rung.wgsl`, drawn first, depth writes
 //!   off; the moon's added) adds the sun's disc through the transmittance with
 //!   `render::present`'s `present_radiance`, as the CPU renderer does for these rungs;
-//! * **terrain**: the terrain pass with a fragment stage of the rung
-//!   (`shaders/render/terrain_closed_form.wgsl`, `terrain_single.wgsl`: the same
-//!   `terrain_surface` of `render::terrain`, lit by the rung's transmittance from the
-//!   point to the top of the atmosphere, seen through the rung's segment camera → point)
-//!   and the light and the rung's parameters in bind group 3; the segment is a compute
-//!   pass per pixel after the draws (`shaders/render/air_closed_form.wgsl`,
-//!   `air_single.wgsl`), or per vertex (`[terrain] aerial_perspective = "per-vertex"`) a
-//!   compute pass over the drawn tiles' vertices before them, read by the vertex stage
-//!   (`crate::gpu::vertex_air`);
+//! * **terrain**: the terrain pass with the rungs' fragment stage
+//!   (`shaders/render/terrain_rung.wgsl`: the same `terrain_surface` of
+//!   `render::terrain`, lit by the rung's light at the point, seen through the rung's
+//!   segment camera → point) and the light and the rung's parameters in bind group 3;
+//!   the segment is a compute pass per pixel after the draws
+//!   (`shaders/render/rung_air.wgsl`), or per vertex (`[terrain] aerial_perspective =
+//!   "per-vertex"`) a compute pass over the drawn tiles' vertices before them, read by
+//!   the vertex stage (`crate::gpu::vertex_air`);
 //! * **marched clouds' air** (`[clouds.volume]`, `[clouds.shell]`): the light's
 //!   `crate::gpu::cloud_air::RungCloudAir` (its camera and the rung's parameters of its
 //!   atmosphere), bound by the clouds' air pass where the precomputed rung binds its
 //!   tables (`crate::gpu::cloud_air`).
 //!
-//! Separate pipelines rather than `override` constants: the closed form and single
-//! scattering read different uniforms (`ClosedFormSkyParameters`,
-//! `AtmosphereParameters`) and the precomputed terrain reads the tables in groups 0
-//! and 1; one shader switching on a constant would bind all of them in every scene
-//! (and make a closed-form scene allocate tables it never reads). Each rung's pipeline
-//! binds what its rung reads, and the precomputed pipeline is unchanged. The single
-//! scattering's sample counts are `override` constants.
+//! Each of these passes' shaders is written once for every rung without tables, against
+//! the slot `render::rung_sky` (what a rung provides: its parameters, a segment's air,
+//! the light at a terrain point), and composed with the slot bound to the rung's module
+//! (`crate::gpu::rung_kind`: `render::rung_closed_form`, `render::rung_single`) rather
+//! than switching on an `override` constant: the closed form and single scattering read
+//! different uniforms (`ClosedFormSkyParameters`, `AtmosphereParameters`) and the
+//! precomputed terrain reads the tables in groups 0 and 1; one shader switching on a
+//! constant would bind all of them in every scene (and make a closed-form scene
+//! allocate tables it never reads). Each rung's pipeline binds what its rung reads, and
+//! the precomputed pipeline is unchanged. The single scattering's sample counts are
+//! `override` constants of its module.
 
 mod air;
 mod sky;
@@ -47,7 +50,7 @@ use crate::present::PresentParameters;
 use crate::scene::Rung;
 use crate::scene::prepare::PreparedScene;
 
-use crate::gpu::rung_kind::air_constants;
+use crate::gpu::rung_kind::{air_constants, compose_rung_entry, rung_parameters};
 pub use crate::gpu::rung_kind::{has_rung_passes, no_gpu_passes, volume_needs_tables};
 
 use crate::gpu::layout::{fragment_texture, fragment_uniform};
@@ -105,13 +108,11 @@ impl RungPasses {
             label: Some("render sky (rung)"),
             source: wgpu::ShaderSource::Wgsl(composer.compose_module("render::sky_rung")?.into()),
         });
-        let terrain_source = match rung {
-            Rung::Single => "render::terrain_single",
-            _ => "render::terrain_closed_form",
-        };
         let terrain_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(terrain_source),
-            source: wgpu::ShaderSource::Wgsl(composer.compose_module(terrain_source)?.into()),
+            label: Some("render::terrain_rung"),
+            source: wgpu::ShaderSource::Wgsl(
+                compose_rung_entry(rung, "render::terrain_rung")?.into(),
+            ),
         });
         let sky_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("render sky (rung)"),
@@ -225,13 +226,7 @@ impl RungPasses {
             let terrain_light = uniform("terrain light", std::mem::size_of::<RungLightUniform>());
             // The rung's parameters for this light's atmosphere (fixed per renderer, as
             // the atmosphere is).
-            let parameters: Vec<u8> = match rung {
-                Rung::Single => bytemuck::bytes_of(&atmosphere.to_uniforms()?).to_vec(),
-                _ => bytemuck::bytes_of(
-                    &atmos::closed_form_sky::ClosedFormSkyParameters::from_atmosphere(atmosphere)?,
-                )
-                .to_vec(),
-            };
+            let parameters = rung_parameters(rung, atmosphere)?;
             let parameters = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(&format!("render {label} terrain rung parameters")),
                 contents: &parameters,
@@ -326,12 +321,9 @@ impl RungPasses {
         (&self.terrain_module, &self.terrain_layout)
     }
 
-    /// The terrain's fragment entry point of the rung.
+    /// The terrain's fragment entry point (`render::terrain_rung`'s, every rung's).
     pub fn terrain_fragment(&self) -> &'static str {
-        match self.rung {
-            Rung::Single => "terrain_single_fragment",
-            _ => "terrain_closed_form_fragment",
-        }
+        "terrain_rung_fragment"
     }
 
     /// Writes the frame's cameras and lights and binds the rung's outputs; the terrain's
