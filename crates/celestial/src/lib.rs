@@ -123,28 +123,8 @@ pub mod twins {
 }
 
 /// The crate's WGSL, canonical under `shaders/celestial/`.
-pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
-    skyscape_wgsl::Module {
-        name: "celestial::coordinates",
-        source: include_str!("../shaders/coordinates.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "celestial::moon",
-        source: include_str!("../shaders/moon.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "celestial::draw",
-        source: include_str!("../shaders/draw.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "celestial::clouds",
-        source: include_str!("../shaders/clouds.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "celestial::sky_objects",
-        source: include_str!("../shaders/sky_objects.wgsl"),
-    },
-];
+pub const WGSL_MODULES: &[skyscape_wgsl::Module] =
+    include!(concat!(env!("OUT_DIR"), "/wgsl_modules.rs"));
 
 /// A composer holding the common modules, atmos' modules (the drawing imports its
 /// geometry, phase functions and frame camera) and the celestial ones.
@@ -163,18 +143,6 @@ pub struct ReadmeDoctests;
 
 #[cfg(test)]
 mod tests {
-    /// The embedded list is the folder `build.rs` validates: no file left out, none extra.
-    #[test]
-    fn wgsl_modules_are_the_files_build_rs_validates() {
-        let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
-        let mut listed: Vec<_> = super::WGSL_MODULES.iter().map(|m| m.name).collect();
-        listed.sort_unstable();
-        assert_eq!(
-            listed,
-            skyscape_wgsl::build::module_names("celestial", &folder).unwrap()
-        );
-    }
-
     /// Every `#[repr(C)]` block shared with WGSL has its struct's size and offsets.
     #[test]
     fn uniform_twins_match_their_wgsl_layouts() {

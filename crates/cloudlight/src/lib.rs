@@ -131,100 +131,8 @@ pub mod prelude {
 }
 
 /// The WGSL modules of this crate, importable as `#import cloudlight::<name>`.
-pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
-    skyscape_wgsl::Module {
-        name: "cloudlight::slice_attenuation",
-        source: include_str!("../shaders/slice_attenuation.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::jitter",
-        source: include_str!("../shaders/jitter.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::cone",
-        source: include_str!("../shaders/cone.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::march",
-        source: include_str!("../shaders/march.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::ray_spans",
-        source: include_str!("../shaders/ray_spans.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::density_source",
-        source: include_str!("../shaders/density_source.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::density_grid",
-        source: include_str!("../shaders/density_grid.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::density_shell",
-        source: include_str!("../shaders/density_shell.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::field_march",
-        source: include_str!("../shaders/field_march.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::march_pass",
-        source: include_str!("../shaders/march_pass.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::march_shell_pass",
-        source: include_str!("../shaders/march_shell_pass.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::noise",
-        source: include_str!("../shaders/noise.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::shell",
-        source: include_str!("../shaders/shell.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::noise_bake_pass",
-        source: include_str!("../shaders/noise_bake_pass.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::slice_propagation",
-        source: include_str!("../shaders/slice_propagation.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::slice_propagation_pass",
-        source: include_str!("../shaders/slice_propagation_pass.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::billboard",
-        source: include_str!("../shaders/billboard.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::billboard_quad",
-        source: include_str!("../shaders/billboard_quad.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::billboard_pass",
-        source: include_str!("../shaders/billboard_pass.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::shadow_map",
-        source: include_str!("../shaders/shadow_map.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::shadow_map_pass",
-        source: include_str!("../shaders/shadow_map_pass.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::shell_shadow_map_pass",
-        source: include_str!("../shaders/shell_shadow_map_pass.wgsl"),
-    },
-    skyscape_wgsl::Module {
-        name: "cloudlight::outside_shadow",
-        source: include_str!("../shaders/outside_shadow.wgsl"),
-    },
-];
+pub const WGSL_MODULES: &[skyscape_wgsl::Module] =
+    include!(concat!(env!("OUT_DIR"), "/wgsl_modules.rs"));
 
 /// A composer with the common, `atmos` and `cloudlight` modules.
 pub fn composer() -> skyscape_wgsl::Composer {
@@ -237,18 +145,6 @@ pub fn composer() -> skyscape_wgsl::Composer {
 
 #[cfg(test)]
 mod wgsl_tests {
-    /// The embedded list is the folder `build.rs` validates: no file left out, none extra.
-    #[test]
-    fn wgsl_modules_are_the_files_build_rs_validates() {
-        let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
-        let mut listed: Vec<_> = super::WGSL_MODULES.iter().map(|m| m.name).collect();
-        listed.sort_unstable();
-        assert_eq!(
-            listed,
-            skyscape_wgsl::build::module_names("cloudlight", &folder).unwrap()
-        );
-    }
-
     /// Each pass composed as it runs, its `cloudlight::density_source` bound to its
     /// field's module, validates (on its own each composes with the empty field).
     #[test]

@@ -75,6 +75,14 @@ pub enum BuildError {
         /// The I/O error.
         source: std::io::Error,
     },
+    /// The module list could not be written into `OUT_DIR`.
+    #[error("cannot write the WGSL module list {}: {source}", path.display())]
+    WriteFile {
+        /// The file.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
     /// A file name does not make a module name.
     #[error("WGSL file {} does not name a module (`<identifier>.wgsl`)", path.display())]
     BadFileName {
@@ -270,7 +278,45 @@ pub fn check_crate_shaders(prefix: &str) -> Result<CheckReport, BuildError> {
     for (exported, dir) in &dirs {
         println!("cargo::metadata={METADATA_KEY}{exported}={}", dir.display());
     }
+    let out_dir = std::env::var_os("OUT_DIR")
+        .ok_or(BuildError::MissingEnv { name: "OUT_DIR" })
+        .map(PathBuf::from)?;
+    let list = out_dir.join(MODULE_LIST);
+    std::fs::write(&list, module_list(prefix, &own_dir)?).map_err(|source| {
+        BuildError::WriteFile {
+            path: list.clone(),
+            source,
+        }
+    })?;
     Ok(report)
+}
+
+/// The file [`check_crate_shaders`] writes into `OUT_DIR`: the crate's modules as a Rust
+/// expression of type `&[Module]`, every file of its folder embedded with
+/// `include_str!`, so the list a program composes is the folder the build validated.
+/// A crate defines its list with
+/// `pub const WGSL_MODULES: &[skyscape_wgsl::Module] = include!(concat!(env!("OUT_DIR"), "/wgsl_modules.rs"));`.
+pub const MODULE_LIST: &str = "wgsl_modules.rs";
+
+/// The text of [`MODULE_LIST`] for the folder `dir` of the crate `prefix`.
+pub fn module_list(prefix: &str, dir: &Path) -> Result<String, BuildError> {
+    check_prefix(prefix)?;
+    let mut text = String::from("&[\n");
+    for path in wgsl_files(dir)? {
+        let name = module_name(prefix, &path)?;
+        let path = path.canonicalize().map_err(|source| BuildError::ReadFile {
+            path: path.clone(),
+            source,
+        })?;
+        let path = path
+            .to_str()
+            .ok_or_else(|| BuildError::BadFileName { path: path.clone() })?;
+        text.push_str(&format!(
+            "    skyscape_wgsl::Module {{ name: {name:?}, source: include_str!({path:?}) }},\n"
+        ));
+    }
+    text.push(']');
+    Ok(text)
 }
 
 /// The work of [`check_crate_shaders`] without the environment: validates the modules
@@ -405,6 +451,20 @@ mod tests {
             dependency_dirs([var("DEP_A_WGSL_DIR_LOWER", Path::new("/nonexistent"))].into_iter()),
             Err(BuildError::BadDependencyDir { .. })
         ));
+    }
+
+    #[test]
+    fn the_module_list_embeds_every_file_of_the_folder() {
+        let dir = Scratch::new("list");
+        dir.write("b.wgsl", "fn b() {}\n")
+            .write("a.wgsl", "fn a() {}\n")
+            .write("notes.txt", "not wgsl");
+        let list = module_list("own", &dir.0).unwrap();
+        let a = list.find("\"own::a\"").unwrap();
+        let b = list.find("\"own::b\"").unwrap();
+        assert!(a < b, "{list}");
+        assert_eq!(list.matches("include_str!").count(), 2, "{list}");
+        assert!(!list.contains("notes"), "{list}");
     }
 
     #[test]
