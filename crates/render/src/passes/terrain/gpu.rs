@@ -1,12 +1,13 @@
-//! The terrain pass on the GPU: the tile pipeline (per light: the sun's draw, and at
-//! night the moon's, additive and depth-equal), its uniforms and buffers, the deck's
-//! shadow bake before it and a rung's aerial perspective around it.
+//! The terrain pass on the GPU: one draw of the tiles per light of the frame (the first
+//! writes the depth; each next one adds its light, depth-equal), their uniforms and
+//! buffers, the deck's shadow bake before them and a rung's aerial perspective around
+//! them.
 
 use atmos::gpu::AtmosphereLuts;
 use glam::Vec3;
 use wgpu::util::DeviceExt as _;
 
-use super::lighting::{TerrainLighting, terrain_lighting, terrain_lighting_for};
+use super::lighting::{TerrainLighting, terrain_lighting_for};
 use super::uniforms::TerrainUniform;
 use crate::RenderError;
 use crate::gpu::frame::{DEPTH, GpuPass, GpuShared, HDR};
@@ -39,9 +40,8 @@ pub(crate) fn build(
 /// The terrain's GPU resources.
 #[derive(Debug)]
 pub(crate) struct TerrainPass {
-    pipeline: wgpu::RenderPipeline,
-    uniform: wgpu::Buffer,
-    bind_group: wgpu::BindGroup,
+    /// One draw per light, the sun's first (on a moonlit night the moon's after it).
+    draws: Vec<LightDraw>,
     grid: wgpu::Buffer,
     indices: wgpu::Buffer,
     index_count: u32,
@@ -49,32 +49,28 @@ pub(crate) struct TerrainPass {
     tile_capacity: usize,
     tile_count: u32,
     lod: TerrainLod,
-    cloud_layers: wgpu::Buffer,
     cloud_layer_capacity: usize,
-    /// The marched clouds' shadow map parameters (sun draw) and values
-    /// (`super::cloud_shadow`), and which clouds have room (the volume, the shell).
-    volume_shadow: wgpu::Buffer,
+    /// The marched clouds' shadow map values (`super::cloud_shadow`; every light's
+    /// draw reads them through its own parameters), and which clouds have room (the
+    /// volume, the shell).
     volume_shadow_values: wgpu::Buffer,
     shadow_clouds: [bool; 2],
     /// The shell deck's shadow map baked on the GPU (`super::shell_shadow`).
     shell_shadow: Option<super::shell_shadow::ShellShadowGpu>,
-    /// The terrain lit by the moon (scenes with a moonlit sky): drawn again over the
-    /// sunlit terrain with the moonlit tables, added.
-    moon: Option<MoonTerrain>,
     /// The aerial perspective per vertex of a rung without tables (`super::vertex_air`).
     vertex_air: Option<crate::gpu::vertex_air::VertexAir>,
 }
 
-/// The moonlit terrain draw: the terrain pipeline with additive blending, depth-equal
-/// against the sunlit draw's depth, with the moon's uniform and cloud layers.
+/// One light's draw of the terrain: the pipeline (the first light's writes the depth,
+/// the others add their light where the depth is equal: the same vertices give the same
+/// depths), the light's uniform, its cloud layers (their shadows toward it) and the
+/// marched clouds' shadow map parameters toward it.
 #[derive(Debug)]
-struct MoonTerrain {
+struct LightDraw {
     pipeline: wgpu::RenderPipeline,
     uniform: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     cloud_layers: wgpu::Buffer,
-    /// The clouds' shadow map parameters toward the moon (their values share the sun
-    /// draw's buffer: a scene the moon lights has the sun down, hence no sun map).
     volume_shadow: wgpu::Buffer,
 }
 
@@ -99,7 +95,6 @@ fn new_terrain_pass(
             mapped_at_creation: false,
         })
     };
-    let cloud_layers = layers_buffer("render terrain cloud layers");
     let hf = &terrain.heightfield;
     let texels = hf.width() * hf.height();
     let heights: Vec<f32> = hf.elevations().iter().map(|&e| e as f32).collect();
@@ -150,7 +145,6 @@ fn new_terrain_pass(
             mapped_at_creation: false,
         })
     };
-    let uniform = uniform_buffer("render terrain uniform");
     // The clouds' shadow maps: the largest map's size for each marched cloud of the
     // scene (the map's extent follows the sun), one unused element without one.
     let shadow_texels = super::cloud_shadow::capacity(shadow_clouds);
@@ -167,7 +161,6 @@ fn new_terrain_pass(
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         })
     };
-    let volume_shadow = shadow_uniform("render terrain volume shadow");
     // Compute: the per-vertex aerial perspective of a rung without tables reads the
     // uniform and the heights (`super::vertex_air`).
     let stages = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
@@ -220,7 +213,6 @@ fn new_terrain_pass(
                 ],
             })
         };
-    let bind_group = bind_group_with(&uniform, &cloud_layers, &volume_shadow);
     // `[terrain] aerial_perspective`: render::terrain per pixel, or its per-vertex
     // entry points (render::aerial_vertex).
     let (shader, vertex_entry, fragment_entry) =
@@ -255,9 +247,9 @@ fn new_terrain_pass(
             })
         }
     };
-    // `moon`: the additive, depth-equal draw of the moonlit terrain over the sunlit
-    // one (the same vertices give the same depths: the clip position is invariant).
-    let make_pipeline = |luts: Option<&AtmosphereLuts>, moon: bool| {
+    // `added`: a light's additive, depth-equal draw over the first light's (the same
+    // vertices give the same depths: the clip position is invariant).
+    let make_pipeline = |luts: Option<&AtmosphereLuts>, added: bool| {
         let mut groups = vec![
             luts.map(|l| &l.layouts().uniforms)
                 .or(vertex_air.as_ref().map(|air| air.draw_shader().0)),
@@ -278,15 +270,15 @@ fn new_terrain_pass(
             operation: wgpu::BlendOperation::Add,
         };
         let target = wgpu::ColorTargetState {
-            blend: moon.then_some(wgpu::BlendState {
+            blend: added.then_some(wgpu::BlendState {
                 color: additive,
                 alpha: additive,
             }),
             ..HDR.into()
         };
         device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some(if moon {
-                "render terrain (moonlit)"
+            label: Some(if added {
+                "render terrain (added light)"
             } else {
                 "render terrain"
             }),
@@ -311,9 +303,9 @@ fn new_terrain_pass(
             primitive: wgpu::PrimitiveState::default(),
             depth_stencil: Some(wgpu::DepthStencilState {
                 format: DEPTH,
-                depth_write_enabled: Some(!moon),
+                depth_write_enabled: Some(!added),
                 // Reverse z: near 1, infinitely far 0.
-                depth_compare: Some(if moon {
+                depth_compare: Some(if added {
                     wgpu::CompareFunction::Equal
                 } else {
                     wgpu::CompareFunction::Greater
@@ -332,24 +324,43 @@ fn new_terrain_pass(
             cache: None,
         })
     };
-    let pipeline = make_pipeline(luts, false);
-    // The moon's tables, or (a rung without tables) none.
-    let moon_light = match rung {
-        Some(rung) => rung.has_moon().then_some(None),
-        None => moon_luts.map(Some),
+    // The lights' tables: the sun's and, on a moonlit night, the moon's; a rung without
+    // tables binds its own per light (`RungPasses::bind_terrain`).
+    let light_tables: Vec<Option<&AtmosphereLuts>> = match rung {
+        Some(rung) => (0..if rung.has_moon() { 2 } else { 1 })
+            .map(|_| None)
+            .collect(),
+        None => std::iter::once(luts).chain(moon_luts.map(Some)).collect(),
     };
-    let moon = moon_light.map(|moon_luts| {
-        let uniform = uniform_buffer("render moonlit terrain uniform");
-        let cloud_layers = layers_buffer("render moonlit terrain cloud layers");
-        let volume_shadow = shadow_uniform("render moonlit terrain volume shadow");
-        MoonTerrain {
-            pipeline: make_pipeline(moon_luts, true),
-            bind_group: bind_group_with(&uniform, &cloud_layers, &volume_shadow),
-            uniform,
-            cloud_layers,
-            volume_shadow,
-        }
-    });
+    let draws = light_tables
+        .into_iter()
+        .enumerate()
+        .map(|(index, tables)| {
+            let (uniform, layers, shadow) = if index == 0 {
+                (
+                    "render terrain uniform",
+                    "render terrain cloud layers",
+                    "render terrain volume shadow",
+                )
+            } else {
+                (
+                    "render terrain uniform (added light)",
+                    "render terrain cloud layers (added light)",
+                    "render terrain volume shadow (added light)",
+                )
+            };
+            let uniform = uniform_buffer(uniform);
+            let cloud_layers = layers_buffer(layers);
+            let volume_shadow = shadow_uniform(shadow);
+            LightDraw {
+                pipeline: make_pipeline(tables, index > 0),
+                bind_group: bind_group_with(&uniform, &cloud_layers, &volume_shadow),
+                uniform,
+                cloud_layers,
+                volume_shadow,
+            }
+        })
+        .collect();
     let (grid, indices) = tile_mesh();
     let grid = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("render terrain tile grid"),
@@ -371,9 +382,7 @@ fn new_terrain_pass(
         mapped_at_creation: false,
     });
     Ok(TerrainPass {
-        pipeline,
-        uniform,
-        bind_group,
+        draws,
         grid,
         indices,
         index_count,
@@ -381,9 +390,7 @@ fn new_terrain_pass(
         tile_capacity,
         tile_count: 0,
         lod,
-        cloud_layers,
         cloud_layer_capacity,
-        volume_shadow,
         volume_shadow_values,
         shadow_clouds,
         shell_shadow: if shadow_clouds[1] {
@@ -391,7 +398,6 @@ fn new_terrain_pass(
         } else {
             None
         },
-        moon,
         vertex_air,
     })
 }
@@ -407,7 +413,6 @@ impl GpuPass for TerrainPass {
             return Err(crate::gpu::frame::differs("terrain", true));
         };
         let camera = &scene.camera;
-        let lighting = terrain_lighting(scene, terrain)?;
         let planet = scene.atmosphere.planet_radius;
         let eye = scene.camera_position - glam::DVec3::new(0.0, planet, 0.0);
         let eye32 = eye.as_vec3();
@@ -448,11 +453,9 @@ impl GpuPass for TerrainPass {
             padding1: 0.0,
             padding2: 0.0,
         };
-        let uniform = uniform_for(&lighting, &scene.sun_light());
-        queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
         // The clouds' shadow maps (the CPU renderer reads the same values; the deck's
-        // baked on the GPU by the same formula).
-        let [sun_shadow, moon_shadow] = super::cloud_shadow::write(
+        // baked on the GPU by the same formula), each light's parameters.
+        let shadows = super::cloud_shadow::write(
             &shared.device,
             queue,
             &self.volume_shadow_values,
@@ -460,49 +463,35 @@ impl GpuPass for TerrainPass {
             self.shadow_clouds,
             self.shell_shadow.as_mut(),
         )?;
-        queue.write_buffer(&self.volume_shadow, 0, bytemuck::bytes_of(&sun_shadow));
-        match (&self.moon, scene.moon_light()) {
-            (Some(moon_pass), Some(moon)) => {
-                queue.write_buffer(
-                    &moon_pass.volume_shadow,
-                    0,
-                    bytemuck::bytes_of(&moon_shadow),
-                );
-                let moon_lighting = terrain_lighting_for(scene, terrain, &moon)?;
-                let uniform = uniform_for(&moon_lighting, &moon);
-                queue.write_buffer(&moon_pass.uniform, 0, bytemuck::bytes_of(&uniform));
-                if !moon.cloud_layers.is_empty()
-                    && moon.cloud_layers.len() <= self.cloud_layer_capacity
-                {
-                    queue.write_buffer(
-                        &moon_pass.cloud_layers,
-                        0,
-                        bytemuck::cast_slice(moon.cloud_layers),
-                    );
-                }
-            }
-            (None, None) => {}
-            (built, _) => {
-                return Err(RenderError::InvalidParameter {
-                    field: "moonlit terrain",
-                    value: if built.is_some() { "off" } else { "on" }.into(),
-                    reason: "differs from the scene the renderer was built for",
-                });
-            }
-        }
-        if scene.cloud_layers.len() > self.cloud_layer_capacity {
+        let lights: Vec<Illuminant<'_>> = std::iter::once(scene.sun_light())
+            .chain(scene.moon_light())
+            .collect();
+        if lights.len() != self.draws.len() {
             return Err(RenderError::InvalidParameter {
-                field: "clouds.layers",
-                value: format!("{} layers", scene.cloud_layers.len()),
-                reason: "more than the renderer was built for",
+                field: "moonlit terrain",
+                value: format!("{} lights", lights.len()),
+                reason: "differs from the scene the renderer was built for",
             });
         }
-        if !scene.cloud_layers.is_empty() {
-            queue.write_buffer(
-                &self.cloud_layers,
-                0,
-                bytemuck::cast_slice(&scene.cloud_layers),
-            );
+        for ((draw, light), shadow) in self.draws.iter().zip(&lights).zip(&shadows) {
+            let lighting = terrain_lighting_for(scene, terrain, light)?;
+            let uniform = uniform_for(&lighting, light);
+            queue.write_buffer(&draw.uniform, 0, bytemuck::bytes_of(&uniform));
+            queue.write_buffer(&draw.volume_shadow, 0, bytemuck::bytes_of(shadow));
+            if light.cloud_layers.len() > self.cloud_layer_capacity {
+                return Err(RenderError::InvalidParameter {
+                    field: "clouds.layers",
+                    value: format!("{} layers", light.cloud_layers.len()),
+                    reason: "more than the renderer was built for",
+                });
+            }
+            if !light.cloud_layers.is_empty() {
+                queue.write_buffer(
+                    &draw.cloud_layers,
+                    0,
+                    bytemuck::cast_slice(light.cloud_layers),
+                );
+            }
         }
         let pixels_per_radian = f64::from(camera.height) / (2.0 * f64::from(camera.tan_half_fov_y));
         let camera_map = [eye.x + offset[0], eye.z + offset[1], eye.y];
@@ -545,7 +534,7 @@ impl GpuPass for TerrainPass {
         }
         // Per vertex with a rung without tables: the vertices' segments first.
         if let Some(air) = &self.vertex_air {
-            air.encode(encoder, &self.bind_group, times);
+            air.encode(encoder, &self.draws[0].bind_group, times);
         }
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("render terrain"),
@@ -569,36 +558,25 @@ impl GpuPass for TerrainPass {
             timestamp_writes: times.and_then(|t| t.render_writes("terrain")),
             ..Default::default()
         });
-        pass.set_pipeline(&self.pipeline);
-        if let Some(luts) = &shared.luts {
-            pass.set_bind_group(0, luts.uniform_bind_group(), &[]);
-            pass.set_bind_group(1, luts.table_bind_group(), &[]);
-        }
-        if let Some(rung) = &shared.rung {
-            rung.bind_terrain(&mut pass, false);
-        }
-        if let Some(air) = &self.vertex_air {
-            air.bind(&mut pass, false);
-        }
-        pass.set_bind_group(2, &self.bind_group, &[]);
         pass.set_vertex_buffer(0, self.grid.slice(..));
         pass.set_vertex_buffer(1, self.tiles.slice(..));
         pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
-        pass.draw_indexed(0..self.index_count, 0, 0..self.tile_count);
-        if let (Some(moon), Some(moon_luts)) = (&self.moon, &shared.moon_luts) {
-            pass.set_pipeline(&moon.pipeline);
-            pass.set_bind_group(0, moon_luts.uniform_bind_group(), &[]);
-            pass.set_bind_group(1, moon_luts.table_bind_group(), &[]);
-            pass.set_bind_group(2, &moon.bind_group, &[]);
-            pass.draw_indexed(0..self.index_count, 0, 0..self.tile_count);
-        }
-        if let (Some(moon), Some(rung)) = (&self.moon, &shared.rung) {
-            pass.set_pipeline(&moon.pipeline);
-            rung.bind_terrain(&mut pass, true);
-            if let Some(air) = &self.vertex_air {
-                air.bind(&mut pass, true);
+        // Each light's tables: the sun's, then the moon's (a rung binds its own).
+        let tables = [&shared.luts, &shared.moon_luts];
+        for (index, draw) in self.draws.iter().enumerate() {
+            let added = index > 0;
+            pass.set_pipeline(&draw.pipeline);
+            if let Some(Some(luts)) = tables.get(index) {
+                pass.set_bind_group(0, luts.uniform_bind_group(), &[]);
+                pass.set_bind_group(1, luts.table_bind_group(), &[]);
             }
-            pass.set_bind_group(2, &moon.bind_group, &[]);
+            if let Some(rung) = &shared.rung {
+                rung.bind_terrain(&mut pass, added);
+            }
+            if let Some(air) = &self.vertex_air {
+                air.bind(&mut pass, added);
+            }
+            pass.set_bind_group(2, &draw.bind_group, &[]);
             pass.draw_indexed(0..self.index_count, 0, 0..self.tile_count);
         }
         drop(pass);
