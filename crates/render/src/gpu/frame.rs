@@ -45,10 +45,9 @@ pub(crate) struct GpuShared {
     pub(crate) hdr: wgpu::Texture,
     pub(crate) hdr_view: wgpu::TextureView,
     pub(crate) depth_view: wgpu::TextureView,
-    /// The precomputed rung's tables lit by the sun (`None` for a rung without tables).
-    pub(crate) luts: Option<AtmosphereLuts>,
-    /// The tables lit by the moon, on a moonlit night of the precomputed rung.
-    pub(crate) moon_luts: Option<AtmosphereLuts>,
+    /// The precomputed rung's tables per light of the frame, the sun's first (on a
+    /// moonlit night the moon's after it); empty for a rung without tables.
+    pub(crate) tables: Vec<AtmosphereLuts>,
     /// The sky, terrain and air passes of a rung without tables (both lights).
     pub(crate) rung: Option<super::rungs::RungPasses>,
     /// The scene's rung.
@@ -56,15 +55,20 @@ pub(crate) struct GpuShared {
 }
 
 impl GpuShared {
+    /// The sun's tables (the precomputed rung).
+    pub(crate) fn sun_tables(&self) -> Option<&AtmosphereLuts> {
+        self.tables.first()
+    }
+
     /// A marched cloud's air for the sun and, on a moonlit night, the moon: the
     /// precomputed rung's tables or the passes of a rung without tables
     /// (`super::cloud_air`); an error naming the rung when there are neither (the
     /// reference rungs).
     pub(crate) fn cloud_airs(&self) -> Result<(CloudAir<'_>, Option<CloudAir<'_>>), RenderError> {
-        match (&self.luts, &self.rung) {
+        match (self.tables.first(), &self.rung) {
             (Some(luts), _) => Ok((
                 CloudAir::Tables(luts),
-                self.moon_luts.as_ref().map(CloudAir::Tables),
+                self.tables.get(1).map(CloudAir::Tables),
             )),
             (None, Some(rung)) => {
                 let sun = rung

@@ -215,15 +215,16 @@ fn shared_resources(
             &Default::default(),
         )?),
     };
-    // The moonlit sky: a second table set lit by the moon.
-    let moon_luts = match scene.moonlit.as_ref().filter(|_| luts.is_some()) {
-        Some(moon) => Some(AtmosphereLuts::new(
+    // Each light's tables: the sun's, and on a moonlit night a second set lit by the
+    // moon.
+    let mut tables: Vec<AtmosphereLuts> = luts.into_iter().collect();
+    if let (false, Some(moon)) = (tables.is_empty(), &scene.moonlit) {
+        tables.push(AtmosphereLuts::new(
             device,
             &moon.atmosphere,
             &Default::default(),
-        )?),
-        None => None,
-    };
+        )?);
+    }
     let target = |format, usage| {
         device.create_texture(&wgpu::TextureDescriptor {
             label: Some("render scene target"),
@@ -261,8 +262,7 @@ fn shared_resources(
         hdr_view: hdr.create_view(&Default::default()),
         depth_view: depth.create_view(&Default::default()),
         hdr,
-        luts,
-        moon_luts,
+        tables,
         rung,
         rung_kind: scene.rung,
     })

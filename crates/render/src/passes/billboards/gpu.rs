@@ -60,7 +60,7 @@ impl GpuPass for Billboards {
             encoder,
             &shared.hdr_view,
             &shared.depth_view,
-            shared.luts.as_ref(),
+            shared.sun_tables(),
             times.and_then(|t| t.render_writes("billboard clouds")),
         )
     }

@@ -10,13 +10,10 @@ use crate::gpu::frame::{DEPTH, GpuPass, GpuShared, HDR};
 use crate::gpu::timer::PassTimes;
 use crate::scene::prepare::PreparedScene;
 
-/// atmos' sky pass per light of the precomputed rung (a rung without tables draws its
-/// own: `crate::gpu::rungs`).
+/// atmos' sky pass per light of the precomputed rung, the sun's first, each next one
+/// added (a rung without tables draws its own: `crate::gpu::rungs`).
 #[derive(Debug)]
-struct SkyDraws {
-    sun: Option<SkyPass>,
-    moon: Option<SkyPass>,
-}
+struct SkyDraws(Vec<SkyPass>);
 
 /// Builds the sky pass: atmos' sky pass over each light's tables.
 pub(crate) fn build(
@@ -39,21 +36,17 @@ pub(crate) fn build(
         dst_factor: wgpu::BlendFactor::One,
         operation: wgpu::BlendOperation::Add,
     };
-    let sun = match &shared.luts {
-        Some(luts) => Some(sky_pass(luts, None)?),
-        None => None,
+    let added = wgpu::BlendState {
+        color: additive,
+        alpha: additive,
     };
-    let moon = match &shared.moon_luts {
-        Some(luts) => Some(sky_pass(
-            luts,
-            Some(wgpu::BlendState {
-                color: additive,
-                alpha: additive,
-            }),
-        )?),
-        None => None,
-    };
-    Ok(Box::new(SkyDraws { sun, moon }))
+    let draws = shared
+        .tables
+        .iter()
+        .enumerate()
+        .map(|(index, luts)| sky_pass(luts, (index > 0).then_some(added)))
+        .collect::<Result<_, _>>()?;
+    Ok(Box::new(SkyDraws(draws)))
 }
 
 impl GpuPass for SkyDraws {
@@ -67,21 +60,13 @@ impl GpuPass for SkyDraws {
         // sky's ~1e-7 (the sun's irradiance as unit) would sink into f16's subnormals
         // (below 6.1e-5) and flush; exposed, the image's values are near 1.
         let radiance_scale = scene.present.exposure;
-        if let (Some(pass), Some(moon)) = (&mut self.moon, &scene.moonlit) {
+        // The sun's disc unless celestial draws it; no disc for the moon (celestial's).
+        let lights = std::iter::once((&scene.atmosphere, scene.sky_objects.is_none()))
+            .chain(scene.moonlit.iter().map(|moon| (&moon.atmosphere, false)));
+        for (pass, (atmosphere, disc)) in self.0.iter_mut().zip(lights) {
             pass.prepare(
                 queue,
-                &SkyPassParameters::new(&moon.atmosphere, false, radiance_scale, 0.0)?,
-            );
-        }
-        if let Some(sky) = &mut self.sun {
-            sky.prepare(
-                queue,
-                &SkyPassParameters::new(
-                    &scene.atmosphere,
-                    scene.sky_objects.is_none(),
-                    radiance_scale,
-                    0.0,
-                )?,
+                &SkyPassParameters::new(atmosphere, disc, radiance_scale, 0.0)?,
             );
         }
         Ok(())
@@ -115,13 +100,11 @@ impl GpuPass for SkyDraws {
             timestamp_writes: times.and_then(|t| t.render_writes("sky")),
             ..Default::default()
         });
-        match (&self.sun, &shared.luts, &shared.rung) {
-            (Some(sky), Some(luts), _) => sky.draw(&mut pass, luts)?,
-            (_, _, Some(rung)) => rung.draw_sky(&mut pass),
-            _ => {}
+        for (sky, luts) in self.0.iter().zip(&shared.tables) {
+            sky.draw(&mut pass, luts)?;
         }
-        if let (Some(moon_sky), Some(luts)) = (&self.moon, &shared.moon_luts) {
-            moon_sky.draw(&mut pass, luts)?;
+        if let Some(rung) = &shared.rung {
+            rung.draw_sky(&mut pass);
         }
         Ok(())
     }

@@ -6,6 +6,9 @@ use crate::gpu::frame::{GpuPass, GpuShared};
 use crate::gpu::timer::PassTimes;
 use crate::scene::prepare::PreparedScene;
 
+/// Each light's per-frame bake as a step of the plan: the sun's, then the moon's.
+const FRAME_BAKES: [&str; 2] = ["atmosphere LUT bakes", "moonlit sky LUT bakes"];
+
 /// Records the lights' table bakes or sky evaluations.
 #[derive(Debug)]
 struct TablesPass {
@@ -32,20 +35,19 @@ impl GpuPass for TablesPass {
         scene: &PreparedScene,
     ) -> Result<(), RenderError> {
         let camera = &scene.camera;
-        match (&mut shared.moon_luts, &scene.moonlit) {
-            (Some(luts), Some(moon)) => luts.prepare(queue, &moon.camera(camera)),
-            (None, None) => {}
-            // A rung without tables draws its moonlit sky itself (prepared below).
-            (None, Some(_)) if shared.rung.is_some() => {}
-            (built, _) => {
-                return Err(RenderError::InvalidParameter {
-                    field: "moonlit sky",
-                    value: if built.is_some() { "off" } else { "on" }.into(),
-                    reason: "differs from the scene the renderer was built for",
-                });
-            }
+        // Each light's camera: the scene's (its `sun` the sun), then the moon's.
+        let cameras: Vec<_> = std::iter::once(*camera)
+            .chain(scene.moonlit.iter().map(|moon| moon.camera(camera)))
+            .collect();
+        // A rung without tables prepares its own per light (below).
+        if !shared.tables.is_empty() && shared.tables.len() != cameras.len() {
+            return Err(RenderError::InvalidParameter {
+                field: "moonlit sky",
+                value: format!("{} lights", cameras.len()),
+                reason: "differs from the scene the renderer was built for",
+            });
         }
-        if let Some(luts) = &mut shared.luts {
+        for (luts, camera) in shared.tables.iter().zip(&cameras) {
             luts.prepare(queue, camera);
         }
         let GpuShared {
@@ -69,22 +71,13 @@ impl GpuPass for TablesPass {
     ) -> Result<(), RenderError> {
         // The static bakes once (untimed: per atmosphere, not per frame).
         if self.static_luts_pending {
-            for luts in [&shared.luts, &shared.moon_luts].into_iter().flatten() {
+            for luts in &shared.tables {
                 luts.encode_static_luts(encoder, None);
             }
             self.static_luts_pending = false;
         }
-        if let Some(luts) = &shared.luts {
-            luts.encode_frame_luts(
-                encoder,
-                times.and_then(|t| t.compute_writes("atmosphere LUT bakes")),
-            );
-        }
-        if let Some(luts) = &shared.moon_luts {
-            luts.encode_frame_luts(
-                encoder,
-                times.and_then(|t| t.compute_writes("moonlit sky LUT bakes")),
-            );
+        for (luts, step) in shared.tables.iter().zip(FRAME_BAKES) {
+            luts.encode_frame_luts(encoder, times.and_then(|t| t.compute_writes(step)));
         }
         if let Some(rung) = &shared.rung {
             rung.encode_sky_evaluation(encoder, times)?;

@@ -25,8 +25,7 @@ pub(crate) fn build(
     let terrain = scene.terrain.as_ref().ok_or(RenderError::NotPrepared)?;
     Ok(Box::new(new_terrain_pass(
         &shared.device,
-        shared.luts.as_ref(),
-        shared.moon_luts.as_ref(),
+        &shared.tables,
         shared.rung.as_ref(),
         terrain,
         scene.cloud_layers.len(),
@@ -76,8 +75,8 @@ struct LightDraw {
 
 fn new_terrain_pass(
     device: &wgpu::Device,
-    luts: Option<&AtmosphereLuts>,
-    moon_luts: Option<&AtmosphereLuts>,
+    tables: &[AtmosphereLuts],
+
     rung: Option<&crate::gpu::rungs::RungPasses>,
     terrain: &PreparedTerrain,
     cloud_layer_capacity: usize,
@@ -330,7 +329,7 @@ fn new_terrain_pass(
         Some(rung) => (0..if rung.has_moon() { 2 } else { 1 })
             .map(|_| None)
             .collect(),
-        None => std::iter::once(luts).chain(moon_luts.map(Some)).collect(),
+        None => tables.iter().map(Some).collect(),
     };
     let draws = light_tables
         .into_iter()
@@ -562,11 +561,10 @@ impl GpuPass for TerrainPass {
         pass.set_vertex_buffer(1, self.tiles.slice(..));
         pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
         // Each light's tables: the sun's, then the moon's (a rung binds its own).
-        let tables = [&shared.luts, &shared.moon_luts];
         for (index, draw) in self.draws.iter().enumerate() {
             let added = index > 0;
             pass.set_pipeline(&draw.pipeline);
-            if let Some(Some(luts)) = tables.get(index) {
+            if let Some(luts) = shared.tables.get(index) {
                 pass.set_bind_group(0, luts.uniform_bind_group(), &[]);
                 pass.set_bind_group(1, luts.table_bind_group(), &[]);
             }
