@@ -44,23 +44,8 @@ pub(super) fn shadow_pipeline<S: GpuDensitySource + ?Sized>(
         entry(1, output),
     ];
     entries.extend(source_layout_entries::<S>());
-    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some(label),
-        entries: &entries,
-    });
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(label),
-        bind_group_layouts: &[Some(&layout)],
-        immediate_size: 0,
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some(entry_point),
-        layout: Some(&pipeline_layout),
-        module: &module,
-        entry_point: Some(entry_point),
-        compilation_options: wgpu::PipelineCompilationOptions::default(),
-        cache: None,
-    });
+    let (pipeline, layout) =
+        super::one_group_pipeline(device, label, &entries, &module, entry_point);
     Ok((pipeline, layout))
 }
 

@@ -125,6 +125,35 @@ pub struct SlicePropagation {
     prepared: Option<Prepared>,
 }
 
+/// A compute pipeline whose one bind group has `entries`: the group's layout and
+/// `entry_point` of `module`.
+fn one_group_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    entries: &[wgpu::BindGroupLayoutEntry],
+    module: &wgpu::ShaderModule,
+    entry_point: &str,
+) -> (wgpu::ComputePipeline, wgpu::BindGroupLayout) {
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(label),
+        entries,
+    });
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &[Some(&layout)],
+        immediate_size: 0,
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(entry_point),
+        layout: Some(&pipeline_layout),
+        module,
+        entry_point: Some(entry_point),
+        compilation_options: wgpu::PipelineCompilationOptions::default(),
+        cache: None,
+    });
+    (pipeline, layout)
+}
+
 fn entry(binding: u32, ty: wgpu::BindingType) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
@@ -181,9 +210,10 @@ impl SlicePropagation {
             label: Some("cloudlight::slice_propagation_pass"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
         });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("cloudlight slices"),
-            entries: &[
+        let (pipeline, layout) = one_group_pipeline(
+            device,
+            "cloudlight slices",
+            &[
                 entry(0, uniform(false, SWEEP_BYTES)),
                 entry(1, uniform(true, STEP_BYTES)),
                 entry(2, storage(true)),
@@ -191,20 +221,9 @@ impl SlicePropagation {
                 entry(4, storage(false)),
                 entry(5, storage(false)),
             ],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("cloudlight slices"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("cloudlight::propagate_slice"),
-            layout: Some(&pipeline_layout),
-            module: &module,
-            entry_point: Some("propagate_slice"),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
-            cache: None,
-        });
+            &module,
+            "propagate_slice",
+        );
         Ok(Self {
             pipeline,
             layout,
