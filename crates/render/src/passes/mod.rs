@@ -145,12 +145,7 @@ pub fn planned_passes(scene: &PreparedScene) -> Vec<(&'static str, Result<String
 /// The sky model's name for plan text: "the closed form", "single scattering", or
 /// `None` for a rung drawn through atmos' tables.
 pub(crate) fn rung_model(scene: &PreparedScene) -> Option<&'static str> {
-    use crate::scene::Rung;
-    match scene.rung {
-        Rung::ClosedForm | Rung::ClosedFormVertex => Some("the closed form"),
-        Rung::Single => Some("single scattering"),
-        _ => None,
-    }
+    scene.rung.gpu_model()
 }
 
 /// The moon lights the scene (a moonlit sky: the sun down, the moon up).

@@ -487,6 +487,12 @@ pub enum Rung {
     ReferenceSpectral,
 }
 
+/// The dome of the per-vertex closed-form rung (the binary's `--rung closed-form-vertex`).
+pub const DOME: atmos::dome::DomeResolution = atmos::dome::DomeResolution {
+    rings: 16,
+    segments: 32,
+};
+
 impl Rung {
     /// Every rung.
     pub const ALL: [Rung; 6] = [
@@ -512,6 +518,43 @@ impl Rung {
             Self::Precomputed => "precomputed",
             Self::Reference => "reference",
             Self::ReferenceSpectral => "reference-spectral",
+        }
+    }
+
+    /// The sky model's name in `skyscape explain`'s plan ("the closed form"), for a
+    /// rung the GPU draws with passes of its own; `None` for a rung drawn through atmos'
+    /// tables (or with no GPU passes).
+    pub fn gpu_model(self) -> Option<&'static str> {
+        match self {
+            Self::ClosedForm | Self::ClosedFormVertex => Some("the closed form"),
+            Self::Single => Some("single scattering"),
+            _ => None,
+        }
+    }
+
+    /// What the GPU's evaluation of the rung's sky does (a step of the frame's plan),
+    /// for a rung with passes of its own.
+    pub fn gpu_sky_evaluation(self) -> Option<String> {
+        match self {
+            Self::ClosedForm => Some(
+                "atmos' ClosedFormRenderer, Hoffman and Preetham's closed form per pixel \
+                 (compute)"
+                    .to_owned(),
+            ),
+            Self::ClosedFormVertex => Some(format!(
+                "atmos' ClosedFormRenderer per vertex of a {}×{} dome, interpolated per pixel \
+                 (compute, two dispatches)",
+                DOME.rings, DOME.segments
+            )),
+            Self::Single => {
+                let s = atmos::single_scattering::SingleScatteringSettings::default();
+                Some(format!(
+                    "atmos' SingleScatteringRenderer per pixel, {} view × {} light samples \
+                     (compute)",
+                    s.view_samples, s.light_samples
+                ))
+            }
+            _ => None,
         }
     }
 }

@@ -17,11 +17,7 @@ pub const MAX_OUTPUT_SIDE: u32 = 16_384;
 /// 1.3 GiB at this size), checked before anything is allocated.
 pub const MAX_OUTPUT_PIXELS: u64 = 1 << 26;
 
-/// The dome of the per-vertex closed-form rung (the binary's `--rung closed-form-vertex`).
-pub const DOME: atmos::dome::DomeResolution = atmos::dome::DomeResolution {
-    rings: 16,
-    segments: 32,
-};
+pub use super::DOME;
 
 /// A sky model the renderer can share across threads.
 pub type SharedSkyModel = Box<dyn atmos::SkyModel + Send + Sync>;

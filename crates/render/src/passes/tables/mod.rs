@@ -49,26 +49,9 @@ fn plan(scene: &PreparedScene) -> Vec<PlanLine> {
         ];
     };
     let rung = scene.rung;
-    let evaluation = match rung {
-        crate::scene::Rung::ClosedForm => {
-            "atmos' ClosedFormRenderer, Hoffman and Preetham's closed form per pixel (compute)"
-                .to_owned()
-        }
-        crate::scene::Rung::ClosedFormVertex => format!(
-            "atmos' ClosedFormRenderer per vertex of a {}×{} dome, interpolated per pixel \
-             (compute, two dispatches)",
-            crate::scene::prepare::DOME.rings,
-            crate::scene::prepare::DOME.segments
-        ),
-        _ => {
-            let s = atmos::single_scattering::SingleScatteringSettings::default();
-            format!(
-                "atmos' SingleScatteringRenderer per pixel, {} view × {} light samples \
-                 (compute)",
-                s.view_samples, s.light_samples
-            )
-        }
-    };
+    let evaluation = rung
+        .gpu_sky_evaluation()
+        .unwrap_or_else(|| format!("{model} per pixel"));
     vec![
         PlanLine::timed(
             "atmosphere LUT bakes",
