@@ -5,16 +5,11 @@ pub(crate) fn storage_read(
     binding: u32,
     visibility: wgpu::ShaderStages,
 ) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
+    buffer_entry(
         binding,
         visibility,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: true },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
+        wgpu::BufferBindingType::Storage { read_only: true },
+    )
 }
 
 /// A uniform buffer at `binding`.
@@ -22,18 +17,10 @@ pub(crate) fn uniform_entry(
     binding: u32,
     visibility: wgpu::ShaderStages,
 ) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
+    buffer_entry(binding, visibility, wgpu::BufferBindingType::Uniform)
 }
 
+/// A buffer of binding type `ty` at `binding`, any size.
 pub(crate) fn buffer_entry(
     binding: u32,
     visibility: wgpu::ShaderStages,
@@ -89,17 +76,9 @@ pub(crate) fn compute_pipeline(
     })
 }
 
+/// A uniform buffer at `binding` of the fragment stage.
 pub(crate) fn fragment_uniform(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
+    uniform_entry(binding, wgpu::ShaderStages::FRAGMENT)
 }
 
 pub(crate) fn fragment_texture(binding: u32) -> wgpu::BindGroupLayoutEntry {
