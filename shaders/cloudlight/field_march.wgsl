@@ -1,6 +1,6 @@
 // The marches over a density field, written once against cloudlight::density_source
 // (the GPU's DensityField; a pass binds it to cloudlight::density_grid or
-// cloudlight::density_shell): seed 003's view ray-march after Schneider's Nubis talks
+// cloudlight::density_shell): Schneider's (GPU Pro 7) view ray-march after Schneider's Nubis talks
 // (GPU Pro 7) — per view sample a light march toward the sun (the 6 + 1 cone or the full
 // march), the multiple-scattering octaves, the powder term and an ambient term, with
 // Hillaire's (2016) energy-conserving step — and the ground's shadow-map march. Twins:

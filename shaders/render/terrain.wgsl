@@ -1,7 +1,7 @@
 // The GPU terrain of a scene: the quadtree's tiles (render::terrain_mesh) drawn
 // instanced, each vertex reading the heightfield; each fragment shaded as the CPU
 // reference renderer shades a ray's hit (render::cpu_renderer): bilinear normal and
-// horizon angles, seed 000's terrain term with a soft self-shadow, the sun through the
+// horizon angles, Hoffman and Preetham's terrain term with a soft self-shadow, the sun through the
 // precomputed rung's transmittance, the sky's irradiance, then the aerial perspective
 // between the camera and the point (atmos::aerial_perspective).
 //
@@ -31,7 +31,7 @@ struct TerrainUniform {
     sky_irradiance: vec3<f32>,
     sun_elevation: f32,
     sun_azimuth: f32,
-    // 0: seed 000's east/west pair (horizons holds east then west); N: N azimuth layers.
+    // 0: Hoffman and Preetham's east/west pair (horizons holds east then west); N: N azimuth layers.
     horizon_layers: u32,
     // The viewer's distance from the planet's centre (m): celestial's cloud frame.
     viewer_radius: f32,

@@ -25,7 +25,7 @@
 //!   aureole, the moon's lit sphere, stars and planets as sprites fading in by contrast
 //!   against the sky, all through `atmos`' transmittance; [`light`]: the moon as a light
 //!   source and the photometric scale of atmos' unit;
-//! * seed 004's SGSky: the [`Sky`] facade, [`dome`] (the 12-sided dome), [`clouds`]
+//! * SimGear's SGSky SGSky: the [`Sky`] facade, [`dome`] (the 12-sided dome), [`clouds`]
 //!   (cloud layers) and [`visibility`] (Koschmieder and exp² fog).
 //!
 //! Bad input is a [`CelestialError`] naming the field and the value. [`prelude`] holds

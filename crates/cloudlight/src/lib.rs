@@ -12,22 +12,22 @@
 //!   tracer (delta tracking, phase sampling, next-event estimation, standard errors:
 //!   [`reference::path_tracer`]), all validated on closed forms
 //!   (`tests/reference_closed_forms.rs`). Everything else is measured against it.
-//! * [`propagate`](mod@propagate): seed 002's slice propagation, light at every cell in one
+//! * [`propagate`](mod@propagate): Dobashi et al. 2000's slice propagation, light at every cell in one
 //!   sweep of slices toward the sun — physical mode (Beer–Lambert over the true spacing,
 //!   the optical depth resampled by a clamped Catmull–Rom or bilinearly) and faithful mode
-//!   (seed 002's `1 − (1 − r)·ρ̄`, 5-tap smoothing, whole-texel shifts). Written once over
+//!   (Dobashi et al. 2000's `1 − (1 − r)·ρ̄`, 5-tap smoothing, whole-texel shifts). Written once over
 //!   the float type: `propagate::<f64>` is the reference, `propagate::<f32>` the twin of the
 //!   WGSL pass [`gpu::SlicePropagation`] (feature `gpu`, on by default; bring your own
 //!   device).
-//! * [`cone`]: seed 003's light samples toward the sun (6 cone + 1 far, raw or as a
+//! * [`cone`]: Schneider's (GPU Pro 7) light samples toward the sun (6 cone + 1 far, raw or as a
 //!   partitioned quadrature of the path), the full light march, Beer–Lambert, the powder
 //!   term, dual-lobe Henyey–Greenstein on `atmos`' lobe. The per-sample functions have
 //!   WGSL twins (`shaders/cloudlight/cone.wgsl`); no GPU pass samples a volume with them
 //!   yet.
-//! * [`billboard`]: seed 002's billboards, the volume's dense cells as soft splats lit by
+//! * [`billboard`]: Dobashi et al. 2000's billboards, the volume's dense cells as soft splats lit by
 //!   the propagation, sorted back to front; a CPU rasteriser twin of the GPU pass
 //!   [`gpu::billboard::BillboardPass`].
-//! * [`shadow_map`](mod@shadow_map): the ground's cloud shadow map (seed 000's
+//! * [`shadow_map`](mod@shadow_map): the ground's cloud shadow map (Hoffman and Preetham's
 //!   `clouds_shadow`), the sun's transmittance through any [`DensityField`] from every
 //!   texel of a ground grid, at any sun elevation: the march written once over the float
 //!   type (f32: the twin of the GPU pass [`gpu::ShadowMapPass`], an R32Float texture) and
@@ -36,14 +36,14 @@
 //!   (its density evaluated per sample), twin of the GPU pass
 //!   [`gpu::ShellShadowMapPass`] (a storage buffer), equal bit for bit to the generic
 //!   march on the shell.
-//! * [`shell`](mod@shell) and [`noise`]: seed 003's procedural cloud shell about the
+//! * [`shell`](mod@shell) and [`noise`]: Schneider's (GPU Pro 7) procedural cloud shell about the
 //!   planet ([`CloudShell`], a [`DensityField`]): tileable Perlin, Worley and
 //!   Perlin–Worley noise, a procedural or user weather map, height profiles per cloud
 //!   type, Schneider's coverage remap and detail erosion, the ray's spans from `atmos`'
 //!   ray–sphere roots, the horizon fade; WGSL twins (`noise.wgsl`, `shell.wgsl`), the GPU
 //!   bake of the noise into 128³ and 32³ textures ([`gpu::NoiseBake`]) and the density
 //!   over the baked textures ([`shell::BakedShell`]).
-//! * [`march`](mod@march): seed 003's view ray-march through any [`DensityField`] (a
+//! * [`march`](mod@march): Schneider's (GPU Pro 7) view ray-march through any [`DensityField`] (a
 //!   volume or the shell), written once over the float type: jittered steps (Bayer,
 //!   interleaved gradient noise), the 6 + 1 cone or a full light march at every sample,
 //!   dual-lobe Henyey–Greenstein octaves, powder (optional, not physical), ambient light,
@@ -53,8 +53,8 @@
 //! * [`union::UnionField`]: two density fields (a volume and the shell, each in its own
 //!   frame and σ_t) as one, so one march interleaves them and lights each through both;
 //!   `render`'s `cloud_overlap` test measures its two-cloud composite against it.
-//! * [`slice::slice_attenuation`] (seed 002's per-texel attenuation) and
-//!   [`jitter::bayer_jitter_4x4`] (seed 003's ordered march jitter).
+//! * [`slice::slice_attenuation`] (Dobashi et al. 2000's per-texel attenuation) and
+//!   [`jitter::bayer_jitter_4x4`] (Schneider's (GPU Pro 7) ordered march jitter).
 //!
 //! Every WGSL function with a Rust twin is a case of `cargo xtask parity`; the WGSL is
 //! embedded as [`WGSL_MODULES`] (`#import cloudlight::<name>`) and validated with naga at

@@ -1,4 +1,4 @@
-//! The ground's cloud shadow map (seed 000's `clouds_shadow` term): the transmittance of
+//! The ground's cloud shadow map (Hoffman and Preetham's `clouds_shadow` term): the transmittance of
 //! the sunlight through a cloud, toward the sun, from every texel centre of a 2-D grid on
 //! flat ground. `render` multiplies terrain shading by it.
 //!

@@ -4,7 +4,7 @@
 use cloudlight::CloudVolume;
 use cloudlight::shadow_map::OutsideShadowMap;
 
-/// The volume's shadow on the terrain: `cloudlight`'s ground shadow map (seed 000's
+/// The volume's shadow on the terrain: `cloudlight`'s ground shadow map (Hoffman and Preetham's
 /// `cloud_shadow` term; `shadow_map::<f32>`, the twin of `cloudlight::gpu::ShadowMapPass`)
 /// on the plane of the grid's base, over the part of it whose sun rays can cross the
 /// grid (the footprint swept away from the sun by the grid's height). A terrain point is

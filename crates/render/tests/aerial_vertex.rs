@@ -1,4 +1,4 @@
-//! `[terrain] aerial_perspective = "per-vertex"` (seed 000's aerial perspective at the
+//! `[terrain] aerial_perspective = "per-vertex"` (Hoffman and Preetham's aerial perspective at the
 //! mesh's vertices, interpolated) against the per-pixel default: the scene key, the GPU
 //! image against its CPU twin (`render::aerial_vertex::VertexAerial`), and the trade
 //! (error and cost) measured by an ignored test:

@@ -1,4 +1,4 @@
-//! `[clouds.volume] draw = "billboards"` (seed 002's path: the automaton lit by slices and
+//! `[clouds.volume] draw = "billboards"` (Dobashi et al. 2000's path: the automaton lit by slices and
 //! drawn as billboards): the keys' errors, only what the scene needs, the golden
 //! properties on the CPU (the sunlit side brighter than the far side; terrain nearer than
 //! the cloud hides it), and the GPU image against the CPU's on the shipped `billboards`

@@ -1,4 +1,4 @@
-//! `[clouds.shell]`: seed 003's ray-marched cloud shell in a scene. The scene keys'
+//! `[clouds.shell]`: Schneider's (GPU Pro 7) ray-marched cloud shell in a scene. The scene keys'
 //! errors (cloudlight's validation, named by key and line), nothing planned without
 //! the section, the shipped `stratocumulus` scene on the CPU (hills in front of the
 //! deck hide it, the deck in front of hills covers them, every value finite), an

@@ -284,7 +284,7 @@ fn animation_grows_the_cloud_between_frames() {
     assert_eq!(e.field(), Some("clouds.volume.steps"), "{e}");
 }
 
-/// The cloud shades the terrain under it (cloudlight's shadow map, seed 000's
+/// The cloud shades the terrain under it (cloudlight's shadow map, Hoffman and Preetham's
 /// cloud_shadow term): with the map, no terrain pixel gets brighter and some are
 /// clearly darker; without terrain, no map is computed.
 #[test]

@@ -1,6 +1,6 @@
 //! GPU passes (feature `gpu`): bring your own device.
 //!
-//! [`SlicePropagation`] runs seed 002's slice propagation
+//! [`SlicePropagation`] runs Dobashi et al. 2000's slice propagation
 //! (`shaders/cloudlight/slice_propagation_pass.wgsl`): [`SlicePropagation::new`] builds
 //! the pipeline; [`SlicePropagation::prepare`] uploads a volume and a
 //! [`SlicePlan`] and creates the buffers and bind groups;

@@ -1,9 +1,9 @@
-//! The terrain's aerial perspective per vertex (seed 000) or per pixel, and the CPU twin
+//! The terrain's aerial perspective per vertex (Hoffman and Preetham 2002) or per pixel, and the CPU twin
 //! of the per-vertex variant.
 //!
 //! `[terrain] aerial_perspective = "per-pixel"` (the default) evaluates the segment
 //! camera → point (transmittance and in-scatter, atmos' `aerial_perspective`) for every
-//! terrain fragment at its position. `"per-vertex"` evaluates it, as seed 000's vertex
+//! terrain fragment at its position. `"per-vertex"` evaluates it, as Hoffman and Preetham's vertex
 //! shader does, at the vertices of the GPU's terrain mesh (the quadtree tiles of
 //! [`crate::terrain_mesh`]) and lets the rasteriser interpolate it to the fragments
 //! (perspective-correct). With the precomputed rung the vertex stage evaluates it
@@ -52,7 +52,7 @@ pub enum AerialPerspective {
     /// At every terrain pixel (fragment), at its own position.
     #[default]
     PerPixel,
-    /// At the terrain mesh's vertices (seed 000), interpolated across each triangle.
+    /// At the terrain mesh's vertices (Hoffman and Preetham 2002), interpolated across each triangle.
     PerVertex,
 }
 
@@ -92,7 +92,7 @@ pub fn plan(variant: AerialPerspective) -> &'static str {
              table within its range on screen, a march of the tables elsewhere)"
         }
         AerialPerspective::PerVertex => {
-            "aerial perspective per vertex (seed 000: atmos' aerial_perspective at each tile \
+            "aerial perspective per vertex (Hoffman and Preetham 2002: atmos' aerial_perspective at each tile \
              vertex, interpolated across the triangles; [terrain] aerial_perspective = \
              \"per-vertex\")"
         }
@@ -108,7 +108,7 @@ pub fn rung_plan(variant: AerialPerspective, model: &str) -> String {
              camera (compute, reading the depth), copied back"
         ),
         AerialPerspective::PerVertex => format!(
-            "per vertex (seed 000; [terrain] aerial_perspective = \"per-vertex\"): {model}'s \
+            "per vertex (Hoffman and Preetham 2002; [terrain] aerial_perspective = \"per-vertex\"): {model}'s \
              in-scatter and transmittance of the segment to each drawn tile vertex (compute \
              over the vertices, per light), interpolated across the triangles by the terrain \
              draw"

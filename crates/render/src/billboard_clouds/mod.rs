@@ -1,4 +1,4 @@
-//! `[clouds.volume]` drawn as seed 002's billboards (`draw = "billboards"`): `cloudsim`
+//! `[clouds.volume]` drawn as Dobashi et al. 2000's billboards (`draw = "billboards"`): `cloudsim`
 //! grows the cumulus (the same growth, grid and placement as the marched cloud,
 //! `crate::volume_clouds`), `cloudlight`'s slice propagation lights every cell toward the
 //! scene's sun, and each cell denser than the threshold becomes a soft splat
@@ -10,7 +10,7 @@
 //! # Lighting
 //!
 //! Once per scene: `cloudlight::propagate::propagate::<f32>` (the slices' f32 twin,
-//! physical Beer–Lambert mode with Catmull–Rom resampling by default, or seed 002's
+//! physical Beer–Lambert mode with Catmull–Rom resampling by default, or Dobashi et al. 2000's
 //! faithful mode) through the grown volume toward the sun gives every cell its
 //! transmittance `T` toward the sun. The light is the marched cloud's
 //! (`crate::volume_clouds`, `PreparedVolume::lighting`), at the grid's centre: the
@@ -23,7 +23,7 @@
 //! `cloudlight::billboard::particle_radiance`: `albedo · (E · P(τ, cos θ) + L_amb ·
 //! V_amb)` with `P` the march's `octave_scattering` of `τ = −ln T` (its dual-lobe
 //! Henyey–Greenstein phase and `[clouds.volume]`'s octaves, 8 by default; one octave is
-//! `T · p(cos θ)`, Dobashi 2000's single scattering; seed 002 itself had `E · T` alone)
+//! `T · p(cos θ)`, Dobashi 2000's single scattering; Dobashi et al. 2000 had `E · T` alone)
 //! and the march's albedo, `θ` between the view ray to the particle and the sun. At night — when the scene has a
 //! moonlit sky (`PreparedScene::moonlit`, as the marched cloud) — the slices run a
 //! second time toward the moon and the moon's term and its moonlit ambient sky are

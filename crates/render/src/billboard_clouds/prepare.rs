@@ -60,7 +60,7 @@ impl Scene {
                 return Err(self.billboards_invalid(
                     "seed_k",
                     k.to_string(),
-                    "give either seed_k (seed 002's size rule) or size_m_per_density, not both",
+                    "give either seed_k (Dobashi et al. 2000's size rule) or size_m_per_density, not both",
                 ));
             }
             if !(k.is_finite() && k > 0.0) {

@@ -6,7 +6,7 @@ use serde::Deserialize;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum VolumeDraw {
-    /// Ray-marched by `cloudlight` (seed 003's lighting), `crate::volume_clouds`.
+    /// Ray-marched by `cloudlight` (Schneider's (GPU Pro 7) lighting), `crate::volume_clouds`.
     #[default]
     March,
     /// Seed 002's billboards lit by slices (this module).
@@ -17,7 +17,7 @@ pub enum VolumeDraw {
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BillboardsSection {
-    /// A cell becomes a billboard when its density is strictly above this (seed 002:
+    /// A cell becomes a billboard when its density is strictly above this (Dobashi et al. 2000:
     /// 0.3), in [0, 1].
     #[serde(default = "default_threshold")]
     pub density_threshold: f64,
@@ -32,7 +32,7 @@ pub struct BillboardsSection {
     #[serde(default = "default_opacity_cells")]
     pub opacity_cells: f64,
     /// The slice propagation's mode: `"physical"` (Beer–Lambert over the true spacing)
-    /// or `"faithful"` (seed 002's attenuation ratio per slice).
+    /// or `"faithful"` (Dobashi et al. 2000's attenuation ratio per slice).
     #[serde(default)]
     pub slices: SlicesName,
     /// Faithful mode's light passed by a slice of density 1, in [0, 1].

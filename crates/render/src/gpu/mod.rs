@@ -2,7 +2,7 @@
 //! and the command encoder; nothing here creates a device or submits.
 //!
 //! * [`scene::SceneRenderer`]: a whole scene — the sky (`atmos`' sky pass), the
-//!   terrain (an instanced quadtree of tiles, seed 000's shading, aerial perspective
+//!   terrain (an instanced quadtree of tiles, Hoffman and Preetham's shading, aerial perspective
 //!   per pixel), the display pass (tone map, dither);
 //! * [`Presenter`]: a frame of any `atmos` rung's radiance (`atmos::gpu::FrameOutput`)
 //!   to RGBA8, for the ladder's image tests;

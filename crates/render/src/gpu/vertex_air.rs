@@ -1,5 +1,5 @@
 //! The terrain's aerial perspective per vertex (`[terrain] aerial_perspective =
-//! "per-vertex"`, seed 000) for the rungs without tables (`closed-form`,
+//! "per-vertex"`, Hoffman and Preetham 2002) for the rungs without tables (`closed-form`,
 //! `closed-form-vertex`, `single`).
 //!
 //! The precomputed rung evaluates the segment camera → vertex in the terrain's vertex

@@ -181,7 +181,7 @@ pub struct SceneFile {
     pub output: OutputSection,
     /// A sequence of frames (`skyscape render --frames`, numbered files).
     pub animation: Option<AnimationSection>,
-    /// Cloud layers (seed 004's SGSky layers from `celestial`), lit by its `Sky`:
+    /// Cloud layers (SimGear's SGSky SGSky layers from `celestial`), lit by its `Sky`:
     /// needs `[time]`.
     pub clouds: Option<CloudsSection>,
 }
@@ -202,7 +202,7 @@ pub struct CloudsSection {
 }
 
 /// `[clouds.volume]`: a cloud grown by `cloudsim`'s automaton (seed, steps, grid,
-/// ellipsoids) and marched by `cloudlight` (seed 003's lighting). The grid's cells are
+/// ellipsoids) and marched by `cloudlight` (Schneider's (GPU Pro 7) lighting). The grid's cells are
 /// `cell_size_m` cubes; its axes are east, north, up (cloudsim's x, y, z up).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -250,7 +250,7 @@ pub struct CloudVolumeSection {
     #[serde(default)]
     pub ellipsoids: Vec<EllipsoidSection>,
     /// How the cloud is drawn: `"march"` (default, `crate::volume_clouds`) or
-    /// `"billboards"` (seed 002: lit by slices, `crate::billboard_clouds`).
+    /// `"billboards"` (Dobashi et al. 2000: lit by slices, `crate::billboard_clouds`).
     #[serde(default)]
     pub draw: crate::billboard_clouds::VolumeDraw,
     /// `[clouds.volume.billboards]`: the billboards' settings (`draw = "billboards"`).
@@ -472,7 +472,7 @@ fn default_true() -> bool {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
 #[serde(rename_all = "kebab-case")]
 pub enum Rung {
-    /// Rung 1, seed 000's closed form, per pixel.
+    /// Rung 1, Hoffman and Preetham's closed form, per pixel.
     ClosedForm,
     /// Rung 1 evaluated per vertex of a 16×32 dome for the sky (terrain segments per pixel).
     ClosedFormVertex,
@@ -592,12 +592,12 @@ pub struct TerrainSection {
     /// `[terrain.albedo]`: colour by height and slope.
     #[serde(default)]
     pub albedo: AlbedoSection,
-    /// Self-shadow maps: seed 000's east/west pair, or `azimuths` equally spaced ones.
+    /// Self-shadow maps: Hoffman and Preetham's east/west pair, or `azimuths` equally spaced ones.
     #[serde(default)]
     pub horizon: HorizonVariant,
     /// Number of azimuths when `horizon = "azimuths"` (terrain accepts 4..=64).
     pub horizon_azimuths: Option<usize>,
-    /// Where the aerial perspective is evaluated: `per-pixel` or `per-vertex` (seed 000).
+    /// Where the aerial perspective is evaluated: `per-pixel` or `per-vertex` (Hoffman and Preetham 2002).
     #[serde(default)]
     pub aerial_perspective: crate::aerial_vertex::AerialPerspective,
 }

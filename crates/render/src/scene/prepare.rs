@@ -68,7 +68,7 @@ pub struct PreparedScene {
     pub sky_model: SharedSkyModel,
     /// The model for finite segments (aerial perspective, the sun's path from a
     /// terrain point): the sky model, except for the per-vertex dome, whose grid is
-    /// built per viewpoint — seed 000 evaluates terrain per vertex, i.e. at the point,
+    /// built per viewpoint — Hoffman and Preetham 2002 evaluates terrain per vertex, i.e. at the point,
     /// which a ray caster does per pixel with the closed form itself.
     pub segment_model: SharedSkyModel,
     /// The camera (planet-centred position, frame size, sun).

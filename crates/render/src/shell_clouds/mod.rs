@@ -1,6 +1,6 @@
 //! Seed 003's ray-marched cloud shell in a scene (`[clouds.shell]`): `cloudlight`'s
 //! procedural shell (two spheres about the planet centre, tileable Perlin–Worley noise,
-//! procedural weather, height profiles per cloud type) marched per pixel with seed 003's
+//! procedural weather, height profiles per cloud type) marched per pixel with Schneider's (GPU Pro 7)
 //! lighting and composited over the opaque scene, depth-aware, exactly as the volume
 //! cloud is (`crate::volume_clouds`): the march stops at the terrain, so a ridge in front
 //! of the deck hides it and the deck in front of a ridge covers it, and the cloud is seen

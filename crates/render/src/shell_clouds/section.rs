@@ -5,9 +5,9 @@ use cloudlight::march::MarchConfig;
 use cloudlight::shell::{ProceduralWeather, WeatherMap};
 use serde::Deserialize;
 
-/// `[clouds.shell]`: seed 003's procedural cloud shell (`cloudlight::CloudShell`)
+/// `[clouds.shell]`: Schneider's (GPU Pro 7) procedural cloud shell (`cloudlight::CloudShell`)
 /// between two altitudes, its coverage and cloud type from cloudlight's procedural
-/// weather or a weather grid from a PNG ([`crate::shell_clouds`]), marched by `cloudlight` (seed 003's lighting). Defaults not given here are
+/// weather or a weather grid from a PNG ([`crate::shell_clouds`]), marched by `cloudlight` (Schneider's (GPU Pro 7) lighting). Defaults not given here are
 /// cloudlight's (`ShellSettings::cumulus_over`, `ProceduralWeather::default`,
 /// `MarchConfig::default`).
 #[derive(Debug, Clone, PartialEq, Deserialize)]

@@ -1,5 +1,5 @@
 //! A volumetric cloud in a scene (`[clouds.volume]`): `cloudsim` grows a cumulus,
-//! `cloudlight` ray-marches it with seed 003's lighting, and this module composites it
+//! `cloudlight` ray-marches it with Schneider's (GPU Pro 7) lighting, and this module composites it
 //! over the opaque scene (sky and terrain), depth-aware. It owns only the placement,
 //! the frames and the compositing; the march is `cloudlight::march` (CPU, the f32 twin)
 //! and `cloudlight::gpu::MarchPass` (GPU, `shaders/render/volume_clouds.wgsl` composites).

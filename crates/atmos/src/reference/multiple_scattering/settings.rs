@@ -63,8 +63,8 @@ impl ReferenceSettings {
         0.035 % of the luminance at sun elevations ≥ 5° (orders ≥ 2 are 25 % on average); \
         256 view / 64 light samples per query (doubling both: 0.002 % mean change); a \
         16×32×24×12 source table (doubling every axis: 0.28 %) from 24×24 half-sphere \
-        incoming directions marched with 32 samples (doubling all three: 0.46 %; both \
-        measured before the path-tracer fixes of issue 13.2); against the path tracer \
+        incoming directions marched with 32 samples (doubling all three: 0.46 %; these two \
+        from runs predating the current path tracer); against the path tracer \
         (1,320 views, 4,096 samples each) day mean 0.31 %, max 1.34 %, twilight mean \
         2.0 %; about 40 s of precomputation on 2 busy cores";
 

@@ -1,5 +1,5 @@
 //! The GPU passes of the rungs without tables: rung 1, the closed form per pixel
-//! (`closed-form`) or per vertex of seed 000's dome (`closed-form-vertex`), and rung 2,
+//! (`closed-form`) or per vertex of Hoffman and Preetham's sky dome (`closed-form-vertex`), and rung 2,
 //! single scattering (`single`). The precomputed rung keeps `atmos`' tables and sky
 //! pass ([`crate::gpu::scene`]); the reference rungs (f64, orders of scattering or Monte
 //! Carlo) have no GPU passes and stay on the CPU.
