@@ -1,5 +1,5 @@
 //! A scene's two marched clouds — the `[clouds.shell]` deck and the `[clouds.volume]`
-//! cloud — composited by depth per pixel, on the CPU ([`composite_clouds_by_depth`])
+//! cloud — composited by depth per pixel, on the CPU (`composite_clouds_by_depth`)
 //! and on the GPU (`render::gpu::cloud_order`, `shaders/render/cloud_order_composite.wgsl`).
 //! A scene with only one of them composites it alone, as before
 //! (`render::volume_clouds::composite_marched_cloud`, the GPU's `CloudComposite`).
@@ -64,12 +64,11 @@
 
 use cloudlight::march::{Lighting, MarchResult};
 
-use crate::air::AirTables;
-use crate::cpu_frame::PixelRadiance;
-use crate::light::Light;
-use crate::marched_cloud::{MarchedCloud, draw_seen_clouds};
+use crate::cpu_frame::{LightFrame, PixelRadiance};
+use crate::light::LightIndex;
+use crate::marched_cloud::{MarchedCloud, draw_seen_clouds, lit_by};
 pub use crate::marched_cloud::{SeenCloud, in_depth_order};
-use crate::scene::{Illuminant, PreparedScene};
+use crate::scene::PreparedScene;
 use crate::shell_clouds::PreparedShell;
 use crate::volume_clouds::PreparedVolume;
 
@@ -77,15 +76,13 @@ use crate::volume_clouds::PreparedVolume;
 /// (`shaders/render/cloud_order_composite.wgsl`): per pixel the volume's and the deck's
 /// f32 marches up to the terrain's hit (`PixelRadiance::terrain_distance`; the sky: no
 /// limit), each seen as alone (`crate::volume_clouds::composite_marched_cloud`'s pixel:
-/// drawn where it has opacity in front of the scene, through the air of the sun's
-/// `tables`, the moon's march added through `moon`'s tables at night), then
-/// [`in_depth_order`] over what is behind.
-pub fn composite_clouds_by_depth(
+/// drawn where it has opacity in front of the scene, through the air of each of the
+/// frame's `lights`, their marches added), then [`in_depth_order`] over what is behind.
+pub(crate) fn composite_clouds_by_depth(
     scene: &PreparedScene,
     shell: &PreparedShell,
     volume: &PreparedVolume,
-    tables: AirTables<'_>,
-    moon: Option<(&Illuminant<'_>, AirTables<'_>)>,
+    lights: &[LightFrame<'_>],
     out: &mut [PixelRadiance],
 ) -> Result<(), crate::RenderError> {
     let camera = &scene.camera;
@@ -95,60 +92,55 @@ pub fn composite_clouds_by_depth(
     let shell_camera = crate::shell_clouds::shell_camera(camera)?;
     // Each lit through the other's shadow map for the same light (crate::mutual_shadow):
     // `MarchedCloud::seen` names the light of each march.
-    let march_volume =
-        |light: Light, lighting: &Lighting<f32>, xy: [u32; 2], behind: f32| -> MarchResult<f32> {
-            let deck = crate::mutual_shadow::deck_on_volume(shell, light);
-            crate::mutual_shadow::march_volume_pixel(
-                volume,
-                lighting,
-                &volume_camera,
-                size,
-                xy,
-                behind,
-                deck,
-            )
-        };
-    let march_shell =
-        |light: Light, lighting: &Lighting<f32>, xy: [u32; 2], behind: f32| -> MarchResult<f32> {
-            let cumulus = crate::mutual_shadow::volume_on_deck(volume, light);
-            crate::mutual_shadow::march_deck_pixel(
-                shell,
-                lighting,
-                &shell_camera,
-                size,
-                xy,
-                behind,
-                cumulus,
-            )
-        };
-    let volume_moon = match (&volume.moon, moon) {
-        (Some(moonlit), Some((light, moon_tables))) => {
-            Some((&moonlit.lighting, light, moon_tables))
-        }
-        _ => None,
+    let march_volume = |light: LightIndex,
+                        lighting: &Lighting<f32>,
+                        xy: [u32; 2],
+                        behind: f32|
+     -> MarchResult<f32> {
+        let deck = crate::mutual_shadow::deck_on_volume(shell, light);
+        crate::mutual_shadow::march_volume_pixel(
+            volume,
+            lighting,
+            &volume_camera,
+            size,
+            xy,
+            behind,
+            deck,
+        )
     };
-    let shell_moon = match (&shell.moon, moon) {
-        (Some(lighting), Some((light, moon_tables))) => Some((lighting, light, moon_tables)),
-        _ => None,
+    let march_shell = |light: LightIndex,
+                       lighting: &Lighting<f32>,
+                       xy: [u32; 2],
+                       behind: f32|
+     -> MarchResult<f32> {
+        let cumulus = crate::mutual_shadow::volume_on_deck(volume, light);
+        crate::mutual_shadow::march_deck_pixel(
+            shell,
+            lighting,
+            &shell_camera,
+            size,
+            xy,
+            behind,
+            cumulus,
+        )
     };
+    let (volume_lights, shell_lights) = (
+        lit_by(&volume.lights, lights),
+        lit_by(&shell.lights, lights),
+    );
     let clouds = (
         MarchedCloud {
-            lighting: &volume.lighting,
-            tables,
-            moon: volume_moon,
+            lights: &volume_lights,
             march: &march_volume,
         },
         MarchedCloud {
-            lighting: &shell.lighting,
-            tables,
-            moon: shell_moon,
+            lights: &shell_lights,
             march: &march_shell,
         },
     );
-    let sun = scene.sun_light();
     draw_seen_clouds(camera.width, out, |xy, behind| {
-        let volume = clouds.0.seen(scene, &sun, xy, behind)?;
-        let shell = clouds.1.seen(scene, &sun, xy, behind)?;
+        let volume = clouds.0.seen(scene, xy, behind)?;
+        let shell = clouds.1.seen(scene, xy, behind)?;
         if volume.is_none() && shell.is_none() {
             return Ok(None);
         }

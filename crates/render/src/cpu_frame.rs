@@ -58,10 +58,8 @@ pub(crate) struct CpuFrame<'a> {
     /// Each pixel's first terrain hit and its ray's unit world direction (`None`: the
     /// ray sees the sky), traced before the passes.
     pub(crate) hits: Vec<Option<(DVec3, terrain::intersect::SurfaceHit)>>,
-    /// The sun.
-    pub(crate) sun: LightFrame<'a>,
-    /// The moon, on a night it lights.
-    pub(crate) moon: Option<LightFrame<'a>>,
+    /// The scene's lights, the sun first ([`PreparedScene::lights`]).
+    pub(crate) lights: Vec<LightFrame<'a>>,
     /// The display pass's RGBA8 pixels (after it runs).
     pub(crate) display: Option<Vec<u32>>,
 }
@@ -84,14 +82,14 @@ impl<'a> CpuFrame<'a> {
                 width * height
             ],
             hits,
-            sun: LightFrame {
-                illuminant: scene.sun_light(),
-                tables: None,
-            },
-            moon: scene.moon_light().map(|illuminant| LightFrame {
-                illuminant,
-                tables: None,
-            }),
+            lights: scene
+                .lights()
+                .into_iter()
+                .map(|illuminant| LightFrame {
+                    illuminant,
+                    tables: None,
+                })
+                .collect(),
             display: None,
         }
     }

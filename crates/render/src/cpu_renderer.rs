@@ -49,10 +49,7 @@ fn run_frame(scene: &PreparedScene) -> Result<crate::cpu_frame::CpuFrame<'_>, Re
         .as_ref()
         .filter(|c| !c.shadows_baked_on_cpu())
     {
-        let maps = [&cloud.shadow, &cloud.moon_shadow]
-            .into_iter()
-            .flatten()
-            .count();
+        let maps = cloud.lights.iter().filter(|l| l.shadow.is_some()).count();
         return Err(RenderError::InvalidParameter {
             field: "clouds.shell",
             value: format!("{maps} shadow map(s) without values"),

@@ -1,26 +1,51 @@
-//! The lights of a scene's frame.
+//! The lights of a scene's frame, as a list.
+//!
+//! A scene is lit by the sun and, on a moonlit night, by the moon
+//! ([`crate::scene::PreparedScene::lights`], the sun first). Nothing downstream names a
+//! light: each cloud kind keeps one [`CloudLight`] per scene light in the same order,
+//! the terrain is drawn once per light, and a march, an air pass or a shadow map is
+//! identified by its light's index in that list ([`LightIndex`]). A night is the same
+//! passes run for a second entry.
 
-/// Which light a cloud's march is lit by: the sun's march always, the moon's at night
-/// (the clouds' `moon` lighting). The code that runs a cloud's marches names the light
-/// of each (`crate::volume_clouds`' CPU composite, the GPU's per-light march hook), so a
-/// march reads the other cloud's map for its own light.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Light {
-    /// The sun (the clouds' `lighting`).
-    Sun,
-    /// The moon (the clouds' `moon` lighting, at night).
-    Moon,
+use cloudlight::march::Lighting;
+use glam::DVec3;
+
+use crate::cloud_shadow::CloudShadow;
+
+/// A light's place in [`crate::scene::PreparedScene::lights`] (0: the sun).
+pub type LightIndex = usize;
+
+/// A light as a cloud's preparation sees it: the atmosphere it lights (its
+/// `sun_irradiance` and `sun_angular_radius` are this light's), the scene's rung built
+/// from that atmosphere, and the direction toward it.
+#[derive(Clone, Copy)]
+pub struct LightSource<'a> {
+    /// "sun", "moon": what `explain` and the passes' labels call it.
+    pub name: &'static str,
+    /// The atmosphere lit by this light.
+    pub atmosphere: &'a atmos::Atmosphere,
+    /// The scene's rung lit by it.
+    pub sky_model: &'a (dyn atmos::SkyModel + Send + Sync),
+    /// Unit world direction toward the light (x east, y up, z south).
+    pub direction: DVec3,
 }
 
-impl Light {
-    /// Both lights, the sun's first (the order the marches run in).
-    pub const ALL: [Light; 2] = [Light::Sun, Light::Moon];
-
-    /// "sun" or "moon".
-    pub fn name(self) -> &'static str {
-        match self {
-            Light::Sun => "sun",
-            Light::Moon => "moon",
-        }
+impl std::fmt::Debug for LightSource<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LightSource")
+            .field("name", &self.name)
+            .field("direction", &self.direction)
+            .finish_non_exhaustive()
     }
+}
+
+/// A cloud lit by one light: the light and the ambient sky at the cloud (the march's
+/// `Lighting`, in the cloud's frame) and the cloud's shadow on the terrain toward it.
+#[derive(Debug, Clone)]
+pub struct CloudLight {
+    /// The light and the ambient sky it scatters, at the cloud.
+    pub lighting: Lighting<f32>,
+    /// The cloud's shadow map toward this light (`None` with the light below 1° or no
+    /// terrain or other cloud to shade: nothing is computed then).
+    pub shadow: Option<CloudShadow>,
 }

@@ -3,8 +3,8 @@
 
 use cloudlight::march::{Lighting, MarchResult};
 
-use crate::air::AirTables;
-use crate::cpu_frame::PixelRadiance;
+use crate::cpu_frame::{LightFrame, PixelRadiance};
+use crate::light::LightIndex;
 
 /// Whether a march result is drawn over a scene whose opaque surface is
 /// `scene_distance` metres along the ray (infinite for the sky): the cloud has opacity
@@ -30,78 +30,78 @@ pub fn cloud_through_air(
 /// per pixel `march(lighting, pixel, behind)` up to the terrain's hit
 /// (`PixelRadiance::terrain_distance`; the sky: no limit), drawn where it has opacity in
 /// front of the scene ([`cloud_in_front`]) as `L_c·T_air + L_air·(1 − T_c) + T_c·L`
-/// ([`cloud_through_air`], the air from [`crate::air::air_in_front`] with the sun's `tables`). At
-/// night (`moon`: the moon's lighting, light and tables) the march lit by the moon,
-/// seen through the moonlit air, is added.
+/// ([`cloud_through_air`], the air from [`crate::air::air_in_front`] with the light's
+/// tables), once per light of `lights` (the cloud's lighting for each of the frame's
+/// lights, in the scene's order), added.
 pub(crate) fn composite_marched_cloud(
     scene: &crate::scene::PreparedScene,
-    lighting: &Lighting<f32>,
-    tables: AirTables<'_>,
-    moon: Option<(&Lighting<f32>, &crate::scene::Illuminant<'_>, AirTables<'_>)>,
+    lights: &[(&Lighting<f32>, &LightFrame<'_>)],
     march: impl Fn(&Lighting<f32>, [u32; 2], f32) -> MarchResult<f32> + Sync,
     out: &mut [crate::cpu_frame::PixelRadiance],
 ) -> Result<(), crate::RenderError> {
-    let sun = scene.sun_light();
-    // One cloud alone: its march is the same function for either light.
-    let march = |_: crate::mutual_shadow::Light, lighting: &Lighting<f32>, xy, behind| {
-        march(lighting, xy, behind)
-    };
+    // One cloud alone: its march is the same function for every light.
+    let march = |_: LightIndex, lighting: &Lighting<f32>, xy, behind| march(lighting, xy, behind);
     let cloud = MarchedCloud {
-        lighting,
-        tables,
-        moon,
+        lights,
         march: &march,
     };
     draw_seen_clouds(scene.camera.width, out, |xy, behind| {
-        cloud.seen(scene, &sun, xy, behind)
+        cloud.seen(scene, xy, behind)
     })
 }
 
-/// A marched cloud as the CPU composites it (the volume's, the shell's): the sun's
-/// lighting and tables, at night the moon's lighting, light and tables, and its march
-/// per pixel (`march(light, lighting, pixel, behind)`, up to `behind` metres: `light`
-/// says which of the two `lighting` is, so a march can pick what else depends on it,
-/// the other cloud's shadow map for that light, `crate::mutual_shadow`).
+/// The frame's lights a cloud is lit by, each with the cloud's lighting for it: the
+/// cloud's `CloudLight`s zipped with the frame's lights (the same order, the sun first).
+pub(crate) fn lit_by<'a>(
+    cloud: &'a [crate::light::CloudLight],
+    frame: &'a [LightFrame<'a>],
+) -> Vec<(&'a Lighting<f32>, &'a LightFrame<'a>)> {
+    cloud.iter().map(|l| &l.lighting).zip(frame).collect()
+}
+
+/// A marched cloud as the CPU composites it (the volume's, the shell's): its lighting for
+/// each light of the frame with that light and its tables (the scene's order, the sun
+/// first), and its march per pixel (`march(light, lighting, pixel, behind)`, up to
+/// `behind` metres: `light` is the index of the light `lighting` is for, so a march can
+/// pick what else depends on it, the other cloud's shadow map for that light,
+/// `crate::mutual_shadow`).
 pub(crate) struct MarchedCloud<'a, M> {
-    pub(crate) lighting: &'a Lighting<f32>,
-    pub(crate) tables: AirTables<'a>,
-    pub(crate) moon: Option<(
-        &'a Lighting<f32>,
-        &'a crate::scene::Illuminant<'a>,
-        AirTables<'a>,
-    )>,
+    pub(crate) lights: &'a [(&'a Lighting<f32>, &'a LightFrame<'a>)],
     pub(crate) march: &'a M,
 }
 
 impl<M> MarchedCloud<'_, M>
 where
-    M: Fn(crate::mutual_shadow::Light, &Lighting<f32>, [u32; 2], f32) -> MarchResult<f32>,
+    M: Fn(LightIndex, &Lighting<f32>, [u32; 2], f32) -> MarchResult<f32>,
 {
-    /// The cloud at pixel `xy` in front of a scene `behind` metres away (`sun`: the
-    /// scene's sun light): `None` where it has no opacity in front ([`cloud_in_front`]),
-    /// else its light seen through the air ([`cloud_through_air`] with the sun's air
-    /// from [`crate::air::air_in_front`], plus the moon's at night), its transmittance and depth;
-    /// the caller adds `T_c · L_behind`.
+    /// The cloud at pixel `xy` in front of a scene `behind` metres away: `None` where it
+    /// has no opacity in front under the first light ([`cloud_in_front`]; the
+    /// transmittance and depth do not depend on the light), else its light seen through
+    /// the air ([`cloud_through_air`] with each light's air from
+    /// [`crate::air::air_in_front`], summed over the lights), its transmittance and
+    /// depth; the caller adds `T_c · L_behind`.
     pub(crate) fn seen(
         &self,
         scene: &crate::scene::PreparedScene,
-        sun: &crate::scene::Illuminant<'_>,
         xy: [u32; 2],
         behind: f32,
     ) -> Result<Option<SeenCloud>, crate::RenderError> {
         let march = self.march;
-        let result = march(crate::mutual_shadow::Light::Sun, self.lighting, xy, behind);
+        let Some(((lighting, light), others)) = self.lights.split_first() else {
+            return Ok(None);
+        };
+        let result = march(0, lighting, xy, behind);
         if !cloud_in_front(&result, behind) {
             return Ok(None);
         }
         let view = atmos::frame::frame_view_direction(xy, &scene.camera);
         let (transmittance, radiance) =
-            crate::air::air_in_front(scene, sun, self.tables, view, result.depth)?;
+            crate::air::air_in_front(scene, &light.illuminant, light.air(), view, result.depth)?;
         let mut seen = cloud_through_air(&result, transmittance, radiance);
-        if let Some((moon_lighting, light, moon_tables)) = self.moon {
-            let lit = march(crate::mutual_shadow::Light::Moon, moon_lighting, xy, behind);
+        for (index, (lighting, light)) in others.iter().enumerate() {
+            let lit = march(index + 1, lighting, xy, behind);
             let (transmittance, radiance) =
-                crate::air::air_in_front(scene, light, moon_tables, view, lit.depth)?;
+                crate::air::air_in_front(scene, &light.illuminant, light.air(), view, lit.depth)?;
             let added = cloud_through_air(&lit, transmittance, radiance);
             for (value, a) in seen.iter_mut().zip(added) {
                 *value += a;
@@ -157,7 +157,7 @@ pub fn in_depth_order(a: SeenCloud, b: SeenCloud) -> SeenCloud {
 /// the sky: infinity) over what the pixel holds, `L = S + T_c · L`; a pixel where it is
 /// `None` is kept. The loop of both CPU cloud composites, the one cloud's
 /// (`crate::volume_clouds::composite_marched_cloud`) and the two by depth
-/// ([`composite_clouds_by_depth`]); the first error stops it.
+/// (`composite_clouds_by_depth`); the first error stops it.
 pub(crate) fn draw_seen_clouds(
     width: u32,
     out: &mut [PixelRadiance],

@@ -1,12 +1,12 @@
 //! The two marched clouds' shadows on each other: the `[clouds.shell]` deck darkens the
 //! `[clouds.volume]` cloud's direct light and the volume cloud the deck's, on the CPU
-//! (this module's marches, [`crate::cloud_order::composite_clouds_by_depth`]) and on the
+//! (this module's marches, `crate::cloud_order::composite_clouds_by_depth`) and on the
 //! GPU (the same maps and formula in cloudlight's march passes, `crate::gpu::scene`).
 //!
 //! # The formula
 //!
-//! Each cloud has a shadow map toward its light (the sun, or the moon at night; one map
-//! per light that is above 1°): the transmittance of the light through the whole cloud
+//! Each cloud has a shadow map toward each of the scene's lights (the sun, and the moon
+//! at night; one map per light that is above 1°): the transmittance of the light through the whole cloud
 //! along the light ray, stored on a flat plane at the cloud's base
 //! ([`crate::volume_clouds::CloudShadow`]). A view sample of cloud A at east/north/up
 //! point `p` (altitude `h`) reads cloud B's map where its light ray meets B's plane (the
@@ -42,8 +42,8 @@
 //!
 //! # The maps
 //!
-//! The volume cloud's is its terrain map ([`PreparedVolume::shadow`], its moon's
-//! [`crate::volume_clouds::MoonlitVolume::shadow`]), baked whenever the scene has the
+//! The volume cloud's is its terrain map toward each light
+//! ([`crate::light::CloudLight::shadow`] of [`PreparedVolume::lights`]), baked whenever the scene has the
 //! deck or terrain. The deck's terrain map covers the terrain only, so the deck gets a
 //! second, small map over the volume cloud ([`PreparedShell::over_volume`],
 //! [`deck_over_volume`]): the grid's footprint swept along the light to the deck's base
@@ -85,27 +85,18 @@ pub fn deck_extent(shell: &CloudShell) -> [f32; 2] {
     ]
 }
 
-pub use crate::light::Light;
+use crate::light::LightIndex;
 
-/// The volume cloud's shadow on the deck toward `light`: its map for that light, `None`
-/// without one.
-pub fn volume_on_deck(volume: &PreparedVolume, light: Light) -> Option<&CloudShadow> {
-    let map = match light {
-        Light::Sun => volume.shadow.as_ref()?,
-        Light::Moon => volume.moon.as_ref()?.shadow.as_ref()?,
-    };
-    Some(map)
+/// The volume cloud's shadow on the deck toward light `light` (its index in the scene's
+/// lights): its map for that light, `None` without one.
+pub fn volume_on_deck(volume: &PreparedVolume, light: LightIndex) -> Option<&CloudShadow> {
+    volume.lights.get(light)?.shadow.as_ref()
 }
 
-/// The deck's shadow on the volume cloud toward `light`: its map over the volume for
-/// that light ([`PreparedShell::over_volume`], the sun's first).
-pub fn deck_on_volume(shell: &PreparedShell, light: Light) -> Option<&CloudShadow> {
-    let [sun, moon] = &shell.over_volume;
-    let map = match light {
-        Light::Sun => sun,
-        Light::Moon => moon,
-    };
-    map.as_ref()
+/// The deck's shadow on the volume cloud toward light `light`: its map over the volume
+/// for that light ([`PreparedShell::over_volume`]).
+pub fn deck_on_volume(shell: &PreparedShell, light: LightIndex) -> Option<&CloudShadow> {
+    shell.over_volume.get(light)?.as_ref()
 }
 
 /// The deck's shadow map over `volume` toward unit `to_light` (east/north/up), or `None`
@@ -269,10 +260,11 @@ pub fn plan(scene: &crate::scene::PreparedScene) -> (&'static str, Result<String
             Err("not both [clouds.shell] and a marched [clouds.volume]".into()),
         );
     };
-    let read: Vec<String> = Light::ALL
+    let read: Vec<String> = scene
+        .lights()
         .into_iter()
         .flat_map(|light| {
-            let lit_by = light.name();
+            let (lit_by, light) = (light.name, light.index);
             let on_volume = deck_on_volume(shell, light).map(|s| {
                 let [w, h] = s.resolution;
                 format!("the deck's {w}×{h} map on the volume ({lit_by})")

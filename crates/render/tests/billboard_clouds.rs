@@ -79,8 +79,13 @@ fn only_the_drawing_asked_for_is_prepared() {
     assert!(prepared.volume_cloud.is_none());
     let cloud = prepared.billboard_cloud.as_ref().unwrap();
     assert_eq!(cloud.volume.dims(), [8, 8, 4]);
-    assert_eq!(cloud.light.len(), 8 * 8 * 4);
-    assert!(cloud.light.iter().all(|l| (0.0..=1.0).contains(l)));
+    assert_eq!(cloud.lights[0].light.len(), 8 * 8 * 4);
+    assert!(
+        cloud.lights[0]
+            .light
+            .iter()
+            .all(|l| (0.0..=1.0).contains(l))
+    );
     // The default (march): no slices, no billboards.
     let march = VOLUME.replace("draw = \"billboards\"\n", "");
     let text = scene(&march);
@@ -530,7 +535,7 @@ fn the_moonlit_billboards_agree_on_the_gpu_and_the_cpu_under_every_gpu_rung() {
         let scene = scene.prepare().unwrap();
         let cloud = scene.billboard_cloud.as_ref().unwrap();
         assert!(
-            cloud.moon.is_some(),
+            cloud.lights.len() > 1,
             "{}: the moon lights them",
             rung.name()
         );
@@ -636,8 +641,8 @@ fn the_shadowed_side_is_lit_by_the_sky() {
     let mut lit = scene().prepare().unwrap();
     let mut dark = scene().prepare().unwrap();
     let cloud = dark.billboard_cloud.as_mut().unwrap();
-    let l = cloud.lighting;
-    cloud.lighting = cloudlight::march::Lighting::new(
+    let l = cloud.lights[0].lighting;
+    cloud.lights[0].lighting = cloudlight::march::Lighting::new(
         l.sun_direction().map(f64::from),
         l.sun_irradiance().map(f64::from),
         [0.0; 3],
@@ -648,7 +653,7 @@ fn the_shadowed_side_is_lit_by_the_sky() {
     // > 0.5): the sky is what lights them.
     let cloud = lit.billboard_cloud.as_ref().unwrap();
     let shadowed_open =
-        |cell: usize| cloud.light[cell] < 0.02 && cloud.ambient_visibility[cell] > 0.5;
+        |cell: usize| cloud.lights[0].light[cell] < 0.02 && cloud.ambient_visibility[cell] > 0.5;
     let (_, list) = particles(&lit, cloud).unwrap();
     let shadowed: Vec<_> = list
         .iter()
@@ -663,7 +668,7 @@ fn the_shadowed_side_is_lit_by_the_sky() {
         .collect();
     let sunlit: Vec<_> = list
         .iter()
-        .filter(|b| cloud.light[b.cell] > 0.5)
+        .filter(|b| cloud.lights[0].light[b.cell] > 0.5)
         .cloned()
         .collect();
     assert!(
@@ -736,15 +741,18 @@ fn night_billboards(width: u32, height: u32) -> Scene {
 fn the_moon_lights_the_billboards() {
     let (width, height) = (160u32, 90u32);
     let mut lit = night_billboards(width, height).prepare().unwrap();
-    assert!(lit.moonlit.is_some(), "the night scene has a moonlit sky");
+    assert!(
+        !lit.other_lights.is_empty(),
+        "the night scene has a moonlit sky"
+    );
     let cloud = lit.billboard_cloud.clone().unwrap();
-    let moon = cloud.moon.as_ref().expect("the moon lights the billboards");
-    assert_eq!(moon.light.len(), cloud.light.len());
+    let moon = cloud.lights.get(1).expect("the moon lights the billboards");
+    assert_eq!(moon.light.len(), cloud.lights[0].light.len());
     let (camera, list) = particles(&lit, &cloud).unwrap();
     let open = cloudlight::billboard::rasterise::<f32>(&list, &camera, cloud.settings.size);
     // The moonlit air in front of each particle (drawn by both renderers), against the
     // particle's own light.
-    let air = render::billboard_clouds::moonlit_air(&lit, &cloud, &list)
+    let air = render::billboard_clouds::other_lights_air(&lit, &cloud, &list)
         .unwrap()
         .expect("the moonlit air at night");
     assert_eq!(air.len(), list.len());
@@ -765,7 +773,7 @@ fn the_moon_lights_the_billboards() {
     // The scene's rung is the precomputed one: the marched cloud's moonlit air comes
     // from the moon's tables, the billboards' from the moon's segment model (README,
     // "Not done"). How far apart the two are in front of these particles:
-    let moon_light = lit.moon_light().unwrap();
+    let moon_light = lit.lights().swap_remove(1);
     let tables = moon_light
         .precomputed
         .expect("the precomputed rung's moon tables");
@@ -805,7 +813,7 @@ fn the_moon_lights_the_billboards() {
     let with = render::cpu_renderer::render_radiance(&lit).unwrap();
     let gpu_images = common::gpu_or_skip("render::billboard_clouds night")
         .map(|gpu| (common::gpu_pixels(gpu, &lit), common::cpu_pixels(&lit)));
-    lit.billboard_cloud.as_mut().unwrap().moon = None;
+    lit.billboard_cloud.as_mut().unwrap().lights.truncate(1);
     let without = render::cpu_renderer::render_radiance(&lit).unwrap();
     lit.billboard_cloud = None;
     let sky = render::cpu_renderer::render_radiance(&lit).unwrap();
@@ -875,11 +883,11 @@ fn the_billboards_shadow_the_moonlit_terrain() {
     let probe = common::night_with(probe_camera, volume, 32, 18)
         .prepare()
         .unwrap();
-    let moon = probe.moonlit.as_ref().unwrap().direction;
+    let moon = probe.other_lights[0].direction;
     let cloud = probe.billboard_cloud.as_ref().unwrap();
     let map = cloud
-        .moon
-        .as_ref()
+        .lights
+        .get(1)
         .expect("the moon lights the billboards")
         .shadow
         .as_ref()
@@ -893,13 +901,7 @@ fn the_billboards_shadow_the_moonlit_terrain() {
     let scene = common::night_with(&camera, volume, 96, 54);
     let mut prepared = scene.prepare().unwrap();
     let shaded = render::cpu_renderer::render_radiance(&prepared).unwrap();
-    let kept = prepared
-        .billboard_cloud
-        .as_mut()
-        .unwrap()
-        .moon
-        .as_mut()
-        .unwrap()
+    let kept = prepared.billboard_cloud.as_mut().unwrap().lights[1]
         .shadow
         .take();
     assert!(kept.is_some());

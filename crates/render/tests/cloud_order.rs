@@ -12,7 +12,7 @@ mod common;
 
 use common::{gpu_or_skip, gpu_pixels, lsb, within_two_over};
 use render::cpu_renderer::render_cpu;
-use render::mutual_shadow::{self, Light};
+use render::mutual_shadow;
 use render::scene::{PreparedScene, Scene};
 use render::shell_clouds::{march_shell_pixel, shell_camera};
 use render::volume_clouds::{march_pixel, pinhole_camera};
@@ -111,10 +111,10 @@ fn marches(scene: &PreparedScene) -> Vec<[(f32, f32); 2]> {
     let size = [camera.width, camera.height];
     let volume = scene.volume_cloud.as_ref().unwrap();
     let mut shell = scene.shell_cloud.clone().unwrap();
-    shell.lighting =
+    shell.lights[0].lighting =
         cloudlight::march::Lighting::new([0.0, 0.0, 1.0], [0.0; 3], [0.0; 3], [0.0, 0.0, 1.0])
             .unwrap();
-    shell.moon = None;
+    shell.lights.truncate(1);
     let volume_camera = pinhole_camera(camera, scene.atmosphere.planet_radius).unwrap();
     let deck_camera = shell_camera(camera).unwrap();
     (0..size[1])
@@ -169,8 +169,8 @@ fn the_nearer_cloud_goes_over_the_farther_on_the_cpu_and_the_gpu() {
         // Each cloud's shadow on the other: the volume's map on the deck always (the sun
         // at 40°), the deck's on the volume where the volume reaches below its top.
         let (volume, shell) = (&scene.volume_cloud, &scene.shell_cloud);
-        assert!(mutual_shadow::volume_on_deck(volume.as_ref().unwrap(), Light::Sun).is_some());
-        let deck_on_volume = mutual_shadow::deck_on_volume(shell.as_ref().unwrap(), Light::Sun);
+        assert!(mutual_shadow::volume_on_deck(volume.as_ref().unwrap(), 0).is_some());
+        let deck_on_volume = mutual_shadow::deck_on_volume(shell.as_ref().unwrap(), 0);
         assert_eq!(deck_on_volume.is_some(), view.volume_base_m < 1800.0);
         let both = render_cpu(&scene).unwrap().pixels;
         let (volume_only, shell_only) = alone(&mut scene);
@@ -345,10 +345,10 @@ fn the_moons_marches_read_the_moons_maps() {
             scene.shell_cloud.as_ref().unwrap(),
         );
         assert!(
-            volume.moon.is_some() && shell.moon.is_some(),
+            volume.lights.len() == 2 && shell.lights.len() == 2,
             "both moonlit"
         );
-        for (light, some) in [(Light::Sun, false), (Light::Moon, true)] {
+        for (light, some) in [(0, false), (1, true)] {
             assert_eq!(mutual_shadow::deck_on_volume(shell, light).is_some(), some);
             assert_eq!(mutual_shadow::volume_on_deck(volume, light).is_some(), some);
         }
@@ -361,17 +361,10 @@ fn the_moons_marches_read_the_moons_maps() {
             scene.shell_cloud.as_mut().unwrap().over_volume[1] = kept;
             without
         } else {
-            let moonlit = scene.volume_cloud.as_mut().unwrap().moon.as_mut().unwrap();
+            let moonlit = &mut scene.volume_cloud.as_mut().unwrap().lights[1];
             let kept = moonlit.shadow.take();
             let without = render_cpu(&scene).unwrap().pixels;
-            scene
-                .volume_cloud
-                .as_mut()
-                .unwrap()
-                .moon
-                .as_mut()
-                .unwrap()
-                .shadow = kept;
+            scene.volume_cloud.as_mut().unwrap().lights[1].shadow = kept;
             without
         };
         let changed: Vec<usize> = (0..full.len())

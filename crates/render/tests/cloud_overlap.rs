@@ -39,7 +39,7 @@ use cloudlight::march::{
 use cloudlight::union::UnionField;
 use rayon::prelude::*;
 use render::cloud_order::{SeenCloud, in_depth_order};
-use render::mutual_shadow::{self, Light};
+use render::mutual_shadow;
 use render::scene::{PreparedScene, Scene};
 use render::tonemap::{linear_to_srgb, tonemap_exposure};
 use render::volume_clouds::CloudShadow;
@@ -219,9 +219,8 @@ fn pixels(scene: &PreparedScene, lighting: &Lighting<f64>) -> Vec<Pixel> {
     let tan_half = camera.tan_half(size);
     let origin = camera.origin();
     let to_sun = lighting.sun_direction();
-    let deck_map = mutual_shadow::deck_on_volume(scene.shell_cloud.as_ref().unwrap(), Light::Sun);
-    let volume_map =
-        mutual_shadow::volume_on_deck(scene.volume_cloud.as_ref().unwrap(), Light::Sun);
+    let deck_map = mutual_shadow::deck_on_volume(scene.shell_cloud.as_ref().unwrap(), 0);
+    let volume_map = mutual_shadow::volume_on_deck(scene.volume_cloud.as_ref().unwrap(), 0);
     assert!(
         deck_map.is_some() || volume_map.is_some(),
         "no mutual shadow map"
@@ -487,7 +486,7 @@ fn the_depth_order_against_one_march_through_both_clouds() {
     let mut all = Vec::new();
     for view in &VIEWS {
         let scene = scene(view);
-        let lit = &scene.volume_cloud.as_ref().unwrap().lighting;
+        let lit = &scene.volume_cloud.as_ref().unwrap().lights[0].lighting;
         let f64s = |v: [f32; 3]| v.map(f64::from);
         let lighting = Lighting::<f64>::new(
             f64s(lit.sun_direction()),

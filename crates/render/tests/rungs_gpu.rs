@@ -320,10 +320,10 @@ fn deck_agrees(gpu: &skyscape_harness::GpuContext, name: &str, scene: impl Fn(Ru
         let (width, height) = (scene.camera.width, scene.camera.height);
         let (gpu_image, cpu_image, agreement) = compare(gpu, &scene);
         let mut cloud = scene.shell_cloud.clone().unwrap();
-        cloud.lighting =
+        cloud.lights[0].lighting =
             cloudlight::march::Lighting::new([0.0, 0.0, 1.0], [0.0; 3], [0.0; 3], [0.0, 0.0, 1.0])
                 .unwrap();
-        cloud.moon = None;
+        cloud.lights.truncate(1);
         let camera = render::shell_clouds::shell_camera(&scene.camera).unwrap();
         let mut deck = Vec::new();
         for y in 0..height {
@@ -356,8 +356,11 @@ fn deck_agrees(gpu: &skyscape_harness::GpuContext, name: &str, scene: impl Fn(Ru
             100.0 * agreement.two,
             100.0 * agreement.eight,
         );
-        if scene.moonlit.is_some() {
-            assert!(scene.shell_cloud.as_ref().unwrap().moon.is_some(), "{name}");
+        if !scene.other_lights.is_empty() {
+            assert!(
+                scene.shell_cloud.as_ref().unwrap().lights.len() > 1,
+                "{name}"
+            );
         }
         assert!(cloud_pixels > 200, "{}: {cloud_pixels}", rung.name());
         assert!(

@@ -408,7 +408,11 @@ fn a_full_moon_night_is_a_dim_blue_sky_with_the_moon_and_stars() {
     let [r, _, b] = sky_pixel.radiance;
     assert!(b > r, "the moonlit sky is blue: {:?}", sky_pixel.radiance);
     // The moon, 0.5° across, is smaller than this frame's pixels: a 4° view of it.
-    let moon = prepared.moonlit.as_ref().expect("the moon is up").direction;
+    let moon = prepared
+        .other_lights
+        .first()
+        .expect("the moon is up")
+        .direction;
     let mut close = Scene::open(NIGHT_SCENE).unwrap();
     close.file.output.width = 32;
     close.file.output.height = 18;
@@ -447,7 +451,7 @@ fn the_moon_lights_the_terrain_as_a_sun_of_its_irradiance_would() {
         scene
     };
     let night = small(Scene::open(NIGHT_SCENE).unwrap()).prepare().unwrap();
-    let moon = night.moonlit.as_ref().expect("the moon is up");
+    let moon = night.other_lights.first().expect("the moon is up");
     let scale: [f64; 3] = std::array::from_fn(|c| {
         moon.atmosphere.sun_irradiance[c] / night.atmosphere.sun_irradiance[c]
     });

@@ -15,10 +15,10 @@ use render::shell_clouds::{PreparedShell, march_shell_pixel, shell_camera};
 /// black sun and sky — the tests classify pixels with it at a fifth of the cost.
 fn unlit(cloud: &PreparedShell) -> PreparedShell {
     let mut cloud = cloud.clone();
-    cloud.lighting =
+    cloud.lights[0].lighting =
         cloudlight::march::Lighting::new([0.0, 0.0, 1.0], [0.0; 3], [0.0; 3], [0.0, 0.0, 1.0])
             .unwrap();
-    cloud.moon = None;
+    cloud.lights.truncate(1);
     cloud
 }
 
@@ -147,7 +147,7 @@ fn hidden_covering_sky(scene: &Scene) -> (usize, usize, usize) {
     let (width, height) = (scene.file.output.width, scene.file.output.height);
     let mut cloudy = scene.prepare().unwrap();
     // The deck's composite only: its shadow on the terrain is the_deck_shadows_the_terrain's.
-    cloudy.shell_cloud.as_mut().unwrap().shadow = None;
+    cloudy.shell_cloud.as_mut().unwrap().lights[0].shadow = None;
     let mut clear = scene.clone();
     clear.file.clouds = None;
     let clear = clear.prepare().unwrap();
@@ -318,15 +318,15 @@ fn the_moon_lights_the_deck_at_night() {
     scene.file.output.width = width;
     scene.file.output.height = height;
     let mut prepared = scene.prepare().unwrap();
-    assert!(prepared.shell_cloud.as_ref().unwrap().moon.is_some());
+    assert!(prepared.shell_cloud.as_ref().unwrap().lights.len() > 1);
     assert_eq!(planned(&prepared, "moonlit shell march"), Some(true));
     // The deck's shadow on the moonlit terrain: toward the moon only (the sun is down).
     let shell = prepared.shell_cloud.as_ref().unwrap();
-    let moon_map = shell
-        .moon_shadow
+    let moon_map = shell.lights[1]
+        .shadow
         .as_ref()
         .expect("a shadow map toward the moon");
-    assert!(shell.shadow.is_none());
+    assert!(shell.lights[0].shadow.is_none());
     eprintln!(
         "night deck's shadow toward the moon: {}×{} texels, {} < 1, baked in {:.3} s",
         moon_map.resolution[0],
@@ -357,7 +357,7 @@ fn the_moon_lights_the_deck_at_night() {
         })
         .map(|i| i as usize)
         .collect();
-    prepared.shell_cloud.as_mut().unwrap().moon = None;
+    prepared.shell_cloud.as_mut().unwrap().lights.truncate(1);
     let sunlit_only = render::cpu_renderer::render_radiance(&prepared).unwrap();
     let mean = |image: &[render::cpu_renderer::PixelRadiance]| {
         deck.iter()
@@ -408,11 +408,11 @@ fn the_deck_shadows_the_terrain() {
     let scene = shipped(width, height);
     let cloudy = scene.prepare().unwrap();
     let cloud = cloudy.shell_cloud.as_ref().unwrap();
-    let map = cloud
+    let map = cloud.lights[0]
         .shadow
         .as_ref()
         .expect("a shadow map over the terrain");
-    assert!(cloud.moon_shadow.is_none());
+    assert_eq!(cloud.lights.len(), 1, "the sun alone lights the day");
     assert_eq!(planned(&cloudy, "shell cloud shadow"), Some(true));
     let shadowed_texels = map.values.iter().filter(|&&t| t < 1.0).count();
     let darkest = map.values.iter().copied().fold(1.0f32, f32::min);

@@ -17,7 +17,7 @@ fn the_deck_map_baked_on_the_gpu_is_the_cpu_bake() {
     };
     let scene = common::shipped("stratocumulus", 96, 54).prepare().unwrap();
     let cloud = scene.shell_cloud.as_ref().unwrap();
-    let map = cloud
+    let map = cloud.lights[0]
         .shadow
         .as_ref()
         .expect("a shadow map over the terrain");
@@ -92,8 +92,8 @@ fn a_scene_prepared_for_the_gpu_leaves_the_bake_to_it() {
         full.shell_cloud.as_ref().unwrap(),
     );
     let (lazy_map, map) = (
-        lazy.shadow.as_ref().unwrap(),
-        baked.shadow.as_ref().unwrap(),
+        lazy.lights[0].shadow.as_ref().unwrap(),
+        baked.lights[0].shadow.as_ref().unwrap(),
     );
     assert!(lazy_map.values.is_empty() && !lazy.shadows_baked_on_cpu());
     assert_eq!(lazy.shadow_seconds, 0.0);
@@ -118,7 +118,10 @@ fn a_scene_prepared_for_the_gpu_leaves_the_bake_to_it() {
     for_gpu.bake_shell_shadow_on_cpu();
     let rebaked = for_gpu.shell_cloud.as_ref().unwrap();
     assert!(rebaked.shadows_baked_on_cpu() && rebaked.shadow_seconds > 0.0);
-    assert_eq!(rebaked.shadow.as_ref().unwrap().values, map.values);
+    assert_eq!(
+        rebaked.lights[0].shadow.as_ref().unwrap().values,
+        map.values
+    );
 }
 
 /// The GPU renderer times the deck's bake as "shell cloud shadow" (`skyscape explain`):
@@ -210,10 +213,7 @@ fn terrain_above_the_deck_is_not_in_its_shadow() {
         .into_iter()
         .fold(f64::INFINITY, f64::min);
     assert!(low > 500.0, "the terrain's lowest point {low}");
-    let map = prepared
-        .shell_cloud
-        .as_ref()
-        .unwrap()
+    let map = prepared.shell_cloud.as_ref().unwrap().lights[0]
         .shadow
         .as_ref()
         .expect("the deck's map over the terrain");
@@ -229,7 +229,7 @@ fn terrain_above_the_deck_is_not_in_its_shadow() {
             common::cpu_pixels(&prepared),
         )
     });
-    prepared.shell_cloud.as_mut().unwrap().shadow = None;
+    prepared.shell_cloud.as_mut().unwrap().lights[0].shadow = None;
     let without = render::cpu_renderer::render_radiance(&prepared).unwrap();
     let terrain_pixels: Vec<usize> = (0..with.len())
         .filter(|&i| with[i].terrain_distance.is_some())

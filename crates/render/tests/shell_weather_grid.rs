@@ -140,7 +140,10 @@ fn a_grid_weather_deck_agrees_on_the_gpu_and_the_cpu() {
         .prepare()
         .unwrap();
     let cloud = prepared.shell_cloud.as_ref().unwrap();
-    assert!(cloud.shadow.is_some(), "a shadow map over the terrain");
+    assert!(
+        cloud.lights[0].shadow.is_some(),
+        "a shadow map over the terrain"
+    );
     let (gpu_image, cpu_image, agreement) = common::compare(gpu, &prepared);
     let camera = render::shell_clouds::shell_camera(&prepared.camera).unwrap();
     let mut deck = Vec::new();

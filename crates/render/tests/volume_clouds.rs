@@ -300,12 +300,12 @@ fn the_volume_cloud_shadows_the_terrain() {
     let shadow = prepared
         .volume_cloud
         .as_ref()
-        .and_then(|v| v.shadow.as_ref())
+        .and_then(|v| v.lights[0].shadow.as_ref())
         .expect("a sunlit cloud over terrain has a shadow map");
     let darkest = shadow.values.iter().fold(1.0f32, |m, &v| m.min(v));
     assert!(darkest < 0.5, "the map's darkest texel {darkest}");
     let shaded = render::cpu_renderer::render_radiance(&prepared).unwrap();
-    prepared.volume_cloud.as_mut().unwrap().shadow = None;
+    prepared.volume_cloud.as_mut().unwrap().lights[0].shadow = None;
     let unshaded = render::cpu_renderer::render_radiance(&prepared).unwrap();
     let common::TerrainDarkening {
         terrain,
@@ -335,7 +335,7 @@ fn the_volume_cloud_shadows_the_terrain() {
     let mut no_terrain = shipped(32, 18);
     no_terrain.file.terrain = None;
     let prepared = no_terrain.prepare().unwrap();
-    assert!(prepared.volume_cloud.unwrap().shadow.is_none());
+    assert!(prepared.volume_cloud.unwrap().lights[0].shadow.is_none());
 }
 
 /// A cloud sunk into the hills (its base on the ground): where the terrain

@@ -64,7 +64,7 @@ fn the_moon_lights_the_volume_cloud() {
         90,
     );
     let lit = scene.prepare().unwrap();
-    let moon = lit.volume_cloud.as_ref().unwrap().moon.as_ref();
+    let moon = lit.volume_cloud.as_ref().unwrap().lights.get(1);
     assert!(moon.is_some(), "the moon lights the night's cloud");
     // `skyscape explain` lists the moonlit march and why.
     let plan = render::passes::planned_passes(&lit);
@@ -74,7 +74,7 @@ fn the_moon_lights_the_volume_cloud() {
         "explain lists the moonlit march: {moonlit:?}"
     );
     let mut dark = scene.clone().prepare().unwrap();
-    dark.volume_cloud.as_mut().unwrap().moon = None;
+    dark.volume_cloud.as_mut().unwrap().lights.truncate(1);
     let mut clear_scene = scene.clone();
     clear_scene.file.clouds = None;
     let clear = clear_scene.prepare().unwrap();
@@ -148,8 +148,8 @@ fn the_volume_cloud_shadows_the_moonlit_terrain() {
     // A cloud 3 km up over the range's middle; its moon shadow falls west-north-west.
     let volume = cumulus([0.0, 0.0], 3000.0, 100.0);
     let probe = night(WEST_CAMERA, &volume, 32, 18).prepare().unwrap();
-    let moon = probe.moonlit.as_ref().unwrap().direction;
-    let shadow = probe.volume_cloud.as_ref().unwrap().moon.as_ref().unwrap();
+    let moon = probe.other_lights[0].direction;
+    let shadow = &probe.volume_cloud.as_ref().unwrap().lights[1];
     let map = shadow
         .shadow
         .as_ref()
@@ -163,13 +163,7 @@ fn the_volume_cloud_shadows_the_moonlit_terrain() {
     let scene = night(&camera, &volume, 96, 54);
     let mut prepared = scene.prepare().unwrap();
     let shaded = render_radiance(&prepared).unwrap();
-    let kept = prepared
-        .volume_cloud
-        .as_mut()
-        .unwrap()
-        .moon
-        .as_mut()
-        .unwrap()
+    let kept = prepared.volume_cloud.as_mut().unwrap().lights[1]
         .shadow
         .take();
     assert!(kept.is_some());
@@ -319,7 +313,7 @@ fn the_moon_lights_the_cloud_through_the_closed_form() {
     let lit = scene.prepare().unwrap();
     assert!(lit.precomputed.is_none());
     let mut dark = scene.prepare().unwrap();
-    dark.volume_cloud.as_mut().unwrap().moon = None;
+    dark.volume_cloud.as_mut().unwrap().lights.truncate(1);
     let with = render_radiance(&lit).unwrap();
     let without = render_radiance(&dark).unwrap();
     let opaque = cloud_pixels(&lit, 0.1);
@@ -343,4 +337,54 @@ fn the_moon_lights_the_cloud_through_the_closed_form() {
                 .all(|p| p.radiance.iter().all(|v| v.is_finite()))
     );
     assert!(l > 3.0 * d, "{l} vs {d}");
+}
+
+/// The lights are a list: a third light is the same passes run once more. The night
+/// (sky, terrain with the cloud's shadow, the marched cloud) rendered by the CPU with
+/// the sun alone (`R₁`), with the sun and the moon (`R₂`, as prepared) and with the moon
+/// listed twice (`R₃`: the same `LightSky` and the cloud's same `CloudLight` appended)
+/// is linear in the lights: `R₃ − R₂ = R₂ − R₁` per pixel, within f32 rounding of the
+/// sums. The GPU renderer draws at most `render::gpu::MAX_LIGHTS` and refuses the third
+/// with an error naming the count.
+#[test]
+fn a_third_light_is_the_same_passes_run_again() {
+    let volume = cumulus([-23400.0, -3420.0], 3800.0, 100.0);
+    let scene = night(WEST_CAMERA, &volume, 48, 27);
+    let two = scene.prepare().unwrap();
+    assert_eq!(two.lights().len(), 2, "the night's sun and moon");
+    let mut one = scene.prepare().unwrap();
+    one.other_lights.clear();
+    one.volume_cloud.as_mut().unwrap().lights.truncate(1);
+    let mut three = scene.prepare().unwrap();
+    let again = scene.prepare().unwrap().other_lights.remove(0);
+    three.other_lights.push(again);
+    let cloud = three.volume_cloud.as_mut().unwrap();
+    let moonlit = cloud.lights[1].clone();
+    cloud.lights.push(moonlit);
+    assert_eq!(three.lights().len(), 3);
+    let [r1, r2, r3] = [&one, &two, &three].map(|s| render_radiance(s).unwrap());
+    let (mut worst, mut scale, mut moonlit) = (0f32, 0f32, 0usize);
+    for ((a, b), c) in r1.iter().zip(&r2).zip(&r3) {
+        for k in 0..3 {
+            let (added, again) = (b.radiance[k] - a.radiance[k], c.radiance[k] - b.radiance[k]);
+            worst = worst.max((again - added).abs());
+            scale = scale.max(c.radiance[k].abs());
+        }
+        moonlit += usize::from(b.radiance[1] > a.radiance[1]);
+    }
+    eprintln!(
+        "a third light (the moon twice), 48×27 on the CPU: the moon adds to {moonlit} of {} \
+         pixels; |(R3 − R2) − (R2 − R1)| ≤ {worst:.3e} (largest radiance {scale:.3e})",
+        r1.len()
+    );
+    assert!(moonlit > r1.len() / 2, "the moon lights {moonlit} pixels");
+    assert!(worst <= 1e-5 * scale, "{worst:e} against {scale:e}");
+    if let Some(gpu) = common::gpu_or_skip("render::volume_night third light on the GPU") {
+        let error =
+            render::gpu::SceneRenderer::new(&gpu.device, &gpu.queue, &three, Default::default())
+                .err()
+                .map(|e| e.to_string())
+                .unwrap_or_default();
+        assert!(error.contains("3 lights"), "{error}");
+    }
 }

@@ -47,40 +47,44 @@ fn billboard_error(e: cloudlight::billboard::BillboardError) -> RenderError {
 
 /// The particles of `cloud` the scene's camera sees, sorted back to front, their colours
 /// the light they scatter toward the eye before the air
-/// (`cloudlight::billboard::particle_radiance`: the sun's, the moon's at night, and the
-/// ambient sky's).
+/// (`cloudlight::billboard::particle_radiance`: each light's — the sun's, the moon's at
+/// night — and the ambient sky each scatters).
 pub fn particles(
     scene: &PreparedScene,
     cloud: &PreparedBillboards,
 ) -> Result<(Camera, Vec<Billboard>), RenderError> {
     let camera =
         billboard_camera(&scene.camera, scene.atmosphere.planet_radius).map_err(billboard_error)?;
+    let sun = &cloud.lights[0];
     let mut particles =
-        cloudlight::billboard::billboards(&cloud.volume, &cloud.light, &cloud.settings, &camera)
+        cloudlight::billboard::billboards(&cloud.volume, &sun.light, &cloud.settings, &camera)
             .map_err(billboard_error)?;
     let light = |lighting: &Lighting<f32>, transmittance: f32| ParticleLight {
         direction: lighting.sun_direction().map(f64::from),
         irradiance: lighting.sun_irradiance().map(f64::from),
         transmittance: f64::from(transmittance),
     };
-    let mut ambient = cloud.lighting.ambient_radiance().map(f64::from);
-    if let Some(moon) = &cloud.moon {
-        let add = moon.lighting.ambient_radiance();
+    let mut ambient = sun.lighting.ambient_radiance().map(f64::from);
+    for other in &cloud.lights[1..] {
+        let add = other.lighting.ambient_radiance();
         for (a, m) in ambient.iter_mut().zip(add) {
             *a += f64::from(m);
         }
     }
+    let mut lights = Vec::with_capacity(cloud.lights.len());
     for p in &mut particles {
         let r = DVec3::from_array(p.relative);
         let view = (r / r.length()).to_array();
-        let sun = light(&cloud.lighting, cloud.light[p.cell]);
-        let (lights, count) = match &cloud.moon {
-            Some(moon) => ([sun, light(&moon.lighting, moon.light[p.cell])], 2),
-            None => ([sun; 2], 1),
-        };
+        lights.clear();
+        lights.extend(
+            cloud
+                .lights
+                .iter()
+                .map(|lit| light(&lit.lighting, lit.light[p.cell])),
+        );
         p.colour = cloudlight::billboard::particle_radiance(
             view,
-            &lights[..count],
+            &lights,
             ambient,
             f64::from(cloud.ambient_visibility[p.cell]),
             &cloud.scattering,
@@ -96,24 +100,35 @@ pub fn world_offset(relative: [f64; 3]) -> [f32; 3] {
     [r[0], r[2], -r[1]]
 }
 
-/// At night (the cloud lit by the moon and the scene's moonlit sky), the moonlit air in
-/// front of each particle: its in-scattered radiance between the camera and the
-/// particle's centre from the moon's segment model ([`crate::air::segment_to`],
-/// f32), the same values for both renderers (the GPU's vertex stage adds them to the
-/// sun's air, the CPU twin likewise). `None` otherwise.
-pub fn moonlit_air(
+/// The air the scene's lights after the sun scatter in front of each particle (the
+/// moonlit air at night), summed in the lights' order: each light's in-scattered
+/// radiance between the camera and the particle's centre from its segment model
+/// ([`crate::air::segment_to`], f32), the same values for both renderers (the GPU's
+/// vertex stage adds them to the sun's air, the CPU twin likewise). `None` for a scene
+/// lit by the sun alone. The lights' atmospheres differ in irradiance only, so the
+/// transmittance is the sun's.
+pub fn other_lights_air(
     scene: &PreparedScene,
     cloud: &PreparedBillboards,
     particles: &[Billboard],
 ) -> Result<Option<Vec<[f32; 3]>>, RenderError> {
-    let (Some(_), Some(moon)) = (&cloud.moon, scene.moon_light()) else {
+    let lights = scene.lights();
+    if cloud.lights.len() < 2 || lights.len() < 2 {
         return Ok(None);
-    };
+    }
     particles
         .iter()
         .map(|p| {
             let offset = world_offset(p.relative);
-            Ok(crate::air::segment_to(scene, &moon, None, offset)?.radiance)
+            let mut sum: Option<[f32; 3]> = None;
+            for light in &lights[1..] {
+                let radiance = crate::air::segment_to(scene, light, None, offset)?.radiance;
+                sum = Some(match sum {
+                    Some(s) => std::array::from_fn(|k| s[k] + radiance[k]),
+                    None => radiance,
+                });
+            }
+            Ok(sum.unwrap_or_default())
         })
         .collect::<Result<Vec<_>, RenderError>>()
         .map(Some)
@@ -130,14 +145,14 @@ pub fn composite_billboards_cpu(
     out: &mut [PixelRadiance],
 ) -> Result<(), RenderError> {
     let (camera, mut particles) = particles(scene, cloud)?;
-    let moon_air = moonlit_air(scene, cloud, &particles)?;
+    let other_air = other_lights_air(scene, cloud, &particles)?;
     let sun = scene.sun_light();
     for (i, p) in particles.iter_mut().enumerate() {
         let offset = world_offset(p.relative);
         let air = crate::air::segment_to(scene, &sun, tables, offset)?;
         let (transmittance, radiance) = (air.transmittance, air.radiance);
-        // At night the moonlit air is added to the sun's, as the GPU's vertex stage does.
-        let radiance = match &moon_air {
+        // The other lights' air is added to the sun's, as the GPU's vertex stage does.
+        let radiance = match &other_air {
             Some(air) => std::array::from_fn(|k| radiance[k] + air[i][k]),
             None => radiance,
         };
@@ -177,6 +192,15 @@ pub fn composite_billboards_cpu(
     Ok(())
 }
 
+/// The scene's lights' names as a phrase: "sun", "sun and moon".
+fn light_names(scene: &PreparedScene) -> String {
+    let names: Vec<&str> = scene.lights().iter().map(|l| l.name).collect();
+    match names.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
+        _ => names.concat(),
+    }
+}
+
 /// `skyscape explain`'s line for the billboard pass.
 pub fn explain(scene: &PreparedScene) -> Result<String, String> {
     match &scene.billboard_cloud {
@@ -186,7 +210,7 @@ pub fn explain(scene: &PreparedScene) -> Result<String, String> {
             Ok(format!(
                 "Dobashi et al. 2000's billboards of the [clouds.volume] cumulus ({nx}×{ny}×{nz} cells grown \
                  by cloudsim in {} steps, lit on the CPU by cloudlight's {} slice propagation \
-                 toward the sun{}, the march's phase and octaves and the ambient sky): \
+                 toward the {}, the march's phase and octaves and the ambient sky): \
                  {drawn} of {} cells denser than {} drawn back to front, depth-tested against \
                  the terrain, through the aerial perspective",
                 cloud.steps,
@@ -194,11 +218,7 @@ pub fn explain(scene: &PreparedScene) -> Result<String, String> {
                     SliceMode::Physical => "physical",
                     SliceMode::Faithful { .. } => "faithful",
                 },
-                if cloud.moon.is_some() {
-                    " and again toward the moon (a moonlit sky)"
-                } else {
-                    ""
-                },
+                light_names(scene),
                 cloud.dense_cells,
                 cloud.settings.density_threshold,
             ))

@@ -75,9 +75,9 @@ fn needs_tables() -> RenderError {
     }
 }
 
-fn moon_air_buffer(device: &wgpu::Device, size: u64) -> wgpu::Buffer {
+fn added_air_buffer(device: &wgpu::Device, size: u64) -> wgpu::Buffer {
     device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("render billboard moonlit air"),
+        label: Some("render billboard added lights' air"),
         size,
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
@@ -88,11 +88,11 @@ fn params_bind_group(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
     uniform: &wgpu::Buffer,
-    moon_air: &wgpu::Buffer,
+    added_air: &wgpu::Buffer,
     rung_air: Option<[&wgpu::Buffer; 2]>,
 ) -> wgpu::BindGroup {
     let [sun, moon] = rung_air.map_or([None; 2], |airs| airs.map(Some));
-    let entries: Vec<wgpu::BindGroupEntry<'_>> = [Some(uniform), Some(moon_air), sun, moon]
+    let entries: Vec<wgpu::BindGroupEntry<'_>> = [Some(uniform), Some(added_air), sun, moon]
         .into_iter()
         .enumerate()
         .filter_map(|(binding, buffer)| {
@@ -117,21 +117,21 @@ pub const PARAMS_BYTES: u64 = 80;
 const AIR_WORKGROUP: u32 = 64;
 
 /// The air in front of every particle under a rung without tables, per light (the sun,
-/// and the moon on a moonlit night): a compute pass of the rung's functions
+/// and the light added to it: the moon on a moonlit night): a compute pass of the rung's functions
 /// (`shaders/render/billboard_air_rung.wgsl` with the rung's module) per
 /// particle, with the light's camera and the rung's parameters of its atmosphere
 /// (`crate::gpu::cloud_air::RungCloudAir`, written each frame by the rung's passes) in
 /// groups 0 and 1, the particles' world offsets in and their air out in group 2
 /// (`shaders/render/billboard_air_io.wgsl`). The twin of the CPU's segment models in
-/// [`composite_billboards_cpu`] (the sun's) and [`moonlit_air`] (the moon's).
+/// [`composite_billboards_cpu`] (the sun's) and [`other_lights_air`] (the added light's).
 #[derive(Debug)]
 struct RungBillboardAir {
     layout: wgpu::BindGroupLayout,
     uniform: wgpu::Buffer,
     /// The particles' world offsets (one `vec4<f32>` each).
     offsets: wgpu::Buffer,
-    sun: LightAir,
-    moon: Option<LightAir>,
+    /// Each light's pass, the sun's first.
+    lights: Vec<LightAir>,
 }
 
 /// One light's billboard air pass and its output.
@@ -149,8 +149,7 @@ struct LightAir {
 impl RungBillboardAir {
     fn new(
         device: &wgpu::Device,
-        sun: &crate::gpu::cloud_air::RungCloudAir,
-        moon: Option<&crate::gpu::cloud_air::RungCloudAir>,
+        airs: &[&crate::gpu::cloud_air::RungCloudAir],
     ) -> Result<Self, RenderError> {
         let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
             binding,
@@ -203,17 +202,18 @@ impl RungBillboardAir {
                 group,
             })
         };
-        let sun = light(sun, "render billboard sun air")?;
-        let moon = match moon {
-            Some(moon) => Some(light(moon, "render billboard moon air")?),
-            None => None,
-        };
+        let lights = airs
+            .iter()
+            .map(|air| light(air, "render billboard air"))
+            .collect::<Result<Vec<_>, _>>()?;
+        if lights.is_empty() {
+            return Err(needs_tables());
+        }
         Ok(Self {
             layout,
             uniform,
             offsets,
-            sun,
-            moon,
+            lights,
         })
     }
 
@@ -248,9 +248,10 @@ impl RungBillboardAir {
         })
     }
 
-    /// The sun's air and the moon's (the sun's again without a moon pass: unread).
+    /// The sun's air and the added light's (the sun's again without one: unread).
     fn airs(&self) -> [&wgpu::Buffer; 2] {
-        [&self.sun.air, &self.moon.as_ref().unwrap_or(&self.sun).air]
+        let sun = &self.lights[0];
+        [&sun.air, &self.lights.get(1).unwrap_or(sun).air]
     }
 
     /// Uploads the particles' world offsets (the draw's order) and their count; `true`
@@ -277,20 +278,15 @@ impl RungBillboardAir {
         let replaced = self.offsets.size() < 16 * count;
         if replaced {
             self.offsets = Self::buffer(device, "render billboard offsets", 16 * count);
-            for (light, label) in [
-                (Some(&mut self.sun), "render billboard sun air"),
-                (self.moon.as_mut(), "render billboard moon air"),
-            ] {
-                if let Some(light) = light {
-                    light.air = Self::buffer(device, label, 32 * count);
-                    light.group = Self::group(
-                        device,
-                        &self.layout,
-                        &self.uniform,
-                        &self.offsets,
-                        &light.air,
-                    );
-                }
+            for light in &mut self.lights {
+                light.air = Self::buffer(device, "render billboard air", 32 * count);
+                light.group = Self::group(
+                    device,
+                    &self.layout,
+                    &self.uniform,
+                    &self.offsets,
+                    &light.air,
+                );
             }
         }
         let offsets: Vec<f32> = particles
@@ -308,11 +304,15 @@ impl RungBillboardAir {
         Ok(replaced)
     }
 
-    /// Records the compute passes of `count` particles' air: the sun's, and the moon's
-    /// when `moon`.
-    fn encode(&self, encoder: &mut wgpu::CommandEncoder, count: u32, moon: bool) {
-        let lights = [Some(&self.sun), self.moon.as_ref().filter(|_| moon)];
-        for light in lights.into_iter().flatten() {
+    /// Records the compute passes of `count` particles' air: the sun's, and the added
+    /// light's when `added` (the draw reads it, `moonlit` = 2).
+    fn encode(&self, encoder: &mut wgpu::CommandEncoder, count: u32, added: bool) {
+        let lights = if added {
+            &self.lights[..]
+        } else {
+            &self.lights[..1]
+        };
+        for light in lights {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("render billboard air"),
                 timestamp_writes: None,
@@ -341,12 +341,13 @@ pub(crate) struct BillboardCloudPass {
     layout: wgpu::BindGroupLayout,
     bind_group: wgpu::BindGroup,
     uniform: wgpu::Buffer,
-    /// The moonlit air per instance (16 bytes, unread, without a moonlit sky).
-    moon_air: wgpu::Buffer,
+    /// The other lights' air per instance (16 bytes, unread, with the sun alone).
+    added_air: wgpu::Buffer,
     /// The air per particle under a rung without tables (`None`: the precomputed rung's
     /// tables in groups 0 and 1).
     rung_air: Option<RungBillboardAir>,
-    /// This frame's moonlit air: 0 none, 1 the CPU's per instance, 2 the rung's pass.
+    /// This frame's other lights' air: 0 none, 1 the CPU's per instance, 2 the rung's
+    /// pass (one light added to the sun under a rung without tables).
     moonlit: u32,
     instances: Option<wgpu::Buffer>,
     count: u32,
@@ -356,13 +357,14 @@ impl BillboardCloudPass {
     /// The pipeline for an HDR target of `target` and a depth attachment of `depth`;
     /// the particles' air is the sun's `air` (`crate::gpu::cloud_air::cloud_airs`): the
     /// precomputed rung's tables, read in the vertex stage, or a rung's functions, a
-    /// compute pass per particle before the draw (an error without either). A rung's
-    /// `moon` (a moonlit sky) gets its pass too; on the precomputed rung the moonlit air
-    /// is the CPU's ([`moonlit_air`]).
+    /// compute pass per particle before the draw (an error without either). Under a
+    /// rung without tables the light added to the sun (`added`: the moon on a moonlit
+    /// night) gets its pass too; on the precomputed rung the other lights' air is the
+    /// CPU's ([`other_lights_air`]).
     pub(crate) fn new(
         device: &wgpu::Device,
         air: Option<crate::gpu::cloud_air::CloudAir<'_>>,
-        moon: Option<crate::gpu::cloud_air::CloudAir<'_>>,
+        added: Option<crate::gpu::cloud_air::CloudAir<'_>>,
         target: wgpu::TextureFormat,
         depth: wgpu::TextureFormat,
     ) -> Result<Self, RenderError> {
@@ -382,11 +384,11 @@ impl BillboardCloudPass {
         };
         let rung_air = match air {
             Some(CloudAir::Rung(rung)) => {
-                let moon = match moon {
-                    Some(CloudAir::Rung(moon)) => Some(moon),
-                    _ => None,
-                };
-                Some(RungBillboardAir::new(device, rung, moon)?)
+                let mut airs = vec![rung];
+                if let Some(CloudAir::Rung(added)) = added {
+                    airs.push(added);
+                }
+                Some(RungBillboardAir::new(device, &airs)?)
             }
             _ => None,
         };
@@ -402,12 +404,12 @@ impl BillboardCloudPass {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let moon_air = moon_air_buffer(device, 16);
+        let added_air = added_air_buffer(device, 16);
         let bind_group = params_bind_group(
             device,
             &layout,
             &uniform,
-            &moon_air,
+            &added_air,
             rung_air.as_ref().map(RungBillboardAir::airs),
         );
         // The rungs' pipeline binds group 2 alone (its air is in group 2).
@@ -445,7 +447,7 @@ impl BillboardCloudPass {
             layout,
             bind_group,
             uniform,
-            moon_air,
+            added_air,
             rung_air,
             moonlit: 0,
             instances: None,
@@ -492,22 +494,22 @@ impl BillboardCloudPass {
             }
         }
         self.count = count;
-        // The moon's air from the rung's pass (a moonlit night under a rung without
-        // tables), else the CPU's.
-        let rung_moon = self.rung_air.as_ref().is_some_and(|r| r.moon.is_some())
-            && cloud.moon.is_some()
-            && scene.moon_light().is_some();
-        let moon_air = if rung_moon {
+        // The added light's air from the rung's pass (one light added to the sun under
+        // a rung without tables), else the CPU's sum over the other lights.
+        let rung_added = self.rung_air.as_ref().is_some_and(|r| r.lights.len() == 2)
+            && cloud.lights.len() == 2
+            && scene.lights().len() == 2;
+        let added_air = if rung_added {
             None
         } else {
-            moonlit_air(scene, cloud, &particles)?
+            other_lights_air(scene, cloud, &particles)?
         };
-        self.moonlit = match (rung_moon, &moon_air) {
+        self.moonlit = match (rung_added, &added_air) {
             (true, _) => 2,
             (false, Some(_)) => 1,
             (false, None) => 0,
         };
-        if let Some(air) = &moon_air
+        if let Some(air) = &added_air
             && !air.is_empty()
         {
             let bytes: Vec<u8> = air
@@ -515,11 +517,11 @@ impl BillboardCloudPass {
                 .flat_map(|l| [l[0], l[1], l[2], 0.0])
                 .flat_map(f32::to_ne_bytes)
                 .collect();
-            if self.moon_air.size() < bytes.len() as u64 {
-                self.moon_air = moon_air_buffer(device, bytes.len() as u64);
+            if self.added_air.size() < bytes.len() as u64 {
+                self.added_air = added_air_buffer(device, bytes.len() as u64);
                 self.bind_group = self.params_group(device);
             }
-            queue.write_buffer(&self.moon_air, 0, &bytes);
+            queue.write_buffer(&self.added_air, 0, &bytes);
         }
         // A rung without tables: the particles' offsets for the air passes.
         if let Some(rung_air) = &mut self.rung_air
@@ -547,7 +549,7 @@ impl BillboardCloudPass {
             device,
             &self.layout,
             &self.uniform,
-            &self.moon_air,
+            &self.added_air,
             self.rung_air.as_ref().map(RungBillboardAir::airs),
         )
     }

@@ -24,11 +24,11 @@
 //! V_amb)` with `P` the march's `octave_scattering` of `τ = −ln T` (its dual-lobe
 //! Henyey–Greenstein phase and `[clouds.volume]`'s octaves, 8 by default; one octave is
 //! `T · p(cos θ)`, Dobashi 2000's single scattering; Dobashi et al. 2000 had `E · T` alone)
-//! and the march's albedo, `θ` between the view ray to the particle and the sun. At night — when the scene has a
-//! moonlit sky (`PreparedScene::moonlit`, as the marched cloud) — the slices run a
-//! second time toward the moon and the moon's term and its moonlit ambient sky are
-//! added ([`MoonlitBillboards`]); its shadow map along the moon shades the moonlit
-//! terrain. The particle's colour is computed on the CPU for both renderers (the
+//! and the march's albedo, `θ` between the view ray to the particle and the sun. The same for each of the
+//! scene's lights (`PreparedScene::lights`, as the marched cloud: the moon too on a
+//! moonlit night): the slices run toward each light and each light's term and its
+//! ambient sky are added ([`PreparedBillboards::lights`]); the cloud's shadow map toward
+//! each light shades the terrain that light draws. The particle's colour is computed on the CPU for both renderers (the
 //! particles are selected and sorted there per frame): the GPU's instances carry it.
 //!
 //! # Drawing
@@ -44,11 +44,12 @@
 //! `colour' = colour · T_air + L_air`
 //! ([`billboard_seen_through_air`]), so the premultiplied splat adds
 //! `α · (colour · T_air + L_air)` over `(1 − α)` of what is behind, the marched cloud's
-//! `L_c · T_air + L_air · (1 − T_c)`. At night the moonlit air in front of each particle
-//! is added to `L_air` ([`moonlit_air`]: the moon's segment model, computed on the CPU
-//! and, on the precomputed rung, read by the GPU's vertex stage per instance; under the
-//! closed form and single scattering the GPU runs the rung's pass for the moon instead;
-//! the sun's air comes from the tables or the rung's pass). A particle covers a pixel
+//! `L_c · T_air + L_air · (1 − T_c)`. The other lights' air in front of each
+//! particle (the moonlit air at night) is added to `L_air` ([`other_lights_air`]: each
+//! light's segment model, summed, computed on the CPU and read by the GPU's vertex stage
+//! per instance; under the closed form and single scattering with one other light the
+//! GPU runs the rung's pass for it instead; the sun's air comes from the tables or the
+//! rung's pass). A particle covers a pixel
 //! only where its view depth is less than the terrain's: on the CPU `cloudlight::billboard::rasterise_limited`
 //! with the ray-cast terrain's view depth per pixel, on the GPU a depth test `Greater`
 //! of `near / z` against the terrain's reverse-z depth (`shaders/render/billboard_clouds.wgsl`,
@@ -69,8 +70,8 @@ use cloudlight::propagate::SliceMode;
 use crate::cloud_shadow::CloudShadow;
 
 pub use cpu::{
-    billboard_camera, billboard_near, composite_billboards_cpu, explain, moonlit_air, particles,
-    world_offset,
+    billboard_camera, billboard_near, composite_billboards_cpu, explain, other_lights_air,
+    particles, world_offset,
 };
 #[cfg(feature = "gpu")]
 pub(crate) use gpu::BillboardCloudPass;
@@ -83,8 +84,6 @@ pub use section::{BillboardsSection, DEFAULT_CELLS_PER_DENSITY, SlicesName, Volu
 pub struct PreparedBillboards {
     /// The grown density in the east/north/up frame (as `PreparedVolume::volume`).
     pub volume: CloudVolume,
-    /// The slices' light at every cell centre, x fastest (`propagate::<f32>`).
-    pub light: Vec<f32>,
     /// The particles' settings: threshold, size, opacity, the sun's colour (its
     /// irradiance at the cloud / π), the near plane.
     pub settings: BillboardSettings,
@@ -94,32 +93,26 @@ pub struct PreparedBillboards {
     pub steps: u32,
     /// Cells denser than the threshold (billboards before the camera's culling).
     pub dense_cells: usize,
-    /// Its shadow on the terrain (as the marched cloud's, `CloudShadow`).
-    pub shadow: Option<CloudShadow>,
-    /// The sun and the ambient sky at the grid's centre, east/north/up (the marched
-    /// cloud's `PreparedVolume::lighting`).
-    pub lighting: Lighting<f32>,
     /// The ambient sky's visibility at every cell centre denser than the threshold
     /// (`cloudlight::march::ambient_visibility`), x fastest; 0 at the cells not drawn.
     pub ambient_visibility: Vec<f32>,
     /// The particles' albedo and phase: the march's (`ParticleScattering::of_march`).
     pub scattering: ParticleScattering,
-    /// The cloud lit by the moon too: only in scenes with a moonlit sky
-    /// (`PreparedScene::moonlit`), else `None` and no second propagation runs.
-    pub moon: Option<MoonlitBillboards>,
+    /// The cloud lit by each of the scene's lights, in
+    /// [`crate::scene::PreparedScene::lights`]' order (the sun first).
+    pub lights: Vec<BillboardLight>,
 }
 
-/// The billboards' second light at night: the moon, as the sun is
-/// ([`PreparedBillboards::lighting`] and `light`), from the marched cloud's
-/// `MoonlitVolume`.
+/// The billboards lit by one light (the marched cloud's `crate::light::CloudLight` and
+/// the slices' light toward it).
 #[derive(Debug, Clone)]
-pub struct MoonlitBillboards {
-    /// The moon and the moonlit ambient sky at the grid's centre, east/north/up.
+pub struct BillboardLight {
+    /// The light and the ambient sky at the grid's centre, east/north/up.
     pub lighting: Lighting<f32>,
-    /// The slices' light toward the moon at every cell centre, x fastest.
+    /// The slices' light toward it at every cell centre, x fastest (`propagate::<f32>`).
     pub light: Vec<f32>,
-    /// Its shadow on the terrain under the moon (`None` with the moon below 1° or no
-    /// terrain in the scene).
+    /// The cloud's shadow on the terrain toward it (`None` with the light below 1° or
+    /// no terrain in the scene).
     pub shadow: Option<CloudShadow>,
 }
 

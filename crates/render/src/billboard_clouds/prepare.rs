@@ -1,8 +1,6 @@
 //! `[clouds.volume]` drawn as billboards, prepared: grown, lit by slice propagation
 //! toward the sun (and the moon on a moonlit night), its particles' lighting baked.
 
-use glam::DVec3;
-
 use cloudlight::CloudVolume;
 use cloudlight::billboard::{BillboardSettings, Opacity, ParticleScattering, SizeRule};
 use cloudlight::march::Lighting;
@@ -89,24 +87,19 @@ impl Scene {
     }
 
     /// Grows `[clouds.volume]`'s cloud (`Scene::volume_cloud`: the same automaton,
-    /// placement, sun and shadow) and lights it with the slices, for drawing as
-    /// billboards.
-    #[allow(clippy::too_many_arguments)]
+    /// placement, lights and shadows) and lights it with the slices toward each of the
+    /// scene's `lights`, for drawing as billboards.
     pub(crate) fn billboard_cloud(
         &self,
         section: &CloudVolumeSection,
-        atmosphere: &atmos::Atmosphere,
-        model: &(dyn atmos::SkyModel + Send + Sync),
-        sun: DVec3,
+        lights: &[crate::light::LightSource<'_>],
         near: f64,
         shadows_on_terrain: bool,
-        moonlit: Option<&crate::scene::prepare::MoonlitSky>,
     ) -> Result<PreparedBillboards, SceneError> {
         self.check_billboard_cloud(section)?;
         let b = section.billboards.unwrap_or_default();
-        // The marched cloud's growth, placement, lights (the moon's at night) and shadows.
-        let grown =
-            self.volume_cloud(section, atmosphere, model, sun, shadows_on_terrain, moonlit)?;
+        // The marched cloud's growth, placement, lights and shadows.
+        let grown = self.volume_cloud(section, lights, shadows_on_terrain)?;
         let slices = match b.slices {
             SlicesName::Physical => SliceMode::Physical,
             SlicesName::Faithful => SliceMode::Faithful {
@@ -122,15 +115,17 @@ impl Scene {
                 self.billboards_invalid("slices", format!("{:?}", b.slices), &e.to_string())
             })
         };
-        let light = propagate(grown.lighting.sun_direction())?;
-        let moon = match grown.moon {
-            Some(moon) => Some(MoonlitBillboards {
-                light: propagate(moon.lighting.sun_direction())?,
-                lighting: moon.lighting,
-                shadow: moon.shadow,
-            }),
-            None => None,
-        };
+        let lights = grown
+            .lights
+            .iter()
+            .map(|lit| {
+                Ok(BillboardLight {
+                    light: propagate(lit.lighting.sun_direction())?,
+                    lighting: lit.lighting,
+                    shadow: lit.shadow.clone(),
+                })
+            })
+            .collect::<Result<Vec<_>, SceneError>>()?;
         let size = match b.seed_k {
             Some(k) => SizeRule::Seed { k },
             None => SizeRule::World {
@@ -163,22 +158,19 @@ impl Scene {
             .count();
         let ambient_visibility = sky_visibility(
             &grown.volume,
-            &grown.lighting,
+            &grown.lights[0].lighting,
             &grown.settings,
             b.density_threshold,
         );
         Ok(PreparedBillboards {
             ambient_visibility,
             scattering: ParticleScattering::of_march(&grown.settings),
-            lighting: grown.lighting,
-            moon,
+            lights,
             volume: grown.volume,
-            light,
             settings,
             slices,
             steps: grown.steps,
             dense_cells,
-            shadow: grown.shadow,
         })
     }
 }

@@ -10,7 +10,7 @@
 //! composites the two by depth in one pass (`super::cloud_order`).
 
 use crate::gpu::layout::{buffer_entry, compute_pipeline, depth_entry};
-use crate::mutual_shadow::Light;
+use crate::light::LightIndex;
 use cloudlight::march::Lighting;
 
 /// A march whose image the composite reads (one `MarchResult` of 32 bytes per pixel).
@@ -45,7 +45,7 @@ macro_rules! cloud_march {
 cloud_march!(cloudlight::gpu::MarchPass);
 cloud_march!(cloudlight::gpu::MarchShellPass);
 
-/// One light's march and air pass (the sun's; at night also the moon's).
+/// One light's march and air pass.
 #[derive(Debug)]
 struct LitMarch<M> {
     march: M,
@@ -61,10 +61,8 @@ struct LitMarch<M> {
 
 /// The timestamp writes of one cloud's passes (each `None` when untimed).
 pub(crate) struct CloudTimes<'a> {
-    /// The sun's march.
-    pub march: Option<wgpu::ComputePassTimestampWrites<'a>>,
-    /// The moon's march (at night).
-    pub moon: Option<wgpu::ComputePassTimestampWrites<'a>>,
+    /// Each light's march, in the scene's lights' order.
+    pub marches: Vec<Option<wgpu::ComputePassTimestampWrites<'a>>>,
     /// The composite render pass.
     pub composite: Option<wgpu::RenderPassTimestampWrites<'a>>,
 }
@@ -74,10 +72,10 @@ pub(crate) struct CloudTimes<'a> {
 pub(crate) struct CloudComposite<M> {
     /// "volume" or "shell": the passes' labels ("render volume air", ...).
     name: &'static str,
-    /// The scene's section, named when the scene's moon differs from the built one's.
+    /// The scene's section, named when the scene's lights differ from the built ones.
     field: &'static str,
-    sun: LitMarch<M>,
-    moon: Option<LitMarch<M>>,
+    /// Each light's march, the sun's first (the composite reads the first two).
+    lights: Vec<LitMarch<M>>,
     /// The air passes' dispatch size (after `prepare`).
     groups: Option<[u32; 2]>,
     air_layout: wgpu::BindGroupLayout,
@@ -167,19 +165,27 @@ fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEn
 }
 
 impl<M: CloudMarch> CloudComposite<M> {
-    /// The air and composite pipelines and the marches `march` builds (the
-    /// sun's; the moon's when `moon_luts`, the moonlit tables, are given), each light's
-    /// tables' layouts in its air pass's groups 0 and 1. `name` labels the passes,
-    /// `field` is the scene section named in `prepare`'s errors.
+    /// The air and composite pipelines and the marches `march` builds, one per light of
+    /// `airs` (each light's air: its tables or its rung's passes, the sun's first),
+    /// each light's layouts in its air pass's groups 0 and 1. `name` labels the passes,
+    /// `field` is the scene section named in `prepare`'s errors. The composite adds the
+    /// first two lights' marches (WGSL `VolumeComposite::moonlit`): more is an error
+    /// naming `field`.
     pub(crate) fn new(
         device: &wgpu::Device,
         name: &'static str,
         field: &'static str,
-        luts: super::cloud_air::CloudAir<'_>,
-        moon_luts: Option<super::cloud_air::CloudAir<'_>>,
+        airs: &[super::cloud_air::CloudAir<'_>],
         target: wgpu::TextureFormat,
         march: impl Fn() -> Result<M, crate::RenderError>,
     ) -> Result<Self, crate::RenderError> {
+        if airs.is_empty() || airs.len() > crate::gpu::frame::MAX_LIGHTS {
+            return Err(crate::RenderError::InvalidParameter {
+                field,
+                value: format!("lit by {} lights", airs.len()),
+                reason: "the GPU composite adds the marches of one to two lights",
+            });
+        }
         use wgpu::BufferBindingType::{Storage, Uniform};
         let compute = wgpu::ShaderStages::COMPUTE;
         let module =
@@ -223,11 +229,14 @@ impl<M: CloudMarch> CloudComposite<M> {
                 shadow: Default::default(),
             })
         };
-        let sun = lit(luts, &air_label)?;
-        let moon = match moon_luts {
-            Some(moon_luts) => Some(lit(moon_luts, &format!("{air_label} (moonlit)"))?),
-            None => None,
-        };
+        let lights = airs
+            .iter()
+            .enumerate()
+            .map(|(index, air)| match index {
+                0 => lit(*air, &air_label),
+                _ => lit(*air, &format!("{air_label} (light {index})")),
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         let label = format!("render {name} clouds");
         let composite_module = module("render::volume_clouds", &label)?;
         let fragment = wgpu::ShaderStages::FRAGMENT;
@@ -260,8 +269,7 @@ impl<M: CloudMarch> CloudComposite<M> {
         Ok(Self {
             name,
             field,
-            sun,
-            moon,
+            lights,
             groups: None,
             air_layout,
             air_uniform,
@@ -273,12 +281,12 @@ impl<M: CloudMarch> CloudComposite<M> {
     }
 
     /// The frame's air and composite uniforms and bind groups, and the marches prepared
-    /// by `prepare_march` (each march with which light it is and that light's lighting:
-    /// the sun's `lighting`, the moon's `moon_lighting` when the cloud was built moonlit;
+    /// by `prepare_march` (each march with the index of its light and the cloud's
+    /// lighting for it, one of `lightings`, the cloud's per light in the scene's order;
     /// `distance`'s buffer it stops at: the terrain cuts the cloud where it stands,
     /// `distance` prepared this frame; and that light's kept upload of the other cloud's
     /// shadow map, `crate::mutual_shadow::ShadowValues`).
-    #[allow(clippy::too_many_arguments)] // the frame's resources and the two lights
+    #[allow(clippy::too_many_arguments)] // the frame's resources and the lights
     pub(crate) fn prepare(
         &mut self,
         device: &wgpu::Device,
@@ -286,26 +294,20 @@ impl<M: CloudMarch> CloudComposite<M> {
         scene: &crate::scene::PreparedScene,
         distance: &CloudDistance,
         depth_view: &wgpu::TextureView,
-        lighting: &Lighting<f32>,
-        moon_lighting: Option<&Lighting<f32>>,
+        lightings: &[&Lighting<f32>],
         mut prepare_march: impl FnMut(
             &mut M,
-            Light,
+            LightIndex,
             &Lighting<f32>,
             &wgpu::Buffer,
             &mut crate::mutual_shadow::ShadowValues,
         ) -> Result<(), crate::RenderError>,
     ) -> Result<(), crate::RenderError> {
         let name = self.name;
-        if self.moon.is_some() != moon_lighting.is_some() {
+        if self.lights.len() != lightings.len() {
             return Err(crate::RenderError::InvalidParameter {
                 field: self.field,
-                value: if self.moon.is_some() {
-                    "not lit by the moon"
-                } else {
-                    "lit by the moon"
-                }
-                .into(),
+                value: format!("lit by {} lights", lightings.len()),
                 reason: "differs from the scene the renderer was built for",
             });
         }
@@ -328,7 +330,7 @@ impl<M: CloudMarch> CloudComposite<M> {
                 near,
                 radiance_scale: scene.present.exposure,
                 width: camera.width,
-                moonlit: u32::from(self.moon.is_some()),
+                moonlit: u32::from(self.lights.len() > 1),
             }),
         );
         // The air buffers follow the image: kept across frames of one size.
@@ -347,11 +349,7 @@ impl<M: CloudMarch> CloudComposite<M> {
             .as_ref()
             .ok_or(crate::RenderError::NotPrepared)?;
         let air_label = format!("render {name} air");
-        let mut lights = vec![(&mut self.sun, Light::Sun, lighting)];
-        if let (Some(moon), Some(lighting)) = (self.moon.as_mut(), moon_lighting) {
-            lights.push((moon, Light::Moon, lighting));
-        }
-        for (lit, light, lighting) in lights {
+        for (light, (lit, lighting)) in self.lights.iter_mut().zip(lightings).enumerate() {
             prepare_march(&mut lit.march, light, lighting, distances, &mut lit.shadow)?;
             let image = lit.march.image().ok_or(crate::RenderError::NotPrepared)?;
             let air = storage(
@@ -370,7 +368,7 @@ impl<M: CloudMarch> CloudComposite<M> {
             });
             lit.air = Some((air, group));
         }
-        // Without the moon its bindings hold the sun's buffers (unread: moonlit = 0).
+        // With one light the second light's bindings hold its buffers (unread: moonlit = 0).
         let [image, air, moon_image, moon_air] = self.seen_buffers()?;
         self.bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some(&format!("render {name} clouds")),
@@ -388,22 +386,21 @@ impl<M: CloudMarch> CloudComposite<M> {
         Ok(())
     }
 
-    /// Records the marches (after [`CloudDistance::encode`]), the air passes with each light's tables (`moon_luts`: the moonlit ones, at night),
-    /// each a compute pass of its own, then the composite (one full-screen triangle) over
-    /// `target`.
+    /// Records the marches (after [`CloudDistance::encode`]), the air passes with each
+    /// light's `airs`, each a compute pass of its own, then the composite (one
+    /// full-screen triangle) over `target`.
     pub(crate) fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         target: &wgpu::TextureView,
-        luts: super::cloud_air::CloudAir<'_>,
-        moon_luts: Option<super::cloud_air::CloudAir<'_>>,
+        airs: &[super::cloud_air::CloudAir<'_>],
         times: CloudTimes<'_>,
     ) -> Result<(), crate::RenderError> {
         let bind_group = self
             .bind_group
             .as_ref()
             .ok_or(crate::RenderError::NotPrepared)?;
-        self.encode_marches(encoder, luts, moon_luts, times.march, times.moon)?;
+        self.encode_marches(encoder, airs, times.marches)?;
         draw_fullscreen(
             encoder,
             &format!("render {} clouds", self.name),
@@ -415,13 +412,13 @@ impl<M: CloudMarch> CloudComposite<M> {
         Ok(())
     }
 
-    /// Whether the cloud was built lit by the moon too (a second march and air pass).
-    pub(crate) fn moonlit(&self) -> bool {
-        self.moon.is_some()
+    /// How many lights the cloud was built lit by (a march and an air pass each).
+    pub(crate) fn light_count(&self) -> usize {
+        self.lights.len()
     }
 
     /// The buffers a composite reads (after `prepare`): the sun's march and its air,
-    /// then the moon's march and its air (the sun's again when not [`Self::moonlit`]).
+    /// then the second light's march and its air (the sun's again with one light).
     pub(crate) fn seen_buffers(&self) -> Result<[&wgpu::Buffer; 4], crate::RenderError> {
         fn buffers<M: CloudMarch>(
             lit: &LitMarch<M>,
@@ -430,36 +427,32 @@ impl<M: CloudMarch> CloudComposite<M> {
             let (air, _) = lit.air.as_ref().ok_or(crate::RenderError::NotPrepared)?;
             Ok((image, air))
         }
-        let (image, air) = buffers(&self.sun)?;
-        let (moon_image, moon_air) = buffers(self.moon.as_ref().unwrap_or(&self.sun))?;
+        let sun = self.lights.first().ok_or(crate::RenderError::NotPrepared)?;
+        let (image, air) = buffers(sun)?;
+        let (moon_image, moon_air) = buffers(self.lights.get(1).unwrap_or(sun))?;
         Ok([image, air, moon_image, moon_air])
     }
 
-    /// Records the marches (after [`CloudDistance::encode`]; `march` and `moon`: their
-    /// timestamp writes) and the air passes with each light's tables (`moon_luts`: the
-    /// moonlit ones, at night), each a compute pass of its own: what a composite reads.
+    /// Records each light's march (after [`CloudDistance::encode`]; `marches`: their
+    /// timestamp writes, the lights' order) and the air passes with each light's `airs`,
+    /// each a compute pass of its own: what a composite reads.
     pub(crate) fn encode_marches(
         &self,
         encoder: &mut wgpu::CommandEncoder,
-        luts: super::cloud_air::CloudAir<'_>,
-        moon_luts: Option<super::cloud_air::CloudAir<'_>>,
-        march: Option<wgpu::ComputePassTimestampWrites<'_>>,
-        moon: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        airs: &[super::cloud_air::CloudAir<'_>],
+        marches: Vec<Option<wgpu::ComputePassTimestampWrites<'_>>>,
     ) -> Result<(), crate::RenderError> {
         let name = self.name;
         let groups = self.groups.ok_or(crate::RenderError::NotPrepared)?;
-        self.sun.march.encode(encoder, march)?;
-        let moon_times = moon;
-        let moon = match (&self.moon, moon_luts) {
-            (Some(moon), Some(moon_luts)) => {
-                moon.march.encode(encoder, moon_times)?;
-                Some((moon, moon_luts))
-            }
-            (None, _) => None,
-            (Some(_), None) => return Err(crate::RenderError::NotPrepared),
-        };
+        if airs.len() < self.lights.len() {
+            return Err(crate::RenderError::NotPrepared);
+        }
+        let mut marches = marches.into_iter();
+        for lit in &self.lights {
+            lit.march.encode(encoder, marches.next().flatten())?;
+        }
         let air_label = format!("render {name} air");
-        for (lit, tables) in std::iter::once((&self.sun, luts)).chain(moon) {
+        for (lit, tables) in self.lights.iter().zip(airs.iter().copied()) {
             let (_, air_group) = lit.air.as_ref().ok_or(crate::RenderError::NotPrepared)?;
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some(&air_label),

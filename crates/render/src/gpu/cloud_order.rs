@@ -119,8 +119,8 @@ impl CloudOrderPass {
                 near: scene.near.max(0.01) as f32,
                 radiance_scale: scene.present.exposure,
                 width: camera.width,
-                volume_moonlit: u32::from(volume.moonlit()),
-                shell_moonlit: u32::from(shell.moonlit()),
+                volume_moonlit: u32::from(volume.light_count() > 1),
+                shell_moonlit: u32::from(shell.light_count() > 1),
                 padding: [0; 3],
             }),
         );

@@ -14,6 +14,13 @@ pub(crate) const HDR: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// The depth target's format (reverse z: near 1, infinitely far 0).
 pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
+/// The most lights the GPU renderer draws: the sun and one light added to it (the moon
+/// on a moonlit night). The passes keep their lights as lists, but the WGSL that adds
+/// the lights in one shader (the marched clouds' composite, the rungs' terrain air, the
+/// billboards' rung air) binds two; a scene with more is refused when the renderer is
+/// built (`SceneRenderer::new`), naming the count. The CPU renderer has no such bound.
+pub const MAX_LIGHTS: usize = 2;
+
 /// Quality choices of the GPU renderer.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SceneRendererSettings {
@@ -60,24 +67,22 @@ impl GpuShared {
         self.tables.first()
     }
 
-    /// A marched cloud's air for the sun and, on a moonlit night, the moon: the
+    /// A marched cloud's air for each of the scene's lights (the sun first): the
     /// precomputed rung's tables or the passes of a rung without tables
     /// (`super::cloud_air`); an error naming the rung when there are neither (the
     /// reference rungs).
-    pub(crate) fn cloud_airs(&self) -> Result<(CloudAir<'_>, Option<CloudAir<'_>>), RenderError> {
-        match (self.tables.first(), &self.rung) {
-            (Some(luts), _) => Ok((
-                CloudAir::Tables(luts),
-                self.tables.get(1).map(CloudAir::Tables),
-            )),
-            (None, Some(rung)) => {
-                let sun = rung
-                    .cloud_air(false)
-                    .ok_or_else(|| super::rung_kind::volume_needs_tables(self.rung_kind))?;
-                Ok((sun, rung.cloud_air(true)))
-            }
-            (None, None) => Err(super::rung_kind::volume_needs_tables(self.rung_kind)),
+    pub(crate) fn cloud_airs(&self) -> Result<Vec<CloudAir<'_>>, RenderError> {
+        let airs: Vec<CloudAir<'_>> = match &self.rung {
+            _ if !self.tables.is_empty() => self.tables.iter().map(CloudAir::Tables).collect(),
+            Some(rung) => (0..rung.light_count())
+                .filter_map(|index| rung.cloud_air(index))
+                .collect(),
+            None => Vec::new(),
+        };
+        if airs.is_empty() {
+            return Err(super::rung_kind::volume_needs_tables(self.rung_kind));
         }
+        Ok(airs)
     }
 }
 

@@ -21,5 +21,6 @@ pub mod timer;
 pub(crate) mod validation;
 pub(crate) mod vertex_air;
 
+pub use frame::MAX_LIGHTS;
 pub use present::Presenter;
 pub use scene::{SceneRenderer, SceneRendererSettings};

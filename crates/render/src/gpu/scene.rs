@@ -204,6 +204,15 @@ fn shared_resources(
             reason: "beyond the device's largest texture side",
         });
     }
+    let lights = scene.lights().len();
+    if lights > super::frame::MAX_LIGHTS {
+        return Err(RenderError::InvalidParameter {
+            field: "lights",
+            value: format!("{lights} lights"),
+            reason: "the GPU renderer draws the sun and one light added to it (the CPU \
+                     renderer draws any number)",
+        });
+    }
     // The closed form and single scattering: their own sky and terrain passes, no
     // tables (`super::rungs`); the reference rungs have none (an error).
     let rung = super::rungs::RungPasses::new(device, scene, HDR, DEPTH)?;
@@ -215,15 +224,17 @@ fn shared_resources(
             &Default::default(),
         )?),
     };
-    // Each light's tables: the sun's, and on a moonlit night a second set lit by the
-    // moon.
+    // Each light's tables: the sun's, then one set per other light (the moon's on a
+    // moonlit night).
     let mut tables: Vec<AtmosphereLuts> = luts.into_iter().collect();
-    if let (false, Some(moon)) = (tables.is_empty(), &scene.moonlit) {
-        tables.push(AtmosphereLuts::new(
-            device,
-            &moon.atmosphere,
-            &Default::default(),
-        )?);
+    if !tables.is_empty() {
+        for light in &scene.other_lights {
+            tables.push(AtmosphereLuts::new(
+                device,
+                &light.atmosphere,
+                &Default::default(),
+            )?);
+        }
     }
     let target = |format, usage| {
         device.create_texture(&wgpu::TextureDescriptor {

@@ -113,11 +113,11 @@ impl VertexAirPlan {
             return Ok(None);
         }
         // The rung's parameters of each light's atmosphere (those of `super::rungs`).
-        let parameters = |atmosphere| super::rung_kind::rung_parameters(scene.rung, atmosphere);
-        let mut light_parameters = vec![parameters(&scene.atmosphere)?];
-        if let Some(moon) = &scene.moonlit {
-            light_parameters.push(parameters(&moon.atmosphere)?);
-        }
+        let light_parameters = scene
+            .lights()
+            .iter()
+            .map(|light| super::rung_kind::rung_parameters(scene.rung, light.atmosphere))
+            .collect::<Result<Vec<_>, _>>()?;
         Ok(Some(Self {
             rung: scene.rung,
             light_parameters,
@@ -306,11 +306,11 @@ impl VertexAir {
         scene: &PreparedScene,
         tiles: &[Tile],
     ) -> Result<(), RenderError> {
-        let moon = scene.moonlit.as_ref().map(|m| m.direction);
-        if usize::from(moon.is_some()) + 1 != self.light_parameters.len() {
+        let lights = scene.lights();
+        if lights.len() != self.light_parameters.len() {
             return Err(RenderError::InvalidParameter {
-                field: "moonlit sky",
-                value: if moon.is_some() { "on" } else { "off" }.into(),
+                field: "lights",
+                value: format!("{} lights", lights.len()),
                 reason: "differs from the scene the renderer was built for",
             });
         }
@@ -319,7 +319,7 @@ impl VertexAir {
         }
         queue.write_buffer(&self.tiles, 0, bytemuck::cast_slice(tiles));
         self.tile_count = tiles.len() as u32;
-        let directions = std::iter::once(scene.sun).chain(moon);
+        let directions = lights.iter().map(|light| light.direction);
         for (light, direction) in self.lights.iter().zip(directions) {
             let uniform = VertexAirUniform {
                 camera_position: scene.camera_position.as_vec3().to_array(),
@@ -356,14 +356,9 @@ impl VertexAir {
         }
     }
 
-    /// Binds group 0 of a terrain draw: the sun's segments, or the moon's.
-    pub(crate) fn bind(&self, pass: &mut wgpu::RenderPass<'_>, moon: bool) {
-        let light = if moon {
-            self.lights.last()
-        } else {
-            self.lights.first()
-        };
-        if let Some(light) = light {
+    /// Binds group 0 of light `index`'s terrain draw: that light's segments.
+    pub(crate) fn bind(&self, pass: &mut wgpu::RenderPass<'_>, index: usize) {
+        if let Some(light) = self.lights.get(index) {
             pass.set_bind_group(0, &light.draw_group, &[]);
         }
     }

@@ -148,7 +148,8 @@ pub(crate) fn rung_model(scene: &PreparedScene) -> Option<&'static str> {
     scene.rung.gpu_model()
 }
 
-/// The moon lights the scene (a moonlit sky: the sun down, the moon up).
+/// A light after the sun lights the scene (the moon on a moonlit night: the sun down,
+/// the moon up).
 pub(crate) fn moonlit(scene: &PreparedScene) -> bool {
-    scene.moonlit.is_some()
+    !scene.other_lights.is_empty()
 }

@@ -183,21 +183,25 @@ impl Scene {
                 (None, Vec::new())
             }
         };
-        let moonlit = match &sky {
+        let other_lights: Vec<LightSky> = match &sky {
             Some(sky) => self.moonlit_sky(sky, &atmosphere, sun, &cloud_layers)?,
             None => None,
-        };
+        }
+        .into_iter()
+        .collect();
+        // Every light the clouds are lit by, the sun first (PreparedScene::lights' order).
+        let lights: Vec<crate::light::LightSource<'_>> =
+            std::iter::once(crate::light::LightSource {
+                name: "sun",
+                atmosphere: &atmosphere,
+                sky_model: &*sky_model,
+                direction: sun,
+            })
+            .chain(other_lights.iter().map(LightSky::source))
+            .collect();
         let billboard_cloud = match file.clouds.as_ref().and_then(|c| c.volume.as_ref()) {
             Some(section) if section.draw == crate::billboard_clouds::VolumeDraw::Billboards => {
-                Some(self.billboard_cloud(
-                    section,
-                    &atmosphere,
-                    &*sky_model,
-                    sun,
-                    cam.near,
-                    terrain.is_some(),
-                    moonlit.as_ref(),
-                )?)
+                Some(self.billboard_cloud(section, &lights, cam.near, terrain.is_some())?)
             }
             _ => None,
         };
@@ -209,23 +213,17 @@ impl Scene {
         {
             Some(section) => Some(self.volume_cloud(
                 section,
-                &atmosphere,
-                &*sky_model,
-                sun,
+                &lights,
                 // Its shadow map shades the terrain and the deck (crate::mutual_shadow).
                 terrain.is_some() || file.clouds.as_ref().is_some_and(|c| c.shell.is_some()),
-                moonlit.as_ref(),
             )?),
             None => None,
         };
         let shell_cloud = match file.clouds.as_ref().and_then(|c| c.shell.as_ref()) {
             Some(section) => Some(self.shell_cloud(
                 section,
-                &atmosphere,
-                &*sky_model,
+                &lights,
                 camera_position,
-                sun,
-                moonlit.as_ref(),
                 terrain.as_ref(),
                 cpu_shell_shadow,
                 volume_cloud.as_ref().map(|v| &v.volume),
@@ -253,7 +251,7 @@ impl Scene {
             cloud_layers,
             viewer_radius: planet + cam.position[1],
             billboard_cloud,
-            moonlit,
+            other_lights,
             volume_cloud,
             shell_cloud,
             celestial_sky: sky,
@@ -269,7 +267,7 @@ impl Scene {
         atmosphere: &atmos::Atmosphere,
         sun: DVec3,
         cloud_layers: &[celestial::clouds::CloudLayerUniforms],
-    ) -> Result<Option<MoonlitSky>, SceneError> {
+    ) -> Result<Option<LightSky>, SceneError> {
         let Some(placement) = sky.placement() else {
             return Ok(None);
         };
@@ -289,7 +287,8 @@ impl Scene {
                 ..*layer
             })
             .collect();
-        Ok(Some(MoonlitSky {
+        Ok(Some(LightSky {
+            name: "moon",
             atmosphere: moon_atmosphere,
             direction: DVec3::new(east, up, -north),
             sky_model,

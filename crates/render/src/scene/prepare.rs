@@ -99,9 +99,10 @@ pub struct PreparedScene {
     /// The viewer's distance from the planet's centre (m): celestial's frame puts the
     /// viewer on its +z axis.
     pub viewer_radius: f64,
-    /// The moonlit sky, added to the sunlit one where the sky shows (scenes with
-    /// `[time]`, the sun down and the moon up).
-    pub moonlit: Option<MoonlitSky>,
+    /// The scene's lights after the sun, each a sky of its own added to the sunlit one
+    /// where the sky shows: the moon on a moonlit night (scenes with `[time]`, the sun
+    /// down and the moon up), else none. [`PreparedScene::lights`] lists them all.
+    pub other_lights: Vec<LightSky>,
     /// The `[clouds.volume]` cloud grown, placed and lit (`crate::volume_clouds`);
     /// `None` without the section (then no automaton runs and no march pass is built).
     pub volume_cloud: Option<crate::volume_clouds::PreparedVolume>,
@@ -116,30 +117,35 @@ pub struct PreparedScene {
     pub celestial_sky: Option<celestial::sky::Sky>,
 }
 
-/// The sky lit by the moon: the scene's atmosphere with the moon's irradiance
-/// (`celestial::MoonLight::atmosphere`), seen from the moon's direction.
-pub struct MoonlitSky {
-    /// The atmosphere lit by the moon.
+/// The sky lit by a light other than the sun: the scene's atmosphere with that light's
+/// irradiance (the moon's: `celestial::MoonLight::atmosphere`), seen from its direction.
+pub struct LightSky {
+    /// "moon": what `explain` and the passes' labels call the light.
+    pub name: &'static str,
+    /// The atmosphere lit by the light.
     pub atmosphere: atmos::Atmosphere,
-    /// Unit world direction toward the moon (airless).
+    /// Unit world direction toward the light (the moon's: airless).
     pub direction: DVec3,
-    /// The scene's rung built from the moonlit atmosphere.
+    /// The scene's rung built from that atmosphere.
     pub sky_model: SharedSkyModel,
     /// The model finite segments (terrain's aerial perspective) are evaluated with.
     pub segment_model: SharedSkyModel,
     /// Its tables, for the precomputed rung.
     pub precomputed: Option<std::sync::Arc<atmos::lut::PrecomputedSky>>,
-    /// The scene's cloud layers with the moon as their light: the shadows they cast
-    /// in moonlight.
+    /// The scene's cloud layers with this light as theirs: the shadows they cast in it.
     pub cloud_layers: Vec<celestial::clouds::CloudLayerUniforms>,
 }
 
-/// One light of a scene's terrain — the sun, or the moon at night — and what the
-/// terrain's shading and its aerial perspective read for it. The moon's is the same
-/// atmosphere lit by the moon (celestial's `MoonLight::atmosphere`), so both go through
-/// the same functions.
+/// One light of a scene — the sun, or the moon at night — and what the terrain's
+/// shading, its aerial perspective and the clouds read for it. The moon's is the same
+/// atmosphere lit by the moon (celestial's `MoonLight::atmosphere`), so every light goes
+/// through the same functions.
 #[derive(Clone, Copy)]
 pub struct Illuminant<'a> {
+    /// Its place in [`PreparedScene::lights`] (0: the sun).
+    pub index: crate::light::LightIndex,
+    /// "sun", "moon".
+    pub name: &'static str,
     /// The atmosphere lit by this light (its `sun_irradiance` and `sun_angular_radius`
     /// are the light's).
     pub atmosphere: &'a atmos::Atmosphere,
@@ -153,18 +159,18 @@ pub struct Illuminant<'a> {
     pub precomputed: Option<&'a atmos::lut::PrecomputedSky>,
     /// The cloud layers with this light's direction (their shadows).
     pub cloud_layers: &'a [celestial::clouds::CloudLayerUniforms],
-    /// The volumetric cloud's shadow map toward this light (the sun's, or at night the
-    /// moon's: `crate::volume_clouds::MoonlitVolume::shadow`).
+    /// The volumetric cloud's shadow map toward this light (its
+    /// [`crate::light::CloudLight::shadow`], marched or drawn as billboards).
     pub volume_shadow: Option<&'a crate::volume_clouds::CloudShadow>,
-    /// The `[clouds.shell]` deck's shadow map toward this light
-    /// (`crate::shell_clouds::PreparedShell::shadow`, or `moon_shadow`): multiplies the
-    /// volume's.
+    /// The `[clouds.shell]` deck's shadow map toward this light (its
+    /// [`crate::light::CloudLight::shadow`]): multiplies the volume's.
     pub shell_shadow: Option<&'a crate::volume_clouds::CloudShadow>,
 }
 
 impl std::fmt::Debug for Illuminant<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Illuminant")
+            .field("name", &self.name)
             .field("direction", &self.direction)
             .field("sky_model", &self.sky_model.label())
             .field("cloud_layers", &self.cloud_layers.len())
@@ -173,6 +179,16 @@ impl std::fmt::Debug for Illuminant<'_> {
 }
 
 impl Illuminant<'_> {
+    /// The light as a cloud's preparation sees it.
+    pub fn source(&self) -> crate::light::LightSource<'_> {
+        crate::light::LightSource {
+            name: self.name,
+            atmosphere: self.atmosphere,
+            sky_model: self.sky_model,
+            direction: self.direction,
+        }
+    }
+
     /// The scene camera with this light as its "sun" (what its tables are baked and
     /// looked up for).
     pub fn camera(&self, camera: &atmos::frame::FrameCamera) -> atmos::frame::FrameCamera {
@@ -183,22 +199,24 @@ impl Illuminant<'_> {
     }
 }
 
-impl std::fmt::Debug for MoonlitSky {
+impl std::fmt::Debug for LightSky {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("MoonlitSky")
+        f.debug_struct("LightSky")
+            .field("name", &self.name)
             .field("direction", &self.direction)
             .field("sky_model", &self.sky_model.label())
             .finish_non_exhaustive()
     }
 }
 
-impl MoonlitSky {
-    /// The scene camera with the moon as its light (what the moonlit tables are baked
-    /// and looked up for).
-    pub fn camera(&self, camera: &atmos::frame::FrameCamera) -> atmos::frame::FrameCamera {
-        atmos::frame::FrameCamera {
-            sun: self.direction.as_vec3().to_array(),
-            ..*camera
+impl LightSky {
+    /// The light as a cloud's preparation sees it.
+    pub fn source(&self) -> crate::light::LightSource<'_> {
+        crate::light::LightSource {
+            name: self.name,
+            atmosphere: &self.atmosphere,
+            sky_model: self.sky_model.as_ref(),
+            direction: self.direction,
         }
     }
 }
@@ -243,53 +261,84 @@ impl PreparedScene {
         Ok(())
     }
 
-    /// The sun as the terrain's light.
-    pub fn sun_light(&self) -> Illuminant<'_> {
-        Illuminant {
-            atmosphere: &self.atmosphere,
-            direction: self.sun,
-            sky_model: self.sky_model.as_ref(),
-            segment_model: self.segment_model.as_ref(),
-            precomputed: self.precomputed.as_deref(),
-            cloud_layers: &self.cloud_layers,
-            volume_shadow: self
-                .volume_cloud
-                .as_ref()
-                .and_then(|v| v.shadow.as_ref())
-                .or_else(|| {
-                    self.billboard_cloud
-                        .as_ref()
-                        .and_then(|b| b.shadow.as_ref())
-                }),
-            shell_shadow: self.shell_cloud.as_ref().and_then(|s| s.shadow.as_ref()),
-        }
+    /// The scene's lights, the sun first, then [`PreparedScene::other_lights`] in order:
+    /// what every pass runs once per light.
+    pub fn lights(&self) -> Vec<Illuminant<'_>> {
+        let sun = (
+            "sun",
+            &self.atmosphere,
+            self.sun,
+            self.sky_model.as_ref(),
+            self.segment_model.as_ref(),
+            self.precomputed.as_deref(),
+            &self.cloud_layers[..],
+        );
+        let others = self.other_lights.iter().map(|light| {
+            (
+                light.name,
+                &light.atmosphere,
+                light.direction,
+                light.sky_model.as_ref(),
+                light.segment_model.as_ref(),
+                light.precomputed.as_deref(),
+                &light.cloud_layers[..],
+            )
+        });
+        std::iter::once(sun)
+            .chain(others)
+            .enumerate()
+            .map(
+                |(
+                    index,
+                    (
+                        name,
+                        atmosphere,
+                        direction,
+                        sky_model,
+                        segment_model,
+                        precomputed,
+                        cloud_layers,
+                    ),
+                )| {
+                    Illuminant {
+                        index,
+                        name,
+                        atmosphere,
+                        direction,
+                        sky_model,
+                        segment_model,
+                        precomputed,
+                        cloud_layers,
+                        volume_shadow: self.volume_shadow(index),
+                        shell_shadow: self
+                            .shell_cloud
+                            .as_ref()
+                            .and_then(|s| s.lights.get(index)?.shadow.as_ref()),
+                    }
+                },
+            )
+            .collect()
     }
 
-    /// The moon as the terrain's light, when the scene has a moonlit sky.
-    pub fn moon_light(&self) -> Option<Illuminant<'_>> {
-        self.moonlit.as_ref().map(|moon| Illuminant {
-            atmosphere: &moon.atmosphere,
-            direction: moon.direction,
-            sky_model: moon.sky_model.as_ref(),
-            segment_model: moon.segment_model.as_ref(),
-            precomputed: moon.precomputed.as_deref(),
-            cloud_layers: &moon.cloud_layers,
-            volume_shadow: self
-                .volume_cloud
-                .as_ref()
-                .and_then(|v| v.moon.as_ref())
-                .and_then(|m| m.shadow.as_ref())
-                .or_else(|| {
-                    self.billboard_cloud
-                        .as_ref()
-                        .and_then(|b| b.moon.as_ref())
-                        .and_then(|m| m.shadow.as_ref())
-                }),
-            shell_shadow: self
-                .shell_cloud
-                .as_ref()
-                .and_then(|s| s.moon_shadow.as_ref()),
-        })
+    /// The sun as the scene's light ([`PreparedScene::lights`]' first).
+    pub fn sun_light(&self) -> Illuminant<'_> {
+        self.lights().swap_remove(0)
+    }
+
+    /// The `[clouds.volume]` cloud's shadow map toward light `index`, marched or drawn
+    /// as billboards.
+    fn volume_shadow(
+        &self,
+        index: crate::light::LightIndex,
+    ) -> Option<&crate::cloud_shadow::CloudShadow> {
+        let marched = self.volume_cloud.as_ref().and_then(|v| v.lights.get(index));
+        let billboards = self
+            .billboard_cloud
+            .as_ref()
+            .and_then(|b| b.lights.get(index));
+        marched
+            .and_then(|l| l.shadow.as_ref())
+            .or_else(|| billboards.and_then(|l| l.shadow.as_ref()))
     }
 
     /// The sun's elevation above the horizon plane, degrees.

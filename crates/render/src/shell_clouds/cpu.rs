@@ -23,11 +23,11 @@ pub fn march_shell_pixel(
     pixel: [u32; 2],
     max_distance: f32,
 ) -> MarchResult<f32> {
-    march_shell_pixel_lit(cloud, &cloud.lighting, camera, size, pixel, max_distance)
+    let sun = &cloud.lights[0].lighting;
+    march_shell_pixel_lit(cloud, sun, camera, size, pixel, max_distance)
 }
 
-/// [`march_shell_pixel`] lit by `lighting` (the sun's, [`PreparedShell::lighting`], or
-/// the moon's, [`PreparedShell::moon`]).
+/// [`march_shell_pixel`] lit by `lighting` (one of [`PreparedShell::lights`]).
 pub fn march_shell_pixel_lit(
     cloud: &PreparedShell,
     lighting: &Lighting<f32>,
@@ -52,28 +52,20 @@ pub fn march_shell_pixel_lit(
 /// the shell up to the terrain's hit (`PixelRadiance::terrain_distance`; the sky: no
 /// limit), faded toward the horizon, in the volume cloud's composite
 /// (`crate::volume_clouds::composite_marched_cloud`: drawn where it has opacity in front
-/// of the scene, seen through the air of [`crate::air::air_in_front`] with the sun's `tables`). At
-/// night (`moon`: the moon's light and its tables) the deck's march lit by the moon,
-/// seen through the moonlit air, is added.
-pub fn composite_shell_cloud(
+/// of the scene, seen through the air of [`crate::air::air_in_front`] with each light's
+/// tables), once per light of `lights` (the frame's), added.
+pub(crate) fn composite_shell_cloud(
     scene: &crate::scene::PreparedScene,
     cloud: &PreparedShell,
-    tables: crate::air::AirTables<'_>,
-    moon: Option<(&crate::scene::Illuminant<'_>, crate::air::AirTables<'_>)>,
+    lights: &[crate::cpu_frame::LightFrame<'_>],
     out: &mut [crate::cpu_frame::PixelRadiance],
 ) -> Result<(), crate::RenderError> {
     let camera = &scene.camera;
     let size = [camera.width, camera.height];
     let pinhole = shell_camera(camera)?;
-    let moon = match (&cloud.moon, moon) {
-        (Some(lighting), Some((light, moon_tables))) => Some((lighting, light, moon_tables)),
-        _ => None,
-    };
     crate::marched_cloud::composite_marched_cloud(
         scene,
-        &cloud.lighting,
-        tables,
-        moon,
+        &crate::marched_cloud::lit_by(&cloud.lights, lights),
         |lighting, xy, behind| march_shell_pixel_lit(cloud, lighting, &pinhole, size, xy, behind),
         out,
     )

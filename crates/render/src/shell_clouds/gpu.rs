@@ -4,7 +4,7 @@
 use super::{PreparedShell, shell_camera};
 
 /// The GPU side: `cloudlight::gpu::MarchShellPass` over the scene's pixels (prepared per
-/// frame with [`shell_camera`]; at night a second one lit by the moon) in the volume
+/// frame with [`shell_camera`]; one per light of the scene) in the volume
 /// cloud's passes ([`crate::gpu::cloud_composite::CloudComposite`]: the terrain's depth
 /// as a distance per pixel the march stops at, the air in front of the deck per pixel
 /// and light, the composite render pass `shaders/render/volume_clouds.wgsl`). Built only
@@ -15,27 +15,20 @@ pub(crate) type ShellCloudPass =
 
 #[cfg(feature = "gpu")]
 impl ShellCloudPass {
-    /// The march, distance, air and composite pipelines (`moon_luts`: the moonlit tables
-    /// when the deck is lit by the moon too, [`PreparedShell::moon`]).
+    /// The march, distance, air and composite pipelines, one march per light of `airs` (each light's
+    /// air, the sun's first: the cloud's [`PreparedShell::lights`]).
     pub(crate) fn new_shell(
         device: &wgpu::Device,
-        luts: crate::gpu::cloud_air::CloudAir<'_>,
-        moon_luts: Option<crate::gpu::cloud_air::CloudAir<'_>>,
+        airs: &[crate::gpu::cloud_air::CloudAir<'_>],
         target: wgpu::TextureFormat,
     ) -> Result<Self, crate::RenderError> {
-        Self::new(
-            device,
-            "shell",
-            "clouds.shell",
-            luts,
-            moon_luts,
-            target,
-            || Ok(cloudlight::gpu::MarchShellPass::new(device)?),
-        )
+        Self::new(device, "shell", "clouds.shell", airs, target, || {
+            Ok(cloudlight::gpu::MarchShellPass::new(device)?)
+        })
     }
 
     /// The frame's marches (the scene camera in the shell's frame, one ray per pixel up
-    /// to `distance`'s buffer; the moon's at night), the air and composite passes'
+    /// to `distance`'s buffer; one per light), the air and composite passes'
     /// uniforms and bind groups.
     pub(crate) fn prepare_shell(
         &mut self,
@@ -49,14 +42,14 @@ impl ShellCloudPass {
         let camera = &scene.camera;
         let pinhole = shell_camera(camera)?;
         let size = [camera.width, camera.height];
+        let lightings: Vec<_> = cloud.lights.iter().map(|light| &light.lighting).collect();
         self.prepare(
             device,
             queue,
             scene,
             distance,
             depth_view,
-            &cloud.lighting,
-            cloud.moon.as_ref(),
+            &lightings,
             |march, light, lighting, distances, kept| {
                 // Lit through the volume cloud's shadow map for this light
                 // (crate::mutual_shadow; uploaded once, kept while unchanged), read the

@@ -1,4 +1,4 @@
-//! Seed 003's ray-marched cloud shell in a scene (`[clouds.shell]`): `cloudlight`'s
+//! Schneider's (GPU Pro 7, Nubis) ray-marched cloud shell in a scene (`[clouds.shell]`): `cloudlight`'s
 //! procedural shell (two spheres about the planet centre, tileable Perlin–Worley noise,
 //! procedural weather, height profiles per cloud type) marched per pixel with Schneider's (GPU Pro 7)
 //! lighting and composited over the opaque scene, depth-aware, exactly as the volume
@@ -8,8 +8,8 @@
 //! section, the frame and the lighting point; the shell, its density and validation are
 //! `cloudlight::CloudShell`'s, the march is `cloudlight::march` (CPU, the f32 twin) and
 //! `cloudlight::gpu::MarchShellPass` (GPU), the air and the composite are the volume
-//! cloud's (`shaders/render/volume_air.wgsl`, `shaders/render/volume_clouds.wgsl` with
-//! its moonlit march off; `render::marched_cloud::cloud_through_air` on the CPU).
+//! cloud's (`shaders/render/volume_air.wgsl`, `shaders/render/volume_clouds.wgsl`;
+//! `render::marched_cloud::cloud_through_air` on the CPU).
 //!
 //! # Frame
 //!
@@ -24,18 +24,17 @@
 //!
 //! Once per scene, at the middle of the shell straight above the camera: the sun's
 //! irradiance through the scene's rung and the ambient sky (`cloudlight::march::atmos_light`,
-//! as the volume cloud). At night (a scene with a moonlit sky: the sun down, the moon
-//! up, when the terrain gets its moonlit draw) the deck is marched a second time lit by
-//! the moon (`atmos_light` of celestial's moonlit atmosphere along the moon, as the
-//! volume cloud's [`crate::volume_clouds::MoonlitVolume`]) and added through the moonlit
-//! air.
+//! as the volume cloud); the same for each of the scene's other lights (the moon on a
+//! moonlit night: `atmos_light` of celestial's moonlit atmosphere along the moon), the
+//! deck marched once per light and the marches added, each through its light's air
+//! ([`PreparedShell::lights`]).
 //!
 //! # Shadow on the terrain
 //!
 //! Over a scene's terrain the deck shades it as the volume cloud does: cloudlight's
 //! shadow map of the shell's density field toward each light that is up ([`shell_shadow`],
 //! [`crate::volume_clouds::CloudShadow::over`]), baked once on the CPU at prepare (not by
-//! [`Scene::prepare_for_gpu`](crate::scene::Scene::prepare_for_gpu)(crate::scene::Scene::prepare_for_gpu)), on the
+//! [`Scene::prepare_for_gpu`](crate::scene::Scene::prepare_for_gpu)), on the
 //! plane of the shell's base over the heightfield's extent swept along the light. The
 //! GPU renderer bakes the same map again on the GPU (`crate::gpu::shell_shadow`:
 //! cloudlight's `ShellShadowMapPass` over [`shell_shadow_map_plan`], whose f32 twin
@@ -44,8 +43,8 @@
 //! bilinear lookup, faded inside the deck's altitudes (`CloudShadow::on_terrain`, the
 //! terrain pass's `shadow_map_at`) and multiply
 //! the terrain's direct light by it times the volume cloud's map (the terrain pass holds
-//! one map per marched cloud: `crate::gpu::cloud_shadow`). At night the map is the
-//! moon's.
+//! one map per marched cloud: `crate::gpu::cloud_shadow`), each light's terrain draw
+//! its own light's map.
 //!
 //! # What it costs
 //!
@@ -65,11 +64,12 @@ mod shadow;
 mod weather;
 
 use cloudlight::CloudShell;
-use cloudlight::march::{Lighting, MarchSettings};
+use cloudlight::march::MarchSettings;
 
 use crate::cloud_shadow::CloudShadow;
 
-pub use cpu::{composite_shell_cloud, march_shell_pixel, march_shell_pixel_lit, shell_camera};
+pub(crate) use cpu::composite_shell_cloud;
+pub use cpu::{march_shell_pixel, march_shell_pixel_lit, shell_camera};
 #[cfg(feature = "gpu")]
 pub(crate) use gpu::ShellCloudPass;
 pub use plan::shell_pass_plans;
@@ -99,24 +99,18 @@ pub struct PreparedShell {
     pub shell: CloudShell,
     /// The march's settings (midpoint samples, a full light march).
     pub settings: MarchSettings,
-    /// The sun and ambient sky at the middle of the shell above the camera, in the
-    /// shell's frame.
-    pub lighting: Lighting<f32>,
-    /// The moon and the moonlit ambient sky there: only in scenes with a moonlit sky
-    /// (`PreparedScene::moonlit`), else `None` and no second march runs.
-    pub moon: Option<Lighting<f32>>,
-    /// The deck's shadow on the terrain toward the sun ([`shell_shadow`]): `None` in a
-    /// scene without terrain or with the sun below 1°, and nothing is baked then.
-    pub shadow: Option<CloudShadow>,
-    /// Its shadow toward the moon, in scenes the moon lights (`None` otherwise, or with
-    /// the moon below 1°).
-    pub moon_shadow: Option<CloudShadow>,
+    /// The deck lit by each of the scene's lights, in
+    /// [`crate::scene::PreparedScene::lights`]' order (the sun first): the light and the
+    /// ambient sky at the middle of the shell above the camera, in the shell's frame, and
+    /// the deck's shadow on the terrain toward it ([`shell_shadow`]: `None` in a scene
+    /// without terrain or with that light below 1°, and nothing is baked then).
+    pub lights: Vec<crate::light::CloudLight>,
     /// Seconds the shadow maps took to bake on this machine's CPU (0 without one).
     pub shadow_seconds: f64,
-    /// The deck's shadow on the scene's volume cloud, `[sun, moon]`
-    /// (`crate::mutual_shadow::deck_over_volume`, always baked on the CPU): `None`
-    /// without a marched volume cloud or that light (or with it below 1°).
-    pub over_volume: [Option<CloudShadow>; 2],
+    /// The deck's shadow on the scene's volume cloud toward each light, in `lights`'
+    /// order (`crate::mutual_shadow::deck_over_volume`, always baked on the CPU): `None`
+    /// without a marched volume cloud or with that light below 1°.
+    pub over_volume: Vec<Option<CloudShadow>>,
 }
 
 impl PreparedShell {
@@ -124,9 +118,9 @@ impl PreparedShell {
     /// their grids (from [`Scene::prepare_for_gpu`](crate::scene::Scene::prepare_for_gpu): the GPU renderer bakes them; the CPU
     /// renderer needs [`crate::scene::PreparedScene::bake_shell_shadow_on_cpu`] first).
     pub fn shadows_baked_on_cpu(&self) -> bool {
-        [&self.shadow, &self.moon_shadow]
-            .into_iter()
-            .flatten()
+        self.lights
+            .iter()
+            .filter_map(|light| light.shadow.as_ref())
             .all(|map| !map.values.is_empty())
     }
 }

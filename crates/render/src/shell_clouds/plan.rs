@@ -42,7 +42,7 @@ pub fn shell_pass_plans(
         ),
         (
             "moonlit shell march",
-            if cloud.moon.is_some() {
+            if cloud.lights.len() > 1 {
                 Ok(
                     "the [clouds.shell] deck marched again lit by the moon (celestial's \
                      MoonLight through atmos: the terrain's moonlit draw's light), added \
@@ -70,11 +70,17 @@ pub fn shell_pass_plans(
 
 /// What `skyscape explain` says of the deck's shadow maps: baked at prepare (measured
 /// here), or why none is.
-pub(crate) fn shell_shadow_plan(cloud: &PreparedShell) -> Result<String, String> {
-    let maps: Vec<String> = [("the sun", &cloud.shadow), ("the moon", &cloud.moon_shadow)]
-        .into_iter()
-        .filter_map(|(light, map)| {
-            map.as_ref().map(|m| {
+pub(crate) fn shell_shadow_plan(
+    scene: &crate::scene::PreparedScene,
+    cloud: &PreparedShell,
+) -> Result<String, String> {
+    let maps: Vec<String> = scene
+        .lights()
+        .iter()
+        .zip(&cloud.lights)
+        .filter_map(|(light, lit)| {
+            let light = format!("the {}", light.name);
+            lit.shadow.as_ref().map(|m| {
                 format!(
                     "toward {light} {}×{} texels of {:.0} m",
                     m.resolution[0], m.resolution[1], m.cell_size

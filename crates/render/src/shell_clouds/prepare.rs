@@ -1,5 +1,5 @@
 //! `[clouds.shell]` prepared: checked, the shell built about the scene's planet, lit
-//! by the sun (and the moon on a moonlit night), its shadow maps planned or baked.
+//! by each of the scene's lights, its shadow maps toward them planned or baked.
 
 use glam::DVec3;
 
@@ -26,11 +26,12 @@ impl crate::scene::PreparedScene {
             return;
         }
         let started = std::time::Instant::now();
-        if cloud.shadow.is_some() {
-            cloud.shadow = shell_shadow(&cloud.shell, terrain, self.sun);
-        }
-        if let (Some(_), Some(moon)) = (&cloud.moon_shadow, &self.moonlit) {
-            cloud.moon_shadow = shell_shadow(&cloud.shell, terrain, moon.direction);
+        let directions =
+            std::iter::once(self.sun).chain(self.other_lights.iter().map(|l| l.direction));
+        for (light, toward) in cloud.lights.iter_mut().zip(directions) {
+            if light.shadow.is_some() {
+                light.shadow = shell_shadow(&cloud.shell, terrain, toward);
+            }
         }
         cloud.shadow_seconds = started.elapsed().as_secs_f64();
     }
@@ -149,31 +150,27 @@ impl Scene {
         Ok((shell, settings))
     }
 
-    /// Builds and lights `[clouds.shell]` for a camera at planet-centred
-    /// `camera_position` (m) and the sun along unit `sun` (world frame); at night
-    /// (`moonlit`) lit by the moon too. Over `terrain` it bakes the deck's shadow maps
-    /// ([`shell_shadow`]) toward each light.
-    #[allow(clippy::too_many_arguments)]
+    /// Builds `[clouds.shell]` for a camera at planet-centred `camera_position` (m) and
+    /// lights it by each of the scene's `lights` (the sun first, whose atmosphere the
+    /// shell is built about). Over `terrain` it bakes the deck's shadow maps
+    /// ([`shell_shadow`]) toward each light, and over `volume` its map on that cloud.
     pub(crate) fn shell_cloud(
         &self,
         section: &CloudShellSection,
-        atmosphere: &atmos::Atmosphere,
-        model: &(dyn atmos::SkyModel + Send + Sync),
+        lights: &[crate::light::LightSource<'_>],
         camera_position: DVec3,
-        sun: DVec3,
-        moonlit: Option<&crate::scene::prepare::MoonlitSky>,
         terrain: Option<&crate::scene::prepare::PreparedTerrain>,
         cpu_shadow: bool,
         volume: Option<&cloudlight::CloudVolume>,
     ) -> Result<PreparedShell, SceneError> {
+        let atmosphere = lights[0].atmosphere;
         let (shell, settings) = self.check_shell_cloud(section, atmosphere)?;
         // The middle of the shell straight above the camera.
         let middle = atmosphere.planet_radius + 0.5 * (section.bottom_m + section.top_m);
         let point = camera_position.try_normalize().unwrap_or(DVec3::Y) * middle;
         // One light (the sun, or the moon through the moonlit atmosphere) there.
-        let light_at = |model: &(dyn atmos::SkyModel + Send + Sync),
-                        atmosphere: &atmos::Atmosphere,
-                        toward: DVec3| {
+        let light_at = |light: &crate::light::LightSource<'_>| {
+            let (model, atmosphere, toward) = (light.sky_model, light.atmosphere, light.direction);
             let light_error = |e: MarchError| self.shell_error(section, "bottom_m", Box::new(e));
             let light = cloudlight::march::atmos_light(
                 &model,
@@ -191,15 +188,6 @@ impl Scene {
             )
             .map_err(light_error)
         };
-        let lighting = light_at(model, atmosphere, sun)?;
-        let moon = match moonlit {
-            Some(moon) => Some(light_at(
-                moon.sky_model.as_ref(),
-                &moon.atmosphere,
-                moon.direction,
-            )?),
-            None => None,
-        };
         // The shadow maps: only over terrain, only toward a light that is up.
         let started = std::time::Instant::now();
         // Without `cpu_shadow` (a scene prepared for the GPU renderer) only the maps'
@@ -214,28 +202,36 @@ impl Scene {
                 }
             })
         };
-        let shadow = shadow_toward(sun);
-        let moon_shadow = moonlit.and_then(|moon| shadow_toward(moon.direction));
-        let shadow_seconds = if !on_gpu && (shadow.is_some() || moon_shadow.is_some()) {
+        let sources = lights;
+        let lights: Vec<crate::light::CloudLight> = sources
+            .iter()
+            .map(|light| {
+                Ok(crate::light::CloudLight {
+                    lighting: light_at(light)?,
+                    shadow: shadow_toward(light.direction),
+                })
+            })
+            .collect::<Result<_, SceneError>>()?;
+        let shadow_seconds = if !on_gpu && lights.iter().any(|l| l.shadow.is_some()) {
             started.elapsed().as_secs_f64()
         } else {
             0.0
         };
         // Its shadow on the volume cloud (crate::mutual_shadow), toward each light.
-        let over_volume = [Some(sun), moonlit.map(|m| m.direction)].map(|toward| {
-            crate::mutual_shadow::deck_over_volume(
-                &shell,
-                volume?,
-                world_to_enu(toward?.to_array()),
-            )
-        });
+        let over_volume = sources
+            .iter()
+            .map(|light| {
+                crate::mutual_shadow::deck_over_volume(
+                    &shell,
+                    volume?,
+                    world_to_enu(light.direction.to_array()),
+                )
+            })
+            .collect();
         Ok(PreparedShell {
             shell,
             settings,
-            lighting,
-            moon,
-            shadow,
-            moon_shadow,
+            lights,
             shadow_seconds,
             over_volume,
         })

@@ -34,11 +34,12 @@ pub fn march_pixel(
     pixel: [u32; 2],
     max_distance: f32,
 ) -> MarchResult<f32> {
-    march_pixel_lit(cloud, &cloud.lighting, camera, size, pixel, max_distance)
+    let sun = &cloud.lights[0].lighting;
+    march_pixel_lit(cloud, sun, camera, size, pixel, max_distance)
 }
 
-/// [`march_pixel`] lit by `lighting` (the sun's, [`PreparedVolume::lighting`], or the
-/// moon's, [`MoonlitVolume::lighting`](super::MoonlitVolume::lighting)): the twin of the GPU's march with that light.
+/// [`march_pixel`] lit by `lighting` (one of [`PreparedVolume::lights`]): the twin of
+/// the GPU's march with that light.
 pub fn march_pixel_lit(
     cloud: &PreparedVolume,
     lighting: &Lighting<f32>,

@@ -4,7 +4,7 @@
 use super::{PreparedVolume, pinhole_camera};
 
 /// The GPU side: `cloudlight::gpu::MarchPass` over the scene's pixels (prepared per
-/// frame with [`pinhole_camera`]; at night a second one lit by the moon) in
+/// frame with [`pinhole_camera`]; one per light of the scene) in
 /// [`crate::gpu::cloud_composite::CloudComposite`]'s passes: the terrain's depth as a
 /// distance per pixel the march stops at, the air in front of the cloud per pixel and
 /// light (atmos' `aerial_perspective`, the CPU's function) and the composite render pass
@@ -13,27 +13,20 @@ pub(crate) type VolumeCloudPass =
     crate::gpu::cloud_composite::CloudComposite<cloudlight::gpu::MarchPass>;
 
 impl VolumeCloudPass {
-    /// The march, air and composite pipelines; `moon_luts`: the moonlit tables when the
-    /// scene's cloud is lit by the moon too ([`PreparedVolume::moon`]).
+    /// The march, air and composite pipelines, one march per light of `airs` (each light's
+    /// air, the sun's first: the cloud's [`PreparedVolume::lights`]).
     pub(crate) fn new_volume(
         device: &wgpu::Device,
-        luts: crate::gpu::cloud_air::CloudAir<'_>,
-        moon_luts: Option<crate::gpu::cloud_air::CloudAir<'_>>,
+        airs: &[crate::gpu::cloud_air::CloudAir<'_>],
         target: wgpu::TextureFormat,
     ) -> Result<Self, crate::RenderError> {
-        Self::new(
-            device,
-            "volume",
-            "clouds.volume",
-            luts,
-            moon_luts,
-            target,
-            || Ok(cloudlight::gpu::MarchPass::new(device)?),
-        )
+        Self::new(device, "volume", "clouds.volume", airs, target, || {
+            Ok(cloudlight::gpu::MarchPass::new(device)?)
+        })
     }
 
     /// The frame's marches (the scene camera as a pinhole camera in the volume's frame,
-    /// one ray per pixel up to `distance`'s buffer; the moon's at night), the air passes'
+    /// one ray per pixel up to `distance`'s buffer; one per light), the air passes'
     /// and the composite's uniforms and bind groups.
     pub(crate) fn prepare_volume(
         &mut self,
@@ -47,15 +40,14 @@ impl VolumeCloudPass {
         let camera = &scene.camera;
         let pinhole = pinhole_camera(camera, scene.atmosphere.planet_radius)?;
         let size = [camera.width, camera.height];
-        let moon = cloud.moon.as_ref().map(|moon| &moon.lighting);
+        let lightings: Vec<_> = cloud.lights.iter().map(|light| &light.lighting).collect();
         self.prepare(
             device,
             queue,
             scene,
             distance,
             depth_view,
-            &cloud.lighting,
-            moon,
+            &lightings,
             |march, light, lighting, distances, kept| {
                 // Lit through the deck's shadow map for this light (crate::mutual_shadow),
                 // its values uploaded once and kept while unchanged.

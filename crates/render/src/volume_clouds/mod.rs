@@ -17,15 +17,15 @@
 //! Once per scene, at the grid's centre: the sun's irradiance through the scene's rung
 //! (`cloudlight::march::atmos_light`: the atmosphere's sun irradiance × the rung's
 //! transmittance toward the sun, zero behind the planet) and the ambient sky (atmos'
-//! sky irradiance on a horizontal surface / π). At night — when the scene has a moonlit
-//! sky (`PreparedScene::moonlit`: the sun below the horizon, the moon above −2°, the
-//! decision that gives the terrain its second, moonlit draw) — the cloud is marched a
-//! second time with the moon as its light, passed exactly as the sun's is
-//! (`atmos_light` of the moonlit atmosphere, `celestial::MoonLight::atmosphere`, along
-//! the moon's direction: [`MoonlitVolume`]), and the two are added, each seen through
-//! the air its own light scatters; its shadow map along the moon shades the moonlit
-//! terrain. The march is linear in the light, and its transmittance and depth do not
-//! depend on it, so the sum is the cloud lit by both.
+//! sky irradiance on a horizontal surface / π). The same for each of the scene's lights
+//! (`PreparedScene::lights`: the moon too on a moonlit night — the sun below the
+//! horizon, the moon above −2° — passed exactly as the sun is, `atmos_light` of the
+//! moonlit atmosphere, `celestial::MoonLight::atmosphere`, along the moon's direction:
+//! [`PreparedVolume::lights`]): the cloud is marched once per light and the results
+//! are added, each seen through the air its own light scatters; its shadow map toward
+//! each light shades the terrain that light draws. The march is linear in the light,
+//! and its transmittance and depth do not depend on it, so the sum is the cloud lit by
+//! all of them.
 //!
 //! # Compositing
 //!
@@ -55,12 +55,13 @@ mod gpu;
 mod prepare;
 
 use cloudlight::CloudVolume;
-use cloudlight::march::{Lighting, MarchSettings};
+use cloudlight::march::MarchSettings;
 
 pub use crate::cloud_shadow::{
     CloudShadow, SHADOW_MAP_MAX_SIDE, SHADOW_MAP_STEPS, volume_shadow_texel,
 };
 pub use crate::frames::world_to_enu;
+pub use crate::light::CloudLight;
 pub(crate) use cpu::{march_field_pixel, march_field_pixel_through};
 pub use cpu::{march_pixel, march_pixel_lit, pinhole_camera};
 #[cfg(feature = "gpu")]
@@ -81,28 +82,12 @@ pub struct PreparedVolume {
     pub volume: CloudVolume,
     /// The march's settings (the scene's view and light steps; midpoint samples).
     pub settings: MarchSettings,
-    /// The sun and ambient sky at the grid's centre, east/north/up.
-    pub lighting: Lighting<f32>,
     /// The automaton steps grown.
     pub steps: u32,
     /// Cells holding density > 0.
     pub cloudy_cells: usize,
-    /// Its shadow on the terrain under the sun (`None` with the sun below 1° or no
-    /// terrain in the scene: nothing is computed then).
-    pub shadow: Option<CloudShadow>,
-    /// The cloud lit by the moon: only in scenes with a moonlit sky (the sun down, the
-    /// moon up: `PreparedScene::moonlit`), else `None` and no second march runs.
-    pub moon: Option<MoonlitVolume>,
-}
-
-/// The volume's second light at night: the moon, as [`PreparedVolume::lighting`] is the
-/// sun's (`cloudlight::march::atmos_light` of the moonlit atmosphere along the moon's
-/// direction), and the shadow map along it.
-#[derive(Debug, Clone)]
-pub struct MoonlitVolume {
-    /// The moon and the moonlit ambient sky at the grid's centre, east/north/up.
-    pub lighting: Lighting<f32>,
-    /// Its shadow on the terrain under the moon (`None` with the moon below 1° or no
-    /// terrain in the scene).
-    pub shadow: Option<CloudShadow>,
+    /// The cloud lit by each of the scene's lights, in
+    /// [`crate::scene::PreparedScene::lights`]' order (the sun first): the light and the
+    /// ambient sky at the grid's centre, east/north/up, and its shadow map toward it.
+    pub lights: Vec<CloudLight>,
 }

@@ -1,12 +1,13 @@
-//! `[clouds.volume]` prepared: checked, grown by cloudsim's automaton, lit by the sun
-//! (and the moon on a moonlit night), its shadow maps baked.
+//! `[clouds.volume]` prepared: checked, grown by cloudsim's automaton, lit by each of
+//! the scene's lights, its shadow maps toward them baked.
 
 use glam::DVec3;
 
 use cloudlight::CloudVolume;
-use cloudlight::march::{Jitter, LightMarch, MarchConfig, MarchSettings, Octaves};
+use cloudlight::march::{Jitter, LightMarch, Lighting, MarchConfig, MarchSettings, Octaves};
 
 use super::*;
+use crate::light::{CloudLight, LightSource};
 use crate::scene::{CloudVolumeSection, Scene, SceneError};
 
 fn deg_free(value: f64, unit: &str) -> String {
@@ -131,16 +132,14 @@ impl Scene {
         Ok(())
     }
 
-    /// Grows and lights `[clouds.volume]` (checked by [`Scene::check_volume_cloud`]): by
-    /// the sun, and by the moon too when `moonlit` (the scene's moonlit sky) is given.
+    /// Grows `[clouds.volume]` (checked by [`Scene::check_volume_cloud`]) and lights it
+    /// by each of the scene's `lights` (the sun first); with `shadows_on_terrain` it
+    /// bakes its shadow map toward each.
     pub(crate) fn volume_cloud(
         &self,
         section: &CloudVolumeSection,
-        atmosphere: &atmos::Atmosphere,
-        model: &(dyn atmos::SkyModel + Send + Sync),
-        sun: DVec3,
+        lights: &[LightSource<'_>],
         shadows_on_terrain: bool,
-        moonlit: Option<&crate::scene::prepare::MoonlitSky>,
     ) -> Result<PreparedVolume, SceneError> {
         self.check_volume_cloud(section)?;
         let invalid =
@@ -221,37 +220,38 @@ impl Scene {
             ..MarchConfig::default()
         })
         .map_err(|e| invalid("view_steps", s.view_steps.to_string(), e.to_string()))?;
-        let lighting = self.volume_light(section, model, atmosphere, sun)?;
-        // Only a scene with terrain needs the shadow map.
-        let shadow = shadows_on_terrain
-            .then(|| CloudShadow::new(&volume, world_to_enu(sun.to_array())))
-            .flatten();
-        let mut cloud = PreparedVolume {
+        let lights = lights
+            .iter()
+            .map(|light| {
+                Ok(CloudLight {
+                    lighting: self.volume_light(section, light)?,
+                    // Only a scene with terrain (or the deck) reads the shadow map.
+                    shadow: shadows_on_terrain
+                        .then(|| {
+                            CloudShadow::new(&volume, world_to_enu(light.direction.to_array()))
+                        })
+                        .flatten(),
+                })
+            })
+            .collect::<Result<_, SceneError>>()?;
+        Ok(PreparedVolume {
             volume,
             settings,
-            lighting,
             steps: s.steps,
             cloudy_cells,
-            shadow,
-            moon: None,
-        };
-        // At night the moon, the terrain's second light, lights the cloud too.
-        if let Some(moon) = moonlit {
-            cloud.moon = Some(self.moonlit_volume(section, &cloud, moon, shadows_on_terrain)?);
-        }
-        Ok(cloud)
+            lights,
+        })
     }
 
     /// One light of `[clouds.volume]` at the grid's centre: `cloudlight::march::atmos_light`
-    /// of `model` (the sun's rung, or the moon's through the moonlit atmosphere) toward
-    /// unit world direction `toward`, east/north/up.
-    fn volume_light(
+    /// of the light's rung and atmosphere (the sun's, or the moon's moonlit one) toward
+    /// it, east/north/up.
+    pub(crate) fn volume_light(
         &self,
         section: &CloudVolumeSection,
-        model: &(dyn atmos::SkyModel + Send + Sync),
-        atmosphere: &atmos::Atmosphere,
-        toward: DVec3,
+        light: &LightSource<'_>,
     ) -> Result<Lighting<f32>, SceneError> {
+        let (model, atmosphere, toward) = (light.sky_model, light.atmosphere, light.direction);
         let s = section;
         let invalid = |e: String| self.volume_invalid("base_m", deg_free(s.base_m, " m"), e);
         // Planet-centred: world + planet radius up.
@@ -275,29 +275,5 @@ impl Scene {
             [0.0, 0.0, 1.0],
         )
         .map_err(|e| invalid(e.to_string()))
-    }
-
-    /// At night the moon, the terrain's second light, lights `cloud` too: its light at the
-    /// grid's centre passed as the sun's is (the moonlit atmosphere and rung along the
-    /// moon's direction) and, with terrain, its shadow map along the moon.
-    fn moonlit_volume(
-        &self,
-        section: &CloudVolumeSection,
-        cloud: &PreparedVolume,
-        moon: &crate::scene::prepare::MoonlitSky,
-        shadows_on_terrain: bool,
-    ) -> Result<MoonlitVolume, SceneError> {
-        let toward = moon.direction;
-        Ok(MoonlitVolume {
-            lighting: self.volume_light(
-                section,
-                moon.sky_model.as_ref(),
-                &moon.atmosphere,
-                toward,
-            )?,
-            shadow: shadows_on_terrain
-                .then(|| CloudShadow::new(&cloud.volume, world_to_enu(toward.to_array())))
-                .flatten(),
-        })
     }
 }

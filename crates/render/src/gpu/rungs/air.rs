@@ -85,11 +85,12 @@ impl AirPass {
             },
             cache: None,
         });
-        // The rung's parameters for the sun's and the moon's atmospheres (the sun's
-        // twice without a moon: the shader then reads only the first).
+        // The rung's parameters for the sun's atmosphere and the added light's (the
+        // sun's twice without one: the shader then reads only the first). The shader
+        // adds one light's in-scatter to the sun's (`crate::gpu::frame::MAX_LIGHTS`).
         let sun = rung_parameters(scene.rung, &scene.atmosphere)?;
-        let moon = match &scene.moonlit {
-            Some(moon) => rung_parameters(scene.rung, &moon.atmosphere)?,
+        let moon = match scene.other_lights.first() {
+            Some(added) => rung_parameters(scene.rung, &added.atmosphere)?,
             None => sun.clone(),
         };
         let buffer = |label: &str, contents: &[u8]| {
@@ -183,10 +184,10 @@ impl AirPass {
         let air = RungAirUniform {
             camera: scene.camera,
             moon_direction: scene
-                .moonlit
-                .as_ref()
-                .map_or([0.0; 3], |moon| moon.direction.as_vec3().to_array()),
-            moon: u32::from(scene.moonlit.is_some()),
+                .other_lights
+                .first()
+                .map_or([0.0; 3], |added| added.direction.as_vec3().to_array()),
+            moon: u32::from(!scene.other_lights.is_empty()),
             near: scene.near.max(0.01) as f32,
             radiance_scale: scene.present.exposure,
             padding: [0.0; 2],

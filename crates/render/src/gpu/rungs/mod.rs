@@ -63,11 +63,12 @@ pub use uniforms::{RungAirUniform, RungLightUniform};
 pub struct RungPasses {
     rung: Rung,
     sky_pipeline: wgpu::RenderPipeline,
-    moon_sky_pipeline: Option<wgpu::RenderPipeline>,
+    /// The sky of the lights after the sun, added (built when there are any).
+    added_sky_pipeline: Option<wgpu::RenderPipeline>,
     terrain_layout: wgpu::BindGroupLayout,
     terrain_module: wgpu::ShaderModule,
-    sun: LightPasses,
-    moon: Option<LightPasses>,
+    /// Each light's passes, in the scene's lights' order (the sun first).
+    lights: Vec<LightPasses>,
     /// The terrain's aerial perspective per pixel; `None` per vertex (`vertex_air`).
     air: Option<AirPass>,
     /// The terrain's aerial perspective per vertex (`crate::gpu::vertex_air`), when asked for.
@@ -153,7 +154,7 @@ impl RungPasses {
             };
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(if additive {
-                    "render moonlit sky (rung)"
+                    "render added light's sky (rung)"
                 } else {
                     "render sky (rung)"
                 }),
@@ -269,11 +270,11 @@ impl RungPasses {
                 terrain_group,
             })
         };
-        let sun = light(&scene.atmosphere, "sun")?;
-        let moon = match &scene.moonlit {
-            Some(moon) => Some(light(&moon.atmosphere, "moon")?),
-            None => None,
-        };
+        let lights = scene
+            .lights()
+            .iter()
+            .map(|l| light(l.atmosphere, l.name))
+            .collect::<Result<Vec<_>, _>>()?;
         let vertex_air = crate::gpu::vertex_air::VertexAirPlan::new(scene)?;
         let air = match vertex_air {
             Some(_) => None,
@@ -282,11 +283,10 @@ impl RungPasses {
         Ok(Some(Self {
             rung,
             sky_pipeline: sky_pipeline(false),
-            moon_sky_pipeline: moon.as_ref().map(|_| sky_pipeline(true)),
+            added_sky_pipeline: (lights.len() > 1).then(|| sky_pipeline(true)),
             terrain_layout,
             terrain_module,
-            sun,
-            moon,
+            lights,
             air,
             vertex_air,
         }))
@@ -303,15 +303,16 @@ impl RungPasses {
         self.rung
     }
 
-    /// Whether the moon lights the scene (its sky added, the terrain drawn again).
-    pub fn has_moon(&self) -> bool {
-        self.moon.is_some()
+    /// How many lights the passes were built for (the sun, and the moon on a moonlit
+    /// night: each light's sky added, the terrain drawn once per light).
+    pub fn light_count(&self) -> usize {
+        self.lights.len()
     }
 
-    /// The air in front of a marched cloud lit by the sun, or by the moon (`moon`; `None`
-    /// when the moon does not light the scene).
-    pub(crate) fn cloud_air(&self, moon: bool) -> Option<crate::gpu::cloud_air::CloudAir<'_>> {
-        let light = if moon { self.moon.as_ref()? } else { &self.sun };
+    /// The air in front of a marched cloud lit by light `index` of the scene's lights
+    /// (`None` past the lights the passes were built for).
+    pub(crate) fn cloud_air(&self, index: usize) -> Option<crate::gpu::cloud_air::CloudAir<'_>> {
+        let light = self.lights.get(index)?;
         Some(crate::gpu::cloud_air::CloudAir::Rung(&light.cloud_air))
     }
 
@@ -371,62 +372,49 @@ impl RungPasses {
                 .collect::<Result<Vec<_>, _>>()
                 .map(Some)
         };
-        let sun_table = table(&scene.sun_light())?;
-        self.sun.prepare(
-            queue,
-            camera,
-            &scene.present,
-            &light_uniform(&scene.atmosphere, scene.sun),
-            sun_table.as_deref(),
-        )?;
-        match (&mut self.moon, &scene.moonlit) {
-            (Some(passes), Some(moon)) => {
-                // No disc: celestial draws the moon (the CPU adds the moonlit sky alone).
-                let present = PresentParameters {
+        let lights = scene.lights();
+        if lights.len() != self.lights.len() {
+            return Err(RenderError::InvalidParameter {
+                field: "lights",
+                value: format!("{} lights", lights.len()),
+                reason: "differs from the scene the renderer was built for",
+            });
+        }
+        for (passes, light) in self.lights.iter_mut().zip(&lights) {
+            // After the sun no disc: celestial draws the moon (the CPU adds its sky alone).
+            let present = if light.index == 0 {
+                scene.present
+            } else {
+                PresentParameters {
                     sun_disc_radiance: [0.0; 3],
                     ..scene.present
-                };
-                let moon_table = match scene.moon_light() {
-                    Some(light) => table(&light)?,
-                    None => None,
-                };
-                passes.prepare(
-                    queue,
-                    &moon.camera(camera),
-                    &present,
-                    &light_uniform(&moon.atmosphere, moon.direction),
-                    moon_table.as_deref(),
-                )?;
-            }
-            (None, None) => {}
-            (built, _) => {
-                return Err(RenderError::InvalidParameter {
-                    field: "moonlit sky",
-                    value: if built.is_some() { "off" } else { "on" }.into(),
-                    reason: "differs from the scene the renderer was built for",
-                });
-            }
+                }
+            };
+            let light_table = table(light)?;
+            passes.prepare(
+                queue,
+                &light.camera(camera),
+                &present,
+                &light_uniform(light.atmosphere, light.direction),
+                light_table.as_deref(),
+            )?;
         }
         Ok(())
     }
 
-    /// Records the rung's sky evaluation (compute passes, before the scene's render
-    /// pass): the sun's timed as "sky evaluation", the moon's as "moonlit sky
+    /// Records the rung's sky evaluation per light (compute passes, before the scene's
+    /// render pass), the sun's timed as "sky evaluation", the others as "moonlit sky
     /// evaluation".
     pub fn encode_sky_evaluation(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         times: Option<&crate::gpu::timer::PassTimes>,
     ) -> Result<(), RenderError> {
-        self.sun.renderer.encode(
-            encoder,
-            times.and_then(|t| t.compute_writes("sky evaluation")),
-        )?;
-        if let Some(moon) = &self.moon {
-            moon.renderer.encode(
-                encoder,
-                times.and_then(|t| t.compute_writes("moonlit sky evaluation")),
-            )?;
+        for (index, light) in self.lights.iter().enumerate() {
+            let label = evaluation_label(index);
+            light
+                .renderer
+                .encode(encoder, times.and_then(|t| t.compute_writes(label)))?;
         }
         Ok(())
     }
@@ -460,36 +448,44 @@ impl RungPasses {
         Ok(())
     }
 
-    /// Draws the sky (and the moonlit sky, added) into the scene's render pass.
+    /// Draws the sky (and each other light's sky, added) into the scene's render pass.
     pub fn draw_sky(&self, pass: &mut wgpu::RenderPass<'_>) {
-        pass.set_pipeline(&self.sky_pipeline);
-        pass.set_bind_group(0, &self.sun.sky_group, &[]);
-        pass.draw(0..3, 0..1);
-        if let (Some(pipeline), Some(moon)) = (&self.moon_sky_pipeline, &self.moon) {
+        for (index, light) in self.lights.iter().enumerate() {
+            let pipeline = match (index, &self.added_sky_pipeline) {
+                (0, _) => &self.sky_pipeline,
+                (_, Some(added)) => added,
+                (_, None) => continue,
+            };
             pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, &moon.sky_group, &[]);
+            pass.set_bind_group(0, &light.sky_group, &[]);
             pass.draw(0..3, 0..1);
         }
     }
 
-    /// Binds group 3 of a terrain draw: the sun's light, or the moon's.
-    pub fn bind_terrain(&self, pass: &mut wgpu::RenderPass<'_>, moon: bool) {
-        let light = match (&self.moon, moon) {
-            (Some(passes), true) => passes,
-            _ => &self.sun,
-        };
+    /// Binds group 3 of a terrain draw: light `index`'s (the sun's past the lights built).
+    pub fn bind_terrain(&self, pass: &mut wgpu::RenderPass<'_>, index: usize) {
+        let light = self.lights.get(index).unwrap_or(&self.lights[0]);
         pass.set_bind_group(3, &light.terrain_group, &[]);
     }
 
     /// The timestamp spans of the rung's passes.
     pub fn timestamp_labels(&self, terrain: bool) -> Vec<&'static str> {
-        let mut labels = vec!["sky evaluation"];
-        if self.moon.is_some() {
-            labels.push("moonlit sky evaluation");
-        }
+        let mut labels: Vec<&'static str> = (0..self.lights.len()).map(evaluation_label).collect();
+        labels.dedup();
         if terrain {
             labels.push("terrain aerial perspective");
         }
         labels
+    }
+}
+
+/// The timestamp span of light `index`'s sky evaluation: "sky evaluation" for the sun,
+/// "moonlit sky evaluation" for the lights added to it (`explain`'s plan line; a third
+/// light's pass would write the same span).
+pub(crate) fn evaluation_label(index: usize) -> &'static str {
+    if index == 0 {
+        "sky evaluation"
+    } else {
+        "moonlit sky evaluation"
     }
 }

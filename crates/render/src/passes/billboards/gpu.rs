@@ -16,20 +16,20 @@ pub(crate) fn build(
     shared: &GpuShared,
     scene: &PreparedScene,
 ) -> Result<Box<dyn GpuPass>, RenderError> {
-    let moonlit = scene
-        .billboard_cloud
+    // The tables of the lights after the sun are not the billboards' (the CPU lights
+    // the particles by each light: `BillboardLight`); under a rung without tables the
+    // light added to the sun gets its air pass.
+    let lights = scene.billboard_cloud.as_ref().map_or(1, |c| c.lights.len());
+    let airs = shared.cloud_airs().ok();
+    let added = airs
         .as_ref()
-        .is_some_and(|cloud| cloud.moon.is_some());
-    // The moon's tables are not the billboards' (the CPU lights its particles by the
-    // moon: `MoonlitBillboards`); a rung without tables gives the moon's air pass.
-    let airs = shared.cloud_airs().ok().map(|(sun, moon)| {
-        let moon = moon.filter(|air| !matches!(air, crate::gpu::cloud_air::CloudAir::Tables(_)));
-        (sun, moon)
-    });
+        .and_then(|airs| airs.get(1).copied())
+        .filter(|air| !matches!(air, crate::gpu::cloud_air::CloudAir::Tables(_)))
+        .filter(|_| lights == 2);
     Ok(Box::new(Billboards(BillboardCloudPass::new(
         &shared.device,
-        airs.map(|(sun, _)| sun),
-        airs.and_then(|(_, moon)| moon).filter(|_| moonlit),
+        airs.as_ref().and_then(|airs| airs.first().copied()),
+        added,
         HDR,
         DEPTH,
     )?)))

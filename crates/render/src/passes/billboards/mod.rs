@@ -37,6 +37,6 @@ fn cpu(frame: &mut CpuFrame<'_>) -> Result<(), RenderError> {
     let Some(cloud) = &frame.scene.billboard_cloud else {
         return Ok(());
     };
-    let tables = frame.sun.air();
+    let tables = frame.lights[0].air();
     crate::billboard_clouds::composite_billboards_cpu(frame.scene, cloud, tables, &mut frame.pixels)
 }

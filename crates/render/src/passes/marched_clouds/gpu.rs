@@ -27,24 +27,26 @@ pub(crate) fn build(
     scene: &PreparedScene,
 ) -> Result<Box<dyn GpuPass>, RenderError> {
     let device = &shared.device;
-    // A marched cloud's air: the sun's, and at night (`moonlit`) the moon's, which
-    // lights the cloud too (its march and air passes).
-    let airs = |moonlit: bool| {
-        let (sun, moon) = shared.cloud_airs()?;
-        Ok::<_, RenderError>((sun, moon.filter(|_| moonlit)))
+    // A marched cloud's air per light that lights it (its march and air passes).
+    let airs = |lights: usize| {
+        let mut airs = shared.cloud_airs()?;
+        airs.truncate(lights);
+        Ok::<_, RenderError>(airs)
     };
     let volume = match &scene.volume_cloud {
-        Some(cloud) => {
-            let (sun, moon) = airs(cloud.moon.is_some())?;
-            Some(VolumeCloudPass::new_volume(device, sun, moon, HDR)?)
-        }
+        Some(cloud) => Some(VolumeCloudPass::new_volume(
+            device,
+            &airs(cloud.lights.len())?,
+            HDR,
+        )?),
         None => None,
     };
     let shell = match &scene.shell_cloud {
-        Some(cloud) => {
-            let (sun, moon) = airs(cloud.moon.is_some())?;
-            Some(ShellCloudPass::new_shell(device, sun, moon, HDR)?)
-        }
+        Some(cloud) => Some(ShellCloudPass::new_shell(
+            device,
+            &airs(cloud.lights.len())?,
+            HDR,
+        )?),
         None => None,
     };
     let order = if volume.is_some() && shell.is_some() {
@@ -93,22 +95,23 @@ impl GpuPass for MarchedClouds {
     ) -> Result<(), RenderError> {
         // After the terrain (the marches stop at its depth), once for every cloud.
         self.distance.encode(encoder)?;
-        let (sun, moon) = shared.cloud_airs()?;
-        let compute = |label| times.and_then(|t| t.compute_writes(label));
-        // The moon's march is a step only where the moon lights the cloud.
-        let moon_compute = |moonlit: bool, label| if moonlit { compute(label) } else { None };
+        let airs = shared.cloud_airs()?;
+        // Each light's march is a step: the sun's, and the light added to it (the moon).
+        let marches = |count: usize, labels: [&'static str; 2]| -> Vec<_> {
+            (0..count)
+                .map(|index| match index {
+                    0 => times.and_then(|t| t.compute_writes(labels[0])),
+                    1 => times.and_then(|t| t.compute_writes(labels[1])),
+                    _ => None,
+                })
+                .collect()
+        };
+        const SHELL: [&str; 2] = ["shell cloud march", "moonlit shell march"];
+        const VOLUME: [&str; 2] = ["volume cloud march", "moonlit cloud march"];
         if let (Some(order), Some(shell), Some(volume)) = (&self.order, &self.shell, &self.volume) {
             // Both marched clouds: their marches and air, then one composite by depth.
-            let (march, moon_march) = (
-                compute("shell cloud march"),
-                moon_compute(shell.moonlit(), "moonlit shell march"),
-            );
-            shell.encode_marches(encoder, sun, moon, march, moon_march)?;
-            let (march, moon_march) = (
-                compute("volume cloud march"),
-                moon_compute(volume.moonlit(), "moonlit cloud march"),
-            );
-            volume.encode_marches(encoder, sun, moon, march, moon_march)?;
+            shell.encode_marches(encoder, &airs, marches(shell.light_count(), SHELL))?;
+            volume.encode_marches(encoder, &airs, marches(volume.light_count(), VOLUME))?;
             let composite = times.and_then(|t| t.render_writes("clouds by depth"));
             return order.encode(encoder, &shared.hdr_view, composite);
         }
@@ -116,11 +119,9 @@ impl GpuPass for MarchedClouds {
             shell.encode(
                 encoder,
                 &shared.hdr_view,
-                sun,
-                moon,
+                &airs,
                 CloudTimes {
-                    march: compute("shell cloud march"),
-                    moon: moon_compute(shell.moonlit(), "moonlit shell march"),
+                    marches: marches(shell.light_count(), SHELL),
                     composite: times.and_then(|t| t.render_writes("shell clouds")),
                 },
             )?;
@@ -129,11 +130,9 @@ impl GpuPass for MarchedClouds {
             volume.encode(
                 encoder,
                 &shared.hdr_view,
-                sun,
-                moon,
+                &airs,
                 CloudTimes {
-                    march: compute("volume cloud march"),
-                    moon: moon_compute(volume.moonlit(), "moonlit cloud march"),
+                    marches: marches(volume.light_count(), VOLUME),
                     composite: times.and_then(|t| t.render_writes("volume clouds")),
                 },
             )?;

@@ -114,41 +114,22 @@ fn volume_composite_plan(
 }
 
 /// The CPU twin: each marched cloud alone over the scene, or both by depth per pixel;
-/// at night each is marched again lit by the moon, seen through the moonlit air, added.
+/// each marched once per light of the frame, seen through that light's air, added.
 fn cpu(frame: &mut CpuFrame<'_>) -> Result<(), RenderError> {
     let scene = frame.scene;
-    let sun = frame.sun.air();
-    // The moon's light and air, for a cloud the moon lights.
-    let moon = |lit: bool| {
-        frame
-            .moon
-            .as_ref()
-            .filter(|_| lit)
-            .map(|moon| (&moon.illuminant, moon.air()))
-    };
+    let lights = &frame.lights;
     match (&scene.shell_cloud, &scene.volume_cloud) {
         (Some(shell), Some(volume)) => crate::cloud_order::composite_clouds_by_depth(
             scene,
             shell,
             volume,
-            sun,
-            moon(shell.moon.is_some() || volume.moon.is_some()),
+            lights,
             &mut frame.pixels,
         ),
-        (Some(shell), None) => crate::shell_clouds::composite_shell_cloud(
-            scene,
-            shell,
-            sun,
-            moon(shell.moon.is_some()),
-            &mut frame.pixels,
-        ),
-        (None, Some(volume)) => composite_volume_cloud(
-            scene,
-            volume,
-            sun,
-            moon(volume.moon.is_some()),
-            &mut frame.pixels,
-        ),
+        (Some(shell), None) => {
+            crate::shell_clouds::composite_shell_cloud(scene, shell, lights, &mut frame.pixels)
+        }
+        (None, Some(volume)) => composite_volume_cloud(scene, volume, lights, &mut frame.pixels),
         (None, None) => Ok(()),
     }
 }
@@ -156,29 +137,22 @@ fn cpu(frame: &mut CpuFrame<'_>) -> Result<(), RenderError> {
 /// The twin of the GPU's march and volume-cloud composite (`crate::volume_clouds`):
 /// each pixel's f32 march through the scene's cloud, drawn where its depth is nearer
 /// than the terrain, seen through the air (the precomputed rung's aerial-perspective
-/// table, else the segment model) over what is behind it. At night the cloud is
-/// marched again lit by the moon and seen through the moonlit air, added.
+/// table, else the segment model) over what is behind it; once per light of `lights`,
+/// added.
 fn composite_volume_cloud(
     scene: &PreparedScene,
     cloud: &crate::volume_clouds::PreparedVolume,
-    sun: crate::air::AirTables<'_>,
-    moon: Option<(&crate::scene::Illuminant<'_>, crate::air::AirTables<'_>)>,
+    lights: &[crate::cpu_frame::LightFrame<'_>],
     out: &mut [crate::cpu_frame::PixelRadiance],
 ) -> Result<(), RenderError> {
-    use crate::marched_cloud::composite_marched_cloud;
+    use crate::marched_cloud::{composite_marched_cloud, lit_by};
     use crate::volume_clouds::{march_pixel_lit, pinhole_camera};
     let camera = &scene.camera;
     let size = [camera.width, camera.height];
     let pinhole = pinhole_camera(camera, scene.atmosphere.planet_radius)?;
-    let moon = match (&cloud.moon, moon) {
-        (Some(moonlit), Some((light, tables))) => Some((&moonlit.lighting, light, tables)),
-        _ => None,
-    };
     composite_marched_cloud(
         scene,
-        &cloud.lighting,
-        sun,
-        moon,
+        &lit_by(&cloud.lights, lights),
         |lighting, xy, behind| march_pixel_lit(cloud, lighting, &pinhole, size, xy, behind),
         out,
     )
@@ -190,7 +164,7 @@ fn moonlit_march_plan(scene: &PreparedScene) -> Result<String, String> {
     let Some(cloud) = &scene.volume_cloud else {
         return Err("no [clouds.volume] to march (none, or draw = \"billboards\")".into());
     };
-    match (&cloud.moon, &scene.moonlit) {
+    match (cloud.lights.get(1), scene.other_lights.first()) {
         (Some(moon), Some(sky)) => Ok(format!(
             "the [clouds.volume] cloud marched again lit by the moon ({:.1}° up; the terrain's \
              moonlit draw's light: celestial's MoonLight through atmos), added through the \

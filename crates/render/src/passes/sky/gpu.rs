@@ -61,8 +61,12 @@ impl GpuPass for SkyDraws {
         // (below 6.1e-5) and flush; exposed, the image's values are near 1.
         let radiance_scale = scene.present.exposure;
         // The sun's disc unless celestial draws it; no disc for the moon (celestial's).
-        let lights = std::iter::once((&scene.atmosphere, scene.sky_objects.is_none()))
-            .chain(scene.moonlit.iter().map(|moon| (&moon.atmosphere, false)));
+        let lights = std::iter::once((&scene.atmosphere, scene.sky_objects.is_none())).chain(
+            scene
+                .other_lights
+                .iter()
+                .map(|light| (&light.atmosphere, false)),
+        );
         for (pass, (atmosphere, disc)) in self.0.iter_mut().zip(lights) {
             pass.prepare(
                 queue,

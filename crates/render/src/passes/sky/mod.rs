@@ -35,13 +35,13 @@ fn plan(scene: &PreparedScene) -> Vec<PlanLine> {
 }
 
 /// The CPU twin: the sun's sky (with its disc) at every pixel whose ray misses the
-/// terrain, the moon's sky (no disc: celestial draws the moon) added.
+/// terrain, each other light's sky (no disc: celestial draws the moon) added.
 fn cpu(frame: &mut CpuFrame<'_>) -> Result<(), RenderError> {
     let scene = frame.scene;
     let camera = &scene.camera;
     let planet = scene.atmosphere.planet_radius;
     let width = frame.width();
-    let (sun, moon) = (&frame.sun, frame.moon.as_ref());
+    let (sun, others) = frame.lights.split_first().ok_or(RenderError::NotPrepared)?;
     frame
         .pixels
         .par_chunks_mut(width)
@@ -72,28 +72,30 @@ fn cpu(frame: &mut CpuFrame<'_>) -> Result<(), RenderError> {
                         )
                     }
                 };
-                let Some(moon) = moon else {
-                    continue;
-                };
-                let added = match &moon.tables {
-                    Some(p) => atmos::lut::drop_in::sky_pass_radiance(p.luts, &p.frame, xy, &p.sky),
-                    None => {
-                        let query = atmos::SkyQuery::new(
-                            planet,
-                            scene.camera_position,
-                            view,
-                            moon.illuminant.direction,
-                        )
-                        .map_err(RenderError::Atmosphere)?;
-                        moon.illuminant
-                            .sky_model
-                            .evaluate(&query)
-                            .radiance
-                            .map(|v| v as f32)
+                for light in others {
+                    let added = match &light.tables {
+                        Some(p) => {
+                            atmos::lut::drop_in::sky_pass_radiance(p.luts, &p.frame, xy, &p.sky)
+                        }
+                        None => {
+                            let query = atmos::SkyQuery::new(
+                                planet,
+                                scene.camera_position,
+                                view,
+                                light.illuminant.direction,
+                            )
+                            .map_err(RenderError::Atmosphere)?;
+                            light
+                                .illuminant
+                                .sky_model
+                                .evaluate(&query)
+                                .radiance
+                                .map(|v| v as f32)
+                        }
+                    };
+                    for (value, a) in pixel.radiance.iter_mut().zip(added) {
+                        *value += a;
                     }
-                };
-                for (value, a) in pixel.radiance.iter_mut().zip(added) {
-                    *value += a;
                 }
             }
             Ok::<(), RenderError>(())

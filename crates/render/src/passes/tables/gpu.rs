@@ -6,8 +6,15 @@ use crate::gpu::frame::{GpuPass, GpuShared};
 use crate::gpu::timer::PassTimes;
 use crate::scene::prepare::PreparedScene;
 
-/// Each light's per-frame bake as a step of the plan: the sun's, then the moon's.
-const FRAME_BAKES: [&str; 2] = ["atmosphere LUT bakes", "moonlit sky LUT bakes"];
+/// The per-frame bake of light `index` as a step of the plan: the sun's, then the
+/// lights' added to it (the moon's; a third light's bake would write the same span).
+fn frame_bake(index: usize) -> &'static str {
+    if index == 0 {
+        "atmosphere LUT bakes"
+    } else {
+        "moonlit sky LUT bakes"
+    }
+}
 
 /// Records the lights' table bakes or sky evaluations.
 #[derive(Debug)]
@@ -35,14 +42,16 @@ impl GpuPass for TablesPass {
         scene: &PreparedScene,
     ) -> Result<(), RenderError> {
         let camera = &scene.camera;
-        // Each light's camera: the scene's (its `sun` the sun), then the moon's.
-        let cameras: Vec<_> = std::iter::once(*camera)
-            .chain(scene.moonlit.iter().map(|moon| moon.camera(camera)))
+        // Each light's camera: the scene's with its `sun` the light's direction.
+        let cameras: Vec<_> = scene
+            .lights()
+            .iter()
+            .map(|light| light.camera(camera))
             .collect();
         // A rung without tables prepares its own per light (below).
         if !shared.tables.is_empty() && shared.tables.len() != cameras.len() {
             return Err(RenderError::InvalidParameter {
-                field: "moonlit sky",
+                field: "lights",
                 value: format!("{} lights", cameras.len()),
                 reason: "differs from the scene the renderer was built for",
             });
@@ -76,7 +85,8 @@ impl GpuPass for TablesPass {
             }
             self.static_luts_pending = false;
         }
-        for (luts, step) in shared.tables.iter().zip(FRAME_BAKES) {
+        for (index, luts) in shared.tables.iter().enumerate() {
+            let step = frame_bake(index);
             luts.encode_frame_luts(encoder, times.and_then(|t| t.compute_writes(step)));
         }
         if let Some(rung) = &shared.rung {

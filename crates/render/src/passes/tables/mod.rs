@@ -84,9 +84,10 @@ fn cpu(frame: &mut CpuFrame<'_>) -> Result<(), RenderError> {
     let camera = &frame.scene.camera;
     // The sun's sky pass draws its disc unless celestial draws it (sky objects).
     let sun_disc = frame.scene.sky_objects.is_none();
-    frame.sun.tables = precomputed_frame(&frame.sun.illuminant, camera, sun_disc)?;
-    if let Some(moon) = &mut frame.moon {
-        moon.tables = precomputed_frame(&moon.illuminant, camera, false)?;
+    // The other lights' skies add to the sun's without a disc (celestial draws the moon).
+    for light in &mut frame.lights {
+        let disc = sun_disc && light.illuminant.index == 0;
+        light.tables = precomputed_frame(&light.illuminant, camera, disc)?;
     }
     Ok(())
 }

@@ -28,17 +28,17 @@ pub(crate) fn capacity(clouds: [bool; 2]) -> usize {
     (clouds.iter().filter(|&&c| c).count() * SLOT_TEXELS as usize).max(1)
 }
 
-/// Both slots disabled: the contents of a draw's uniform without clouds.
+/// Both slots disabled: the contents of a light's draw's uniform without clouds.
 pub(crate) const NONE: [VolumeShadowUniform; 2] = [VolumeShadowUniform::DISABLED; 2];
 
-/// Writes the scene's maps into `values` (built for `clouds`) and returns the two draws'
-/// uniforms, `[sun, moon]`. One light at most has a map per cloud (a scene the moon
-/// lights has the sun below the horizon, and a map needs its light above 1°), so the
-/// moon's map takes the slot the sun's would; a map for a cloud the buffer has no room
-/// for is an error naming the cloud. With `shell_gpu` (a scene with the shell over
-/// terrain) the deck's map is baked on the GPU into its slot (prepared here by
-/// [`super::shell_shadow::ShellShadowGpu::prepare`], recorded by the renderer's
-/// `encode`) instead of uploaded from the CPU's bake.
+/// Writes the scene's maps into `values` (built for `clouds`) and returns each light's
+/// draw's uniforms (the scene's lights' order). One light at most has a map per cloud (a
+/// map needs its light above 1°, and a scene the moon lights has the sun below the
+/// horizon), so that light's map takes the cloud's slot; a second map for one cloud is
+/// an error naming the cloud, as is a map for a cloud the buffer has no room for. With
+/// `shell_gpu` (a scene with the shell over terrain) the deck's map is baked on the GPU
+/// into its slot (prepared here by [`super::shell_shadow::ShellShadowGpu::prepare`],
+/// recorded by the renderer's `encode`) instead of uploaded from the CPU's bake.
 pub(crate) fn write(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
@@ -46,33 +46,34 @@ pub(crate) fn write(
     scene: &PreparedScene,
     clouds: [bool; 2],
     shell_gpu: Option<&mut super::shell_shadow::ShellShadowGpu>,
-) -> Result<[[VolumeShadowUniform; 2]; 2], RenderError> {
-    let sun = scene.sun_light();
-    let moon = scene.moon_light();
-    fn maps<'a>(light: Option<&crate::scene::Illuminant<'a>>) -> [Option<&'a CloudShadow>; 2] {
-        light.map_or([None; 2], |l| [l.volume_shadow, l.shell_shadow])
-    }
-    let (sun_maps, moon_maps) = (maps(Some(&sun)), maps(moon.as_ref()));
+) -> Result<Vec<[VolumeShadowUniform; 2]>, RenderError> {
+    let lights = scene.lights();
+    let maps: Vec<[Option<&CloudShadow>; 2]> = lights
+        .iter()
+        .map(|l| [l.volume_shadow, l.shell_shadow])
+        .collect();
     let offsets = offsets(clouds);
     let gpu_shell_light = match shell_gpu {
         Some(gpu) if clouds[1] => gpu.prepare(device, queue, scene, values, offsets[1])?,
         _ => None,
     };
-    let mut uniforms = [NONE; 2];
+    let mut uniforms = vec![NONE; lights.len()];
     for slot in 0..2 {
         let field = ["clouds.volume", "clouds.shell"][slot];
-        let (light, map) = match (sun_maps[slot], moon_maps[slot]) {
-            (Some(map), None) => (0, map),
-            (None, Some(map)) => (1, map),
-            (None, None) => continue,
-            (Some(_), Some(_)) => {
-                return Err(RenderError::InvalidParameter {
-                    field,
-                    value: "shadow maps toward the sun and the moon".into(),
-                    reason: "the terrain pass holds one shadow map per cloud",
-                });
-            }
+        let mut lit = maps
+            .iter()
+            .enumerate()
+            .filter_map(|(light, maps)| Some((light, maps[slot]?)));
+        let Some((light, map)) = lit.next() else {
+            continue;
         };
+        if lit.next().is_some() {
+            return Err(RenderError::InvalidParameter {
+                field,
+                value: "shadow maps toward two lights".into(),
+                reason: "the terrain pass holds one shadow map per cloud",
+            });
+        }
         if !clouds[slot] || map.values.len() > SLOT_TEXELS as usize {
             return Err(RenderError::InvalidParameter {
                 field,

@@ -26,8 +26,9 @@ pub(crate) fn composite(frame: &mut CpuFrame<'_>) -> Result<(), RenderError> {
         return Ok(());
     };
     // The frame's lights (the sun, then the moon when it lights the scene).
-    let lights = std::iter::once(&frame.sun)
-        .chain(frame.moon.as_ref())
+    let lights = frame
+        .lights
+        .iter()
         .map(|light| {
             terrain_light(scene, terrain, light.illuminant)
                 .map(|terrain_light| (terrain_light, light.tables.as_ref()))

@@ -326,9 +326,7 @@ fn new_terrain_pass(
     // The lights' tables: the sun's and, on a moonlit night, the moon's; a rung without
     // tables binds its own per light (`RungPasses::bind_terrain`).
     let light_tables: Vec<Option<&AtmosphereLuts>> = match rung {
-        Some(rung) => (0..if rung.has_moon() { 2 } else { 1 })
-            .map(|_| None)
-            .collect(),
+        Some(rung) => (0..rung.light_count()).map(|_| None).collect(),
         None => tables.iter().map(Some).collect(),
     };
     let draws = light_tables
@@ -462,12 +460,10 @@ impl GpuPass for TerrainPass {
             self.shadow_clouds,
             self.shell_shadow.as_mut(),
         )?;
-        let lights: Vec<Illuminant<'_>> = std::iter::once(scene.sun_light())
-            .chain(scene.moon_light())
-            .collect();
+        let lights: Vec<Illuminant<'_>> = scene.lights();
         if lights.len() != self.draws.len() {
             return Err(RenderError::InvalidParameter {
-                field: "moonlit terrain",
+                field: "lights",
                 value: format!("{} lights", lights.len()),
                 reason: "differs from the scene the renderer was built for",
             });
@@ -560,19 +556,18 @@ impl GpuPass for TerrainPass {
         pass.set_vertex_buffer(0, self.grid.slice(..));
         pass.set_vertex_buffer(1, self.tiles.slice(..));
         pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
-        // Each light's tables: the sun's, then the moon's (a rung binds its own).
+        // Each light's tables, the sun's first (a rung binds its own).
         for (index, draw) in self.draws.iter().enumerate() {
-            let added = index > 0;
             pass.set_pipeline(&draw.pipeline);
             if let Some(luts) = shared.tables.get(index) {
                 pass.set_bind_group(0, luts.uniform_bind_group(), &[]);
                 pass.set_bind_group(1, luts.table_bind_group(), &[]);
             }
             if let Some(rung) = &shared.rung {
-                rung.bind_terrain(&mut pass, added);
+                rung.bind_terrain(&mut pass, index);
             }
             if let Some(air) = &self.vertex_air {
-                air.bind(&mut pass, added);
+                air.bind(&mut pass, index);
             }
             pass.set_bind_group(2, &draw.bind_group, &[]);
             pass.draw_indexed(0..self.index_count, 0, 0..self.tile_count);

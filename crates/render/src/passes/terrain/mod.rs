@@ -102,6 +102,6 @@ fn shell_shadow(scene: &PreparedScene) -> Result<String, String> {
     if scene.terrain.is_none() {
         return Err("no [terrain] under the deck: no shadow map baked".into());
     }
-    Ok(crate::shell_clouds::shell_shadow_plan(cloud)
+    Ok(crate::shell_clouds::shell_shadow_plan(scene, cloud)
         .unwrap_or_else(|why| format!("an empty pass: {why}")))
 }

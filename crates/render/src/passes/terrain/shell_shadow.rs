@@ -52,7 +52,7 @@ impl ShellShadowGpu {
 
     /// Prepares the bake of the deck's map toward the light that has one into `values`
     /// at element `offset`, unless the buffer already holds it: [`Self::encode`] records
-    /// it (no submit here). Returns that light (0 the sun, 1 the moon), or `None` when
+    /// it (no submit here). Returns that light (its index in the scene's lights), or `None` when
     /// the scene has no deck map (then the caller uploads the CPU's values, if any).
     pub(crate) fn prepare(
         &mut self,
@@ -66,10 +66,15 @@ impl ShellShadowGpu {
             return Ok(None);
         };
         let field = ShellField::<f32>::of(&cloud.shell);
-        let (light, map, toward) = match (&cloud.shadow, &cloud.moon_shadow, &scene.moonlit) {
-            (Some(map), _, _) => (0, map, scene.sun),
-            (None, Some(map), Some(moon)) => (1, map, moon.direction),
-            _ => return Ok(None),
+        // The first light with a map (a map needs its light above 1°: at most one of
+        // the sun and the moon is).
+        let Some((light, map, toward)) = scene
+            .lights()
+            .iter()
+            .zip(&cloud.lights)
+            .find_map(|(light, lit)| Some((light.index, lit.shadow.as_ref()?, light.direction)))
+        else {
+            return Ok(None);
         };
         let plan = crate::shell_clouds::shell_shadow_map_plan(&cloud.shell, map, toward)
             .map_err(bake_error)?;
