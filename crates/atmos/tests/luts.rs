@@ -901,3 +901,32 @@ fn batched_evaluation_equals_one_query_at_a_time() {
         assert_eq!(*sample, sky.evaluate(query));
     }
 }
+
+/// The static tables hold the air's response per unit irradiance: relit for another
+/// light (the moon's irradiance and angular radius) they equal a bake for that light
+/// bit for bit, and an atmosphere whose air differs is not relit.
+#[test]
+fn static_tables_relit_equal_a_bake_for_the_new_light() {
+    let settings = LutSettings::small();
+    let sun = Atmosphere::earth();
+    let moon = Atmosphere {
+        sun_irradiance: [2.1e-6, 2.0e-6, 1.8e-6],
+        sun_angular_radius: 0.0045,
+        ..sun.clone()
+    };
+    let baked = StaticLuts::bake(&sun, &settings).unwrap();
+    let relit = baked.relit(&moon).unwrap().expect("only the light differs");
+    let direct = StaticLuts::bake(&moon, &settings).unwrap();
+    assert_eq!(relit.transmittance.texels, direct.transmittance.texels);
+    assert_eq!(
+        relit.multiple_scattering.texels,
+        direct.multiple_scattering.texels
+    );
+    assert_eq!(relit.atmosphere, direct.atmosphere);
+    let hazier = Atmosphere {
+        mie_scattering: sun.mie_scattering.map(|m| 2.0 * m),
+        mie_extinction: sun.mie_extinction.map(|m| 2.0 * m),
+        ..sun.clone()
+    };
+    assert!(baked.relit(&hazier).unwrap().is_none());
+}

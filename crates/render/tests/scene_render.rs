@@ -752,3 +752,62 @@ fn look_along_is_the_face_scene_prepared_again() {
         assert_eq!(a, b, "pixel {i}");
     }
 }
+
+/// A preparation cache changes what is built, not what is drawn: the night (sun and
+/// moon, precomputed rung, procedural terrain) prepared through one cache three times
+/// renders bit for bit the image of a plain `prepare`; the first preparation bakes the
+/// static tables once (the moon's are the sun's relit) and builds the terrain, the
+/// later ones take all three. The same for a heightfield file: replaced between two
+/// preparations, it is read again.
+#[test]
+fn a_preparation_cache_keeps_what_did_not_change() {
+    let mut scene = Scene::open(NIGHT_SCENE).unwrap();
+    scene.file.output.width = 32;
+    scene.file.output.height = 18;
+    let plain = render_radiance(&scene.prepare().unwrap()).unwrap();
+    let cache = render::scene::PrepareCache::new();
+    let first = scene.prepare_cached(&cache).unwrap();
+    assert_eq!(first.lights().len(), 2, "the night's sun and moon");
+    assert_eq!(
+        cache.counts(),
+        [2, 1],
+        "tables and terrain built, the moon's relit"
+    );
+    for _ in 0..2 {
+        let again = scene.prepare_cached(&cache).unwrap();
+        assert_eq!(render_radiance(&again).unwrap(), plain);
+    }
+    assert_eq!(cache.counts(), [2, 7], "every later product taken");
+    assert_eq!(render_radiance(&first).unwrap(), plain);
+
+    // A heightfield file replaced between preparations is read again.
+    let folder = std::env::temp_dir().join(format!("skyscape-cache-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    write_ridge(&folder);
+    let source = "[camera]\nposition = [0.0, 400.0, 300.0]\nlook_direction = [0.0, -0.3, -1.0]\n\
+         [sun]\nelevation_deg = 30.0\nazimuth_deg = 180.0\n\
+         [atmosphere]\nrung = \"closed-form\"\n\
+         [output]\nwidth = 16\nheight = 9\n\
+         [terrain.raw_f32]\npath = \"ridge.f32\"\nwidth = 64\nheight = 64\ncell_size = 30.0\n";
+    let ridge = Scene::parse(source, &folder).unwrap();
+    let cache = render::scene::PrepareCache::new();
+    let before = ridge.prepare_cached(&cache).unwrap();
+    ridge.prepare_cached(&cache).unwrap();
+    assert_eq!(cache.counts(), [1, 1]);
+    let file = folder.join("ridge.f32");
+    let heights: Vec<u8> = std::fs::read(&file)
+        .unwrap()
+        .chunks(4)
+        .flat_map(|h| (f32::from_le_bytes(h.try_into().unwrap()) + 100.0).to_le_bytes())
+        .collect();
+    std::thread::sleep(std::time::Duration::from_millis(20));
+    std::fs::write(&file, heights).unwrap();
+    let after = ridge.prepare_cached(&cache).unwrap();
+    assert_eq!(cache.counts(), [2, 1], "the replaced file is read again");
+    let [low, high] = [&before, &after].map(|p| {
+        let hf = &p.terrain.as_ref().unwrap().heightfield;
+        hf.elevations().into_iter().fold(f64::MIN, f64::max)
+    });
+    assert!((high - low - 100.0).abs() < 1e-3, "{low} → {high}");
+    std::fs::remove_dir_all(&folder).ok();
+}

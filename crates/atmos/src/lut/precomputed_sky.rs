@@ -81,6 +81,28 @@ impl StaticLuts {
         })
     }
 
+    /// The tables for `atmosphere` when it differs from theirs in its light alone (the
+    /// sun's irradiance and angular radius: the moon as a light, celestial's
+    /// `MoonLight::atmosphere`, or another sun): the same transmittance and
+    /// multiple-scattering tables, which hold the air's response per unit irradiance
+    /// and are applied to the light only where radiance is formed, with the new
+    /// atmosphere. `None` when anything else differs (then [`StaticLuts::bake`]).
+    pub fn relit(&self, atmosphere: &Atmosphere) -> Result<Option<Self>, AtmosError> {
+        let lit = atmosphere.to_uniforms()?;
+        let unlit = |a: &AtmosphereParameters| AtmosphereParameters {
+            sun_irradiance: [0.0; 3],
+            sun_angular_radius: 0.0,
+            ..*a
+        };
+        if bytemuck::bytes_of(&unlit(&lit)) != bytemuck::bytes_of(&unlit(&self.atmosphere)) {
+            return Ok(None);
+        }
+        Ok(Some(Self {
+            atmosphere: lit,
+            ..self.clone()
+        }))
+    }
+
     /// The tables as the raymarch functions read them.
     pub fn bindings(&self) -> LutBindings<'_> {
         LutBindings {
@@ -241,6 +263,15 @@ impl PrecomputedSky {
             luts: StaticLuts::bake(atmosphere, settings)?,
             sky_views: Mutex::new(Vec::new()),
         })
+    }
+
+    /// The rung over tables already baked (e.g. [`StaticLuts::relit`] of another
+    /// light's): no bake here.
+    pub fn from_static_luts(luts: StaticLuts) -> Self {
+        Self {
+            luts,
+            sky_views: Mutex::new(Vec::new()),
+        }
     }
 
     /// The static tables.

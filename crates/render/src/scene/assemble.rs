@@ -8,7 +8,7 @@ use terrain::generate::{Fractal, GeneratorParams};
 use terrain::{Algorithm, Heightfield, HorizonOptions, NormalMap};
 
 use super::prepare::*;
-use super::{HorizonVariant, Rung, Scene, SceneError};
+use super::{HorizonVariant, PrepareCache, Rung, Scene, SceneError};
 use crate::present::PresentParameters;
 use crate::terrain_shading::AlbedoRamp;
 
@@ -25,7 +25,14 @@ fn triple(v: [f64; 3]) -> String {
 impl Scene {
     /// Validates the scene and builds its atmosphere, rung, camera and terrain.
     pub fn prepare(&self) -> Result<PreparedScene, SceneError> {
-        self.prepare_with(true)
+        self.prepare_with(true, &PrepareCache::new())
+    }
+
+    /// [`Scene::prepare`] taking what `cache` kept from earlier preparations (an
+    /// animation's frames, a viewer's) where its inputs did not change, and keeping what
+    /// it builds.
+    pub fn prepare_cached(&self, cache: &PrepareCache) -> Result<PreparedScene, SceneError> {
+        self.prepare_with(true, cache)
     }
 
     /// [`Scene::prepare`] for the GPU renderer: the `[clouds.shell]` deck's shadow maps
@@ -33,10 +40,22 @@ impl Scene {
     /// the CPU renderer refuses such a scene until
     /// [`PreparedScene::bake_shell_shadow_on_cpu`].
     pub fn prepare_for_gpu(&self) -> Result<PreparedScene, SceneError> {
-        self.prepare_with(false)
+        self.prepare_with(false, &PrepareCache::new())
     }
 
-    fn prepare_with(&self, cpu_shell_shadow: bool) -> Result<PreparedScene, SceneError> {
+    /// [`Scene::prepare_for_gpu`] with [`Scene::prepare_cached`]'s `cache`.
+    pub fn prepare_for_gpu_cached(
+        &self,
+        cache: &PrepareCache,
+    ) -> Result<PreparedScene, SceneError> {
+        self.prepare_with(false, cache)
+    }
+
+    fn prepare_with(
+        &self,
+        cpu_shell_shadow: bool,
+        cache: &PrepareCache,
+    ) -> Result<PreparedScene, SceneError> {
         let atmosphere = self.atmosphere()?;
         let file = &self.file;
 
@@ -166,8 +185,30 @@ impl Scene {
             self.check_shell_cloud(section, &atmosphere)?;
         }
         // The expensive parts last, once every cheap check has passed.
-        let (sky_model, segment_model, precomputed) = self.models(&atmosphere)?;
-        let terrain = self.terrain()?;
+        let (sky_model, segment_model, precomputed) = self.models(&atmosphere, cache)?;
+        let terrain = match &file.terrain {
+            Some(section) => {
+                let source = section
+                    .png16
+                    .as_ref()
+                    .map(|p| &p.path)
+                    .or(section.raw_f32.as_ref().map(|r| &r.path))
+                    .map(|path| self.resolve(path));
+                let file = source.map(|path| {
+                    let meta = std::fs::metadata(&path).ok();
+                    let (len, modified) = meta.map_or((0, None), |m| (m.len(), m.modified().ok()));
+                    (path, len, modified)
+                });
+                let key = super::cache::TerrainKey {
+                    section: section.clone(),
+                    file,
+                };
+                Some(cache.terrain(key, || {
+                    self.terrain()?.ok_or_else(|| unreachable_terrain(self))
+                })?)
+            }
+            None => None,
+        };
         let (sky_objects, cloud_layers) = match sky.as_mut() {
             Some(sky) => self.sky_objects_and_clouds(sky, &*sky_model, forward, cam, out)?,
             None => {
@@ -184,7 +225,7 @@ impl Scene {
             }
         };
         let other_lights: Vec<LightSky> = match &sky {
-            Some(sky) => self.moonlit_sky(sky, &atmosphere, sun, &cloud_layers)?,
+            Some(sky) => self.moonlit_sky(sky, &atmosphere, sun, &cloud_layers, cache)?,
             None => None,
         }
         .into_iter()
@@ -267,6 +308,7 @@ impl Scene {
         atmosphere: &atmos::Atmosphere,
         sun: DVec3,
         cloud_layers: &[celestial::clouds::CloudLayerUniforms],
+        cache: &PrepareCache,
     ) -> Result<Option<LightSky>, SceneError> {
         let Some(placement) = sky.placement() else {
             return Ok(None);
@@ -277,7 +319,7 @@ impl Scene {
             return Ok(None);
         }
         let moon_atmosphere = light.atmosphere(atmosphere);
-        let (sky_model, segment_model, precomputed) = self.models(&moon_atmosphere)?;
+        let (sky_model, segment_model, precomputed) = self.models(&moon_atmosphere, cache)?;
         // The layers' light is in their east–north–up frame, as the moon's direction.
         let toward_moon = light.direction.map(|c| c as f32);
         let cloud_layers = cloud_layers
@@ -540,11 +582,13 @@ impl Scene {
         Ok(atmosphere)
     }
 
-    /// The rung's models (sky, finite segments).
+    /// The rung's models (sky, finite segments); the precomputed rung's static tables
+    /// from `cache` when it holds them for this air.
     #[allow(clippy::type_complexity)]
     fn models(
         &self,
         atmosphere: &atmos::Atmosphere,
+        cache: &PrepareCache,
     ) -> Result<
         (
             SharedSkyModel,
@@ -573,9 +617,10 @@ impl Scene {
                     .map_err(e)?,
             ),
             Rung::Precomputed => {
-                let sky = std::sync::Arc::new(
-                    atmos::lut::PrecomputedSky::new(atmosphere, &Default::default()).map_err(e)?,
-                );
+                let luts = cache
+                    .static_luts(atmosphere, &Default::default())
+                    .map_err(e)?;
+                let sky = std::sync::Arc::new(atmos::lut::PrecomputedSky::from_static_luts(luts));
                 let model: SharedSkyModel = Box::new(sky.clone());
                 let shared = std::sync::Arc::new(model);
                 return Ok((Box::new(shared.clone()), Box::new(shared), Some(sky)));
@@ -734,4 +779,14 @@ fn terrain_field(error: &terrain::TerrainError) -> &'static str {
         | E::TooLarge { field, .. } => field,
         _ => "",
     }
+}
+
+/// `Scene::terrain` returned nothing for a scene with `[terrain]`: not reachable (it
+/// builds a terrain for every section), an error rather than a panic.
+fn unreachable_terrain(scene: &Scene) -> SceneError {
+    scene.invalid(
+        &["terrain"],
+        "a section".into(),
+        "no terrain was built for it".into(),
+    )
 }

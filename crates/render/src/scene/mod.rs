@@ -42,11 +42,13 @@
 //! ```
 
 mod assemble;
+pub mod cache;
 mod error;
 mod locate;
 pub mod prepare;
 pub mod shipped;
 
+pub use cache::PrepareCache;
 pub use error::{Location, SceneError};
 pub use prepare::{Illuminant, PreparedScene, PreparedTerrain};
 

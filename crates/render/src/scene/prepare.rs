@@ -23,7 +23,7 @@ pub use super::DOME;
 pub type SharedSkyModel = Box<dyn atmos::SkyModel + Send + Sync>;
 
 /// The terrain of a prepared scene: heights, normals, horizon maps and albedo.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct PreparedTerrain {
     /// The heightfield, centred on the world origin (columns east, rows south).
     pub heightfield: Heightfield,
@@ -38,7 +38,7 @@ pub struct PreparedTerrain {
 }
 
 /// The horizon maps of the scene's variant.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub enum HorizonMaps {
     /// Seed 000's pair.
     EastWest(terrain::EastWestHorizon),
