@@ -264,59 +264,40 @@ impl PreparedScene {
     /// The scene's lights, the sun first, then [`PreparedScene::other_lights`] in order:
     /// what every pass runs once per light.
     pub fn lights(&self) -> Vec<Illuminant<'_>> {
-        let sun = (
-            "sun",
-            &self.atmosphere,
-            self.sun,
-            self.sky_model.as_ref(),
-            self.segment_model.as_ref(),
-            self.precomputed.as_deref(),
-            &self.cloud_layers[..],
-        );
-        let others = self.other_lights.iter().map(|light| {
-            (
-                light.name,
-                &light.atmosphere,
-                light.direction,
-                light.sky_model.as_ref(),
-                light.segment_model.as_ref(),
-                light.precomputed.as_deref(),
-                &light.cloud_layers[..],
-            )
+        let sun = Illuminant {
+            index: 0,
+            name: "sun",
+            atmosphere: &self.atmosphere,
+            direction: self.sun,
+            sky_model: self.sky_model.as_ref(),
+            segment_model: self.segment_model.as_ref(),
+            precomputed: self.precomputed.as_deref(),
+            cloud_layers: &self.cloud_layers,
+            volume_shadow: None,
+            shell_shadow: None,
+        };
+        let others = self.other_lights.iter().map(|light| Illuminant {
+            name: light.name,
+            atmosphere: &light.atmosphere,
+            direction: light.direction,
+            sky_model: light.sky_model.as_ref(),
+            segment_model: light.segment_model.as_ref(),
+            precomputed: light.precomputed.as_deref(),
+            cloud_layers: &light.cloud_layers,
+            ..sun
         });
         std::iter::once(sun)
             .chain(others)
             .enumerate()
-            .map(
-                |(
-                    index,
-                    (
-                        name,
-                        atmosphere,
-                        direction,
-                        sky_model,
-                        segment_model,
-                        precomputed,
-                        cloud_layers,
-                    ),
-                )| {
-                    Illuminant {
-                        index,
-                        name,
-                        atmosphere,
-                        direction,
-                        sky_model,
-                        segment_model,
-                        precomputed,
-                        cloud_layers,
-                        volume_shadow: self.volume_shadow(index),
-                        shell_shadow: self
-                            .shell_cloud
-                            .as_ref()
-                            .and_then(|s| s.lights.get(index)?.shadow.as_ref()),
-                    }
-                },
-            )
+            .map(|(index, light)| Illuminant {
+                index,
+                volume_shadow: self.volume_shadow(index),
+                shell_shadow: self
+                    .shell_cloud
+                    .as_ref()
+                    .and_then(|s| s.lights.get(index)?.shadow.as_ref()),
+                ..light
+            })
             .collect()
     }
 
