@@ -1,11 +1,12 @@
 //! `skyscape`: renders an outdoor scene (a scene file, or a shipped scene by name) to
-//! a PNG or an OpenEXR, on the GPU when an adapter exists, on the CPU reference
+//! a PNG, a JPEG or an OpenEXR, on the GPU when an adapter exists, on the CPU reference
 //! renderer otherwise or with `--cpu`. `skyscape --help` lists the commands.
 
 mod adapter;
 mod args;
 mod commands;
 mod input;
+mod output;
 mod projected;
 
 use std::path::{Path, PathBuf};
@@ -20,6 +21,7 @@ use adapter::*;
 use args::*;
 use commands::*;
 use input::*;
+use output::*;
 use projected::*;
 
 #[derive(Debug, Parser)]
@@ -85,6 +87,7 @@ impl Failure {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    handle_interrupts();
     let result = match cli.command {
         None => render_command(RenderArgs::default()),
         Some(Command::Render(args)) => render_command(args),
