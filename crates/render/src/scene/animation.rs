@@ -60,7 +60,7 @@ impl Scene {
     /// a `[time]`, `automaton_steps_per_frame` a `[clouds.volume]`); and at frames
     /// `range` the moved values stay valid. Every moved value is linear in the frame,
     /// so the range's first and last frames are its extremes. An error names the
-    /// per-frame key and the frame.
+    /// per-frame key and the first frame that breaks the rule.
     pub fn check_animation(&self, range: std::ops::Range<u32>) -> Result<(), SceneError> {
         let Some(animation) = self.file.animation else {
             return Ok(());
@@ -129,14 +129,35 @@ impl Scene {
                 "[clouds.volume]'s cloud",
             ));
         }
-        for frame in [range.start, range.end.saturating_sub(1).max(range.start)] {
-            self.check_frame(&animation, frame)?;
+        self.check_frame(&animation, range.start)?;
+        let last = range.end.saturating_sub(1).max(range.start);
+        if self.check_frame(&animation, last).is_err() {
+            // The valid frames are an interval holding `range.start`: name the first
+            // frame past it.
+            let (mut valid, mut invalid) = (range.start, last);
+            while invalid - valid > 1 {
+                let middle = valid + (invalid - valid) / 2;
+                if self.check_frame(&animation, middle).is_ok() {
+                    valid = middle;
+                } else {
+                    invalid = middle;
+                }
+            }
+            self.check_frame(&animation, invalid)?;
         }
         Ok(())
     }
 
     /// The values `animation` moves, at `frame`.
     fn check_frame(&self, animation: &AnimationSection, frame: u32) -> Result<(), SceneError> {
+        // "frame 4 of 12", and the flag when one set the length.
+        let of = match self.location(&["animation", "frames"]) {
+            Some(super::Location {
+                origin: super::Origin::Flag(flag),
+                ..
+            }) => format!("{frame} of {} ({flag})", animation.frames),
+            _ => format!("{frame} of {}", animation.frames),
+        };
         let mut moved = self.file.clone();
         animation.apply(&mut moved, frame);
         if let (Some(base), Some(sun)) = (self.file.sun, moved.sun) {
@@ -145,7 +166,7 @@ impl Scene {
                     &["animation", "sun_elevation_deg_per_frame"],
                     format!("{}°", animation.sun_elevation_deg_per_frame),
                     format!(
-                        "frame {frame} puts the sun at {}° (sun.elevation_deg {}° + {frame} × \
+                        "frame {of} puts the sun at {}° (sun.elevation_deg {}° + {frame} × \
                          {}°): it must stay in [−90°, 90°]",
                         sun.elevation_deg,
                         base.elevation_deg,
@@ -178,7 +199,7 @@ impl Scene {
                     &["animation", "seconds_per_frame"],
                     format!("{} s", animation.seconds_per_frame),
                     format!(
-                        "frame {frame} is {seconds} s after time.utc \"{}\", outside the \
+                        "frame {of} is {seconds} s after time.utc \"{}\", outside the \
                          ephemeris' years",
                         time.utc
                     ),
@@ -194,7 +215,7 @@ impl Scene {
                     &["animation", "automaton_steps_per_frame"],
                     animation.automaton_steps_per_frame.to_string(),
                     format!(
-                        "frame {frame} grows the cloud {steps} steps (clouds.volume.steps {} + \
+                        "frame {of} grows the cloud {steps} steps (clouds.volume.steps {} + \
                          {frame} × {}): at most {limit}",
                         base.steps, animation.automaton_steps_per_frame
                     ),

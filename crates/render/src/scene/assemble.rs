@@ -436,6 +436,17 @@ impl Scene {
         };
         if let Some(clouds) = &self.file.clouds {
             for (index, layer) in clouds.layers.iter().enumerate() {
+                let index = index.to_string();
+                let value_of = |key: &str| match key {
+                    "base_m" => metres(layer.base_m),
+                    "thickness_m" => metres(layer.thickness_m),
+                    "transition_m" => metres(layer.transition_m),
+                    "span_m" => metres(layer.span_m),
+                    "coverage" => layer
+                        .coverage
+                        .map_or_else(|| "(the kind's)".to_owned(), |c| c.to_string()),
+                    _ => format!("{:?}", layer.kind).to_lowercase(),
+                };
                 let field = |e: celestial::CelestialError| {
                     let message = e.to_string();
                     let key = [
@@ -448,12 +459,16 @@ impl Scene {
                     .into_iter()
                     .find(|k| message.contains(k.trim_end_matches("_m")))
                     .unwrap_or("kind");
-                    self.celestial_error(
-                        &["clouds", "layers", &format!("{index}"), key],
-                        format!("{layer:?}"),
-                        e,
-                    )
+                    self.celestial_error(&["clouds", "layers", &index, key], value_of(key), e)
                 };
+                // celestial draws a layer of no thickness; nothing would be there.
+                if !(layer.thickness_m > 0.0 && layer.thickness_m.is_finite()) {
+                    return Err(self.invalid(
+                        &["clouds", "layers", &index, "thickness_m"],
+                        value_of("thickness_m"),
+                        "must be finite and > 0 m".into(),
+                    ));
+                }
                 let mut built = celestial::clouds::CloudLayer::new(
                     layer.base_m,
                     layer.thickness_m,
@@ -672,6 +687,23 @@ impl Scene {
                 "a surface needs at least 2×2 texels".into(),
             ));
         }
+        let position = self.file.camera.position;
+        if let Some(ground) = surface_under(&heightfield, position[0], position[2])
+            && position[1] < ground
+        {
+            // Every ray would start inside the rock: a uniform image.
+            return Err(self.invalid(
+                &["camera", "position"],
+                triple(position),
+                format!(
+                    "the camera is {:.1} m under the terrain's surface ({ground:.1} m at x = {}, \
+                     z = {})",
+                    ground - position[1],
+                    position[0],
+                    position[2]
+                ),
+            ));
+        }
         // The renderer places the heightfield flat (no Earth curvature), so its
         // shadows are baked flat too.
         let options = HorizonOptions::flat();
@@ -713,6 +745,28 @@ impl Scene {
             aerial_perspective: section.aerial_perspective,
         }))
     }
+}
+
+/// The heightfield's surface (bilinear, metres) under world `x`, `z` (the map is
+/// centred on the origin), or `None` off the map.
+fn surface_under(heightfield: &Heightfield, x: f64, z: f64) -> Option<f64> {
+    let (width, height) = (heightfield.width(), heightfield.height());
+    let spacing = heightfield.spacing();
+    let column = x / spacing + 0.5 * (width - 1) as f64;
+    let row = z / spacing + 0.5 * (height - 1) as f64;
+    if !(column >= 0.0 && row >= 0.0 && column <= (width - 1) as f64 && row <= (height - 1) as f64)
+    {
+        return None;
+    }
+    let (c0, r0) = (
+        (column.floor() as usize).min(width - 2),
+        (row.floor() as usize).min(height - 2),
+    );
+    let (fc, fr) = (column - c0 as f64, row - r0 as f64);
+    let at = |c, r| heightfield.elevation(c, r).ok();
+    let top = at(c0, r0)? * (1.0 - fc) + at(c0 + 1, r0)? * fc;
+    let bottom = at(c0, r0 + 1)? * (1.0 - fc) + at(c0 + 1, r0 + 1)? * fc;
+    Some(top * (1.0 - fr) + bottom * fr)
 }
 
 /// The field an atmos error names: its message's first `quoted` name (every

@@ -47,6 +47,7 @@ mod error;
 mod locate;
 pub mod prepare;
 pub mod shipped;
+mod warnings;
 
 pub use animation::{AnimationSection, MAX_FRAMES};
 pub use error::{Location, Origin, SceneError};
@@ -712,7 +713,7 @@ pub struct OutputSection {
     /// Dither seed.
     #[serde(default)]
     pub dither_seed: u32,
-    /// Where the PNG goes (relative to the current folder); `-o` overrides it.
+    /// Where the image goes (relative to the scene file's folder); `-o` overrides it.
     pub path: Option<PathBuf>,
     /// `rectilinear` (the camera), `cubemap` (a 6:1 strip: width = 6 × height),
     /// `equirectangular` or `fisheye` (environment maps, from 90° cube faces).

@@ -101,13 +101,13 @@ pub(crate) struct SceneOverrides {
     #[arg(long)]
     pub(crate) rung: Option<String>,
     /// The sun's elevation, degrees (overrides the scene's).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub(crate) sun_elevation_deg: Option<f64>,
     /// The sun's azimuth clockwise from north, degrees (overrides the scene's).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub(crate) sun_azimuth_deg: Option<f64>,
     /// Exposure before the 1 − exp(−x) tone map (overrides the scene's).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub(crate) exposure: Option<f32>,
 }
 

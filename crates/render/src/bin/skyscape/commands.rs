@@ -95,6 +95,9 @@ pub(crate) fn render_command(args: RenderArgs) -> Result<(), Failure> {
             println!("{text}");
         }
     };
+    for warning in scene.warnings() {
+        eprintln!("skyscape: warning: {warning}");
+    }
     let cpu = args.cpu || !gpu_draws(rung);
     if !args.cpu && !gpu_draws(rung) {
         eprintln!(

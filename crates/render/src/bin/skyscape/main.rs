@@ -8,6 +8,7 @@ mod commands;
 mod input;
 mod output;
 mod projected;
+mod runtime_dir;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -86,6 +87,7 @@ impl Failure {
 }
 
 fn main() -> ExitCode {
+    runtime_dir::ensure_runtime_dir();
     let cli = Cli::parse();
     handle_interrupts();
     let result = match cli.command {
