@@ -25,7 +25,19 @@ fn triple(v: [f64; 3]) -> String {
 impl Scene {
     /// Validates the scene and builds its atmosphere, rung, camera and terrain.
     pub fn prepare(&self) -> Result<PreparedScene, SceneError> {
-        self.prepare_with(true)
+        self.prepare_with(true, &mut |_| {})
+    }
+
+    /// [`Scene::prepare`] (`for_gpu`: [`Scene::prepare_for_gpu`]) calling `stage` with
+    /// each step's name as the step begins (the checks, the atmosphere's tables, the
+    /// terrain and its horizon maps, the sky objects and cloud layers, the moonlit sky,
+    /// each cloud), for a caller to show progress and time the steps.
+    pub fn prepare_in_stages(
+        &self,
+        for_gpu: bool,
+        stage: &mut dyn FnMut(&'static str),
+    ) -> Result<PreparedScene, SceneError> {
+        self.prepare_with(!for_gpu, stage)
     }
 
     /// [`Scene::prepare`] for the GPU renderer: the `[clouds.shell]` deck's shadow maps
@@ -33,10 +45,15 @@ impl Scene {
     /// the CPU renderer refuses such a scene until
     /// [`PreparedScene::bake_shell_shadow_on_cpu`].
     pub fn prepare_for_gpu(&self) -> Result<PreparedScene, SceneError> {
-        self.prepare_with(false)
+        self.prepare_with(false, &mut |_| {})
     }
 
-    fn prepare_with(&self, cpu_shell_shadow: bool) -> Result<PreparedScene, SceneError> {
+    fn prepare_with(
+        &self,
+        cpu_shell_shadow: bool,
+        stage: &mut dyn FnMut(&'static str),
+    ) -> Result<PreparedScene, SceneError> {
+        stage("checking the scene");
         let atmosphere = self.atmosphere()?;
         let file = &self.file;
 
@@ -166,8 +183,11 @@ impl Scene {
             self.check_shell_cloud(section, &atmosphere)?;
         }
         // The expensive parts last, once every cheap check has passed.
+        stage("atmosphere tables");
         let (sky_model, segment_model, precomputed) = self.models(&atmosphere)?;
+        stage("terrain and horizon maps");
         let terrain = self.terrain()?;
+        stage("sky objects and cloud layers");
         let (sky_objects, cloud_layers) = match sky.as_mut() {
             Some(sky) => self.sky_objects_and_clouds(sky, &*sky_model, forward, cam, out)?,
             None => {
@@ -183,10 +203,12 @@ impl Scene {
                 (None, Vec::new())
             }
         };
+        stage("moonlit sky");
         let moonlit = match &sky {
             Some(sky) => self.moonlit_sky(sky, &atmosphere, sun, &cloud_layers)?,
             None => None,
         };
+        stage("clouds");
         let billboard_cloud = match file.clouds.as_ref().and_then(|c| c.volume.as_ref()) {
             Some(section) if section.draw == crate::billboard_clouds::VolumeDraw::Billboards => {
                 Some(self.billboard_cloud(
@@ -687,23 +709,7 @@ impl Scene {
                 "a surface needs at least 2×2 texels".into(),
             ));
         }
-        let position = self.file.camera.position;
-        if let Some(ground) = surface_under(&heightfield, position[0], position[2])
-            && position[1] < ground
-        {
-            // Every ray would start inside the rock: a uniform image.
-            return Err(self.invalid(
-                &["camera", "position"],
-                triple(position),
-                format!(
-                    "the camera is {:.1} m under the terrain's surface ({ground:.1} m at x = {}, \
-                     z = {})",
-                    ground - position[1],
-                    position[0],
-                    position[2]
-                ),
-            ));
-        }
+        self.check_camera_above(&heightfield)?;
         // The renderer places the heightfield flat (no Earth curvature), so its
         // shadows are baked flat too.
         let options = HorizonOptions::flat();
@@ -745,28 +751,6 @@ impl Scene {
             aerial_perspective: section.aerial_perspective,
         }))
     }
-}
-
-/// The heightfield's surface (bilinear, metres) under world `x`, `z` (the map is
-/// centred on the origin), or `None` off the map.
-fn surface_under(heightfield: &Heightfield, x: f64, z: f64) -> Option<f64> {
-    let (width, height) = (heightfield.width(), heightfield.height());
-    let spacing = heightfield.spacing();
-    let column = x / spacing + 0.5 * (width - 1) as f64;
-    let row = z / spacing + 0.5 * (height - 1) as f64;
-    if !(column >= 0.0 && row >= 0.0 && column <= (width - 1) as f64 && row <= (height - 1) as f64)
-    {
-        return None;
-    }
-    let (c0, r0) = (
-        (column.floor() as usize).min(width - 2),
-        (row.floor() as usize).min(height - 2),
-    );
-    let (fc, fr) = (column - c0 as f64, row - r0 as f64);
-    let at = |c, r| heightfield.elevation(c, r).ok();
-    let top = at(c0, r0)? * (1.0 - fc) + at(c0 + 1, r0)? * fc;
-    let bottom = at(c0, r0 + 1)? * (1.0 - fc) + at(c0 + 1, r0 + 1)? * fc;
-    Some(top * (1.0 - fr) + bottom * fr)
 }
 
 /// The field an atmos error names: its message's first `quoted` name (every

@@ -44,6 +44,7 @@
 mod animation;
 mod assemble;
 mod error;
+mod ground;
 mod locate;
 pub mod prepare;
 pub mod shipped;

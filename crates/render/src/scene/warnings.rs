@@ -9,14 +9,19 @@ const DARK_SUN_DEG: f64 = -12.0;
 
 impl Scene {
     /// Warnings about values that are valid but give an image that is almost certainly
-    /// not the one meant: a `[sun]` past nautical twilight (nearly black: a night sky
-    /// needs `[time]` for the moon and stars), a camera so far out that the planet is
-    /// smaller than a pixel.
+    /// not the one meant: a `[sun]` past nautical twilight seen from inside the
+    /// atmosphere (nearly black: a night sky needs `[time]` for the moon and stars), a
+    /// camera so far out that the planet is smaller than a pixel.
     pub fn warnings(&self) -> Vec<String> {
         let mut warnings = Vec::new();
         let file = &self.file;
+        let earth = atmos::Atmosphere::earth();
+        let altitude = file.camera.position[1];
+        // Above the atmosphere the planet's lit side may be in view whatever the sun's
+        // elevation at the point below.
         if let Some(sun) = file.sun
             && sun.elevation_deg < DARK_SUN_DEG
+            && altitude < earth.top_radius - earth.planet_radius
         {
             warnings.push(format!(
                 "{}`sun.elevation_deg` = {}°: the sun is past nautical twilight ({DARK_SUN_DEG}°), \
@@ -26,8 +31,7 @@ impl Scene {
                 sun.elevation_deg
             ));
         }
-        let radius = atmos::Atmosphere::earth().planet_radius;
-        let altitude = file.camera.position[1];
+        let radius = earth.planet_radius;
         let height = f64::from(file.output.height.max(1));
         let pixel = file.camera.vertical_fov_deg.to_radians() / height;
         let planet = 2.0 * (radius / (radius + altitude)).clamp(-1.0, 1.0).asin();

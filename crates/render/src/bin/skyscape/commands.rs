@@ -2,12 +2,27 @@
 
 use crate::*;
 
-pub(crate) fn print_passes(scene: &PreparedScene, rendered: &Rendered) {
+/// The CPU's stages (wall time) and the frame's passes with their GPU time.
+pub(crate) fn print_passes(scene: &PreparedScene, rendered: &Rendered, stages: &Stages) {
+    print_stages(stages);
     println!(
-        "the frame's passes, in order ({}; a step's time is its GPU timestamps' span):",
+        "the frame's passes, in order ({}); a step's time is the GPU's work between its \
+         timestamps, measured on the device: it leaves out the CPU preparation above, \
+         command recording, submission, waiting for the GPU and reading the image back, \
+         and on a software adapter (lavapipe) it is CPU time too:",
         rendered.device
     );
     print_plan(scene, Some(&rendered.pass_seconds));
+}
+
+/// The CPU's stages and their wall time (the preparation builds the tables the CPU
+/// renderer reads; the GPU renderer builds its own in its first passes).
+pub(crate) fn print_stages(stages: &Stages) {
+    let total: f64 = stages.finished.iter().map(|(_, s)| s).sum();
+    println!("the CPU's stages (wall time, {total:.3} s in all):");
+    for (name, seconds) in &stages.finished {
+        println!("      {name:<30} {:>10.3} ms", seconds * 1e3);
+    }
 }
 
 /// The frame's passes in order (`render::passes::FRAME`), each with its steps: run
@@ -119,7 +134,19 @@ pub(crate) fn render_command(args: RenderArgs) -> Result<(), Failure> {
         let start = std::time::Instant::now();
         let projected =
             frame_scene.file.output.projection != render::projection::Projection::Rectilinear;
-        let mut prepared = prepare(&frame_scene, &name, !(cpu || args.compare || projected))?;
+        let label = if frames.sequence {
+            format!("{name} frame {frame}")
+        } else {
+            name.clone()
+        };
+        let mut stages = Stages::new(label.clone());
+        let mut prepared = prepare(
+            &frame_scene,
+            &label,
+            !(cpu || args.compare || projected),
+            &mut stages,
+        )?;
+        stages.begin("drawing");
         let gpu = if cpu || projected {
             None
         } else {
@@ -161,8 +188,10 @@ pub(crate) fn render_command(args: RenderArgs) -> Result<(), Failure> {
             }
         };
         let output = &frame_scene.file.output;
+        stages.begin("writing");
         let bytes = encode(format, (output.width, output.height), &rendered)?;
         reserved.write(&bytes)?;
+        stages.finish();
         if let Some(bar) = &bar {
             bar.inc(1);
         }
@@ -185,7 +214,7 @@ pub(crate) fn render_command(args: RenderArgs) -> Result<(), Failure> {
             }
         ));
         if args.explain {
-            print_passes(&prepared, &rendered);
+            print_passes(&prepared, &rendered, &stages);
         }
         if args.compare {
             // A projection against the CPU's six faces resampled the same way, not
@@ -217,7 +246,9 @@ pub(crate) fn render_command(args: RenderArgs) -> Result<(), Failure> {
 pub(crate) fn explain_command(name: &str, backend: Option<&str>) -> Result<(), Failure> {
     let backends = backends(backend)?;
     let (scene, label) = load_scene(Some(name))?;
-    let prepared = prepare(&scene, &label, false)?;
+    let mut stages = Stages::new(label.clone());
+    let prepared = prepare(&scene, &label, false, &mut stages)?;
+    stages.finish();
     println!(
         "{label}: {}×{}, {}, terrain {}",
         prepared.camera.width,
@@ -233,8 +264,9 @@ pub(crate) fn explain_command(name: &str, backend: Option<&str>) -> Result<(), F
         )
     );
     match render_gpu(&prepared, backends, false, true) {
-        Ok(rendered) => print_passes(&prepared, &rendered),
+        Ok(rendered) => print_passes(&prepared, &rendered, &stages),
         Err(reason) => {
+            print_stages(&stages);
             println!(
                 "no GPU passes ({reason}): the CPU reference renderer would run the frame's \
                  passes, in order:"

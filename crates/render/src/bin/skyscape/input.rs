@@ -183,20 +183,16 @@ pub(crate) fn frames(scene: &mut Scene, args: &RenderArgs) -> Result<Frames, Fai
 }
 
 /// `for_gpu`: only the GPU renderer will draw it (`Scene::prepare_for_gpu`: the shell
-/// deck's shadow maps are left to the GPU to bake).
-pub(crate) fn prepare(scene: &Scene, label: &str, for_gpu: bool) -> Result<PreparedScene, Failure> {
-    let spinner = indicatif::ProgressBar::new_spinner().with_message(format!(
-        "preparing {label}: atmosphere tables, terrain, horizon maps"
-    ));
-    spinner.enable_steady_tick(std::time::Duration::from_millis(120));
-    let prepared = if for_gpu {
-        scene.prepare_for_gpu()
-    } else {
-        scene.prepare()
-    }
-    .map_err(|e| Failure::Input(format!("{label}: {e}")));
-    spinner.finish_and_clear();
-    prepared
+/// deck's shadow maps are left to the GPU to bake). Each step is a stage of `stages`.
+pub(crate) fn prepare(
+    scene: &Scene,
+    label: &str,
+    for_gpu: bool,
+    stages: &mut Stages,
+) -> Result<PreparedScene, Failure> {
+    scene
+        .prepare_in_stages(for_gpu, &mut |name| stages.begin(name))
+        .map_err(|e| Failure::Input(format!("{label}: {e}")))
 }
 
 /// Where the frames go: a path (`{frame}` numbering an animation's frames), the

@@ -7,6 +7,7 @@ mod args;
 mod commands;
 mod input;
 mod output;
+mod progress;
 mod projected;
 mod runtime_dir;
 
@@ -23,6 +24,7 @@ use args::*;
 use commands::*;
 use input::*;
 use output::*;
+use progress::*;
 use projected::*;
 
 #[derive(Debug, Parser)]
