@@ -698,6 +698,10 @@ fn binary_cases() -> Vec<Case> {
         (&["-o", "x.tif"], "-o"),
         (&["--format", "exr", "-o", "x.png"], "--format"),
         (&["--format", "png", "-o", "x.jpg"], "--format"),
+        (
+            &["--format", "png", "-o", "scene.toml"],
+            "the scene file itself",
+        ),
         (&["-o", "dangling.png"], "symbolic link"),
         (&["-o", "x_{frame}.png"], "{frame}"),
         (&["--compare"], "--compare"),

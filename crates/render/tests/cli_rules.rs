@@ -148,3 +148,41 @@ fn a_successful_run_prints_no_error_line() {
         assert!(lines.is_empty(), "{args:?}: {lines:?}");
     }
 }
+
+#[test]
+fn stages_are_reported_and_explain_says_what_its_times_measure() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("tiny.toml"), TINY).unwrap();
+    // Not a terminal: a line per finished stage (over a millisecond) on stderr.
+    let run = skyscape(
+        dir.path(),
+        &[
+            "render",
+            "tiny.toml",
+            "--cpu",
+            "--width",
+            "96",
+            "--height",
+            "96",
+            "-o",
+            "a.png",
+        ],
+    );
+    assert_eq!(run.status.code(), Some(0), "{}", text(&run));
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        stderr
+            .lines()
+            .any(|l| l.starts_with("skyscape: tiny: drawing ") && l.ends_with(" s")),
+        "{stderr}"
+    );
+    let run = skyscape(dir.path(), &["explain", "tiny.toml"]);
+    assert_eq!(run.status.code(), Some(0), "{}", text(&run));
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(stdout.contains("the CPU's stages (wall time"), "{stdout}");
+    assert!(stdout.contains("atmosphere tables"), "{stdout}");
+    let gpu = stdout.contains("the GPU's work between its timestamps")
+        && stdout.contains("leaves out the CPU preparation");
+    let cpu = stdout.contains("no GPU passes");
+    assert!(gpu || cpu, "{stdout}");
+}

@@ -206,21 +206,25 @@ impl Scene {
                 ));
             }
         }
-        if let Some(base) = self.file.clouds.as_ref().and_then(|c| c.volume.as_ref()) {
-            let limit = crate::volume_clouds::MAX_STEPS;
-            let steps = u64::from(base.steps)
-                + u64::from(frame) * u64::from(animation.automaton_steps_per_frame);
-            if animation.automaton_steps_per_frame != 0 && steps > u64::from(limit) {
-                return Err(self.invalid(
-                    &["animation", "automaton_steps_per_frame"],
-                    animation.automaton_steps_per_frame.to_string(),
-                    format!(
-                        "frame {of} grows the cloud {steps} steps (clouds.volume.steps {} + \
-                         {frame} × {}): at most {limit}",
-                        base.steps, animation.automaton_steps_per_frame
-                    ),
-                ));
-            }
+        let volume = |file: &SceneFile| file.clouds.as_ref().and_then(|c| c.volume.clone());
+        if let (Some(base), Some(grown)) = (volume(&self.file), volume(&moved))
+            && animation.automaton_steps_per_frame != 0
+            && self.check_volume_cloud(&base).is_ok()
+            && let Err(e) = self.check_volume_cloud(&grown)
+        {
+            let reason = match &e {
+                SceneError::Invalid { reason, .. } => reason.clone(),
+                other => other.to_string(),
+            };
+            return Err(self.invalid(
+                &["animation", "automaton_steps_per_frame"],
+                animation.automaton_steps_per_frame.to_string(),
+                format!(
+                    "frame {of} grows the cloud to {} steps (clouds.volume.steps {} + {frame} × \
+                     {}), and clouds.volume.steps {reason}",
+                    grown.steps, base.steps, animation.automaton_steps_per_frame
+                ),
+            ));
         }
         Ok(())
     }

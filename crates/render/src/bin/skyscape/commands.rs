@@ -96,10 +96,24 @@ pub(crate) fn render_command(args: RenderArgs) -> Result<(), Failure> {
     let frames = frames(&mut scene, &args)?;
     let destination = Destination::new(&args, &scene, &name, frames.sequence)?;
     // Every frame's output is checked before the first frame's work starts.
+    let scene_file = args
+        .scene
+        .as_deref()
+        .and_then(|s| std::fs::canonicalize(s).ok());
     let mut targets = Vec::with_capacity(frames.range.len());
     for frame in frames.range.clone() {
         let path = destination.path(frame);
-        targets.push((frame, target(&path, destination.mkdir, &destination.label)?));
+        let target = target(&path, destination.mkdir, &destination.label)?;
+        if let (Target::Replace(file), Some(scene_file)) = (&target, &scene_file)
+            && std::fs::canonicalize(file).is_ok_and(|f| f == *scene_file)
+        {
+            return Err(Failure::Input(format!(
+                "{} `{}`: is the scene file itself",
+                destination.label,
+                path.display()
+            )));
+        }
+        targets.push((frame, target));
     }
     let to_stdout = targets.iter().any(|(_, t)| *t == Target::Stdout);
     // With the image on standard output, what skyscape says goes to stderr.
