@@ -24,15 +24,22 @@ pub(crate) fn ensure_runtime_dir() {
     // Only a folder of ours that no one else can enter (not a link planted by another).
     let safe = std::fs::symlink_metadata(&folder)
         .is_ok_and(|m| m.is_dir() && m.uid() == uid && m.permissions().mode() & 0o077 == 0);
-    let Ok(program) = std::env::current_exe() else {
-        return;
+    // The running binary itself, even if its file was replaced since it started.
+    let program = match std::path::Path::new("/proc/self/exe") {
+        own if own.exists() => own.to_owned(),
+        _ => match std::env::current_exe() {
+            Ok(path) => path,
+            Err(_) => return,
+        },
     };
     if safe {
+        let mut args = std::env::args_os();
+        let mut command = std::process::Command::new(program);
+        if let Some(name) = args.next() {
+            command.arg0(name);
+        }
         // Returns only if the exec failed; then run on with the variable as it is.
-        let _ = std::process::Command::new(program)
-            .args(std::env::args_os().skip(1))
-            .env("XDG_RUNTIME_DIR", &folder)
-            .exec();
+        let _ = command.args(args).env("XDG_RUNTIME_DIR", &folder).exec();
     }
 }
 
