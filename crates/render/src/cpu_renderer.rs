@@ -75,12 +75,31 @@ pub fn render_cpu(scene: &PreparedScene) -> Result<Frame, RenderError> {
     })
 }
 
+/// An error unless `path` is a regular file or does not exist: the atomic writes below
+/// rename over it, which would replace a device, a FIFO or a symbolic link itself.
+#[cfg(any(feature = "png", feature = "exr"))]
+fn check_replaceable(path: &std::path::Path) -> Result<(), image::ImageError> {
+    match std::fs::symlink_metadata(path) {
+        Ok(meta) if !meta.is_file() => Err(image::ImageError::IoError(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            format!(
+                "{} is not a regular file (a folder, link, device or FIFO): only a regular \
+                 file is replaced",
+                path.display()
+            ),
+        ))),
+        _ => Ok(()),
+    }
+}
+
 /// Writes `frame` as an 8-bit RGBA PNG, atomically: to a temporary file beside
 /// `path`, renamed over it only when complete (an existing file is replaced only on
-/// success). A missing folder is an error (it is not created). Behind the `png`
-/// feature (on with the default `cli`), so the library needs no PNG encoder otherwise.
+/// success; anything but a regular file is an error). A missing folder is an error (it
+/// is not created). Behind the `png` feature (on with the default `cli`), so the
+/// library needs no PNG encoder otherwise.
 #[cfg(feature = "png")]
 pub fn write_png(path: &std::path::Path, frame: &Frame) -> Result<(), image::ImageError> {
+    check_replaceable(path)?;
     let bytes: Vec<u8> = frame.pixels.iter().flat_map(|p| p.to_le_bytes()).collect();
     let mut temporary = path.as_os_str().to_owned();
     temporary.push(".partial");
@@ -109,6 +128,7 @@ pub fn write_exr(
     height: u32,
     radiance: &[[f32; 3]],
 ) -> Result<(), image::ImageError> {
+    check_replaceable(path)?;
     let floats: Vec<f32> = radiance.iter().flatten().copied().collect();
     let image = image::Rgb32FImage::from_raw(width, height, floats).ok_or_else(|| {
         image::ImageError::Parameter(image::error::ParameterError::from_kind(

@@ -52,7 +52,7 @@ fn prepare_variants() -> Vec<(String, PreparedScene)> {
     add(
         "night with a moonlit cumulus".into(),
         common::night_with(
-            "position = [0.0, 1500.0, 6000.0]\nlook_at = [0.0, 2500.0, 0.0]",
+            "position = [0.0, 1800.0, 6000.0]\nlook_at = [0.0, 2500.0, 0.0]",
             "seed = 2026\nsteps = 250\ngrid = [24, 24, 6]\ncell_size_m = 100.0\n\
              base_m = 2000.0\ncentre_m = [0.0, 0.0]",
             32,

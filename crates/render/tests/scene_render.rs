@@ -337,8 +337,10 @@ fn a_png16_heightfield_loads_with_its_cell_size_and_height_scale() {
     let source =
         terrain::Heightfield::from_fn(20, 10, 1.0, |x, y| (100 + 7 * x + 3 * y) as f32).unwrap();
     std::fs::write(folder.join("map.png"), source.to_png16(0.5, 50.0).unwrap()).unwrap();
+    // The camera above the map's 100 to 250 m (under it is an error).
+    let above = VALID.replace("position = [0.0, 2.0, 0.0]", "position = [0.0, 500.0, 0.0]");
     let text = format!(
-        "{VALID}[terrain.png16]\npath = \"map.png\"\ncell_size = 30.0\nheight_scale = 0.5\n\
+        "{above}[terrain.png16]\npath = \"map.png\"\ncell_size = 30.0\nheight_scale = 0.5\n\
          height_offset = 50.0\n[output]\nwidth = 8\nheight = 6\n"
     );
     let prepared = Scene::parse(&text, &folder).unwrap().prepare().unwrap();

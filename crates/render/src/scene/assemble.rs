@@ -25,14 +25,27 @@ fn triple(v: [f64; 3]) -> String {
 impl Scene {
     /// Validates the scene and builds its atmosphere, rung, camera and terrain.
     pub fn prepare(&self) -> Result<PreparedScene, SceneError> {
-        self.prepare_with(true, &PrepareCache::new())
+        self.prepare_with(true, &PrepareCache::new(), &mut |_| {})
     }
 
     /// [`Scene::prepare`] taking what `cache` kept from earlier preparations (an
     /// animation's frames, a viewer's) where its inputs did not change, and keeping what
     /// it builds.
     pub fn prepare_cached(&self, cache: &PrepareCache) -> Result<PreparedScene, SceneError> {
-        self.prepare_with(true, cache)
+        self.prepare_with(true, cache, &mut |_| {})
+    }
+
+    /// [`Scene::prepare_cached`] (`for_gpu`: [`Scene::prepare_for_gpu`]) calling `stage`
+    /// with each step's name as the step begins (the checks, the atmosphere's tables, the
+    /// terrain and its horizon maps, the sky objects and cloud layers, the moonlit sky,
+    /// each cloud), for a caller to show progress and time the steps.
+    pub fn prepare_in_stages(
+        &self,
+        for_gpu: bool,
+        cache: &PrepareCache,
+        stage: &mut dyn FnMut(&'static str),
+    ) -> Result<PreparedScene, SceneError> {
+        self.prepare_with(!for_gpu, cache, stage)
     }
 
     /// [`Scene::prepare`] for the GPU renderer: the `[clouds.shell]` deck's shadow maps
@@ -40,7 +53,7 @@ impl Scene {
     /// the CPU renderer refuses such a scene until
     /// [`PreparedScene::bake_shell_shadow_on_cpu`].
     pub fn prepare_for_gpu(&self) -> Result<PreparedScene, SceneError> {
-        self.prepare_with(false, &PrepareCache::new())
+        self.prepare_with(false, &PrepareCache::new(), &mut |_| {})
     }
 
     /// [`Scene::prepare_for_gpu`] with [`Scene::prepare_cached`]'s `cache`.
@@ -48,14 +61,16 @@ impl Scene {
         &self,
         cache: &PrepareCache,
     ) -> Result<PreparedScene, SceneError> {
-        self.prepare_with(false, cache)
+        self.prepare_with(false, cache, &mut |_| {})
     }
 
     fn prepare_with(
         &self,
         cpu_shell_shadow: bool,
         cache: &PrepareCache,
+        stage: &mut dyn FnMut(&'static str),
     ) -> Result<PreparedScene, SceneError> {
+        stage("checking the scene");
         let atmosphere = self.atmosphere()?;
         let file = &self.file;
 
@@ -185,7 +200,9 @@ impl Scene {
             self.check_shell_cloud(section, &atmosphere)?;
         }
         // The expensive parts last, once every cheap check has passed.
+        stage("atmosphere tables");
         let (sky_model, segment_model, precomputed) = self.models(&atmosphere, cache)?;
+        stage("terrain and horizon maps");
         let terrain = match &file.terrain {
             Some(section) => {
                 let source = section
@@ -209,6 +226,7 @@ impl Scene {
             }
             None => None,
         };
+        stage("sky objects and cloud layers");
         let (sky_objects, cloud_layers) = match sky.as_mut() {
             Some(sky) => self.sky_objects_and_clouds(sky, &*sky_model, forward, cam, out)?,
             None => {
@@ -224,6 +242,7 @@ impl Scene {
                 (None, Vec::new())
             }
         };
+        stage("moonlit sky");
         let other_lights: Vec<LightSky> = match &sky {
             Some(sky) => self.moonlit_sky(sky, &atmosphere, sun, &cloud_layers, cache)?,
             None => None,
@@ -240,6 +259,7 @@ impl Scene {
             })
             .chain(other_lights.iter().map(LightSky::source))
             .collect();
+        stage("clouds");
         let billboard_cloud = match file.clouds.as_ref().and_then(|c| c.volume.as_ref()) {
             Some(section) if section.draw == crate::billboard_clouds::VolumeDraw::Billboards => {
                 Some(self.billboard_cloud(section, &lights, cam.near, terrain.is_some())?)
@@ -477,6 +497,17 @@ impl Scene {
         };
         if let Some(clouds) = &self.file.clouds {
             for (index, layer) in clouds.layers.iter().enumerate() {
+                let index = index.to_string();
+                let value_of = |key: &str| match key {
+                    "base_m" => metres(layer.base_m),
+                    "thickness_m" => metres(layer.thickness_m),
+                    "transition_m" => metres(layer.transition_m),
+                    "span_m" => metres(layer.span_m),
+                    "coverage" => layer
+                        .coverage
+                        .map_or_else(|| "(the kind's)".to_owned(), |c| c.to_string()),
+                    _ => format!("{:?}", layer.kind).to_lowercase(),
+                };
                 let field = |e: celestial::CelestialError| {
                     let message = e.to_string();
                     let key = [
@@ -489,12 +520,16 @@ impl Scene {
                     .into_iter()
                     .find(|k| message.contains(k.trim_end_matches("_m")))
                     .unwrap_or("kind");
-                    self.celestial_error(
-                        &["clouds", "layers", &format!("{index}"), key],
-                        format!("{layer:?}"),
-                        e,
-                    )
+                    self.celestial_error(&["clouds", "layers", &index, key], value_of(key), e)
                 };
+                // celestial draws a layer of no thickness; nothing would be there.
+                if !(layer.thickness_m > 0.0 && layer.thickness_m.is_finite()) {
+                    return Err(self.invalid(
+                        &["clouds", "layers", &index, "thickness_m"],
+                        value_of("thickness_m"),
+                        "must be finite and > 0 m".into(),
+                    ));
+                }
                 let mut built = celestial::clouds::CloudLayer::new(
                     layer.base_m,
                     layer.thickness_m,
@@ -716,6 +751,7 @@ impl Scene {
                 "a surface needs at least 2×2 texels".into(),
             ));
         }
+        self.check_camera_above(&heightfield)?;
         // The renderer places the heightfield flat (no Earth curvature), so its
         // shadows are baked flat too.
         let options = HorizonOptions::flat();

@@ -3,17 +3,27 @@
 
 use std::path::PathBuf;
 
-pub use super::locate::Location;
+pub use super::locate::{Location, Origin};
 
-/// `line L, column C: ` or nothing when the value is a default (not in the file).
+/// Where the value came from: `line L, column C: `, `line L (default value): ` for a
+/// key its table on line L does not give, `` `--flag`: `` for a flag's value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct At(pub Option<Location>);
 
 impl std::fmt::Display for At {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self.0 {
+            Some(Location {
+                origin: Origin::Flag(flag),
+                ..
+            }) => write!(f, "{flag}: "),
+            Some(Location {
+                line,
+                origin: Origin::Section,
+                ..
+            }) => write!(f, "line {line} (default value): "),
             Some(l) => write!(f, "line {}, column {}: ", l.line, l.column),
-            None => write!(f, "(default value) "),
+            None => write!(f, "(default value, not in the file) "),
         }
     }
 }
@@ -107,7 +117,8 @@ pub enum SceneError {
 }
 
 impl SceneError {
-    /// Where in the file the problem is, when known.
+    /// Where in the file the problem is (or the flag that supplied the value), when
+    /// known.
     pub fn location(&self) -> Option<Location> {
         match self {
             Self::Read { .. } => None,
@@ -199,11 +210,19 @@ mod tests {
         let text = "a = 1\nbb = 2\n";
         assert_eq!(
             Location::of_offset(text, 0),
-            Location { line: 1, column: 1 }
+            Location {
+                line: 1,
+                column: 1,
+                origin: Origin::Key
+            }
         );
         assert_eq!(
             Location::of_offset(text, 7),
-            Location { line: 2, column: 2 }
+            Location {
+                line: 2,
+                column: 2,
+                origin: Origin::Key
+            }
         );
     }
 

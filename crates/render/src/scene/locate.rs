@@ -3,13 +3,29 @@
 
 use toml::de::{DeTable, DeValue};
 
-/// A place in the scene text (1-based).
+/// Where a value came from: its place in the scene text (1-based), or the flag that
+/// supplied it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Location {
-    /// Line, from 1.
+    /// Line, from 1 (the key's, or its table's for [`Origin::Section`]; 0 when a flag
+    /// supplied a key the file does not have).
     pub line: usize,
-    /// Column in characters, from 1.
+    /// Column in characters, from 1 (0 as `line`).
     pub column: usize,
+    /// What `line` and `column` point at.
+    pub origin: Origin,
+}
+
+/// What a [`Location`] points at.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Origin {
+    /// The key's value, as typed in the file.
+    Key,
+    /// The table or array element holding the key, which the file does not give: the
+    /// value is the default.
+    Section,
+    /// A command-line flag (`--width`) replaced the file's value.
+    Flag(&'static str),
 }
 
 impl Location {
@@ -26,24 +42,45 @@ impl Location {
         Self {
             line,
             column: before[line_start..].chars().count() + 1,
+            origin: Origin::Key,
         }
     }
 }
 
-/// Where the value of the key at `path` (`["camera", "near"]`) is written.
+/// Where the value of the key at `path` (`["camera", "near"]`; an array's element by
+/// its index, `["clouds", "layers", "0", "coverage"]`) is written; for a key the file
+/// does not give, the innermost table or element that holds it ([`Origin::Section`]).
 pub(crate) fn locate(source: &str, path: &[&str]) -> Option<Location> {
     let document = DeTable::parse(source).ok()?;
+    let mut value: Option<&DeValue<'_>> = None;
     let mut table = document.get_ref();
-    let (last, parents) = path.split_last()?;
-    for key in parents {
-        let (_, value) = table.iter().find(|(k, _)| k.get_ref() == key)?;
-        match value.get_ref() {
-            DeValue::Table(inner) => table = inner,
-            _ => return None,
-        }
+    let mut found: Option<Location> = None;
+    for key in path {
+        let next = match value {
+            None => table
+                .iter()
+                .find(|(k, _)| k.get_ref() == key)
+                .map(|(_, v)| v),
+            Some(DeValue::Table(inner)) => {
+                table = inner;
+                table
+                    .iter()
+                    .find(|(k, _)| k.get_ref() == key)
+                    .map(|(_, v)| v)
+            }
+            Some(DeValue::Array(items)) => key.parse::<usize>().ok().and_then(|i| items.get(i)),
+            Some(_) => None,
+        };
+        let Some(next) = next else {
+            return found.map(|l| Location {
+                origin: Origin::Section,
+                ..l
+            });
+        };
+        found = Some(Location::of_offset(source, next.span().start));
+        value = Some(next.get_ref());
     }
-    let (_, value) = table.iter().find(|(k, _)| k.get_ref() == last)?;
-    Some(Location::of_offset(source, value.span().start))
+    found
 }
 
 /// The dotted key whose key or value covers `span` (`atmosphere.rung`), searching

@@ -41,15 +41,19 @@
 //! assert!(scene.file.terrain.is_none());
 //! ```
 
+mod animation;
 mod assemble;
 pub mod cache;
 mod error;
+mod ground;
 mod locate;
 pub mod prepare;
 pub mod shipped;
+mod warnings;
 
+pub use animation::{AnimationSection, MAX_FRAMES};
 pub use cache::PrepareCache;
-pub use error::{Location, SceneError};
+pub use error::{Location, Origin, SceneError};
 pub use prepare::{Illuminant, PreparedScene, PreparedTerrain};
 
 use std::path::{Path, PathBuf};
@@ -64,6 +68,8 @@ pub struct Scene {
     pub file: SceneFile,
     source: String,
     base_dir: PathBuf,
+    /// Dotted keys whose value a command-line flag replaced, and the flag.
+    flags: Vec<(String, &'static str)>,
 }
 
 impl Scene {
@@ -86,12 +92,36 @@ impl Scene {
             file,
             source: source.to_owned(),
             base_dir: base_dir.as_ref().to_owned(),
+            flags: Vec::new(),
         })
     }
 
-    /// Where a field (`["camera", "vertical_fov_deg"]`) is written, if it is.
+    /// Where a field (`["camera", "vertical_fov_deg"]`) is written, if it is; the flag
+    /// when one replaced it ([`Scene::set_by_flag`]).
     pub fn location(&self, path: &[&str]) -> Option<Location> {
-        locate::locate(&self.source, path)
+        let dotted = path.join(".");
+        match self.flags.iter().find(|(key, _)| *key == dotted) {
+            Some(&(_, flag)) => {
+                let at = locate::locate(&self.source, path)
+                    .filter(|l| l.origin == Origin::Key)
+                    .map_or((0, 0), |l| (l.line, l.column));
+                Some(Location {
+                    line: at.0,
+                    column: at.1,
+                    origin: Origin::Flag(flag),
+                })
+            }
+            None => locate::locate(&self.source, path),
+        }
+    }
+
+    /// Records that `flag` (`"--width"`) supplied the value of the key at `path`
+    /// (`["output", "width"]`): errors about that key then name the flag, not the
+    /// file's line.
+    pub fn set_by_flag(&mut self, path: &[&str], flag: &'static str) {
+        let dotted = path.join(".");
+        self.flags.retain(|(key, _)| *key != dotted);
+        self.flags.push((dotted, flag));
     }
 
     /// A path from the scene, resolved against the scene file's folder.
@@ -349,50 +379,6 @@ impl From<CloudKindName> for celestial::clouds::CloudKind {
             CloudKindName::Cumulus => K::Cumulus,
             CloudKindName::Stratus => K::Stratus,
             CloudKindName::Overcast => K::Overcast,
-        }
-    }
-}
-
-/// `[animation]`: frames of the scene with the sun moving (a time-lapse) and the volume
-/// cloud growing. Frames are independent (frame `k` is the scene with the sun moved `k`
-/// steps and the cloud grown `k` more steps from the same seed), so any range of them
-/// can be rendered anywhere (`--frame-range a..b`).
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct AnimationSection {
-    /// Frames in the sequence.
-    pub frames: u32,
-    /// The sun's elevation change per frame, degrees.
-    #[serde(default)]
-    pub sun_elevation_deg_per_frame: f64,
-    /// The sun's azimuth change per frame, degrees.
-    #[serde(default)]
-    pub sun_azimuth_deg_per_frame: f64,
-    /// Seconds of `[time]` per frame (a time-lapse: sun, moon and stars move).
-    #[serde(default)]
-    pub seconds_per_frame: f64,
-    /// Automaton steps `[clouds.volume]`'s cloud grows per frame: frame `k` shows it
-    /// after `steps + k × this` steps (the same seed, so the frames are one growth).
-    #[serde(default)]
-    pub automaton_steps_per_frame: u32,
-}
-
-impl AnimationSection {
-    /// The scene's values at `frame` (its sun moved `frame` steps).
-    pub fn apply(&self, file: &mut SceneFile, frame: u32) {
-        let k = f64::from(frame);
-        if let Some(sun) = &mut file.sun {
-            sun.elevation_deg += k * self.sun_elevation_deg_per_frame;
-            sun.azimuth_deg += k * self.sun_azimuth_deg_per_frame;
-        }
-        if let Some(time) = &mut file.time {
-            time.offset_s += k * self.seconds_per_frame;
-        }
-        if let Some(volume) = file.clouds.as_mut().and_then(|c| c.volume.as_mut()) {
-            // Saturating: a count past u32 is then refused by the steps check, naming it.
-            volume.steps = volume
-                .steps
-                .saturating_add(frame.saturating_mul(self.automaton_steps_per_frame));
         }
     }
 }
@@ -730,7 +716,7 @@ pub struct OutputSection {
     /// Dither seed.
     #[serde(default)]
     pub dither_seed: u32,
-    /// Where the PNG goes (relative to the current folder); `-o` overrides it.
+    /// Where the image goes (relative to the scene file's folder); `-o` overrides it.
     pub path: Option<PathBuf>,
     /// `rectilinear` (the camera), `cubemap` (a 6:1 strip: width = 6 × height),
     /// `equirectangular` or `fisheye` (environment maps, from 90° cube faces).

@@ -6,8 +6,31 @@ use crate::*;
 pub(crate) enum Format {
     /// 8-bit sRGB, tone-mapped and dithered.
     Png,
+    /// 8-bit sRGB as PNG's, lossy (quality 92), no alpha.
+    #[value(alias = "jpg")]
+    Jpeg,
     /// 32-bit float linear radiance (the unit of the sun's irradiance per sr).
     Exr,
+}
+
+impl Format {
+    /// As `--format` spells it.
+    pub(crate) fn name(self) -> &'static str {
+        match self {
+            Format::Png => "png",
+            Format::Jpeg => "jpeg",
+            Format::Exr => "exr",
+        }
+    }
+
+    /// The extension of the default output's name.
+    pub(crate) fn extension(self) -> &'static str {
+        match self {
+            Format::Png => "png",
+            Format::Jpeg => "jpg",
+            Format::Exr => "exr",
+        }
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -45,10 +68,13 @@ pub(crate) struct RenderArgs {
 /// Where and how the image is written.
 #[derive(Debug, Args, Default)]
 pub(crate) struct OutputArgs {
-    /// Where to write the image [the scene's output.path, else target/skyscape/NAME.png].
-    #[arg(short, long)]
+    /// Where to write the image: a file (replaced only when the image is complete), a
+    /// device or FIFO (written through), or - (standard output). An animation's name
+    /// holds `{frame}` (numbered 0000, 0001, …). [the scene's output.path, else
+    /// target/skyscape/NAME.png]
+    #[arg(short, long, allow_hyphen_values = true)]
     pub(crate) output: Option<PathBuf>,
-    /// Output format [from the output's extension, else png].
+    /// Output format [from the output's extension (.png, .jpg, .exr), else png].
     #[arg(long, value_enum)]
     pub(crate) format: Option<Format>,
     /// Create the output's folder if it does not exist (otherwise a missing folder is
@@ -61,11 +87,11 @@ pub(crate) struct OutputArgs {
 #[derive(Debug, Args, Default)]
 pub(crate) struct SceneOverrides {
     /// Image width, pixels (overrides the scene's).
-    #[arg(long)]
-    pub(crate) width: Option<u32>,
+    #[arg(long, allow_negative_numbers = true)]
+    pub(crate) width: Option<i64>,
     /// Image height, pixels (overrides the scene's).
-    #[arg(long)]
-    pub(crate) height: Option<u32>,
+    #[arg(long, allow_negative_numbers = true)]
+    pub(crate) height: Option<i64>,
     /// The output's projection (overrides the scene's): rectilinear, cubemap (a 6:1
     /// strip; width = 6 × height), equirectangular, fisheye.
     #[arg(long, value_enum)]
@@ -75,24 +101,26 @@ pub(crate) struct SceneOverrides {
     #[arg(long)]
     pub(crate) rung: Option<String>,
     /// The sun's elevation, degrees (overrides the scene's).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub(crate) sun_elevation_deg: Option<f64>,
     /// The sun's azimuth clockwise from north, degrees (overrides the scene's).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub(crate) sun_azimuth_deg: Option<f64>,
     /// Exposure before the 1 − exp(−x) tone map (overrides the scene's).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub(crate) exposure: Option<f32>,
 }
 
 /// Which frames of the scene's animation.
 #[derive(Debug, Args, Default)]
 pub(crate) struct AnimationArgs {
-    /// Render this many frames of the scene's animation (numbered files).
-    #[arg(long)]
-    pub(crate) frames: Option<u32>,
-    /// Only frames a..b (half-open) of the animation, to split it across machines.
-    #[arg(long, value_parser = parse_range)]
+    /// The animation's length in frames (overrides the scene's `[animation] frames`;
+    /// the scene must have `[animation]`).
+    #[arg(long, allow_negative_numbers = true)]
+    pub(crate) frames: Option<i64>,
+    /// Only frames a..b (half-open, within the animation's length), to split it
+    /// across machines.
+    #[arg(long, value_parser = parse_range, allow_hyphen_values = true)]
     pub(crate) frame_range: Option<(u32, u32)>,
 }
 
@@ -102,7 +130,7 @@ pub(crate) fn parse_range(text: &str) -> Result<(u32, u32), String> {
         .ok_or_else(|| format!("`{text}` is not a range a..b"))?;
     let parse = |s: &str| {
         s.parse::<u32>()
-            .map_err(|_| format!("`{s}` in `{text}` is not a frame number"))
+            .map_err(|_| format!("`{s}` in `{text}` is not a frame number (0, 1, 2, …)"))
     };
     let (a, b) = (parse(a)?, parse(b)?);
     if a >= b {

@@ -2,12 +2,27 @@
 
 use crate::*;
 
-pub(crate) fn print_passes(scene: &PreparedScene, rendered: &Rendered) {
+/// The CPU's stages (wall time) and the frame's passes with their GPU time.
+pub(crate) fn print_passes(scene: &PreparedScene, rendered: &Rendered, stages: &Stages) {
+    print_stages(stages);
     println!(
-        "the frame's passes, in order ({}; a step's time is its GPU timestamps' span):",
+        "the frame's passes, in order ({}); a step's time is the GPU's work between its \
+         timestamps, measured on the device: it leaves out the CPU preparation above, \
+         command recording, submission, waiting for the GPU and reading the image back, \
+         and on a software adapter (lavapipe) it is CPU time too:",
         rendered.device
     );
     print_plan(scene, Some(&rendered.pass_seconds));
+}
+
+/// The CPU's stages and their wall time (the preparation builds the tables the CPU
+/// renderer reads; the GPU renderer builds its own in its first passes).
+pub(crate) fn print_stages(stages: &Stages) {
+    let total: f64 = stages.finished.iter().map(|(_, s)| s).sum();
+    println!("the CPU's stages (wall time, {total:.3} s in all):");
+    for (name, seconds) in &stages.finished {
+        println!("      {name:<30} {:>10.3} ms", seconds * 1e3);
+    }
 }
 
 /// The frame's passes in order (`render::passes::FRAME`), each with its steps: run
@@ -49,31 +64,21 @@ pub(crate) fn print_plan(scene: &PreparedScene, seconds: Option<&[(&'static str,
     }
 }
 
+/// Whether the GPU scene renderer draws `rung` (the reference rungs have no GPU passes).
+fn gpu_draws(rung: render::scene::Rung) -> bool {
+    use render::scene::Rung;
+    matches!(
+        rung,
+        Rung::Precomputed | Rung::ClosedForm | Rung::ClosedFormVertex | Rung::Single
+    )
+}
+
 pub(crate) fn render_command(args: RenderArgs) -> Result<(), Failure> {
     let backends = backends(args.backend.as_deref())?;
     let (mut scene, name) = load_scene(args.scene.as_deref())?;
     apply_overrides(&mut scene, &args)?;
-    let format = args.output.format.unwrap_or_else(|| {
-        match args
-            .output
-            .output
-            .as_ref()
-            .and_then(|p| p.extension())
-            .and_then(|e| e.to_str())
-        {
-            Some("exr") => Format::Exr,
-            _ => Format::Png,
-        }
-    });
-    if (args.compare || args.explain)
-        && !matches!(
-            scene.file.atmosphere.rung,
-            render::scene::Rung::Precomputed
-                | render::scene::Rung::ClosedForm
-                | render::scene::Rung::ClosedFormVertex
-                | render::scene::Rung::Single
-        )
-    {
+    let rung = scene.file.atmosphere.rung;
+    if (args.compare || args.explain) && !gpu_draws(rung) {
         // The reference rungs have no GPU passes: comparing would set the CPU image
         // against itself.
         return Err(Failure::Input(format!(
@@ -85,41 +90,82 @@ pub(crate) fn render_command(args: RenderArgs) -> Result<(), Failure> {
             } else {
                 "--explain"
             },
-            scene.file.atmosphere.rung.name()
+            rung.name()
         )));
     }
-    let animation = scene.file.animation;
-    let frames = args
-        .animation
-        .frames
-        .or(animation.map(|a| a.frames))
-        .unwrap_or(1);
-    if frames == 0 {
-        return Err(Failure::Input("--frames 0: must be ≥ 1".into()));
+    let frames = frames(&mut scene, &args)?;
+    let destination = Destination::new(&args, &scene, &name, frames.sequence)?;
+    // Every frame's output is checked before the first frame's work starts.
+    let scene_file = args
+        .scene
+        .as_deref()
+        .and_then(|s| std::fs::canonicalize(s).ok());
+    let mut targets = Vec::with_capacity(frames.range.len());
+    for frame in frames.range.clone() {
+        let path = destination.path(frame);
+        let target = target(&path, destination.mkdir, &destination.label)?;
+        if let (Target::Replace(file), Some(scene_file)) = (&target, &scene_file)
+            && std::fs::canonicalize(file).is_ok_and(|f| f == *scene_file)
+        {
+            return Err(Failure::Input(format!(
+                "{} `{}`: is the scene file itself",
+                destination.label,
+                path.display()
+            )));
+        }
+        targets.push((frame, target));
     }
-    let range = args.animation.frame_range.unwrap_or((0, frames));
-    if range.1 > frames {
-        return Err(Failure::Input(format!(
-            "--frame-range {}..{}: the animation has {frames} frames",
-            range.0, range.1
-        )));
+    let to_stdout = targets.iter().any(|(_, t)| *t == Target::Stdout);
+    // With the image on standard output, what skyscape says goes to stderr.
+    let say = |text: String| {
+        if to_stdout {
+            eprintln!("{text}");
+        } else {
+            println!("{text}");
+        }
+    };
+    for warning in scene.warnings() {
+        eprintln!("skyscape: warning: {warning}");
     }
-    let bar = (range.1 - range.0 > 1)
-        .then(|| indicatif::ProgressBar::new(u64::from(range.1 - range.0)).with_message("frames"));
-    for frame in range.0..range.1 {
+    let cpu = args.cpu || !gpu_draws(rung);
+    if !args.cpu && !gpu_draws(rung) {
+        eprintln!(
+            "skyscape: note: rung `{}` has no GPU passes: it renders on the CPU reference \
+             renderer",
+            rung.name()
+        );
+    }
+    let format = destination.format;
+    let bar = (frames.range.len() > 1)
+        .then(|| indicatif::ProgressBar::new(frames.range.len() as u64).with_message("frames"));
+    // An animation's frames share what did not change between them (the atmosphere's
+    // tables, the terrain).
+    let cache = render::scene::PrepareCache::new();
+    for (frame, target) in targets {
+        // The `.partial` exists from here: a failure or Ctrl-C removes it.
+        let reserved = Reserved::new(target.clone(), &destination.label)?;
         let mut frame_scene = scene.clone();
-        if let Some(animation) = animation {
+        if let Some(animation) = scene.file.animation {
             animation.apply(&mut frame_scene.file, frame);
         }
         let start = std::time::Instant::now();
         let projected =
             frame_scene.file.output.projection != render::projection::Projection::Rectilinear;
+        let label = if frames.sequence {
+            format!("{name} frame {frame}")
+        } else {
+            name.clone()
+        };
+        let mut stages = Stages::new(label.clone());
         let mut prepared = prepare(
             &frame_scene,
-            &name,
-            !(args.cpu || args.compare || projected),
+            &label,
+            !(cpu || args.compare || projected),
+            &cache,
+            &mut stages,
         )?;
-        let gpu = if args.cpu || projected {
+        stages.begin("drawing");
+        let gpu = if cpu || projected {
             None
         } else {
             match render_gpu(&prepared, backends, format == Format::Exr, args.explain) {
@@ -135,7 +181,10 @@ pub(crate) fn render_command(args: RenderArgs) -> Result<(), Failure> {
                     )));
                 }
                 Err(reason) => {
-                    eprintln!("skyscape: {reason}; rendering on the CPU reference renderer");
+                    eprintln!(
+                        "skyscape: note: no GPU image ({reason}); rendering on the CPU \
+                         reference renderer"
+                    );
                     None
                 }
             }
@@ -143,7 +192,7 @@ pub(crate) fn render_command(args: RenderArgs) -> Result<(), Failure> {
         let rendered = match gpu {
             Some(rendered) => rendered,
             None if projected => {
-                let on = match (args.cpu, args.compare) {
+                let on = match (cpu, args.compare) {
                     (true, _) => FacesOn::Cpu,
                     (false, true) => FacesOn::Gpu,
                     (false, false) => FacesOn::GpuOrCpu,
@@ -156,29 +205,34 @@ pub(crate) fn render_command(args: RenderArgs) -> Result<(), Failure> {
                 render_cpu(&prepared).map_err(Failure::Runtime)?
             }
         };
-        let numbered = (frames > 1).then_some(frame);
-        let path = output_path(&args, &frame_scene, &name, format, numbered)?;
-        let size = (
-            frame_scene.file.output.width,
-            frame_scene.file.output.height,
-        );
-        write(&path, size, format, &rendered)?;
+        let output = &frame_scene.file.output;
+        stages.begin("writing");
+        let bytes = encode(format, (output.width, output.height), &rendered)?;
+        reserved.write(&bytes)?;
+        stages.finish();
         if let Some(bar) = &bar {
             bar.inc(1);
         }
-        println!(
+        say(format!(
             "rendered {name}{} ({}×{} {:?}, {}) on {} in {:.2} s\nwrote {}",
-            numbered.map_or_else(String::new, |f| format!(" frame {f}")),
-            frame_scene.file.output.width,
-            frame_scene.file.output.height,
-            frame_scene.file.output.projection,
+            if frames.sequence {
+                format!(" frame {frame}")
+            } else {
+                String::new()
+            },
+            output.width,
+            output.height,
+            output.projection,
             prepared.sky_model.label(),
             rendered.device,
             start.elapsed().as_secs_f64(),
-            path.display()
-        );
+            match &target {
+                Target::Stdout => "standard output".to_owned(),
+                Target::Through(path) | Target::Replace(path) => path.display().to_string(),
+            }
+        ));
         if args.explain {
-            print_passes(&prepared, &rendered);
+            print_passes(&prepared, &rendered, &stages);
         }
         if args.compare {
             // A projection against the CPU's six faces resampled the same way, not
@@ -191,12 +245,12 @@ pub(crate) fn render_command(args: RenderArgs) -> Result<(), Failure> {
             let within =
                 |lsb| render::tonemap::fraction_within_lsb(&rendered.pixels, &cpu.pixels, lsb);
             match (within(2), within(0)) {
-                (Ok(close), Ok(identical)) => println!(
+                (Ok(close), Ok(identical)) => say(format!(
                     "--compare: {:.4} % of pixels within 2 LSB of the CPU reference renderer, \
                      {:.4} % identical",
                     100.0 * close,
                     100.0 * identical
-                ),
+                )),
                 (Err(e), _) | (_, Err(e)) => return Err(Failure::Runtime(e.to_string())),
             }
         }
@@ -210,7 +264,15 @@ pub(crate) fn render_command(args: RenderArgs) -> Result<(), Failure> {
 pub(crate) fn explain_command(name: &str, backend: Option<&str>) -> Result<(), Failure> {
     let backends = backends(backend)?;
     let (scene, label) = load_scene(Some(name))?;
-    let prepared = prepare(&scene, &label, false)?;
+    let mut stages = Stages::new(label.clone());
+    let prepared = prepare(
+        &scene,
+        &label,
+        false,
+        &render::scene::PrepareCache::new(),
+        &mut stages,
+    )?;
+    stages.finish();
     println!(
         "{label}: {}×{}, {}, terrain {}",
         prepared.camera.width,
@@ -226,8 +288,9 @@ pub(crate) fn explain_command(name: &str, backend: Option<&str>) -> Result<(), F
         )
     );
     match render_gpu(&prepared, backends, false, true) {
-        Ok(rendered) => print_passes(&prepared, &rendered),
+        Ok(rendered) => print_passes(&prepared, &rendered, &stages),
         Err(reason) => {
+            print_stages(&stages);
             println!(
                 "no GPU passes ({reason}): the CPU reference renderer would run the frame's \
                  passes, in order:"

@@ -1,12 +1,15 @@
 //! `skyscape`: renders an outdoor scene (a scene file, or a shipped scene by name) to
-//! a PNG or an OpenEXR, on the GPU when an adapter exists, on the CPU reference
+//! a PNG, a JPEG or an OpenEXR, on the GPU when an adapter exists, on the CPU reference
 //! renderer otherwise or with `--cpu`. `skyscape --help` lists the commands.
 
 mod adapter;
 mod args;
 mod commands;
 mod input;
+mod output;
+mod progress;
 mod projected;
+mod runtime_dir;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -20,6 +23,8 @@ use adapter::*;
 use args::*;
 use commands::*;
 use input::*;
+use output::*;
+use progress::*;
 use projected::*;
 
 #[derive(Debug, Parser)]
@@ -84,7 +89,9 @@ impl Failure {
 }
 
 fn main() -> ExitCode {
+    runtime_dir::ensure_runtime_dir();
     let cli = Cli::parse();
+    handle_interrupts();
     let result = match cli.command {
         None => render_command(RenderArgs::default()),
         Some(Command::Render(args)) => render_command(args),
