@@ -930,3 +930,65 @@ fn static_tables_relit_equal_a_bake_for_the_new_light() {
     };
     assert!(baked.relit(&hazier).unwrap().is_none());
 }
+
+/// A cache file's bytes give back the tables bit for bit, for any light of the same air;
+/// another air, other settings, a truncated or a foreign file give none.
+#[test]
+fn static_tables_round_trip_through_cache_bytes() {
+    let settings = LutSettings::small();
+    let sun = Atmosphere::earth();
+    let baked = StaticLuts::bake(&sun, &settings).unwrap();
+    let bytes = baked.to_bytes();
+    let read = StaticLuts::from_bytes(&bytes, &sun, &settings)
+        .unwrap()
+        .expect("the same air and settings");
+    assert_eq!(read.transmittance, baked.transmittance);
+    assert_eq!(read.multiple_scattering, baked.multiple_scattering);
+    assert_eq!(read.atmosphere, baked.atmosphere);
+    let moon = Atmosphere {
+        sun_irradiance: [2.1e-6, 2.0e-6, 1.8e-6],
+        ..sun.clone()
+    };
+    let relit = StaticLuts::from_bytes(&bytes, &moon, &settings)
+        .unwrap()
+        .unwrap();
+    assert_eq!(
+        relit.atmosphere,
+        baked.relit(&moon).unwrap().unwrap().atmosphere
+    );
+    let hazier = Atmosphere {
+        mie_g: 0.7,
+        ..sun.clone()
+    };
+    assert!(
+        StaticLuts::from_bytes(&bytes, &hazier, &settings)
+            .unwrap()
+            .is_none()
+    );
+    let finer = LutSettings {
+        multiple_scattering_orders: settings.multiple_scattering_orders + 1,
+        ..settings
+    };
+    assert!(
+        StaticLuts::from_bytes(&bytes, &sun, &finer)
+            .unwrap()
+            .is_none()
+    );
+    assert!(
+        StaticLuts::from_bytes(&bytes[..bytes.len() - 1], &sun, &settings)
+            .unwrap()
+            .is_none()
+    );
+    assert!(
+        StaticLuts::from_bytes(b"not a table", &sun, &settings)
+            .unwrap()
+            .is_none()
+    );
+    let mut longer = bytes.clone();
+    longer.push(0);
+    assert!(
+        StaticLuts::from_bytes(&longer, &sun, &settings)
+            .unwrap()
+            .is_none()
+    );
+}

@@ -54,6 +54,10 @@ pub struct SkyStar {
 #[derive(Clone, Debug)]
 pub struct StarCatalogue {
     stars: Vec<CatalogueStar>,
+    /// What does not depend on the instant, per star in catalogue order: illuminance
+    /// outside the atmosphere (lux) and linear sRGB chromaticity, computed once here so
+    /// that [`StarCatalogue::sky`] only moves the stars.
+    appearance: Vec<(f64, [f64; 3])>,
 }
 
 impl StarCatalogue {
@@ -82,8 +86,17 @@ impl StarCatalogue {
                 magnitude: f64::from(star.magnitude()),
                 b_minus_v: f64::from(star.bv()),
             })
+            .collect::<Vec<_>>();
+        let appearance = stars
+            .iter()
+            .map(|star| {
+                (
+                    illuminance_from_magnitude(star.magnitude),
+                    star_colour_from_b_minus_v(star.b_minus_v),
+                )
+            })
             .collect();
-        Ok(StarCatalogue { stars })
+        Ok(StarCatalogue { stars, appearance })
     }
 
     /// The stars, in catalogue order.
@@ -98,14 +111,15 @@ impl StarCatalogue {
         let precession = Precession::from_j2000(t);
         self.stars
             .iter()
-            .map(|star| {
+            .zip(&self.appearance)
+            .map(|(star, &(illuminance_lx, colour))| {
                 let (ra, dec) = precession.apply(star.right_ascension, star.declination);
                 SkyStar {
                     hip: star.hip,
                     airless: Horizontal::from_equatorial(sidereal - ra, dec, observer.latitude()),
                     magnitude: star.magnitude,
-                    illuminance_lx: illuminance_from_magnitude(star.magnitude),
-                    colour: star_colour_from_b_minus_v(star.b_minus_v),
+                    illuminance_lx,
+                    colour,
                 }
             })
             .collect()

@@ -758,9 +758,9 @@ fn look_along_is_the_face_scene_prepared_again() {
 /// A preparation cache changes what is built, not what is drawn: the night (sun and
 /// moon, precomputed rung, procedural terrain) prepared through one cache three times
 /// renders bit for bit the image of a plain `prepare`; the first preparation bakes the
-/// static tables once (the moon's are the sun's relit) and builds the terrain, the
-/// later ones take all three. The same for a heightfield file: replaced between two
-/// preparations, it is read again.
+/// static tables once (the moon's are the sun's relit) and builds the terrain and
+/// celestial's sky, the later ones take all four. A heightfield file replaced between
+/// two preparations is read again.
 #[test]
 fn a_preparation_cache_keeps_what_did_not_change() {
     let mut scene = Scene::open(NIGHT_SCENE).unwrap();
@@ -772,21 +772,56 @@ fn a_preparation_cache_keeps_what_did_not_change() {
     assert_eq!(first.lights().len(), 2, "the night's sun and moon");
     assert_eq!(
         cache.counts(),
-        [2, 1],
-        "tables and terrain built, the moon's relit"
+        [3, 1],
+        "tables, terrain and celestial's sky built, the moon's tables relit"
     );
     for _ in 0..2 {
         let again = scene.prepare_cached(&cache).unwrap();
         assert_eq!(render_radiance(&again).unwrap(), plain);
     }
-    assert_eq!(cache.counts(), [2, 7], "every later product taken");
+    assert_eq!(cache.counts(), [3, 9], "every later product taken");
     assert_eq!(render_radiance(&first).unwrap(), plain);
+
+    // Kept in a folder, the tables outlive the cache: a new cache in the same folder
+    // (a second run) reads them back and draws the same image; a damaged file is baked
+    // again and replaced whole.
+    let folder = std::env::temp_dir().join(format!("skyscape-tables-{}", std::process::id()));
+    let run = || {
+        let cache = render::scene::PrepareCache::in_folder(&folder);
+        let image = render_radiance(&scene.prepare_cached(&cache).unwrap()).unwrap();
+        (cache.counts(), image)
+    };
+    let (counts, image) = run();
+    assert_eq!(
+        (counts, image == plain),
+        ([3, 1], true),
+        "the first run bakes"
+    );
+    let files: Vec<_> = std::fs::read_dir(&folder).unwrap().flatten().collect();
+    assert_eq!(files.len(), 1, "one file for the night's air: {files:?}");
+    let (counts, image) = run();
+    assert_eq!(
+        (counts, image == plain),
+        ([2, 2], true),
+        "the second run reads them"
+    );
+    let path = files[0].path();
+    let whole = std::fs::read(&path).unwrap();
+    std::fs::write(&path, &whole[..whole.len() / 2]).unwrap();
+    let (counts, image) = run();
+    assert_eq!(
+        (counts, image == plain),
+        ([3, 1], true),
+        "a damaged file is baked again"
+    );
+    assert_eq!(std::fs::read(&path).unwrap(), whole, "and replaced whole");
+    std::fs::remove_dir_all(&folder).ok();
 
     // A heightfield file replaced between preparations is read again.
     let folder = std::env::temp_dir().join(format!("skyscape-cache-{}", std::process::id()));
     std::fs::create_dir_all(&folder).unwrap();
     write_ridge(&folder);
-    let source = "[camera]\nposition = [0.0, 400.0, 300.0]\nlook_direction = [0.0, -0.3, -1.0]\n\
+    let source = "[camera]\nposition = [0.0, 1500.0, 300.0]\nlook_direction = [0.0, -0.3, -1.0]\n\
          [sun]\nelevation_deg = 30.0\nazimuth_deg = 180.0\n\
          [atmosphere]\nrung = \"closed-form\"\n\
          [output]\nwidth = 16\nheight = 9\n\

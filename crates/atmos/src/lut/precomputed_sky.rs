@@ -39,6 +39,27 @@ use super::sky_view_lut::{bake_sky_view_lut, lookup_sky_view, sky_view_r_mu_s};
 use super::transmittance_lut::bake_transmittance_lut;
 use super::{Lut2d, LutSettings, LutSettingsUniform};
 
+/// The first bytes of [`StaticLuts::to_bytes`]: the format's name and version, then 1
+/// as a `u32` in the writer's byte order.
+pub const CACHE_MAGIC: [u8; 12] = {
+    let mut magic = *b"skyLUT01\0\0\0\0";
+    let one = 1u32.to_ne_bytes();
+    magic[8] = one[0];
+    magic[9] = one[1];
+    magic[10] = one[2];
+    magic[11] = one[3];
+    magic
+};
+
+/// An atmosphere with its light zeroed: the air alone, what the static tables depend on.
+fn unlit(atmosphere: &AtmosphereParameters) -> AtmosphereParameters {
+    AtmosphereParameters {
+        sun_irradiance: [0.0; 3],
+        sun_angular_radius: 0.0,
+        ..*atmosphere
+    }
+}
+
 /// The per-atmosphere tables.
 #[derive(Debug, Clone)]
 pub struct StaticLuts {
@@ -46,6 +67,9 @@ pub struct StaticLuts {
     pub atmosphere: AtmosphereParameters,
     /// Sizes and sample counts.
     pub settings: LutSettingsUniform,
+    /// Orders of scattering the multiple-scattering table sums
+    /// ([`LutSettings::multiple_scattering_orders`]).
+    pub multiple_scattering_orders: u32,
     /// Transmittance LUT.
     pub transmittance: Lut2d,
     /// Multiple-scattering LUT.
@@ -76,6 +100,7 @@ impl StaticLuts {
         Ok(Self {
             atmosphere,
             settings: uniforms,
+            multiple_scattering_orders: orders,
             transmittance,
             multiple_scattering,
         })
@@ -89,17 +114,101 @@ impl StaticLuts {
     /// atmosphere. `None` when anything else differs (then [`StaticLuts::bake`]).
     pub fn relit(&self, atmosphere: &Atmosphere) -> Result<Option<Self>, AtmosError> {
         let lit = atmosphere.to_uniforms()?;
-        let unlit = |a: &AtmosphereParameters| AtmosphereParameters {
-            sun_irradiance: [0.0; 3],
-            sun_angular_radius: 0.0,
-            ..*a
-        };
         if bytemuck::bytes_of(&unlit(&lit)) != bytemuck::bytes_of(&unlit(&self.atmosphere)) {
             return Ok(None);
         }
         Ok(Some(Self {
             atmosphere: lit,
             ..self.clone()
+        }))
+    }
+
+    /// The tables as the bytes of a cache file: [`CACHE_MAGIC`], the atmosphere (its
+    /// light zeroed: [`StaticLuts::relit`] gives any light), settings and orders they
+    /// were baked for, each table's size, then the texels, all in this machine's byte
+    /// order.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut bytes = CACHE_MAGIC.to_vec();
+        bytes.extend_from_slice(bytemuck::bytes_of(&unlit(&self.atmosphere)));
+        bytes.extend_from_slice(bytemuck::bytes_of(&self.settings));
+        bytes.extend_from_slice(&self.multiple_scattering_orders.to_ne_bytes());
+        for table in [&self.transmittance, &self.multiple_scattering] {
+            bytes.extend_from_slice(&table.width.to_ne_bytes());
+            bytes.extend_from_slice(&table.height.to_ne_bytes());
+            bytes.extend_from_slice(&(table.texels.len() as u64).to_ne_bytes());
+            bytes.extend_from_slice(bytemuck::cast_slice(&table.texels));
+        }
+        bytes
+    }
+
+    /// Tables read back from [`StaticLuts::to_bytes`] for `atmosphere` with `settings`:
+    /// `None` unless the bytes are a whole set baked for this air and these settings by
+    /// this format (another atmosphere, other settings or sizes, a truncated or foreign
+    /// file, the other byte order); an error only for an invalid `atmosphere` or
+    /// `settings`.
+    pub fn from_bytes(
+        bytes: &[u8],
+        atmosphere: &Atmosphere,
+        settings: &LutSettings,
+    ) -> Result<Option<Self>, AtmosError> {
+        let lit = atmosphere.to_uniforms()?;
+        let uniforms = settings.to_uniforms()?;
+        let Some(rest) = bytes.strip_prefix(CACHE_MAGIC.as_slice()) else {
+            return Ok(None);
+        };
+        let air = unlit(&lit);
+        let Some(rest) = rest.strip_prefix(bytemuck::bytes_of(&air)) else {
+            return Ok(None);
+        };
+        let Some(rest) = rest.strip_prefix(bytemuck::bytes_of(&uniforms)) else {
+            return Ok(None);
+        };
+        let orders = settings.multiple_scattering_orders;
+        let Some(mut rest) = rest.strip_prefix(orders.to_ne_bytes().as_slice()) else {
+            return Ok(None);
+        };
+        // Two tables, each its width, height and texel count, then the texels (their
+        // sizes follow from the settings compared above and this format's version).
+        let mut tables = Vec::with_capacity(2);
+        for _ in 0..2 {
+            let u32_at = |at: usize| -> Option<u32> {
+                Some(u32::from_ne_bytes(rest.get(at..at + 4)?.try_into().ok()?))
+            };
+            let count = rest
+                .get(8..16)
+                .and_then(|b| b.try_into().ok())
+                .map(u64::from_ne_bytes);
+            let (Some(width), Some(height), Some(count)) = (u32_at(0), u32_at(4), count) else {
+                return Ok(None);
+            };
+            if u64::from(width) * u64::from(height) != count {
+                return Ok(None);
+            }
+            let Some(texels) = usize::try_from(count)
+                .ok()
+                .and_then(|n| n.checked_mul(16))
+                .and_then(|bytes| rest.get(16..16 + bytes))
+            else {
+                return Ok(None);
+            };
+            tables.push(Lut2d {
+                width,
+                height,
+                texels: bytemuck::pod_collect_to_vec(texels),
+            });
+            rest = &rest[16 + texels.len()..];
+        }
+        if !rest.is_empty() {
+            return Ok(None);
+        }
+        let multiple_scattering = tables.pop().unwrap_or_default();
+        let transmittance = tables.pop().unwrap_or_default();
+        Ok(Some(Self {
+            atmosphere: lit,
+            settings: uniforms,
+            multiple_scattering_orders: orders,
+            transmittance,
+            multiple_scattering,
         }))
     }
 

@@ -146,7 +146,7 @@ pub struct Paint {
 }
 
 /// SGSky's sky.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct Sky {
     atmosphere: Atmosphere,
     options: SkyOptions,

@@ -31,6 +31,46 @@ pub struct SceneRenderer {
     spans: Vec<&'static str>,
     prepared: bool,
     times: Option<PassTimes>,
+    /// What the passes baked at [`SceneRenderer::new`] and `prepare` does not write
+    /// again: the lights' atmospheres (tables, rung parameters) and the terrain.
+    built_for: BuiltFor,
+}
+
+/// The inputs a [`SceneRenderer`] fixes when it is built: a scene whose lights'
+/// atmospheres or terrain differ needs a new renderer (`prepare` says so rather than
+/// drawing with the old ones).
+#[derive(Debug, Clone, PartialEq)]
+struct BuiltFor {
+    atmospheres: Vec<atmos::Atmosphere>,
+    /// The heightfield's size, spacing and a hash of its samples' bits.
+    terrain: Option<(usize, usize, u64, u64)>,
+}
+
+impl BuiltFor {
+    fn of(scene: &PreparedScene) -> Self {
+        use std::hash::{Hash, Hasher};
+        let terrain = scene.terrain.as_ref().map(|t| {
+            let hf = &t.heightfield;
+            let mut hasher = std::collections::hash_map::DefaultHasher::new();
+            for sample in hf.samples() {
+                sample.to_bits().hash(&mut hasher);
+            }
+            (
+                hf.width(),
+                hf.height(),
+                hf.spacing().to_bits(),
+                hasher.finish(),
+            )
+        });
+        Self {
+            atmospheres: scene
+                .lights()
+                .iter()
+                .map(|l| l.atmosphere.clone())
+                .collect(),
+            terrain,
+        }
+    }
 }
 
 impl SceneRenderer {
@@ -71,6 +111,7 @@ impl SceneRenderer {
             spans,
             prepared: false,
             times,
+            built_for: BuiltFor::of(scene),
         })
     }
 
@@ -79,8 +120,11 @@ impl SceneRenderer {
     /// Everything that depends on the view is written here, so one renderer draws any
     /// number of frames of its scene: a panorama's six faces are the scene turned by
     /// `PreparedScene::look_along` and prepared again (same size), each bit for bit the
-    /// face a renderer built for it draws (`tests/panorama_gpu.rs`). A scene that runs
-    /// other passes or steps than the one the renderer was built for is an error.
+    /// face a renderer built for it draws (`tests/panorama_gpu.rs`), and an animation's
+    /// frames whose sun or moon moved are drawn by one renderer. A scene that runs other
+    /// passes or steps than the one the renderer was built for, or whose lights'
+    /// atmospheres or terrain differ from those it baked, is an error (build a new
+    /// renderer for it).
     pub fn prepare(
         &mut self,
         queue: &wgpu::Queue,
@@ -113,6 +157,13 @@ impl SceneRenderer {
             return Err(RenderError::InvalidParameter {
                 field: "scene",
                 value: format!("passes {passes:?}, steps {spans:?}"),
+                reason: "differs from the scene the renderer was built for",
+            });
+        }
+        if BuiltFor::of(scene) != self.built_for {
+            return Err(RenderError::InvalidParameter {
+                field: "scene",
+                value: "other lights' atmospheres or another terrain".into(),
                 reason: "differs from the scene the renderer was built for",
             });
         }

@@ -74,7 +74,7 @@ impl Scene {
         let atmosphere = self.atmosphere()?;
         let file = &self.file;
 
-        let (sun, mut sky) = self.sun()?;
+        let (sun, mut sky) = self.sun(cache)?;
 
         let out = &file.output;
         for (key, value) in [("width", out.width), ("height", out.height)] {
@@ -362,7 +362,10 @@ impl Scene {
 
     /// The sun's world direction from `[sun]` or from `[time]` (then also the placed
     /// `celestial` sky, when `[sky_objects]` draws it).
-    fn sun(&self) -> Result<(DVec3, Option<celestial::sky::Sky>), SceneError> {
+    fn sun(
+        &self,
+        cache: &PrepareCache,
+    ) -> Result<(DVec3, Option<celestial::sky::Sky>), SceneError> {
         let file = &self.file;
         match (&file.sun, &file.time) {
             (Some(section), None) => {
@@ -433,12 +436,18 @@ impl Scene {
                     ..Default::default()
                 };
                 let atmosphere = self.atmosphere()?;
-                let mut sky = celestial::sky::Sky::build(atmosphere, options).map_err(|e| {
-                    let value = file
-                        .sky_objects
-                        .and_then(|o| o.star_limit_magnitude)
-                        .map_or_else(|| "(default)".to_owned(), |m| m.to_string());
-                    self.celestial_error(&["sky_objects", "star_limit_magnitude"], value, e)
+                let key = super::cache::SkyKey {
+                    atmosphere: atmosphere.clone(),
+                    options: options.clone(),
+                };
+                let mut sky = cache.sky(key, || {
+                    celestial::sky::Sky::build(atmosphere, options).map_err(|e| {
+                        let value = file
+                            .sky_objects
+                            .and_then(|o| o.star_limit_magnitude)
+                            .map_or_else(|| "(default)".to_owned(), |m| m.to_string());
+                        self.celestial_error(&["sky_objects", "star_limit_magnitude"], value, e)
+                    })
                 })?;
                 let placement = sky
                     .reposition(&observer, &instant)

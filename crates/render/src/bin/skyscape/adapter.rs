@@ -188,43 +188,92 @@ pub(crate) struct Rendered {
     pub(crate) pass_seconds: Vec<(&'static str, f64)>,
 }
 
+/// The GPU side of a run: the device, opened on the first frame, and the scene
+/// renderer, kept for the next frame while it accepts that frame's scene (an
+/// animation's frames whose sun moved; `SceneRenderer::prepare` refuses a scene that
+/// needs other passes, tables or terrain, and then a new renderer is built).
+pub(crate) struct GpuSession {
+    backends: wgpu::Backends,
+    timestamps: bool,
+    device: Option<(wgpu::Device, wgpu::Queue, wgpu::AdapterInfo)>,
+    renderer: Option<SceneRenderer>,
+}
+
+impl GpuSession {
+    /// A session on `backends`; `timestamps`: time each pass.
+    pub(crate) fn new(backends: wgpu::Backends, timestamps: bool) -> Self {
+        Self {
+            backends,
+            timestamps,
+            device: None,
+            renderer: None,
+        }
+    }
+
+    /// Draws `scene` (`want_radiance`: read back the HDR target too).
+    pub(crate) fn render(
+        &mut self,
+        scene: &PreparedScene,
+        want_radiance: bool,
+    ) -> Result<Rendered, String> {
+        if self.device.is_none() {
+            self.device = Some(open_device(self.backends)?);
+        }
+        let Some((device, queue, info)) = &self.device else {
+            return Err("no device".into());
+        };
+        let kept = match &mut self.renderer {
+            Some(renderer) => renderer.prepare(queue, scene).is_ok(),
+            None => false,
+        };
+        if !kept {
+            self.renderer = None;
+            let settings = SceneRendererSettings {
+                timestamps: self.timestamps,
+                ..Default::default()
+            };
+            let mut renderer =
+                SceneRenderer::new(device, queue, scene, settings).map_err(|e| e.to_string())?;
+            renderer.prepare(queue, scene).map_err(|e| e.to_string())?;
+            self.renderer = Some(renderer);
+        }
+        let Some(renderer) = &mut self.renderer else {
+            return Err("no renderer".into());
+        };
+        let mut encoder = device.create_command_encoder(&Default::default());
+        renderer.encode(&mut encoder).map_err(|e| e.to_string())?;
+        queue.submit([encoder.finish()]);
+        let pixels =
+            bytemuck::cast_slice(&read_buffer(device, queue, renderer.pixel_buffer())?).to_vec();
+        let radiance = if want_radiance {
+            // The target holds radiance × exposure.
+            let exposure = scene.present.exposure;
+            let exposed = read_radiance(device, queue, renderer.radiance_texture())?;
+            Some(exposed.iter().map(|p| p.map(|v| v / exposure)).collect())
+        } else {
+            None
+        };
+        let pass_seconds = match renderer.pass_seconds() {
+            Some(result) => result?,
+            None => Vec::new(),
+        };
+        Ok(Rendered {
+            pixels,
+            radiance,
+            device: describe(info),
+            pass_seconds,
+        })
+    }
+}
+
+/// One frame on a new device and renderer ([`GpuSession`] for one frame).
 pub(crate) fn render_gpu(
     scene: &PreparedScene,
     backends: wgpu::Backends,
     want_radiance: bool,
     timestamps: bool,
 ) -> Result<Rendered, String> {
-    let (device, queue, info) = open_device(backends)?;
-    let settings = SceneRendererSettings {
-        timestamps,
-        ..Default::default()
-    };
-    let mut renderer =
-        SceneRenderer::new(&device, &queue, scene, settings).map_err(|e| e.to_string())?;
-    renderer.prepare(&queue, scene).map_err(|e| e.to_string())?;
-    let mut encoder = device.create_command_encoder(&Default::default());
-    renderer.encode(&mut encoder).map_err(|e| e.to_string())?;
-    queue.submit([encoder.finish()]);
-    let pixels =
-        bytemuck::cast_slice(&read_buffer(&device, &queue, renderer.pixel_buffer())?).to_vec();
-    let radiance = if want_radiance {
-        // The target holds radiance × exposure.
-        let exposure = scene.present.exposure;
-        let exposed = read_radiance(&device, &queue, renderer.radiance_texture())?;
-        Some(exposed.iter().map(|p| p.map(|v| v / exposure)).collect())
-    } else {
-        None
-    };
-    let pass_seconds = match renderer.pass_seconds() {
-        Some(result) => result?,
-        None => Vec::new(),
-    };
-    Ok(Rendered {
-        pixels,
-        radiance,
-        device: describe(&info),
-        pass_seconds,
-    })
+    GpuSession::new(backends, timestamps).render(scene, want_radiance)
 }
 
 pub(crate) fn render_cpu(scene: &PreparedScene) -> Result<Rendered, String> {

@@ -63,6 +63,35 @@ pub(crate) struct RenderArgs {
     /// Restrict the adapter search to these backends (vulkan, gl, metal, dx12).
     #[arg(long)]
     pub(crate) backend: Option<String>,
+    /// Where the atmosphere's precomputed tables are kept between runs (one file per
+    /// atmosphere, written whole; a second run of a scene skips their bake).
+    /// [$XDG_CACHE_HOME/skyscape, else ~/.cache/skyscape]
+    #[arg(long, conflicts_with = "no_cache")]
+    pub(crate) cache_dir: Option<PathBuf>,
+    /// Keep nothing between runs (the tables are baked again each run).
+    #[arg(long)]
+    pub(crate) no_cache: bool,
+}
+
+impl RenderArgs {
+    /// The preparation cache these arguments ask for.
+    pub(crate) fn prepare_cache(&self) -> render::scene::PrepareCache {
+        let home_cache = || {
+            let base = std::env::var_os("XDG_CACHE_HOME")
+                .filter(|v| !v.is_empty())
+                .map(PathBuf::from)
+                .or_else(|| {
+                    std::env::var_os("HOME")
+                        .filter(|v| !v.is_empty())
+                        .map(|home| PathBuf::from(home).join(".cache"))
+                })?;
+            Some(base.join("skyscape"))
+        };
+        match (self.no_cache, self.cache_dir.clone().or_else(home_cache)) {
+            (false, Some(folder)) => render::scene::PrepareCache::in_folder(folder),
+            _ => render::scene::PrepareCache::new(),
+        }
+    }
 }
 
 /// Where and how the image is written.

@@ -140,7 +140,9 @@ pub(crate) fn render_command(args: RenderArgs) -> Result<(), Failure> {
         .then(|| indicatif::ProgressBar::new(frames.range.len() as u64).with_message("frames"));
     // An animation's frames share what did not change between them (the atmosphere's
     // tables, the terrain).
-    let cache = render::scene::PrepareCache::new();
+    let cache = args.prepare_cache();
+    // And the device and scene renderer, while a frame's scene needs no new one.
+    let mut session = GpuSession::new(backends, args.explain);
     for (frame, target) in targets {
         // The `.partial` exists from here: a failure or Ctrl-C removes it.
         let reserved = Reserved::new(target.clone(), &destination.label)?;
@@ -168,7 +170,7 @@ pub(crate) fn render_command(args: RenderArgs) -> Result<(), Failure> {
         let gpu = if cpu || projected {
             None
         } else {
-            match render_gpu(&prepared, backends, format == Format::Exr, args.explain) {
+            match session.render(&prepared, format == Format::Exr) {
                 Ok(rendered) => Some(rendered),
                 Err(reason) if args.compare || args.explain => {
                     return Err(Failure::Runtime(format!(
