@@ -1,4 +1,4 @@
-//! Seed 000's terrain shading, composed: the surface term `(N·L) · albedo ·
+//! Hoffman and Preetham 2002's terrain shading, composed: the surface term `(N·L) · albedo ·
 //! self_shadow · cloud_shadow` is `terrain::shadow::terrain_shading` (the same
 //! function the WGSL twin mirrors), lit by the sun through the atmosphere's
 //! transmittance and by the sky's irradiance from `atmos::ground_irradiance`. What

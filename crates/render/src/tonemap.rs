@@ -4,7 +4,7 @@ use crate::RenderError;
 use atmos::transmittance::one_minus_exp_neg;
 use skyscape_wgsl::common::{hash_combine, hash_u32};
 
-/// Seed 001's tone map, 1 − exp(−radiance·exposure) per channel.
+/// The tone map of O'Neil's planet shader (GPU Gems 2, ch. 16, 2005): 1 − exp(−radiance·exposure) per channel.
 pub fn tonemap_exposure(radiance: [f32; 3], exposure: f32) -> [f32; 3] {
     radiance.map(|c| one_minus_exp_neg(c * exposure))
 }

@@ -140,7 +140,7 @@ impl Scene {
             opacity: Opacity::Slab {
                 cells: b.opacity_cells,
             },
-            // Seed 002's colour (the light alone): `particles` replaces it with
+            // Dobashi et al. 2000's colour (the light alone): `particles` replaces it with
             // `particle_radiance`.
             sun_colour: [1.0; 3],
             near: billboard_near(near),

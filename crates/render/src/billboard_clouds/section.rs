@@ -9,7 +9,7 @@ pub enum VolumeDraw {
     /// Ray-marched by `cloudlight` (Schneider's (GPU Pro 7) lighting), `crate::volume_clouds`.
     #[default]
     March,
-    /// Seed 002's billboards lit by slices (this module).
+    /// Dobashi et al. 2000's billboards lit by slices (this module).
     Billboards,
 }
 
@@ -24,8 +24,9 @@ pub struct BillboardsSection {
     /// The billboard's world diameter per unit density, metres (default 2.5 cells).
     /// Exclusive with `seed_k`.
     pub size_m_per_density: Option<f64>,
-    /// Seed 002's size rule instead: `(k·ρ/d)·ρ` pixels, `k` in pixel·metres (the seed
-    /// used 9500, tuned to its own units: small in metres).
+    /// The size rule of a GPU implementation of Dobashi et al. 2000 instead:
+    /// `(k·ρ/d)·ρ` pixels, `k` in pixel·metres (that implementation used 9500, tuned to
+    /// its own units: small in metres).
     pub seed_k: Option<f64>,
     /// Opacity of a billboard: a slab this many cells thick at the cell's density
     /// (`1 − exp(−σ_t·ρ·cell·cells)`), > 0.

@@ -229,7 +229,7 @@ pub struct CloudsSection {
     pub layers: Vec<CloudLayerSection>,
     /// A volumetric cloud (`crate::volume_clouds`).
     pub volume: Option<CloudVolumeSection>,
-    /// Seed 003's ray-marched cloud shell (`crate::shell_clouds`).
+    /// Schneider's (GPU Pro 7, 2015) ray-marched cloud shell (`crate::shell_clouds`).
     pub shell: Option<crate::shell_clouds::CloudShellSection>,
 }
 
@@ -660,7 +660,7 @@ fn one() -> f64 {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
 #[serde(rename_all = "kebab-case")]
 pub enum HorizonVariant {
-    /// Seed 000's pair: the east map while the sun is in the east, else the west.
+    /// Hoffman and Preetham 2002's pair: the east map while the sun is in the east, else the west.
     #[default]
     EastWest,
     /// `horizon_azimuths` maps, interpolated at the sun's azimuth.

@@ -40,7 +40,7 @@ pub struct PreparedTerrain {
 /// The horizon maps of the scene's variant.
 #[derive(Debug, Clone)]
 pub enum HorizonMaps {
-    /// Seed 000's pair.
+    /// Hoffman and Preetham 2002's pair.
     EastWest(terrain::EastWestHorizon),
     /// `N` azimuths.
     Azimuths(terrain::AzimuthHorizonMaps),

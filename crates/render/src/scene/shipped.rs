@@ -42,12 +42,12 @@ pub const SHIPPED: &[ShippedScene] = &[
     },
     ShippedScene {
         name: "billboards",
-        description: "a cumulus field grown by cloudsim, lit by slices and drawn as seed 002's billboards over hills",
+        description: "a cumulus field grown by cloudsim, lit by slices and drawn as Dobashi et al. 2000's billboards over hills",
         source: include_str!("../../scenes/billboards.toml"),
     },
     ShippedScene {
         name: "stratocumulus",
-        description: "a deck of stratocumulus over hills seen from a valley: seed 003's ray-marched cloud shell",
+        description: "a deck of stratocumulus over hills seen from a valley: Schneider's (GPU Pro 7, 2015) ray-marched cloud shell",
         source: include_str!("../../scenes/stratocumulus.toml"),
     },
     ShippedScene {
