@@ -32,6 +32,9 @@ struct LutSettings {
 @group(0) @binding(0) var<uniform> lut_atmosphere: AtmosphereParameters;
 @group(0) @binding(1) var<uniform> lut_settings: LutSettings;
 @group(0) @binding(2) var<uniform> frame_camera: FrameCamera;
+// The same view's exact per-pixel mapping (the sky pass, the depth-buffer aerial
+// perspective); frame_camera is the symmetric camera covering it.
+@group(0) @binding(3) var<uniform> frame_view: FrameView;
 // Transmittance to the top of the atmosphere (transmittance_width × _height).
 @group(1) @binding(0) var transmittance_lut: texture_2d<f32>;
 // The multiple-scattering field's six moment layers (MULTIPLE_SCATTERING_LAYERS).

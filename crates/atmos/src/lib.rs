@@ -32,6 +32,7 @@ pub mod real;
 pub mod reference;
 pub mod single_scattering;
 pub mod transmittance;
+pub mod view;
 
 pub use atmosphere::{AtmosError, Atmosphere, AtmosphereParameters, GpuError, SUN_ANGULAR_RADIUS};
 pub use ladder::{SkyModel, SkyQuery, SkySample};

@@ -5,8 +5,9 @@
 //! WGSL reads the tables and the frame camera from its bind groups where these take
 //! them as arguments ([`StaticLuts`], [`FrameLuts`]).
 
-use crate::frame::{FrameCamera, frame_view_direction};
+use crate::frame::FrameCamera;
 use crate::geometry::ray_sphere_intersect;
+use crate::view::{FrameView, ViewCamera, frame_view_direction_at, frame_view_distance};
 use crate::{AtmosError, Atmosphere};
 
 use super::aerial_perspective::{lookup_aerial_perspective, view_cosines};
@@ -72,18 +73,35 @@ impl SkyPassParameters {
     }
 }
 
-/// The radiance the sky pass writes at `pixel` of `frame.camera` (before
-/// `radiance_scale`): the whole view ray's in-scatter and, where the ray sees the sun's
-/// disc and not the ground, the disc through the ray's transmittance.
+/// The radiance the sky pass writes at `pixel` of `frame.camera` drawn over a whole
+/// target (the view [`ViewCamera::from_frame_camera`] prepares): see
+/// [`sky_pass_radiance_at`].
 pub fn sky_pass_radiance(
     luts: &StaticLuts,
     frame: &FrameLuts,
     pixel: [u32; 2],
     parameters: &SkyPassParameters,
 ) -> [f32; 3] {
+    let view = ViewCamera::from_frame_camera(&frame.camera).view;
+    let position = pixel.map(|p| p as f32 + 0.5);
+    sky_pass_radiance_at(luts, frame, &view, position, parameters)
+}
+
+/// The radiance the sky pass writes at the target position `position` (pixels, pixel
+/// centres at `+0.5`) of `view` (before `radiance_scale`): the whole view ray's
+/// in-scatter and, where the ray sees the sun's disc and not the ground, the disc
+/// through the ray's transmittance. `frame` holds the tables baked for the view's
+/// covering camera ([`ViewCamera::camera`]).
+pub fn sky_pass_radiance_at(
+    luts: &StaticLuts,
+    frame: &FrameLuts,
+    view: &FrameView,
+    position: [f32; 2],
+    parameters: &SkyPassParameters,
+) -> [f32; 3] {
     let bindings = luts.bindings();
     let camera = &frame.camera;
-    let direction = frame_view_direction(pixel, camera);
+    let direction = frame_view_direction_at(position, view);
     let [r, mu, mu_s, nu] = view_cosines(camera, direction, luts.atmosphere.planet_radius);
     let segment = unlimited_view_segment(&bindings, &frame.sky_view, r, mu, mu_s, nu);
     // Rays at the ground: only mu < 0 can meet it (docs/architecture.md).
@@ -99,7 +117,7 @@ pub fn sky_pass_radiance(
 
 /// Where a unit direction lands on the frame camera's image: `[u, v, depth]` with `u, v`
 /// in [0, 1] over the image (x right, y down) and `depth` the cosine to the camera's
-/// forward axis (≤ 0: behind the camera). Inverse of [`frame_view_direction`].
+/// forward axis (≤ 0: behind the camera). Inverse of [`crate::frame::frame_view_direction`].
 #[doc(hidden)]
 pub fn frame_screen_position(camera: &FrameCamera, direction: [f32; 3]) -> [f32; 3] {
     let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -149,6 +167,23 @@ pub fn aerial_perspective(
         distance,
         settings.pixel_samples,
     )
+}
+
+/// In-scatter and transmittance between `view`'s camera and the surface at `depth`
+/// (the caller's depth buffer) seen through the target position `position` (pixels,
+/// pixel centres at `+0.5`): what the depth-buffer aerial-perspective pass
+/// ([`crate::gpu::AerialPerspectivePass`]) applies there. `frame` holds the tables
+/// baked for the view's covering camera.
+pub fn depth_aerial_perspective(
+    luts: &StaticLuts,
+    frame: &FrameLuts,
+    view: &FrameView,
+    position: [f32; 2],
+    depth: f32,
+) -> ScatteringSegment {
+    let distance = frame_view_distance(position, depth, view);
+    let direction = frame_view_direction_at(position, view);
+    aerial_perspective(luts, frame, direction.map(|c| c * distance))
 }
 
 /// A surface's radiance (seen at the surface) as the frame camera sees it through the

@@ -88,6 +88,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         name: "atmos::sky_pass",
         source: include_str!("../../shaders/sky_pass.wgsl"),
     },
+    skyscape_wgsl::Module {
+        name: "atmos::aerial_perspective_pass",
+        source: include_str!("../../shaders/aerial_perspective_pass.wgsl"),
+    },
 ];
 
 /// Where the precomputed rung takes the transmittance of a whole view ray (to the

@@ -1,4 +1,4 @@
-//! [`AtmosphereLuts::new`]: the tables, bind groups and pipelines.
+//! [`AtmosphereTables::new`]: the shared tables, bind groups and pipelines.
 
 use super::passes::*;
 use super::*;
@@ -6,13 +6,15 @@ use crate::frame::FrameCamera;
 use crate::gpu::resources::{check_texture_support, storage_entry, storage_texture_entry};
 use crate::lut::LutSettings;
 use crate::lut::multiple_scattering_moments::MULTIPLE_SCATTERING_LAYERS;
+use crate::view::FrameView;
 use crate::{AtmosError, Atmosphere, GpuError};
 use wgpu::TextureViewDimension as Dim;
 use wgpu::util::DeviceExt as _;
 
-impl AtmosphereLuts {
-    /// Validates the inputs, creates the tables, bind groups and pipelines. Errors
-    /// naming the table when one exceeds the device's texture limits.
+impl AtmosphereTables {
+    /// Validates the inputs, creates the shared tables, bind groups and the pipelines
+    /// of every bake (no queue writes). Errors naming the table when one (the per-view
+    /// ones included) exceeds the device's texture limits.
     pub fn new(
         device: &wgpu::Device,
         atmosphere: &Atmosphere,
@@ -23,7 +25,6 @@ impl AtmosphereLuts {
         let s = settings.to_uniforms()?;
         let limits = device.limits();
         let layers = MULTIPLE_SCATTERING_LAYERS;
-        let sky_view_layers = s.sky_view_entries_per_texel();
         let ap_size = [
             s.aerial_perspective_width,
             s.aerial_perspective_height,
@@ -92,24 +93,6 @@ impl AtmosphereLuts {
                 Dim::D2Array,
             ),
         ];
-        let sky_view = Table::new(
-            device,
-            "atmos sky-view LUT",
-            [s.sky_view_width, s.sky_view_height, sky_view_layers],
-            Dim::D2Array,
-        );
-        let aerial_perspective_radiance = Table::new(
-            device,
-            "atmos aerial-perspective radiance",
-            ap_size,
-            Dim::D3,
-        );
-        let aerial_perspective_transmittance = Table::new(
-            device,
-            "atmos aerial-perspective transmittance",
-            ap_size,
-            Dim::D3,
-        );
         // What a bake that runs before a table exists binds in its place (never the
         // texture it writes).
         let placeholders = [
@@ -142,43 +125,22 @@ impl AtmosphereLuts {
         );
         let settings_buffer = uniform("atmos LUT settings", bytemuck::bytes_of(&s));
         let camera = uniform(
-            "atmos LUT frame camera",
+            "atmos static bakes' frame camera (unread)",
             bytemuck::bytes_of(&<FrameCamera as bytemuck::Zeroable>::zeroed()),
+        );
+        let frame_view = uniform(
+            "atmos static bakes' frame view (unread)",
+            bytemuck::bytes_of(&<FrameView as bytemuck::Zeroable>::zeroed()),
         );
 
         let layouts = LutLayouts::new(device);
-        let uniforms = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("atmos LUT uniforms"),
-            layout: &layouts.uniforms,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: atmosphere_buffer.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: settings_buffer.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: camera.as_entire_binding(),
-                },
-            ],
-        });
+        let uniforms = uniform_group(
+            device,
+            &layouts,
+            [&atmosphere_buffer, &settings_buffer, &camera, &frame_view],
+        );
         let table_group = |label: &str, views: [&Table; 5]| {
-            let entries: Vec<wgpu::BindGroupEntry> = views
-                .iter()
-                .zip(0..)
-                .map(|(table, binding)| wgpu::BindGroupEntry {
-                    binding,
-                    resource: wgpu::BindingResource::TextureView(&table.view),
-                })
-                .collect();
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some(label),
-                layout: &layouts.tables,
-                entries: &entries,
-            })
+            table_group(device, &layouts, label, views.map(|table| &table.view))
         };
         let [p2, pa, p3] = &placeholders;
 
@@ -299,47 +261,32 @@ impl AtmosphereLuts {
                 workgroups: ms_workgroups,
                 label: "atmos multiple-scattering LUT",
             },
-            BakePass {
-                pipeline: compute_pipeline(
-                    device,
-                    &pipeline_layout("atmos sky-view bake", &sky_view_out),
-                    "atmos::lut_sky_view",
-                    "bake_sky_view_lut",
-                )?,
-                tables: table_group(
-                    "atmos tables for the sky view",
-                    [&transmittance, &multiple_scattering, pa, p3, p3],
-                ),
-                outputs: texture_outputs("atmos sky-view output", &sky_view_out, &[&sky_view]),
-                workgroups: [groups(s.sky_view_width), groups(s.sky_view_height)],
-                label: "atmos sky-view LUT",
-            },
-            BakePass {
-                pipeline: compute_pipeline(
-                    device,
-                    &pipeline_layout("atmos aerial-perspective bake", &aerial_perspective_out),
-                    "atmos::lut_aerial_perspective",
-                    "bake_aerial_perspective",
-                )?,
-                tables: table_group(
-                    "atmos tables for aerial perspective",
-                    [&transmittance, &multiple_scattering, pa, p3, p3],
-                ),
-                outputs: texture_outputs(
-                    "atmos aerial-perspective outputs",
-                    &aerial_perspective_out,
-                    &[
-                        &aerial_perspective_radiance,
-                        &aerial_perspective_transmittance,
-                    ],
-                ),
-                workgroups: [
-                    groups(s.aerial_perspective_width),
-                    groups(s.aerial_perspective_height),
-                ],
-                label: "atmos aerial-perspective volume",
-            },
         ];
+        let view_bakes = ViewBakes {
+            sky_view: compute_pipeline(
+                device,
+                &pipeline_layout("atmos sky-view bake", &sky_view_out),
+                "atmos::lut_sky_view",
+                "bake_sky_view_lut",
+            )?,
+            aerial_perspective: compute_pipeline(
+                device,
+                &pipeline_layout("atmos aerial-perspective bake", &aerial_perspective_out),
+                "atmos::lut_aerial_perspective",
+                "bake_aerial_perspective",
+            )?,
+            tables: table_group(
+                "atmos tables for the per-view bakes",
+                [&transmittance, &multiple_scattering, pa, p3, p3],
+            ),
+            sky_view_outputs: sky_view_out,
+            aerial_perspective_outputs: aerial_perspective_out,
+            sky_view_workgroups: [groups(s.sky_view_width), groups(s.sky_view_height)],
+            aerial_perspective_workgroups: [
+                groups(s.aerial_perspective_width),
+                groups(s.aerial_perspective_height),
+            ],
+        };
         let next_order_pipeline = compute_pipeline(
             device,
             &ms_layout,
@@ -382,30 +329,61 @@ impl AtmosphereLuts {
             workgroups: ms_workgroups,
             label: "atmos multiple-scattering sum",
         });
-        let tables = table_group(
-            "atmos LUT tables",
-            [
-                &transmittance,
-                &multiple_scattering,
-                &sky_view,
-                &aerial_perspective_radiance,
-                &aerial_perspective_transmittance,
-            ],
-        );
         Ok(Self {
             device: device.clone(),
             settings: s,
-            camera,
+            atmosphere_buffer,
+            settings_buffer,
             transmittance,
             multiple_scattering,
-            sky_view,
-            aerial_perspective_radiance,
-            aerial_perspective_transmittance,
             layouts,
             uniforms,
-            tables,
             passes,
             higher_orders,
+            view_bakes,
         })
     }
+}
+
+/// The uniforms' bind group ([`LutLayouts::uniforms`]) of four buffers.
+pub(super) fn uniform_group(
+    device: &wgpu::Device,
+    layouts: &LutLayouts,
+    buffers: [&wgpu::Buffer; 4],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry> = buffers
+        .iter()
+        .zip(0..)
+        .map(|(buffer, binding)| wgpu::BindGroupEntry {
+            binding,
+            resource: buffer.as_entire_binding(),
+        })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("atmos LUT uniforms"),
+        layout: &layouts.uniforms,
+        entries: &entries,
+    })
+}
+
+/// A tables' bind group ([`LutLayouts::tables`]) of five views.
+pub(super) fn table_group(
+    device: &wgpu::Device,
+    layouts: &LutLayouts,
+    label: &str,
+    views: [&wgpu::TextureView; 5],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry> = views
+        .iter()
+        .zip(0..)
+        .map(|(view, binding)| wgpu::BindGroupEntry {
+            binding,
+            resource: wgpu::BindingResource::TextureView(view),
+        })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout: &layouts.tables,
+        entries: &entries,
+    })
 }
