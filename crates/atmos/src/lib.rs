@@ -38,6 +38,15 @@ pub use atmosphere::{AtmosError, Atmosphere, AtmosphereParameters, GpuError, SUN
 pub use ladder::{SkyModel, SkyQuery, SkySample};
 pub use skyscape_wgsl::common::PI;
 
+/// The crates whose types appear in this crate's public API, re-exported so that a
+/// dependent names the very versions this crate was built with (no pinning by hand):
+/// `glam` (vectors and matrices), `skyscape_wgsl` (the WGSL `Composer` and `Module`), and with
+/// feature `gpu` `wgpu` (devices, queues, encoders).
+pub use glam;
+pub use skyscape_wgsl;
+#[cfg(feature = "gpu")]
+pub use wgpu;
+
 /// The types a typical program needs: `use atmos::prelude::*;`.
 ///
 /// ```

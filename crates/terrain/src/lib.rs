@@ -102,6 +102,15 @@ pub use horizon::{
 };
 pub use normal::{BitDepth, NormalMap, encode_horizon_angle};
 
+/// The crates whose types appear in this crate's public API, re-exported so that a
+/// dependent names the very versions this crate was built with (no pinning by hand):
+/// `glam` (vectors and matrices), `skyscape_wgsl` (the WGSL `Composer` and `Module`), and with
+/// feature `gpu` `wgpu` (devices, queues, encoders).
+pub use glam;
+pub use skyscape_wgsl;
+#[cfg(feature = "gpu")]
+pub use wgpu;
+
 /// The WGSL modules of this crate, importable as `#import terrain::<name>`.
 pub const WGSL_MODULES: &[skyscape_wgsl::Module] =
     include!(concat!(env!("OUT_DIR"), "/wgsl_modules.rs"));
