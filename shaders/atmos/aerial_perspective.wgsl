@@ -59,3 +59,27 @@ fn sunlight_at(offset: vec3<f32>) -> vec3<f32> {
     let mu_s = clamp(dot(frame_camera.sun, position) / r, -1.0, 1.0);
     return lut_atmosphere.sun_irradiance * sun_transmittance(max(r, lut_atmosphere.planet_radius), mu_s);
 }
+
+// The sun's transmittance to the planet-centred point `position` (m), the sun along
+// frame_camera.sun: through the transmittance LUT, 0 in the planet's shadow. Times
+// lut_atmosphere.sun_irradiance and the cosine to the sun: a surface's direct light.
+fn sun_transmittance_at(position: vec3<f32>) -> vec3<f32> {
+    let r = length(position);
+    let mu_s = clamp(dot(frame_camera.sun, position) / r, -1.0, 1.0);
+    return sun_transmittance(max(r, lut_atmosphere.planet_radius), mu_s);
+}
+
+// Irradiance (the unit of sun_irradiance) that a surface of unit normal `normal`
+// (planet-frame axes) at the planet-centred point `position` (m) receives from the
+// sky, the sun along frame_camera.sun: every order of scattered sunlight and the
+// ground's Lambertian radiance, from the sky-irradiance LUT. The direct sun is not
+// included (sun_transmittance_at). Points above the atmosphere read its top.
+fn sky_irradiance(position: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
+    let r = length(position);
+    let zenith = position / r;
+    let mu_s = clamp(dot(frame_camera.sun, zenith), -1.0, 1.0);
+    let mu_n = clamp(dot(normal, zenith), -1.0, 1.0);
+    let nu_n = clamp(dot(normal, frame_camera.sun), -1.0, 1.0);
+    let direction = sun_frame_direction(mu_n, mu_s, nu_n);
+    return lookup_sky_irradiance(clamp(r, lut_atmosphere.planet_radius, lut_atmosphere.top_radius), mu_s, direction);
+}

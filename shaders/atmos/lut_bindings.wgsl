@@ -44,3 +44,5 @@ struct LutSettings {
 // The aerial-perspective volume for the frame camera (froxels: x, y, depth slice).
 @group(1) @binding(3) var aerial_perspective_radiance: texture_3d<f32>;
 @group(1) @binding(4) var aerial_perspective_transmittance: texture_3d<f32>;
+// Irradiance on every normal (atmos::lut::sky_irradiance): μ_s × r, one layer per normal.
+@group(1) @binding(5) var sky_irradiance_lut: texture_2d_array<f32>;

@@ -10,9 +10,12 @@ use crate::geometry::ray_sphere_intersect;
 use crate::view::{FrameView, ViewCamera, frame_view_direction_at, frame_view_distance};
 use crate::{AtmosError, Atmosphere};
 
+use super::Lut2d;
 use super::aerial_perspective::{lookup_aerial_perspective, view_cosines};
+use super::multiple_scattering_moments::sun_frame_direction;
 use super::precomputed_sky::{FrameLuts, StaticLuts, unlimited_view_segment};
 use super::raymarch::{ScatteringSegment, march_view_segment, sun_transmittance};
+use super::sky_irradiance::lookup_sky_irradiance;
 
 /// The sky pass's uniform (layout identical to WGSL `SkyPassParameters`).
 #[repr(C)]
@@ -212,4 +215,47 @@ pub fn sunlight_at(luts: &StaticLuts, camera: &FrameCamera, offset: [f32; 3]) ->
     let transmittance =
         sun_transmittance(&luts.bindings(), r.max(luts.atmosphere.planet_radius), mu_s);
     std::array::from_fn(|c| luts.atmosphere.sun_irradiance[c] * transmittance[c])
+}
+
+/// The sun's transmittance to the planet-centred point `position` (m) with the sun
+/// along `camera.sun`: through the transmittance LUT, 0 in the planet's shadow.
+pub fn sun_transmittance_at(
+    luts: &StaticLuts,
+    camera: &FrameCamera,
+    position: [f32; 3],
+) -> [f32; 3] {
+    let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let r = dot(position, position).sqrt();
+    let mu_s = (dot(camera.sun, position) / r).clamp(-1.0, 1.0);
+    sun_transmittance(&luts.bindings(), r.max(luts.atmosphere.planet_radius), mu_s)
+}
+
+/// Irradiance (the unit of `sun_irradiance`) that a surface of unit `normal`
+/// (planet-frame axes) at the planet-centred point `position` (m) receives from the
+/// sky, the sun along `camera.sun`: every order of scattered sunlight and the ground's
+/// Lambertian radiance, from the sky-irradiance LUT `table`
+/// ([`super::sky_irradiance::bake_sky_irradiance_lut`]). The direct sun is not
+/// included ([`sun_transmittance_at`]). Points above the atmosphere read its top.
+pub fn sky_irradiance(
+    luts: &StaticLuts,
+    table: &Lut2d,
+    camera: &FrameCamera,
+    position: [f32; 3],
+    normal: [f32; 3],
+) -> [f32; 3] {
+    let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let r = dot(position, position).sqrt();
+    let zenith = position.map(|c| c / r);
+    let mu_s = dot(camera.sun, zenith).clamp(-1.0, 1.0);
+    let mu_n = dot(normal, zenith).clamp(-1.0, 1.0);
+    let nu_n = dot(normal, camera.sun).clamp(-1.0, 1.0);
+    let direction = sun_frame_direction(mu_n, mu_s, nu_n);
+    let atmosphere = &luts.atmosphere;
+    lookup_sky_irradiance(
+        &luts.bindings(),
+        table,
+        r.clamp(atmosphere.planet_radius, atmosphere.top_radius),
+        mu_s,
+        direction,
+    )
 }

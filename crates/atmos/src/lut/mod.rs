@@ -30,6 +30,7 @@ pub mod parameterization;
 pub mod precomputed_sky;
 pub mod raymarch;
 pub mod reference;
+pub mod sky_irradiance;
 pub mod sky_view_lut;
 pub mod transmittance_lut;
 
@@ -67,6 +68,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {
         name: "atmos::lut_sky_view",
         source: include_str!("../../shaders/lut_sky_view.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "atmos::lut_sky_irradiance",
+        source: include_str!("../../shaders/lut_sky_irradiance.wgsl"),
     },
     skyscape_wgsl::Module {
         name: "atmos::lut_aerial_perspective",

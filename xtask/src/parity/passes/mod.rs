@@ -6,6 +6,7 @@ pub use super::audit::Audit;
 use super::compare::Tolerance;
 
 mod atmos_drop_in_passes;
+mod atmos_irradiance_passes;
 mod atmos_passes;
 mod cloudlight_march_passes;
 mod cloudlight_march_shell_passes;
@@ -66,6 +67,7 @@ pub fn all() -> Vec<PassCase> {
         cloudlight_shell_shadow_passes::cases(),
         atmos_passes::cases(),
         atmos_drop_in_passes::cases(),
+        atmos_irradiance_passes::cases(),
     ]
     .into_iter()
     .flatten()

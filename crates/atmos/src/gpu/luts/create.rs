@@ -6,6 +6,9 @@ use crate::frame::FrameCamera;
 use crate::gpu::resources::{check_texture_support, storage_entry, storage_texture_entry};
 use crate::lut::LutSettings;
 use crate::lut::multiple_scattering_moments::MULTIPLE_SCATTERING_LAYERS;
+use crate::lut::sky_irradiance::{
+    SKY_IRRADIANCE_HEIGHT, SKY_IRRADIANCE_LAYERS, SKY_IRRADIANCE_WIDTH,
+};
 use crate::view::FrameView;
 use crate::{AtmosError, Atmosphere, GpuError};
 use wgpu::TextureViewDimension as Dim;
@@ -52,6 +55,11 @@ impl AtmosphereTables {
                 ap_size.into_iter().max().unwrap_or(0),
                 limits.max_texture_dimension_3d,
             ),
+            (
+                "the sky-irradiance LUT (one layer per normal)",
+                SKY_IRRADIANCE_LAYERS,
+                limits.max_texture_array_layers,
+            ),
         ] {
             if size > limit {
                 return Err(GpuError::TextureTooLarge {
@@ -77,6 +85,16 @@ impl AtmosphereTables {
             device,
             "atmos multiple-scattering LUT",
             ms_size,
+            Dim::D2Array,
+        );
+        let sky_irradiance = Table::new(
+            device,
+            "atmos sky-irradiance LUT",
+            [
+                SKY_IRRADIANCE_WIDTH,
+                SKY_IRRADIANCE_HEIGHT,
+                SKY_IRRADIANCE_LAYERS,
+            ],
             Dim::D2Array,
         );
         let orders = [
@@ -139,7 +157,7 @@ impl AtmosphereTables {
             &layouts,
             [&atmosphere_buffer, &settings_buffer, &camera, &frame_view],
         );
-        let table_group = |label: &str, views: [&Table; 5]| {
+        let table_group = |label: &str, views: [&Table; 6]| {
             table_group(device, &layouts, label, views.map(|table| &table.view))
         };
         let [p2, pa, p3] = &placeholders;
@@ -162,6 +180,10 @@ impl AtmosphereTables {
                 storage_entry(1, false),
                 storage_texture_entry(2, Dim::D2Array),
             ],
+        );
+        let sky_irradiance_out = output_layout(
+            "atmos sky-irradiance bake outputs",
+            &[storage_texture_entry(0, Dim::D2Array)],
         );
         let sky_view_out = output_layout(
             "atmos sky-view bake outputs",
@@ -234,7 +256,7 @@ impl AtmosphereTables {
                     "atmos::lut_transmittance",
                     "bake_transmittance_lut",
                 )?,
-                tables: table_group("atmos tables for transmittance", [p2, pa, pa, p3, p3]),
+                tables: table_group("atmos tables for transmittance", [p2, pa, pa, p3, p3, pa]),
                 outputs: texture_outputs(
                     "atmos transmittance output",
                     &transmittance_out,
@@ -255,11 +277,31 @@ impl AtmosphereTables {
                 )?,
                 tables: table_group(
                     "atmos tables for multiple scattering",
-                    [&transmittance, pa, pa, p3, p3],
+                    [&transmittance, pa, pa, p3, p3, pa],
                 ),
                 outputs: order_outputs("atmos scattering order 2 outputs", &orders[0]),
                 workgroups: ms_workgroups,
                 label: "atmos multiple-scattering LUT",
+            },
+            BakePass {
+                pipeline: compute_pipeline(
+                    device,
+                    &pipeline_layout("atmos sky-irradiance bake", &sky_irradiance_out),
+                    "atmos::lut_sky_irradiance",
+                    "bake_sky_irradiance_lut",
+                )?,
+                tables: table_group(
+                    "atmos tables for the sky irradiance",
+                    [&transmittance, &multiple_scattering, pa, p3, p3, pa],
+                ),
+                outputs: texture_outputs(
+                    "atmos sky-irradiance output",
+                    &sky_irradiance_out,
+                    &[&sky_irradiance],
+                ),
+                // One workgroup per texel, one invocation per normal layer.
+                workgroups: [SKY_IRRADIANCE_WIDTH, SKY_IRRADIANCE_HEIGHT],
+                label: "atmos sky-irradiance LUT",
             },
         ];
         let view_bakes = ViewBakes {
@@ -277,7 +319,7 @@ impl AtmosphereTables {
             )?,
             tables: table_group(
                 "atmos tables for the per-view bakes",
-                [&transmittance, &multiple_scattering, pa, p3, p3],
+                [&transmittance, &multiple_scattering, pa, p3, p3, pa],
             ),
             sky_view_outputs: sky_view_out,
             aerial_perspective_outputs: aerial_perspective_out,
@@ -302,7 +344,7 @@ impl AtmosphereTables {
                     pipeline: next_order_pipeline.clone(),
                     tables: table_group(
                         "atmos tables for a scattering order",
-                        [&transmittance, previous, pa, p3, p3],
+                        [&transmittance, previous, pa, p3, p3, pa],
                     ),
                     outputs: order_outputs("atmos scattering order outputs", next),
                     workgroups: ms_workgroups,
@@ -323,7 +365,7 @@ impl AtmosphereTables {
             )?,
             tables: table_group(
                 "atmos tables for the multiple-scattering sum",
-                [&transmittance, last, pa, p3, p3],
+                [&transmittance, last, pa, p3, p3, pa],
             ),
             outputs: order_outputs("atmos multiple-scattering sum outputs", scratch),
             workgroups: ms_workgroups,
@@ -336,6 +378,7 @@ impl AtmosphereTables {
             settings_buffer,
             transmittance,
             multiple_scattering,
+            sky_irradiance,
             layouts,
             uniforms,
             passes,
@@ -366,12 +409,12 @@ pub(super) fn uniform_group(
     })
 }
 
-/// A tables' bind group ([`LutLayouts::tables`]) of five views.
+/// A tables' bind group ([`LutLayouts::tables`]) of six views.
 pub(super) fn table_group(
     device: &wgpu::Device,
     layouts: &LutLayouts,
     label: &str,
-    views: [&wgpu::TextureView; 5],
+    views: [&wgpu::TextureView; 6],
 ) -> wgpu::BindGroup {
     let entries: Vec<wgpu::BindGroupEntry> = views
         .iter()

@@ -98,6 +98,24 @@ impl AtmosphereTables {
         );
     }
 
+    /// Records the sky-irradiance bake (one pass; reads the transmittance and
+    /// multiple-scattering LUTs, so record it after [`Self::encode_static_luts`]): once
+    /// per atmosphere, before a shader reads `sky_irradiance`. Not part of the static
+    /// bakes: a program that never reads the table does not pay for it (1,024 view
+    /// marches per texel, 64 × 32 texels).
+    pub fn encode_sky_irradiance(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        self.encode_passes(
+            encoder,
+            &[SKY_IRRADIANCE],
+            self.passes[SKY_IRRADIANCE].label,
+            timestamp_writes,
+        );
+    }
+
     /// Records both static bakes in one pass (transmittance, then multiple scattering):
     /// once per atmosphere, before any view's bakes.
     pub fn encode_static_luts(
@@ -111,6 +129,11 @@ impl AtmosphereTables {
             "atmos static LUTs",
             timestamp_writes,
         );
+    }
+
+    /// Sky-irradiance LUT (μ_s × r, one layer per normal).
+    pub fn sky_irradiance_texture(&self) -> &wgpu::Texture {
+        &self.sky_irradiance.texture
     }
 
     /// Transmittance LUT (`transmittance_width × _height`).
@@ -214,6 +237,15 @@ impl AtmosphereLuts {
         self.tables.encode_static_luts(encoder, timestamp_writes);
     }
 
+    /// Records the sky-irradiance bake ([`AtmosphereTables::encode_sky_irradiance`]).
+    pub fn encode_sky_irradiance(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        self.tables.encode_sky_irradiance(encoder, timestamp_writes);
+    }
+
     /// Records the sky-view bake for the prepared camera (one pass).
     pub fn encode_sky_view(
         &self,
@@ -265,6 +297,10 @@ impl AtmosphereLuts {
     /// Multiple-scattering LUT (six layers: the field's moments).
     pub fn multiple_scattering_texture(&self) -> &wgpu::Texture {
         self.tables.multiple_scattering_texture()
+    }
+    /// Sky-irradiance LUT (μ_s × r, one layer per normal).
+    pub fn sky_irradiance_texture(&self) -> &wgpu::Texture {
+        self.tables.sky_irradiance_texture()
     }
     /// Sky-view LUT (layer 0 radiance; layer 1 transmittance when stored).
     pub fn sky_view_texture(&self) -> &wgpu::Texture {

@@ -26,6 +26,7 @@
 //! | tables (1) | 2 | `sky_view_lut` | `texture_2d_array<f32>`: radiance, transmittance |
 //! | tables (1) | 3 | `aerial_perspective_radiance` | `texture_3d<f32>` |
 //! | tables (1) | 4 | `aerial_perspective_transmittance` | `texture_3d<f32>` |
+//! | tables (1) | 5 | `sky_irradiance_lut` | `texture_2d_array<f32>`, one layer per normal |
 //!
 //! Every table is `rgba32float` (the CPU twin's values exactly; writable by compute
 //! passes on every WebGPU adapter), read with `textureLoad` and filtered by hand in
@@ -118,7 +119,7 @@ pub struct LutLayouts {
     /// Atmosphere, settings, frame camera, frame view (uniform buffers at bindings
     /// 0 … 3).
     pub uniforms: wgpu::BindGroupLayout,
-    /// The five tables (unfilterable-float textures at bindings 0 … 4).
+    /// The six tables (unfilterable-float textures at bindings 0 … 5).
     pub tables: wgpu::BindGroupLayout,
 }
 
@@ -142,14 +143,15 @@ impl LutLayouts {
                 float_texture_entry(2, Dim::D2Array),
                 float_texture_entry(3, Dim::D3),
                 float_texture_entry(4, Dim::D3),
+                float_texture_entry(5, Dim::D2Array),
             ],
         });
         Self { uniforms, tables }
     }
 }
 
-/// The tables every view of one atmosphere shares — transmittance and multiple
-/// scattering — with their bakes, and the pipelines of the per-view bakes. Made once per
+/// The tables every view of one atmosphere shares — transmittance, multiple
+/// scattering and sky irradiance — with their bakes, and the pipelines of the per-view bakes. Made once per
 /// atmosphere and settings; [`AtmosphereTables::encode_static_luts`] records their bakes
 /// (no queue writes: the atmosphere and settings uniforms are written at creation).
 #[derive(Debug)]
@@ -160,10 +162,11 @@ pub struct AtmosphereTables {
     settings_buffer: wgpu::Buffer,
     transmittance: Table,
     multiple_scattering: Table,
+    sky_irradiance: Table,
     layouts: LutLayouts,
     /// The static bakes' uniforms (a zero camera: they do not read it).
     uniforms: wgpu::BindGroup,
-    passes: [BakePass; 2],
+    passes: [BakePass; 3],
     /// Orders 3… of the multiple-scattering bake, each reading the order before (two
     /// ping-pong textures) and adding to the sum; then the copy of the sum into the
     /// LUT. Recorded right after the order-2 pass.

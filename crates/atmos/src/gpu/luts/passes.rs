@@ -55,6 +55,7 @@ pub(super) struct BakePass {
 
 pub(super) const TRANSMITTANCE: usize = 0;
 pub(super) const MULTIPLE_SCATTERING: usize = 1;
+pub(super) const SKY_IRRADIANCE: usize = 2;
 
 /// What the per-view bakes (sky view, aerial perspective) of one atmosphere share: their
 /// pipelines, the shared tables they read (group 1), the layouts of their outputs

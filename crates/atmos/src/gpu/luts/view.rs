@@ -74,6 +74,7 @@ impl AtmosphereView {
                 &sky_view.view,
                 &aerial_perspective_radiance.view,
                 &aerial_perspective_transmittance.view,
+                &tables.sky_irradiance.view,
             ],
         );
         let outputs = |label: &str, layout: &wgpu::BindGroupLayout, views: &[&Table]| {
