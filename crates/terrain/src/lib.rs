@@ -43,6 +43,9 @@ pub mod generate;
 pub mod gpu;
 mod heightfield;
 pub mod horizon;
+pub mod horizon_stack;
+#[cfg(feature = "gpu")]
+pub mod horizon_texture;
 pub mod intersect;
 mod normal;
 pub mod raycast;
@@ -129,7 +132,7 @@ mod wgsl_tests {
     #[test]
     fn every_module_composes_and_validates() {
         let composer = super::composer();
-        assert_eq!(super::WGSL_MODULES.len(), 3);
+        assert_eq!(super::WGSL_MODULES.len(), 4);
         for module in super::WGSL_MODULES {
             assert!(module.name.starts_with("terrain::"));
             let source = composer.compose_module(module.name).unwrap();

@@ -16,6 +16,7 @@ mod cloudlight_shadow_passes;
 mod cloudlight_shell_shadow_passes;
 mod cloudsim_passes;
 mod terrain_passes;
+mod terrain_stack_passes;
 
 /// The CPU side of a pass case.
 #[derive(Debug, Default)]
@@ -58,6 +59,7 @@ pub fn words_as_exact_floats(words: &[u32]) -> Vec<f32> {
 pub fn all() -> Vec<PassCase> {
     [
         terrain_passes::cases(),
+        terrain_stack_passes::cases(),
         cloudsim_passes::cases(),
         cloudlight_passes::cases(),
         cloudlight_march_passes::cases(),
