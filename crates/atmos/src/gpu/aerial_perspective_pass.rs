@@ -12,6 +12,7 @@
 
 use crate::gpu::luts::{AtmosphereView, LutLayouts};
 use crate::gpu::resources::{READ_STAGES, uniform_buffer};
+use crate::view::Viewport;
 use crate::{AtmosError, GpuError};
 
 /// Which way round the caller's depth buffer runs.
@@ -229,6 +230,35 @@ impl AerialPerspectivePass {
         pass.draw(0..3, 0..1);
         pass.set_pipeline(&self.inscatter);
         pass.draw(0..3, 0..1);
+        Ok(())
+    }
+
+    /// Records a render pass of its own over `color` (loaded and stored, no depth
+    /// attachment) drawing each view in its viewport: the whole pass for a caller that
+    /// does not draw the haze inside a pass of its own ([`Self::draw`]).
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        color: &wgpu::TextureView,
+        views: &[(&AtmosphereView, Viewport)],
+    ) -> Result<(), AtmosError> {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("atmos aerial-perspective pass"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: color,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            ..Default::default()
+        });
+        for (view, v) in views {
+            pass.set_viewport(v.x, v.y, v.width, v.height, 0.0, 1.0);
+            self.draw(&mut pass, view)?;
+        }
         Ok(())
     }
 }
