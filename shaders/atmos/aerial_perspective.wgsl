@@ -5,11 +5,13 @@
 // world is a local frame (+y up, −z north, +x east, metres) converts its offsets with
 // local_to_planet_direction (a rotation: lengths are kept). Twin: atmos::lut::drop_in.
 #import atmos::lut_shading
+#import common::frames
 
 // A local-frame vector (+y up, −z north, +x east) in the planet frame's axes (x east,
-// y north, z up at the local frame's origin). Twin: atmos::frame::local_to_planet_direction.
+// y north, z up at the local frame's origin: east-north-up), common::frames'
+// world_to_enu. Twin: atmos::frame::local_to_planet_direction.
 fn local_to_planet_direction(direction: vec3<f32>) -> vec3<f32> {
-    return vec3<f32>(direction.x, -direction.z, direction.y);
+    return world_to_enu(direction);
 }
 
 // Where a unit direction lands on the frame camera's image: (u, v, depth) with u, v in

@@ -10,6 +10,7 @@ use atmos::lut::{LutSettings, drop_in::SkyPassParameters};
 use atmos::view::{ViewCamera, Viewport};
 use glam::DVec3;
 use glam::dcamera::rh::{proj::directx as proj, view::look_to_mat4};
+use skyscape_wgsl::common::enu_to_world;
 use terrain::generate::{GeneratorParams, generate};
 use terrain::horizon_stack::HorizonStack;
 use terrain::horizon_texture::{GpuHorizonStack, horizon_stack_bindings_wgsl};
@@ -36,10 +37,10 @@ fn vertex(@location(0) world: vec3<f32>, @location(1) normal: vec3<f32>, @locati
 }
 @fragment
 fn fragment(in: Out) -> @location(0) vec4<f32> {
-    // World → atmos' planet frame (and terrain's east-north-up: the same axes here).
-    let position = local_to_planet_direction(in.world) + vec3<f32>(0.0, 0.0, camera.planet_radius);
-    let normal = local_to_planet_direction(normalize(in.normal));
-    let sun = local_to_planet_direction(camera.sun_world);
+    // World → east-north-up: terrain's axes and atmos' planet frame's (moved by R).
+    let position = world_to_enu(in.world) + vec3<f32>(0.0, 0.0, camera.planet_radius);
+    let normal = world_to_enu(normalize(in.normal));
+    let sun = world_to_enu(camera.sun_world);
     let shadow = self_shadow(horizon_stack, horizon_stack_params, in.texel, sun, SUN_ANGULAR_RADIUS);
     let direct = lut_atmosphere.sun_irradiance * sun_transmittance_at(position) * max(dot(normal, sun), 0.0) * shadow;
     let albedo = vec3<f32>(0.16, 0.14, 0.10);
@@ -76,10 +77,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut vertices: Vec<[f32; 8]> = Vec::with_capacity(SIDE * SIDE);
     for y in 0..SIDE {
         for x in 0..SIDE {
-            let [e, n, u] = normals.normal(x, y)?; // east-north-up → world (e, u, −n)
+            let [e, u, s] = enu_to_world(normals.normal(x, y)?); // east, up, south
             let (px, pz) = (x as f64 * SPACING - half, y as f64 * SPACING - half);
             let h = hf.elevation(x, y)? as f32;
-            vertices.push([px as f32, h, pz as f32, e, u, -n, x as f32, y as f32]);
+            vertices.push([px as f32, h, pz as f32, e, u, s, x as f32, y as f32]);
         }
     }
     let side = SIDE as u32;
@@ -96,7 +97,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let vertex_buffer = buffer(bytemuck::cast_slice(&vertices), wgpu::BufferUsages::VERTEX);
     let index_buffer = buffer(bytemuck::cast_slice(&indices), wgpu::BufferUsages::INDEX);
-
     // atmos: the shared tables (with the sky irradiance), one view per camera.
     let earth = atmos::Atmosphere::earth();
     let frame = LocalFrame::new(&earth, 0.0)?;
