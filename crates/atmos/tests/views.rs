@@ -112,10 +112,16 @@ struct Renderer {
     ground_layout: wgpu::BindGroupLayout,
     vertices: wgpu::Buffer,
     vertex_count: u32,
+    convention: DepthConvention,
 }
 
 impl Renderer {
     fn new(gpu: &GpuContext) -> Self {
+        Self::with_depth(gpu, DepthConvention::Reversed)
+    }
+
+    /// The caller's pipeline and atmos' haze for a depth buffer of `convention`.
+    fn with_depth(gpu: &GpuContext, convention: DepthConvention) -> Self {
         let device = &gpu.device;
         let earth = Atmosphere::earth();
         let tables = AtmosphereTables::new(device, &earth, &LutSettings::small()).unwrap();
@@ -132,8 +138,7 @@ impl Renderer {
             &gpu.queue,
             &SkyPassParameters::new(&earth, true, 1.0, 0.0).unwrap(),
         );
-        let haze =
-            AerialPerspectivePass::new(device, &tables, COLOR, DepthConvention::Reversed).unwrap();
+        let haze = AerialPerspectivePass::new(device, &tables, COLOR, convention).unwrap();
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("caller's ground"),
             source: wgpu::ShaderSource::Wgsl(GROUND.into()),
@@ -173,7 +178,10 @@ impl Renderer {
             depth_stencil: Some(wgpu::DepthStencilState {
                 format: DEPTH,
                 depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Greater),
+                depth_compare: Some(match convention {
+                    DepthConvention::Reversed => wgpu::CompareFunction::Greater,
+                    DepthConvention::Standard => wgpu::CompareFunction::Less,
+                }),
                 stencil: Default::default(),
                 bias: Default::default(),
             }),
@@ -205,6 +213,7 @@ impl Renderer {
             ground_layout,
             vertices,
             vertex_count: mesh.len() as u32,
+            convention,
         }
     }
 
@@ -295,7 +304,7 @@ impl Renderer {
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                     view: &depth_view,
                     depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(0.0),
+                        load: wgpu::LoadOp::Clear(f64::from(self.convention.sky_depth()) as f32),
                         store: wgpu::StoreOp::Store,
                     }),
                     stencil_ops: None,
@@ -593,4 +602,37 @@ fn f32_to_half(value: f32) -> u16 {
     let half = (exponent as u32) << 10 | (mantissa >> 13);
     let round = (mantissa >> 12) & 1 != 0 && ((mantissa & 0x1fff) != 0x1000 || half & 1 != 0);
     sign | (half + u32::from(round)) as u16
+}
+
+/// A standard depth buffer (near 0, far 1) with its projection and
+/// `DepthConvention::Standard` hazes the scene as the reversed-z one does.
+#[test]
+fn a_standard_depth_buffer_gives_the_reversed_z_image() {
+    let Some(gpu) = skyscape_harness::gpu_or_skip("standard_depth_buffer") else {
+        return;
+    };
+    let mut reversed = Renderer::new(gpu);
+    let view = AtmosphereView::new(&reversed.tables);
+    let camera = camera_a(full());
+    let expected = reversed.draw(gpu, WIDTH, &[(camera, &view)]);
+    let mut standard = Renderer::with_depth(gpu, DepthConvention::Standard);
+    let view = AtmosphereView::new(&standard.tables);
+    let projection = proj::perspective(1.0, f64::from(WIDTH) / f64::from(HEIGHT), 0.5, 1e5);
+    let image = standard.draw(
+        gpu,
+        WIDTH,
+        &[(
+            Camera {
+                projection,
+                ..camera
+            },
+            &view,
+        )],
+    );
+    let error = max_relative_difference(&image, &expected);
+    eprintln!("standard against reversed depth: max relative difference {error:e}");
+    // Depth32Float near 1 resolves 2^-24: a standard buffer's distance at 30 km (near
+    // plane 0.5 m) is good to 2^-24 · 30 km / 0.5 m ≈ 4e-3 relative, which moves the
+    // haze far less than the half-float target rounds.
+    assert!(error <= 2e-3, "{error}");
 }
