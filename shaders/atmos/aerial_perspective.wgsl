@@ -5,11 +5,13 @@
 // world is a local frame (+y up, −z north, +x east, metres) converts its offsets with
 // local_to_planet_direction (a rotation: lengths are kept). Twin: atmos::lut::drop_in.
 #import atmos::lut_shading
+#import common::frames
 
 // A local-frame vector (+y up, −z north, +x east) in the planet frame's axes (x east,
-// y north, z up at the local frame's origin). Twin: atmos::frame::local_to_planet_direction.
+// y north, z up at the local frame's origin: east-north-up), common::frames'
+// world_to_enu. Twin: atmos::frame::local_to_planet_direction.
 fn local_to_planet_direction(direction: vec3<f32>) -> vec3<f32> {
-    return vec3<f32>(direction.x, -direction.z, direction.y);
+    return world_to_enu(direction);
 }
 
 // Where a unit direction lands on the frame camera's image: (u, v, depth) with u, v in
@@ -58,4 +60,28 @@ fn sunlight_at(offset: vec3<f32>) -> vec3<f32> {
     let r = length(position);
     let mu_s = clamp(dot(frame_camera.sun, position) / r, -1.0, 1.0);
     return lut_atmosphere.sun_irradiance * sun_transmittance(max(r, lut_atmosphere.planet_radius), mu_s);
+}
+
+// The sun's transmittance to the planet-centred point `position` (m), the sun along
+// frame_camera.sun: through the transmittance LUT, 0 in the planet's shadow. Times
+// lut_atmosphere.sun_irradiance and the cosine to the sun: a surface's direct light.
+fn sun_transmittance_at(position: vec3<f32>) -> vec3<f32> {
+    let r = length(position);
+    let mu_s = clamp(dot(frame_camera.sun, position) / r, -1.0, 1.0);
+    return sun_transmittance(max(r, lut_atmosphere.planet_radius), mu_s);
+}
+
+// Irradiance (the unit of sun_irradiance) that a surface of unit normal `normal`
+// (planet-frame axes) at the planet-centred point `position` (m) receives from the
+// sky, the sun along frame_camera.sun: every order of scattered sunlight and the
+// ground's Lambertian radiance, from the sky-irradiance LUT. The direct sun is not
+// included (sun_transmittance_at). Points above the atmosphere read its top.
+fn sky_irradiance(position: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
+    let r = length(position);
+    let zenith = position / r;
+    let mu_s = clamp(dot(frame_camera.sun, zenith), -1.0, 1.0);
+    let mu_n = clamp(dot(normal, zenith), -1.0, 1.0);
+    let nu_n = clamp(dot(normal, frame_camera.sun), -1.0, 1.0);
+    let direction = sun_frame_direction(mu_n, mu_s, nu_n);
+    return lookup_sky_irradiance(clamp(r, lut_atmosphere.planet_radius, lut_atmosphere.top_radius), mu_s, direction);
 }

@@ -32,6 +32,9 @@ struct LutSettings {
 @group(0) @binding(0) var<uniform> lut_atmosphere: AtmosphereParameters;
 @group(0) @binding(1) var<uniform> lut_settings: LutSettings;
 @group(0) @binding(2) var<uniform> frame_camera: FrameCamera;
+// The same view's exact per-pixel mapping (the sky pass, the depth-buffer aerial
+// perspective); frame_camera is the symmetric camera covering it.
+@group(0) @binding(3) var<uniform> frame_view: FrameView;
 // Transmittance to the top of the atmosphere (transmittance_width × _height).
 @group(1) @binding(0) var transmittance_lut: texture_2d<f32>;
 // The multiple-scattering field's six moment layers (MULTIPLE_SCATTERING_LAYERS).
@@ -41,3 +44,5 @@ struct LutSettings {
 // The aerial-perspective volume for the frame camera (froxels: x, y, depth slice).
 @group(1) @binding(3) var aerial_perspective_radiance: texture_3d<f32>;
 @group(1) @binding(4) var aerial_perspective_transmittance: texture_3d<f32>;
+// Irradiance on every normal (atmos::lut::sky_irradiance): μ_s × r, one layer per normal.
+@group(1) @binding(5) var sky_irradiance_lut: texture_2d_array<f32>;

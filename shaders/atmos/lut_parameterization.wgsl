@@ -244,3 +244,49 @@ fn view_cosines(camera: FrameCamera, direction: vec3<f32>, planet_radius: f32) -
         clamp(dot(direction, camera.sun), -1.0, 1.0),
     );
 }
+
+// The sky-irradiance LUT's layout (twin: atmos::lut::sky_irradiance): μ_s columns, r
+// rows quadratic in altitude, one layer per normal (n_z = −1 + 2i/31, φ_n = πj/7 from
+// the sun, layer 8i + j), and the bake's direction quadrature.
+const SKY_IRRADIANCE_WIDTH: u32 = 64u;
+const SKY_IRRADIANCE_HEIGHT: u32 = 32u;
+const SKY_IRRADIANCE_NORMAL_ZENITHS: u32 = 32u;
+const SKY_IRRADIANCE_NORMAL_AZIMUTHS: u32 = 8u;
+const SKY_IRRADIANCE_LAYERS: u32 = 256u;
+const SKY_IRRADIANCE_DIRECTION_ZENITHS: u32 = 32u;
+const SKY_IRRADIANCE_DIRECTION_AZIMUTHS: u32 = 32u;
+const SKY_IRRADIANCE_SAMPLES: u32 = 24u;
+
+// Texture coordinates of (r, μ_s) in the sky-irradiance LUT.
+fn sky_irradiance_lut_uv(r: f32, mu_s: f32, planet_radius: f32, top_radius: f32) -> vec2<f32> {
+    let x_mu_s = clamp(mu_s * 0.5 + 0.5, 0.0, 1.0);
+    let x_r = sqrt(clamp((r - planet_radius) / (top_radius - planet_radius), 0.0, 1.0));
+    return vec2<f32>(unit_range_to_texel_uv(x_mu_s, SKY_IRRADIANCE_WIDTH), unit_range_to_texel_uv(x_r, SKY_IRRADIANCE_HEIGHT));
+}
+
+// Inverse of sky_irradiance_lut_uv: (r, μ_s).
+fn sky_irradiance_lut_r_mu_s(uv: vec2<f32>, planet_radius: f32, top_radius: f32) -> vec2<f32> {
+    let x_mu_s = clamp(texel_uv_to_unit_range(uv.x, SKY_IRRADIANCE_WIDTH), 0.0, 1.0);
+    let x_r = clamp(texel_uv_to_unit_range(uv.y, SKY_IRRADIANCE_HEIGHT), 0.0, 1.0);
+    return vec2<f32>(planet_radius + x_r * x_r * (top_radius - planet_radius), x_mu_s * 2.0 - 1.0);
+}
+
+// The normal of a sky-irradiance layer in the sun frame.
+fn sky_irradiance_layer_normal(layer: u32) -> vec3<f32> {
+    let zenith = layer / SKY_IRRADIANCE_NORMAL_AZIMUTHS;
+    let azimuth = layer % SKY_IRRADIANCE_NORMAL_AZIMUTHS;
+    let n_z = -1.0 + 2.0 * f32(zenith) / f32(SKY_IRRADIANCE_NORMAL_ZENITHS - 1u);
+    let phi = PI * f32(azimuth) / f32(SKY_IRRADIANCE_NORMAL_AZIMUTHS - 1u);
+    let horizontal = sqrt(max((1.0 - n_z) * (1.0 + n_z), 0.0));
+    return vec3<f32>(horizontal * cos(phi), horizontal * sin(phi), n_z);
+}
+
+// max(0, n·ω) + max(0, n·ω′) for the bake direction of zenith cosine mu and azimuth
+// index `azimuth` and its mirror image ω′ (y negated).
+fn sky_irradiance_cosines(normal: vec3<f32>, mu: f32, azimuth: u32) -> f32 {
+    let phi = PI * (f32(azimuth) + 0.5) / f32(SKY_IRRADIANCE_DIRECTION_AZIMUTHS);
+    let sin_v = sqrt(max((1.0 - mu) * (1.0 + mu), 0.0));
+    let x = normal.x * sin_v * cos(phi) + normal.z * mu;
+    let y = normal.y * sin_v * sin(phi);
+    return max(x + y, 0.0) + max(x - y, 0.0);
+}

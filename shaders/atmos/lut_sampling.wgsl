@@ -104,6 +104,40 @@ fn lookup_multiple_scattering(r: f32, mu_s: f32) -> MultipleScatteringMoments {
     );
 }
 
+// One layer of the sky-irradiance LUT, bilinear over a footprint.
+fn sky_irradiance_layer(f: BilinearFootprint, layer: u32) -> vec3<f32> {
+    return bilinear_blend(
+        textureLoad(sky_irradiance_lut, vec2<u32>(f.x0, f.y0), layer, 0).xyz,
+        textureLoad(sky_irradiance_lut, vec2<u32>(f.x1, f.y0), layer, 0).xyz,
+        textureLoad(sky_irradiance_lut, vec2<u32>(f.x0, f.y1), layer, 0).xyz,
+        textureLoad(sky_irradiance_lut, vec2<u32>(f.x1, f.y1), layer, 0).xyz,
+        f.fx,
+        f.fy,
+    );
+}
+
+// Irradiance (the unit of sun_irradiance) at (r, μ_s) on a surface whose normal is
+// `normal` in the point's sun frame: bilinear over (μ_s, r) in the four layers around
+// the normal, blended bilinearly over (n_z, φ_n).
+fn lookup_sky_irradiance(r: f32, mu_s: f32, normal: vec3<f32>) -> vec3<f32> {
+    let uv = sky_irradiance_lut_uv(r, mu_s, lut_atmosphere.planet_radius, lut_atmosphere.top_radius);
+    let f = bilinear_footprint(uv, SKY_IRRADIANCE_WIDTH, SKY_IRRADIANCE_HEIGHT, 0u, SKY_IRRADIANCE_HEIGHT - 1u);
+    let last_zenith = f32(SKY_IRRADIANCE_NORMAL_ZENITHS - 1u);
+    let last_azimuth = f32(SKY_IRRADIANCE_NORMAL_AZIMUTHS - 1u);
+    let z = clamp((clamp(normal.z, -1.0, 1.0) + 1.0) * 0.5 * last_zenith, 0.0, last_zenith);
+    let a = clamp(atan2(abs(normal.y), normal.x) / PI * last_azimuth, 0.0, last_azimuth);
+    let z0 = u32(z);
+    let a0 = u32(a);
+    let z1 = min(z0 + 1u, SKY_IRRADIANCE_NORMAL_ZENITHS - 1u);
+    let a1 = min(a0 + 1u, SKY_IRRADIANCE_NORMAL_AZIMUTHS - 1u);
+    let fz = z - f32(z0);
+    let fa = a - f32(a0);
+    let n = SKY_IRRADIANCE_NORMAL_AZIMUTHS;
+    let low = sky_irradiance_layer(f, z0 * n + a0) * (1.0 - fa) + sky_irradiance_layer(f, z0 * n + a1) * fa;
+    let high = sky_irradiance_layer(f, z1 * n + a0) * (1.0 - fa) + sky_irradiance_layer(f, z1 * n + a1) * fa;
+    return low * (1.0 - fz) + high * fz;
+}
+
 // In-scatter source of orders ≥ 2 per metre per unit sun irradiance at radius r (sun
 // zenith cosine mu_s) towards a viewer looking along (mu, nu): Rayleigh and Mie
 // scattering of the table's field with each phase function's Legendre moments.

@@ -1,6 +1,8 @@
 // The sky drawn into a caller's colour target (a render pipeline: one full-screen
 // triangle, normally drawn first with depth writes off, as seed 000 draws its sky
-// hemisphere): each pixel of the frame camera gets the whole view ray's in-scatter
+// hemisphere): each pixel of the frame view (frame_view: the caller's view and
+// projection matrices and viewport, so a viewport anywhere in the target and any
+// perspective projection draw the right sky) gets the whole view ray's in-scatter
 // (atmos::lut_shading's unlimited_view_segment) and, where the ray sees the sun's disc
 // and not the ground, the disc through the ray's transmittance. Bindings: the LUT
 // groups 0 and 1 (atmos::lut_bindings) and this pass's parameters in group 2. Twin:
@@ -28,10 +30,11 @@ fn sky_pass_vertex(@builtin(vertex_index) index: u32) -> @builtin(position) vec4
     return vec4<f32>(corner * 2.0 - 1.0, sky_pass.depth, 1.0);
 }
 
-// The radiance the pass writes at `pixel` of the frame camera (before radiance_scale).
-fn sky_pass_radiance(pixel: vec2<u32>, parameters: SkyPassParameters) -> vec3<f32> {
+// The radiance the pass writes at the target position `position` (pixels, pixel
+// centres at +0.5) of the frame view (before radiance_scale).
+fn sky_pass_radiance(position: vec2<f32>, parameters: SkyPassParameters) -> vec3<f32> {
     let camera = frame_camera;
-    let direction = frame_view_direction(pixel, camera);
+    let direction = frame_view_direction_at(position, frame_view);
     let cosines = view_cosines(camera, direction, lut_atmosphere.planet_radius);
     let segment = unlimited_view_segment(cosines.x, cosines.y, cosines.z, cosines.w);
     let mu = cosines.y;
@@ -45,6 +48,5 @@ fn sky_pass_radiance(pixel: vec2<u32>, parameters: SkyPassParameters) -> vec3<f3
 
 @fragment
 fn sky_pass_fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
-    let pixel = vec2<u32>(position.xy);
-    return vec4<f32>(sky_pass_radiance(pixel, sky_pass) * sky_pass.radiance_scale, 1.0);
+    return vec4<f32>(sky_pass_radiance(position.xy, sky_pass) * sky_pass.radiance_scale, 1.0);
 }

@@ -120,11 +120,13 @@ impl FrameCamera {
 }
 
 /// A local-frame vector (+y up, −z north, +x east, the axes of a game engine's world)
-/// in the planet frame's axes (x east, y north, z up at the local frame's origin): a
-/// rotation, `(x, −z, y)`. Generic: the f64 instantiation is the reference. Twin of
-/// `local_to_planet_direction` in `shaders/atmos/aerial_perspective.wgsl`.
+/// in the planet frame's axes (x east, y north, z up at the local frame's origin: the
+/// east-north-up axes of terrain and celestial): the workspace's one world → ENU
+/// rotation, [`skyscape_wgsl::common::world_to_enu`], `(x, −z, y)`. Generic: the f64
+/// instantiation is the reference. Twin of `local_to_planet_direction` in
+/// `shaders/atmos/aerial_perspective.wgsl`.
 pub fn local_to_planet_direction<F: Real>(direction: [F; 3]) -> [F; 3] {
-    [direction[0], -direction[2], direction[1]]
+    skyscape_wgsl::common::world_to_enu(direction)
 }
 
 /// A caller's world: a local frame with +y up, −z north and +x east, in metres from an
@@ -177,9 +179,10 @@ impl LocalFrame {
         self.to_local_direction(position - DVec3::Z * (self.planet_radius + self.origin_altitude))
     }
 
-    /// The local direction of a planet-frame direction.
+    /// The local direction of a planet-frame direction
+    /// ([`skyscape_wgsl::common::enu_to_world`]).
     pub fn to_local_direction(&self, direction: DVec3) -> DVec3 {
-        DVec3::new(direction.x, direction.z, -direction.y)
+        DVec3::from_array(skyscape_wgsl::common::enu_to_world(direction.to_array()))
     }
 
     /// Altitude (m) above the planet's surface of a local point: its distance from the

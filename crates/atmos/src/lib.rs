@@ -32,10 +32,20 @@ pub mod real;
 pub mod reference;
 pub mod single_scattering;
 pub mod transmittance;
+pub mod view;
 
 pub use atmosphere::{AtmosError, Atmosphere, AtmosphereParameters, GpuError, SUN_ANGULAR_RADIUS};
 pub use ladder::{SkyModel, SkyQuery, SkySample};
 pub use skyscape_wgsl::common::PI;
+
+/// The crates whose types appear in this crate's public API, re-exported so that a
+/// dependent names the very versions this crate was built with (no pinning by hand):
+/// `glam` (vectors and matrices), `skyscape_wgsl` (the WGSL `Composer` and `Module`), and with
+/// feature `gpu` `wgpu` (devices, queues, encoders).
+pub use glam;
+pub use skyscape_wgsl;
+#[cfg(feature = "gpu")]
+pub use wgpu;
 
 /// The types a typical program needs: `use atmos::prelude::*;`.
 ///

@@ -72,6 +72,15 @@ pub use stars::{SkyStar, StarCatalogue};
 pub use sun::{SunPosition, sun_position};
 pub use time::Instant;
 
+/// The crates whose types appear in this crate's public API, re-exported so that a
+/// dependent names the very versions this crate was built with (no pinning by hand):
+/// `glam` (vectors and matrices), `skyscape_wgsl` (the WGSL `Composer` and `Module`), and with
+/// feature `gpu` `wgpu` (devices, queues, encoders).
+pub use glam;
+pub use skyscape_wgsl;
+#[cfg(feature = "gpu")]
+pub use wgpu;
+
 /// The types and entry points a typical program needs: `use celestial::prelude::*;`.
 /// ([`crate::Result`] is left out so that it does not shadow `std`'s.)
 ///

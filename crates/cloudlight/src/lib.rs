@@ -98,6 +98,15 @@ pub use density::{DensityField, RaySpans};
 pub use shell::{CloudShell, ShellError, ShellSettings};
 pub use volume::{CloudVolume, VolumeError};
 
+/// The crates whose types appear in this crate's public API, re-exported so that a
+/// dependent names the very versions this crate was built with (no pinning by hand):
+/// `glam` (vectors and matrices), `skyscape_wgsl` (the WGSL `Composer` and `Module`), and with
+/// feature `gpu` `wgpu` (devices, queues, encoders).
+pub use glam;
+pub use skyscape_wgsl;
+#[cfg(feature = "gpu")]
+pub use wgpu;
+
 /// What a typical user needs: the volume, the slice propagation (reference and twin)
 /// and its settings, the cone and march helpers.
 ///

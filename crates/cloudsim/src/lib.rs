@@ -49,6 +49,14 @@ pub use model::{
 pub use sim::Simulation;
 pub use state::{NaiveState, PackedState};
 
+/// The crates whose types appear in this crate's public API, re-exported so that a
+/// dependent names the very versions this crate was built with (no pinning by hand):
+/// `skyscape_wgsl` (the WGSL `Composer` and `Module`), and with
+/// feature `gpu` `wgpu` (devices, queues, encoders).
+pub use skyscape_wgsl;
+#[cfg(feature = "gpu")]
+pub use wgpu;
+
 /// The types a typical program needs: `use cloudsim::prelude::*;`.
 ///
 /// ```

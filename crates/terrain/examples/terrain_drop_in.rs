@@ -195,7 +195,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // The sun, in terrain's east-north-up frame and in the program's world.
     let (az, el) = (SUN_AZIMUTH_DEG.to_radians(), SUN_ELEVATION_DEG.to_radians());
     let enu = Vec3::new(az.sin() * el.cos(), az.cos() * el.cos(), el.sin());
-    let world = Vec3::new(enu.x, enu.z, -enu.y);
+    let world = Vec3::from_array(terrain::skyscape_wgsl::common::enu_to_world(enu.to_array()));
 
     // terrain bakes on the program's device and queue, into the program's encoder.
     let options = HorizonOptions::default();

@@ -43,6 +43,9 @@ pub mod generate;
 pub mod gpu;
 mod heightfield;
 pub mod horizon;
+pub mod horizon_stack;
+#[cfg(feature = "gpu")]
+pub mod horizon_texture;
 pub mod intersect;
 mod normal;
 pub mod raycast;
@@ -102,6 +105,15 @@ pub use horizon::{
 };
 pub use normal::{BitDepth, NormalMap, encode_horizon_angle};
 
+/// The crates whose types appear in this crate's public API, re-exported so that a
+/// dependent names the very versions this crate was built with (no pinning by hand):
+/// `glam` (vectors and matrices), `skyscape_wgsl` (the WGSL `Composer` and `Module`), and with
+/// feature `gpu` `wgpu` (devices, queues, encoders).
+pub use glam;
+pub use skyscape_wgsl;
+#[cfg(feature = "gpu")]
+pub use wgpu;
+
 /// The WGSL modules of this crate, importable as `#import terrain::<name>`.
 pub const WGSL_MODULES: &[skyscape_wgsl::Module] =
     include!(concat!(env!("OUT_DIR"), "/wgsl_modules.rs"));
@@ -120,7 +132,7 @@ mod wgsl_tests {
     #[test]
     fn every_module_composes_and_validates() {
         let composer = super::composer();
-        assert_eq!(super::WGSL_MODULES.len(), 3);
+        assert_eq!(super::WGSL_MODULES.len(), 4);
         for module in super::WGSL_MODULES {
             assert!(module.name.starts_with("terrain::"));
             let source = composer.compose_module(module.name).unwrap();

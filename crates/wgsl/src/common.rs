@@ -9,6 +9,20 @@ pub const INV_PI: f32 = std::f32::consts::FRAC_1_PI;
 /// 1/(4π), as `INV_FOUR_PI` in `common::constants`.
 pub const INV_FOUR_PI: f32 = 0.079_577_47;
 
+/// A world direction or offset (x east, y up, z south: a game engine's axes, render's
+/// and `atmos::frame::LocalFrame`'s) in east-north-up axes (x east, y north, z up:
+/// terrain, the clouds, celestial's horizontal coordinates, and atmos' planet frame at
+/// the local origin): `(x, −z, y)`, a rotation (`common::frames::world_to_enu`).
+pub fn world_to_enu<F: Copy + std::ops::Neg<Output = F>>(v: [F; 3]) -> [F; 3] {
+    [v[0], -v[2], v[1]]
+}
+
+/// An east-north-up direction or offset in world axes: `(x, z, −y)`, the inverse of
+/// [`world_to_enu`] (`common::frames::enu_to_world`).
+pub fn enu_to_world<F: Copy + std::ops::Neg<Output = F>>(v: [F; 3]) -> [F; 3] {
+    [v[0], v[2], -v[1]]
+}
+
 /// Chris Wellons' "lowbias32" integer hash (`common::hash::hash_u32`).
 pub fn hash_u32(value: u32) -> u32 {
     let mut x = value;
@@ -39,6 +53,31 @@ pub fn unit_float_from_bits(bits: u32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_frames_are_one_right_handed_rotation_apart() {
+        // Up is up, north is −z in the world, east is east.
+        assert_eq!(world_to_enu([0.0, 1.0, 0.0]), [0.0, 0.0, 1.0]);
+        assert_eq!(world_to_enu([0.0, 0.0, -1.0]), [0.0, 1.0, 0.0]);
+        assert_eq!(world_to_enu([1.0, 0.0, 0.0]), [1.0, 0.0, 0.0]);
+        for v in [[1.5f32, -2.0, 3.25], [-0.0, 7.0, -1e-30]] {
+            assert_eq!(enu_to_world(world_to_enu(v)), v);
+            assert_eq!(world_to_enu(enu_to_world(v)), v);
+        }
+        // Right-handed both ways: east × north = up.
+        let cross = |a: [f64; 3], b: [f64; 3]| {
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]
+        };
+        let (east, north) = ([1.0, 0.0, 0.0], [0.0, 0.0, -1.0]);
+        assert_eq!(
+            world_to_enu(cross(east, north)),
+            cross(world_to_enu(east), world_to_enu(north))
+        );
+    }
 
     #[test]
     fn hash_is_a_bijection_sample_and_well_mixed() {

@@ -46,6 +46,10 @@ pub const COMMON_MODULES: &[Module] = &[
         name: "common::hash",
         source: include_str!("../shaders/hash.wgsl"),
     },
+    Module {
+        name: "common::frames",
+        source: include_str!("../shaders/frames.wgsl"),
+    },
 ];
 
 /// One named WGSL source file.

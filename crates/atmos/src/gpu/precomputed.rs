@@ -85,6 +85,7 @@ impl PrecomputedRenderer {
         output.check_camera(camera)?;
         let group = self
             .luts
+            .tables()
             .device
             .create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("atmos precomputed frame output"),

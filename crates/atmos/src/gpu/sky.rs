@@ -37,7 +37,7 @@
 //! # Ok(()) }
 //! ```
 
-use crate::gpu::luts::AtmosphereLuts;
+use crate::gpu::luts::{AtmosphereLuts, AtmosphereView, LutLayouts};
 use crate::gpu::resources::{READ_STAGES, uniform_buffer};
 use crate::lut::drop_in::SkyPassParameters;
 use crate::{AtmosError, GpuError};
@@ -89,13 +89,15 @@ pub fn sky_pass_source() -> Result<String, AtmosError> {
 }
 
 impl SkyPass {
-    /// Creates the pipeline for `luts`' bind-group layouts and the caller's
-    /// attachments.
+    /// Creates the pipeline for the LUT bind-group layouts (of an [`AtmosphereLuts`],
+    /// an [`AtmosphereTables`](crate::gpu::AtmosphereTables) or [`LutLayouts`]) and the
+    /// caller's attachments. One pass draws any number of views of those tables.
     pub fn new(
         device: &wgpu::Device,
-        luts: &AtmosphereLuts,
+        luts: &(impl AsRef<LutLayouts> + ?Sized),
         descriptor: &SkyPassDescriptor,
     ) -> Result<Self, AtmosError> {
+        let layouts = luts.as_ref();
         if descriptor.sample_count == 0 {
             return Err(AtmosError::InvalidSetting {
                 setting: "sky pass",
@@ -125,8 +127,8 @@ impl SkyPass {
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("atmos sky pass"),
             bind_group_layouts: &[
-                Some(&luts.layouts().uniforms),
-                Some(&luts.layouts().tables),
+                Some(&layouts.uniforms),
+                Some(&layouts.tables),
                 Some(&parameter_layout),
             ],
             immediate_size: 0,
@@ -188,27 +190,41 @@ impl SkyPass {
         })
     }
 
-    /// Writes the pass's parameters (the sun's disc, the radiance scale, the depth).
-    /// The camera is the one [`AtmosphereLuts::prepare`] wrote.
+    /// Writes the pass's parameters (the sun's disc, the radiance scale, the depth),
+    /// shared by every view it draws. The camera is the view's
+    /// ([`AtmosphereView::prepare`], [`AtmosphereLuts::prepare`]).
     pub fn prepare(&mut self, queue: &wgpu::Queue, parameters: &SkyPassParameters) {
         queue.write_buffer(&self.parameters, 0, bytemuck::bytes_of(parameters));
         self.prepared = true;
     }
 
-    /// Records the draw into the caller's render pass (sets this pass's pipeline and
-    /// bind groups 0–2; set your own again afterwards). The tables must have been
-    /// baked for this frame's camera by then.
+    /// Records the draw of `luts`' one view into the caller's render pass (see
+    /// [`Self::draw_view`]).
     pub fn draw(
         &self,
         pass: &mut wgpu::RenderPass<'_>,
         luts: &AtmosphereLuts,
     ) -> Result<(), AtmosError> {
+        self.draw_view(pass, luts.view())
+    }
+
+    /// Records the draw of `view` into the caller's render pass (sets this pass's
+    /// pipeline and bind groups 0–2; set your own again afterwards). Each fragment
+    /// takes its ray from its own target position through the view's matrices and
+    /// viewport, so the sky is right wherever the view sits in the target; set the
+    /// render pass's viewport (or scissor) to the view's to draw only there. The
+    /// view's tables must have been baked for its camera by then.
+    pub fn draw_view(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        view: &AtmosphereView,
+    ) -> Result<(), AtmosError> {
         if !self.prepared {
             return Err(GpuError::NotPrepared { pass: "SkyPass" }.into());
         }
         pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, luts.uniform_bind_group(), &[]);
-        pass.set_bind_group(1, luts.table_bind_group(), &[]);
+        pass.set_bind_group(0, view.uniform_bind_group(), &[]);
+        pass.set_bind_group(1, view.table_bind_group(), &[]);
         pass.set_bind_group(2, &self.bind_group, &[]);
         pass.draw(0..3, 0..1);
         Ok(())

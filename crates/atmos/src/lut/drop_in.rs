@@ -5,13 +5,17 @@
 //! WGSL reads the tables and the frame camera from its bind groups where these take
 //! them as arguments ([`StaticLuts`], [`FrameLuts`]).
 
-use crate::frame::{FrameCamera, frame_view_direction};
+use crate::frame::FrameCamera;
 use crate::geometry::ray_sphere_intersect;
+use crate::view::{FrameView, ViewCamera, frame_view_direction_at, frame_view_distance};
 use crate::{AtmosError, Atmosphere};
 
+use super::Lut2d;
 use super::aerial_perspective::{lookup_aerial_perspective, view_cosines};
+use super::multiple_scattering_moments::sun_frame_direction;
 use super::precomputed_sky::{FrameLuts, StaticLuts, unlimited_view_segment};
 use super::raymarch::{ScatteringSegment, march_view_segment, sun_transmittance};
+use super::sky_irradiance::lookup_sky_irradiance;
 
 /// The sky pass's uniform (layout identical to WGSL `SkyPassParameters`).
 #[repr(C)]
@@ -72,18 +76,35 @@ impl SkyPassParameters {
     }
 }
 
-/// The radiance the sky pass writes at `pixel` of `frame.camera` (before
-/// `radiance_scale`): the whole view ray's in-scatter and, where the ray sees the sun's
-/// disc and not the ground, the disc through the ray's transmittance.
+/// The radiance the sky pass writes at `pixel` of `frame.camera` drawn over a whole
+/// target (the view [`ViewCamera::from_frame_camera`] prepares): see
+/// [`sky_pass_radiance_at`].
 pub fn sky_pass_radiance(
     luts: &StaticLuts,
     frame: &FrameLuts,
     pixel: [u32; 2],
     parameters: &SkyPassParameters,
 ) -> [f32; 3] {
+    let view = ViewCamera::from_frame_camera(&frame.camera).view;
+    let position = pixel.map(|p| p as f32 + 0.5);
+    sky_pass_radiance_at(luts, frame, &view, position, parameters)
+}
+
+/// The radiance the sky pass writes at the target position `position` (pixels, pixel
+/// centres at `+0.5`) of `view` (before `radiance_scale`): the whole view ray's
+/// in-scatter and, where the ray sees the sun's disc and not the ground, the disc
+/// through the ray's transmittance. `frame` holds the tables baked for the view's
+/// covering camera ([`ViewCamera::camera`]).
+pub fn sky_pass_radiance_at(
+    luts: &StaticLuts,
+    frame: &FrameLuts,
+    view: &FrameView,
+    position: [f32; 2],
+    parameters: &SkyPassParameters,
+) -> [f32; 3] {
     let bindings = luts.bindings();
     let camera = &frame.camera;
-    let direction = frame_view_direction(pixel, camera);
+    let direction = frame_view_direction_at(position, view);
     let [r, mu, mu_s, nu] = view_cosines(camera, direction, luts.atmosphere.planet_radius);
     let segment = unlimited_view_segment(&bindings, &frame.sky_view, r, mu, mu_s, nu);
     // Rays at the ground: only mu < 0 can meet it (docs/architecture.md).
@@ -99,7 +120,7 @@ pub fn sky_pass_radiance(
 
 /// Where a unit direction lands on the frame camera's image: `[u, v, depth]` with `u, v`
 /// in [0, 1] over the image (x right, y down) and `depth` the cosine to the camera's
-/// forward axis (≤ 0: behind the camera). Inverse of [`frame_view_direction`].
+/// forward axis (≤ 0: behind the camera). Inverse of [`crate::frame::frame_view_direction`].
 #[doc(hidden)]
 pub fn frame_screen_position(camera: &FrameCamera, direction: [f32; 3]) -> [f32; 3] {
     let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -151,6 +172,23 @@ pub fn aerial_perspective(
     )
 }
 
+/// In-scatter and transmittance between `view`'s camera and the surface at `depth`
+/// (the caller's depth buffer) seen through the target position `position` (pixels,
+/// pixel centres at `+0.5`): what the depth-buffer aerial-perspective pass
+/// ([`crate::gpu::AerialPerspectivePass`]) applies there. `frame` holds the tables
+/// baked for the view's covering camera.
+pub fn depth_aerial_perspective(
+    luts: &StaticLuts,
+    frame: &FrameLuts,
+    view: &FrameView,
+    position: [f32; 2],
+    depth: f32,
+) -> ScatteringSegment {
+    let distance = frame_view_distance(position, depth, view);
+    let direction = frame_view_direction_at(position, view);
+    aerial_perspective(luts, frame, direction.map(|c| c * distance))
+}
+
 /// A surface's radiance (seen at the surface) as the frame camera sees it through the
 /// atmosphere: attenuated by the segment's transmittance, plus its in-scatter.
 pub fn apply_aerial_perspective(
@@ -177,4 +215,47 @@ pub fn sunlight_at(luts: &StaticLuts, camera: &FrameCamera, offset: [f32; 3]) ->
     let transmittance =
         sun_transmittance(&luts.bindings(), r.max(luts.atmosphere.planet_radius), mu_s);
     std::array::from_fn(|c| luts.atmosphere.sun_irradiance[c] * transmittance[c])
+}
+
+/// The sun's transmittance to the planet-centred point `position` (m) with the sun
+/// along `camera.sun`: through the transmittance LUT, 0 in the planet's shadow.
+pub fn sun_transmittance_at(
+    luts: &StaticLuts,
+    camera: &FrameCamera,
+    position: [f32; 3],
+) -> [f32; 3] {
+    let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let r = dot(position, position).sqrt();
+    let mu_s = (dot(camera.sun, position) / r).clamp(-1.0, 1.0);
+    sun_transmittance(&luts.bindings(), r.max(luts.atmosphere.planet_radius), mu_s)
+}
+
+/// Irradiance (the unit of `sun_irradiance`) that a surface of unit `normal`
+/// (planet-frame axes) at the planet-centred point `position` (m) receives from the
+/// sky, the sun along `camera.sun`: every order of scattered sunlight and the ground's
+/// Lambertian radiance, from the sky-irradiance LUT `table`
+/// ([`super::sky_irradiance::bake_sky_irradiance_lut`]). The direct sun is not
+/// included ([`sun_transmittance_at`]). Points above the atmosphere read its top.
+pub fn sky_irradiance(
+    luts: &StaticLuts,
+    table: &Lut2d,
+    camera: &FrameCamera,
+    position: [f32; 3],
+    normal: [f32; 3],
+) -> [f32; 3] {
+    let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let r = dot(position, position).sqrt();
+    let zenith = position.map(|c| c / r);
+    let mu_s = dot(camera.sun, zenith).clamp(-1.0, 1.0);
+    let mu_n = dot(normal, zenith).clamp(-1.0, 1.0);
+    let nu_n = dot(normal, camera.sun).clamp(-1.0, 1.0);
+    let direction = sun_frame_direction(mu_n, mu_s, nu_n);
+    let atmosphere = &luts.atmosphere;
+    lookup_sky_irradiance(
+        &luts.bindings(),
+        table,
+        r.clamp(atmosphere.planet_radius, atmosphere.top_radius),
+        mu_s,
+        direction,
+    )
 }

@@ -30,6 +30,7 @@ pub mod parameterization;
 pub mod precomputed_sky;
 pub mod raymarch;
 pub mod reference;
+pub mod sky_irradiance;
 pub mod sky_view_lut;
 pub mod transmittance_lut;
 
@@ -69,6 +70,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
         source: include_str!("../../shaders/lut_sky_view.wgsl"),
     },
     skyscape_wgsl::Module {
+        name: "atmos::lut_sky_irradiance",
+        source: include_str!("../../shaders/lut_sky_irradiance.wgsl"),
+    },
+    skyscape_wgsl::Module {
         name: "atmos::lut_aerial_perspective",
         source: include_str!("../../shaders/lut_aerial_perspective.wgsl"),
     },
@@ -87,6 +92,10 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
     skyscape_wgsl::Module {
         name: "atmos::sky_pass",
         source: include_str!("../../shaders/sky_pass.wgsl"),
+    },
+    skyscape_wgsl::Module {
+        name: "atmos::aerial_perspective_pass",
+        source: include_str!("../../shaders/aerial_perspective_pass.wgsl"),
     },
 ];
 

@@ -60,7 +60,7 @@ pub struct EastWestHorizon {
 /// (layer 0 is north), with interpolation for any azimuth.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AzimuthHorizonMaps {
-    pub(super) layers: Vec<HorizonMap>,
+    pub(crate) layers: Vec<HorizonMap>,
 }
 
 impl AzimuthHorizonMaps {

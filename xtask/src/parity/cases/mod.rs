@@ -12,6 +12,7 @@ mod atmos_lut_cases;
 pub(crate) use atmos_lut_cases::transmittance_r_mu_error;
 mod atmos_moments_cases;
 mod atmos_single_scattering_cases;
+mod atmos_view_cases;
 mod celestial_cases;
 mod cloudlight_billboard_cases;
 mod cloudlight_cases;
@@ -370,6 +371,7 @@ pub fn all() -> Vec<Case> {
         atmos_dome_cases::cases(),
         atmos_lut_cases::cases(),
         atmos_moments_cases::cases(),
+        atmos_view_cases::cases(),
         render_cases::cases(),
         vec![render_cases::present_case()],
         render_billboard_cases::cases(),

@@ -294,7 +294,7 @@ pub fn cases() -> Vec<PassCase> {
                 why: "sky_pass_radiance = the precomputed frame's unlimited segment (its 5e-4 \
                       budget: the sky-view bake's drift and the lookup weights) plus the sun's \
                       disc through the transmittance where the pixel sees it; the fragment's \
-                      pixel is the integer part of its centre, as the compute pass's",
+                      ray is its position through the view's pixel-to-ray matrix, as the twin's",
             },
         },
         PassCase {

@@ -6,6 +6,7 @@ pub use super::audit::Audit;
 use super::compare::Tolerance;
 
 mod atmos_drop_in_passes;
+mod atmos_irradiance_passes;
 mod atmos_passes;
 mod cloudlight_march_passes;
 mod cloudlight_march_shell_passes;
@@ -15,6 +16,7 @@ mod cloudlight_shadow_passes;
 mod cloudlight_shell_shadow_passes;
 mod cloudsim_passes;
 mod terrain_passes;
+mod terrain_stack_passes;
 
 /// The CPU side of a pass case.
 #[derive(Debug, Default)]
@@ -57,6 +59,7 @@ pub fn words_as_exact_floats(words: &[u32]) -> Vec<f32> {
 pub fn all() -> Vec<PassCase> {
     [
         terrain_passes::cases(),
+        terrain_stack_passes::cases(),
         cloudsim_passes::cases(),
         cloudlight_passes::cases(),
         cloudlight_march_passes::cases(),
@@ -66,6 +69,7 @@ pub fn all() -> Vec<PassCase> {
         cloudlight_shell_shadow_passes::cases(),
         atmos_passes::cases(),
         atmos_drop_in_passes::cases(),
+        atmos_irradiance_passes::cases(),
     ]
     .into_iter()
     .flatten()

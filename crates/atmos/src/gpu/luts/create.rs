@@ -1,4 +1,4 @@
-//! [`AtmosphereLuts::new`]: the tables, bind groups and pipelines.
+//! [`AtmosphereTables::new`]: the shared tables, bind groups and pipelines.
 
 use super::passes::*;
 use super::*;
@@ -6,13 +6,18 @@ use crate::frame::FrameCamera;
 use crate::gpu::resources::{check_texture_support, storage_entry, storage_texture_entry};
 use crate::lut::LutSettings;
 use crate::lut::multiple_scattering_moments::MULTIPLE_SCATTERING_LAYERS;
+use crate::lut::sky_irradiance::{
+    SKY_IRRADIANCE_HEIGHT, SKY_IRRADIANCE_LAYERS, SKY_IRRADIANCE_WIDTH,
+};
+use crate::view::FrameView;
 use crate::{AtmosError, Atmosphere, GpuError};
 use wgpu::TextureViewDimension as Dim;
 use wgpu::util::DeviceExt as _;
 
-impl AtmosphereLuts {
-    /// Validates the inputs, creates the tables, bind groups and pipelines. Errors
-    /// naming the table when one exceeds the device's texture limits.
+impl AtmosphereTables {
+    /// Validates the inputs, creates the shared tables, bind groups and the pipelines
+    /// of every bake (no queue writes). Errors naming the table when one (the per-view
+    /// ones included) exceeds the device's texture limits.
     pub fn new(
         device: &wgpu::Device,
         atmosphere: &Atmosphere,
@@ -23,7 +28,6 @@ impl AtmosphereLuts {
         let s = settings.to_uniforms()?;
         let limits = device.limits();
         let layers = MULTIPLE_SCATTERING_LAYERS;
-        let sky_view_layers = s.sky_view_entries_per_texel();
         let ap_size = [
             s.aerial_perspective_width,
             s.aerial_perspective_height,
@@ -50,6 +54,11 @@ impl AtmosphereLuts {
                 "the aerial-perspective volume",
                 ap_size.into_iter().max().unwrap_or(0),
                 limits.max_texture_dimension_3d,
+            ),
+            (
+                "the sky-irradiance LUT (one layer per normal)",
+                SKY_IRRADIANCE_LAYERS,
+                limits.max_texture_array_layers,
             ),
         ] {
             if size > limit {
@@ -78,6 +87,16 @@ impl AtmosphereLuts {
             ms_size,
             Dim::D2Array,
         );
+        let sky_irradiance = Table::new(
+            device,
+            "atmos sky-irradiance LUT",
+            [
+                SKY_IRRADIANCE_WIDTH,
+                SKY_IRRADIANCE_HEIGHT,
+                SKY_IRRADIANCE_LAYERS,
+            ],
+            Dim::D2Array,
+        );
         let orders = [
             Table::new(
                 device,
@@ -92,24 +111,6 @@ impl AtmosphereLuts {
                 Dim::D2Array,
             ),
         ];
-        let sky_view = Table::new(
-            device,
-            "atmos sky-view LUT",
-            [s.sky_view_width, s.sky_view_height, sky_view_layers],
-            Dim::D2Array,
-        );
-        let aerial_perspective_radiance = Table::new(
-            device,
-            "atmos aerial-perspective radiance",
-            ap_size,
-            Dim::D3,
-        );
-        let aerial_perspective_transmittance = Table::new(
-            device,
-            "atmos aerial-perspective transmittance",
-            ap_size,
-            Dim::D3,
-        );
         // What a bake that runs before a table exists binds in its place (never the
         // texture it writes).
         let placeholders = [
@@ -142,43 +143,22 @@ impl AtmosphereLuts {
         );
         let settings_buffer = uniform("atmos LUT settings", bytemuck::bytes_of(&s));
         let camera = uniform(
-            "atmos LUT frame camera",
+            "atmos static bakes' frame camera (unread)",
             bytemuck::bytes_of(&<FrameCamera as bytemuck::Zeroable>::zeroed()),
+        );
+        let frame_view = uniform(
+            "atmos static bakes' frame view (unread)",
+            bytemuck::bytes_of(&<FrameView as bytemuck::Zeroable>::zeroed()),
         );
 
         let layouts = LutLayouts::new(device);
-        let uniforms = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("atmos LUT uniforms"),
-            layout: &layouts.uniforms,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: atmosphere_buffer.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: settings_buffer.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: camera.as_entire_binding(),
-                },
-            ],
-        });
-        let table_group = |label: &str, views: [&Table; 5]| {
-            let entries: Vec<wgpu::BindGroupEntry> = views
-                .iter()
-                .zip(0..)
-                .map(|(table, binding)| wgpu::BindGroupEntry {
-                    binding,
-                    resource: wgpu::BindingResource::TextureView(&table.view),
-                })
-                .collect();
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some(label),
-                layout: &layouts.tables,
-                entries: &entries,
-            })
+        let uniforms = uniform_group(
+            device,
+            &layouts,
+            [&atmosphere_buffer, &settings_buffer, &camera, &frame_view],
+        );
+        let table_group = |label: &str, views: [&Table; 6]| {
+            table_group(device, &layouts, label, views.map(|table| &table.view))
         };
         let [p2, pa, p3] = &placeholders;
 
@@ -200,6 +180,10 @@ impl AtmosphereLuts {
                 storage_entry(1, false),
                 storage_texture_entry(2, Dim::D2Array),
             ],
+        );
+        let sky_irradiance_out = output_layout(
+            "atmos sky-irradiance bake outputs",
+            &[storage_texture_entry(0, Dim::D2Array)],
         );
         let sky_view_out = output_layout(
             "atmos sky-view bake outputs",
@@ -272,7 +256,7 @@ impl AtmosphereLuts {
                     "atmos::lut_transmittance",
                     "bake_transmittance_lut",
                 )?,
-                tables: table_group("atmos tables for transmittance", [p2, pa, pa, p3, p3]),
+                tables: table_group("atmos tables for transmittance", [p2, pa, pa, p3, p3, pa]),
                 outputs: texture_outputs(
                     "atmos transmittance output",
                     &transmittance_out,
@@ -293,7 +277,7 @@ impl AtmosphereLuts {
                 )?,
                 tables: table_group(
                     "atmos tables for multiple scattering",
-                    [&transmittance, pa, pa, p3, p3],
+                    [&transmittance, pa, pa, p3, p3, pa],
                 ),
                 outputs: order_outputs("atmos scattering order 2 outputs", &orders[0]),
                 workgroups: ms_workgroups,
@@ -302,44 +286,49 @@ impl AtmosphereLuts {
             BakePass {
                 pipeline: compute_pipeline(
                     device,
-                    &pipeline_layout("atmos sky-view bake", &sky_view_out),
-                    "atmos::lut_sky_view",
-                    "bake_sky_view_lut",
+                    &pipeline_layout("atmos sky-irradiance bake", &sky_irradiance_out),
+                    "atmos::lut_sky_irradiance",
+                    "bake_sky_irradiance_lut",
                 )?,
                 tables: table_group(
-                    "atmos tables for the sky view",
-                    [&transmittance, &multiple_scattering, pa, p3, p3],
-                ),
-                outputs: texture_outputs("atmos sky-view output", &sky_view_out, &[&sky_view]),
-                workgroups: [groups(s.sky_view_width), groups(s.sky_view_height)],
-                label: "atmos sky-view LUT",
-            },
-            BakePass {
-                pipeline: compute_pipeline(
-                    device,
-                    &pipeline_layout("atmos aerial-perspective bake", &aerial_perspective_out),
-                    "atmos::lut_aerial_perspective",
-                    "bake_aerial_perspective",
-                )?,
-                tables: table_group(
-                    "atmos tables for aerial perspective",
-                    [&transmittance, &multiple_scattering, pa, p3, p3],
+                    "atmos tables for the sky irradiance",
+                    [&transmittance, &multiple_scattering, pa, p3, p3, pa],
                 ),
                 outputs: texture_outputs(
-                    "atmos aerial-perspective outputs",
-                    &aerial_perspective_out,
-                    &[
-                        &aerial_perspective_radiance,
-                        &aerial_perspective_transmittance,
-                    ],
+                    "atmos sky-irradiance output",
+                    &sky_irradiance_out,
+                    &[&sky_irradiance],
                 ),
-                workgroups: [
-                    groups(s.aerial_perspective_width),
-                    groups(s.aerial_perspective_height),
-                ],
-                label: "atmos aerial-perspective volume",
+                // One workgroup per texel, one invocation per normal layer.
+                workgroups: [SKY_IRRADIANCE_WIDTH, SKY_IRRADIANCE_HEIGHT],
+                label: "atmos sky-irradiance LUT",
             },
         ];
+        let view_bakes = ViewBakes {
+            sky_view: compute_pipeline(
+                device,
+                &pipeline_layout("atmos sky-view bake", &sky_view_out),
+                "atmos::lut_sky_view",
+                "bake_sky_view_lut",
+            )?,
+            aerial_perspective: compute_pipeline(
+                device,
+                &pipeline_layout("atmos aerial-perspective bake", &aerial_perspective_out),
+                "atmos::lut_aerial_perspective",
+                "bake_aerial_perspective",
+            )?,
+            tables: table_group(
+                "atmos tables for the per-view bakes",
+                [&transmittance, &multiple_scattering, pa, p3, p3, pa],
+            ),
+            sky_view_outputs: sky_view_out,
+            aerial_perspective_outputs: aerial_perspective_out,
+            sky_view_workgroups: [groups(s.sky_view_width), groups(s.sky_view_height)],
+            aerial_perspective_workgroups: [
+                groups(s.aerial_perspective_width),
+                groups(s.aerial_perspective_height),
+            ],
+        };
         let next_order_pipeline = compute_pipeline(
             device,
             &ms_layout,
@@ -355,7 +344,7 @@ impl AtmosphereLuts {
                     pipeline: next_order_pipeline.clone(),
                     tables: table_group(
                         "atmos tables for a scattering order",
-                        [&transmittance, previous, pa, p3, p3],
+                        [&transmittance, previous, pa, p3, p3, pa],
                     ),
                     outputs: order_outputs("atmos scattering order outputs", next),
                     workgroups: ms_workgroups,
@@ -376,36 +365,68 @@ impl AtmosphereLuts {
             )?,
             tables: table_group(
                 "atmos tables for the multiple-scattering sum",
-                [&transmittance, last, pa, p3, p3],
+                [&transmittance, last, pa, p3, p3, pa],
             ),
             outputs: order_outputs("atmos multiple-scattering sum outputs", scratch),
             workgroups: ms_workgroups,
             label: "atmos multiple-scattering sum",
         });
-        let tables = table_group(
-            "atmos LUT tables",
-            [
-                &transmittance,
-                &multiple_scattering,
-                &sky_view,
-                &aerial_perspective_radiance,
-                &aerial_perspective_transmittance,
-            ],
-        );
         Ok(Self {
             device: device.clone(),
             settings: s,
-            camera,
+            atmosphere_buffer,
+            settings_buffer,
             transmittance,
             multiple_scattering,
-            sky_view,
-            aerial_perspective_radiance,
-            aerial_perspective_transmittance,
+            sky_irradiance,
             layouts,
             uniforms,
-            tables,
             passes,
             higher_orders,
+            view_bakes,
         })
     }
+}
+
+/// The uniforms' bind group ([`LutLayouts::uniforms`]) of four buffers.
+pub(super) fn uniform_group(
+    device: &wgpu::Device,
+    layouts: &LutLayouts,
+    buffers: [&wgpu::Buffer; 4],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry> = buffers
+        .iter()
+        .zip(0..)
+        .map(|(buffer, binding)| wgpu::BindGroupEntry {
+            binding,
+            resource: buffer.as_entire_binding(),
+        })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("atmos LUT uniforms"),
+        layout: &layouts.uniforms,
+        entries: &entries,
+    })
+}
+
+/// A tables' bind group ([`LutLayouts::tables`]) of six views.
+pub(super) fn table_group(
+    device: &wgpu::Device,
+    layouts: &LutLayouts,
+    label: &str,
+    views: [&wgpu::TextureView; 6],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry> = views
+        .iter()
+        .zip(0..)
+        .map(|(view, binding)| wgpu::BindGroupEntry {
+            binding,
+            resource: wgpu::BindingResource::TextureView(view),
+        })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout: &layouts.tables,
+        entries: &entries,
+    })
 }

@@ -12,19 +12,21 @@
 //! group and the tables in another. Compose your shader with
 //! [`composer_with_lut_groups`] to put them at the groups your pipeline has free, put
 //! [`LutLayouts::uniforms`] and [`LutLayouts::tables`] at those indices of your
-//! pipeline layout, and set [`AtmosphereLuts::uniform_bind_group`] and
-//! [`AtmosphereLuts::table_bind_group`] there.
+//! pipeline layout, and set the view's [`AtmosphereView::uniform_bind_group`] and
+//! [`AtmosphereView::table_bind_group`] there (or [`AtmosphereLuts`]' own).
 //!
 //! | group (default) | binding | WGSL name | resource |
 //! |---|---|---|---|
 //! | uniforms (0) | 0 | `lut_atmosphere` | `AtmosphereParameters` |
 //! | uniforms (0) | 1 | `lut_settings` | `LutSettings` ([`crate::lut::LutSettingsUniform`]) |
 //! | uniforms (0) | 2 | `frame_camera` | [`FrameCamera`](crate::frame::FrameCamera) |
+//! | uniforms (0) | 3 | `frame_view` | [`FrameView`](crate::view::FrameView) |
 //! | tables (1) | 0 | `transmittance_lut` | `texture_2d<f32>` |
 //! | tables (1) | 1 | `multiple_scattering_lut` | `texture_2d_array<f32>`, 6 layers |
 //! | tables (1) | 2 | `sky_view_lut` | `texture_2d_array<f32>`: radiance, transmittance |
 //! | tables (1) | 3 | `aerial_perspective_radiance` | `texture_3d<f32>` |
 //! | tables (1) | 4 | `aerial_perspective_transmittance` | `texture_3d<f32>` |
+//! | tables (1) | 5 | `sky_irradiance_lut` | `texture_2d_array<f32>`, one layer per normal |
 //!
 //! Every table is `rgba32float` (the CPU twin's values exactly; writable by compute
 //! passes on every WebGPU adapter), read with `textureLoad` and filtered by hand in
@@ -34,9 +36,10 @@
 mod create;
 mod encode;
 mod passes;
+mod view;
 
 pub(crate) use passes::compute_pipeline;
-use passes::{BakePass, Table};
+use passes::{BakePass, Table, ViewBakes};
 
 use crate::AtmosError;
 use crate::gpu::resources::{float_texture_entry, shared_uniform_entry};
@@ -113,9 +116,10 @@ pub fn composer_with_lut_groups(
 /// documentation for the bindings). Readable from compute, vertex and fragment stages.
 #[derive(Debug)]
 pub struct LutLayouts {
-    /// Atmosphere, settings, frame camera (uniform buffers at bindings 0, 1, 2).
+    /// Atmosphere, settings, frame camera, frame view (uniform buffers at bindings
+    /// 0 … 3).
     pub uniforms: wgpu::BindGroupLayout,
-    /// The five tables (unfilterable-float textures at bindings 0 … 4).
+    /// The six tables (unfilterable-float textures at bindings 0 … 5).
     pub tables: wgpu::BindGroupLayout,
 }
 
@@ -128,6 +132,7 @@ impl LutLayouts {
                 shared_uniform_entry(0),
                 shared_uniform_entry(1),
                 shared_uniform_entry(2),
+                shared_uniform_entry(3),
             ],
         });
         let tables = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -138,29 +143,70 @@ impl LutLayouts {
                 float_texture_entry(2, Dim::D2Array),
                 float_texture_entry(3, Dim::D3),
                 float_texture_entry(4, Dim::D3),
+                float_texture_entry(5, Dim::D2Array),
             ],
         });
         Self { uniforms, tables }
     }
 }
 
-/// The precomputed rung's tables and the passes that bake them.
+/// The tables every view of one atmosphere shares — transmittance, multiple
+/// scattering and sky irradiance — with their bakes, and the pipelines of the per-view bakes. Made once per
+/// atmosphere and settings; [`AtmosphereTables::encode_static_luts`] records their bakes
+/// (no queue writes: the atmosphere and settings uniforms are written at creation).
 #[derive(Debug)]
-pub struct AtmosphereLuts {
+pub struct AtmosphereTables {
     pub(crate) device: wgpu::Device,
     settings: LutSettingsUniform,
-    camera: wgpu::Buffer,
+    atmosphere_buffer: wgpu::Buffer,
+    settings_buffer: wgpu::Buffer,
     transmittance: Table,
     multiple_scattering: Table,
-    sky_view: Table,
-    aerial_perspective_radiance: Table,
-    aerial_perspective_transmittance: Table,
+    sky_irradiance: Table,
     layouts: LutLayouts,
+    /// The static bakes' uniforms (a zero camera: they do not read it).
     uniforms: wgpu::BindGroup,
-    tables: wgpu::BindGroup,
-    passes: [BakePass; 4],
+    passes: [BakePass; 3],
     /// Orders 3… of the multiple-scattering bake, each reading the order before (two
     /// ping-pong textures) and adding to the sum; then the copy of the sum into the
     /// LUT. Recorded right after the order-2 pass.
     higher_orders: Vec<BakePass>,
+    /// What each view's bakes share: pipelines, the tables they read, output layouts.
+    view_bakes: ViewBakes,
+}
+
+/// One view of an atmosphere: its camera (a [`ViewCamera`](crate::view::ViewCamera):
+/// the caller's view and projection matrices and viewport), the tables that depend on
+/// it (sky view, aerial perspective) and the bind groups a pipeline reads them through.
+/// Any number of views of one [`AtmosphereTables`] can be prepared and recorded into
+/// one encoder: each holds its own uniforms and tables.
+///
+/// Queue writes: [`AtmosphereView::prepare`] only (this view's camera uniforms).
+/// [`AtmosphereView::encode`] records its bakes and nothing else.
+#[derive(Debug)]
+pub struct AtmosphereView {
+    camera: wgpu::Buffer,
+    frame_view: wgpu::Buffer,
+    sky_view: Table,
+    aerial_perspective_radiance: Table,
+    aerial_perspective_transmittance: Table,
+    uniforms: wgpu::BindGroup,
+    tables: wgpu::BindGroup,
+    bakes: [BakePass; 2],
+    prepared: std::sync::atomic::AtomicBool,
+}
+
+/// The precomputed rung's tables for **one** view: an [`AtmosphereTables`] and one
+/// [`AtmosphereView`], behind the calls of a single-camera program.
+///
+/// **One camera per `AtmosphereLuts`.** [`AtmosphereLuts::prepare`] writes the one
+/// camera buffer through the queue, and queue writes land before the submit's commands
+/// run: preparing a second camera before submitting the first one's work gives the
+/// first the second's sky and haze. For two or more cameras in one submit (split
+/// screen, reflections, VR) make one [`AtmosphereView`] per camera of one
+/// [`AtmosphereTables`].
+#[derive(Debug)]
+pub struct AtmosphereLuts {
+    tables: AtmosphereTables,
+    view: AtmosphereView,
 }

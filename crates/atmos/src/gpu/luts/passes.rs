@@ -55,8 +55,34 @@ pub(super) struct BakePass {
 
 pub(super) const TRANSMITTANCE: usize = 0;
 pub(super) const MULTIPLE_SCATTERING: usize = 1;
-pub(super) const SKY_VIEW: usize = 2;
-pub(super) const AERIAL_PERSPECTIVE: usize = 3;
+pub(super) const SKY_IRRADIANCE: usize = 2;
+
+/// What the per-view bakes (sky view, aerial perspective) of one atmosphere share: their
+/// pipelines, the shared tables they read (group 1), the layouts of their outputs
+/// (group 2) and their workgroup counts.
+#[derive(Debug)]
+pub(super) struct ViewBakes {
+    pub(super) sky_view: wgpu::ComputePipeline,
+    pub(super) aerial_perspective: wgpu::ComputePipeline,
+    pub(super) tables: wgpu::BindGroup,
+    pub(super) sky_view_outputs: wgpu::BindGroupLayout,
+    pub(super) aerial_perspective_outputs: wgpu::BindGroupLayout,
+    pub(super) sky_view_workgroups: [u32; 2],
+    pub(super) aerial_perspective_workgroups: [u32; 2],
+}
+
+/// Records one bake dispatch (its pipeline and groups 1, 2) after `uniforms` at group 0.
+pub(super) fn record_bake(
+    pass: &mut wgpu::ComputePass<'_>,
+    uniforms: &wgpu::BindGroup,
+    bake: &BakePass,
+) {
+    pass.set_pipeline(&bake.pipeline);
+    pass.set_bind_group(0, uniforms, &[]);
+    pass.set_bind_group(1, &bake.tables, &[]);
+    pass.set_bind_group(2, &bake.outputs, &[]);
+    pass.dispatch_workgroups(bake.workgroups[0], bake.workgroups[1], 1);
+}
 
 /// Composes a WGSL module of this crate and creates its compute pipeline.
 pub(crate) fn compute_pipeline(
