@@ -11,6 +11,7 @@
 // scaled by it, the background's weight a is not).
 #import atmos::frame
 #import celestial::clouds
+#import common::frames
 
 struct CloudComposite {
     camera: FrameCamera,
@@ -26,11 +27,6 @@ struct CloudComposite {
 @group(0) @binding(0) var<uniform> composite: CloudComposite;
 @group(0) @binding(1) var<storage, read> cloud_layers: array<CloudLayerUniforms>;
 @group(0) @binding(2) var scene_depth: texture_depth_2d;
-
-// A world direction (x east, y up, z south) in celestial's east/north/up frame.
-fn world_to_enu(view: vec3<f32>) -> vec3<f32> {
-    return vec3<f32>(view.x, -view.z, view.y);
-}
 
 // Distance (m) along `view` (east/north/up) from radius r to the layer's near surface
 // (its base seen from below, its top from above), or −1 when the view does not reach it.
