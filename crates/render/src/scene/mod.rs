@@ -49,6 +49,7 @@ mod ground;
 mod locate;
 pub mod prepare;
 pub mod shipped;
+mod terrain_prepare;
 mod warnings;
 
 pub use animation::{AnimationSection, MAX_FRAMES};
