@@ -219,6 +219,19 @@ fn report(
             "| frame wall time (prepare → submission done) | {:.3} |\n",
             m.frame * 1e3
         );
+        if m.frame > 2.0 * sum {
+            let _ = writeln!(
+                out,
+                "The timestamps bracket {:.0} % of the frame's wall time: the rest is work \
+                 they do not bracket{}, or the CPU's `prepare`.\n",
+                100.0 * sum / m.frame,
+                if cpu_adapter {
+                    " (a CPU adapter runs compute passes when the submission is waited on)"
+                } else {
+                    ""
+                }
+            );
+        }
     }
     out
 }
