@@ -3,18 +3,20 @@
 //! animation's frames, or a viewer's, prepare with one cache, so a frame whose sun moved
 //! bakes only what depends on the sun.
 //!
-//! Kept now: the precomputed rung's static tables (transmittance and multiple
-//! scattering, `atmos::lut::StaticLuts`, 1–2 s on two cores), keyed by the atmosphere's
-//! air and the table settings: a light other than the sun (the moon) or a frame with
-//! the same air takes them relit (`StaticLuts::relit`: the tables hold the air's
-//! response per unit irradiance, equal bit for bit to a new bake), also on disk when
-//! the cache has a folder ([`PrepareCache::in_folder`]: one file per air and settings,
-//! `StaticLuts::to_bytes`, so a second run of a scene starts without the bake); and the
-//! terrain
-//! (heightfield, normals, horizon maps, albedo), keyed by the `[terrain]` section and,
-//! for a heightfield file, the file's path, length and modification time; and
-//! celestial's sky as built (its star catalogue loaded), keyed by the atmosphere and
-//! the sky's options, placed anew for each frame's instant.
+//! Kept:
+//! - the precomputed rung's static tables (transmittance and multiple scattering,
+//!   `atmos::lut::StaticLuts`, the largest part of a preparation), keyed by the
+//!   atmosphere's air and the table settings: a light other than the sun (the moon) or
+//!   a frame with the same air takes them relit (`StaticLuts::relit`: the tables hold
+//!   the air's response per unit irradiance, equal bit for bit to a new bake); also on
+//!   disk when the cache has a folder ([`PrepareCache::in_folder`]: one file per air,
+//!   settings and version of the code that bakes them, `StaticLuts::to_bytes`, so a
+//!   second run of a scene starts without the bake);
+//! - the terrain (heightfield, normals, horizon maps, albedo), keyed by the `[terrain]`
+//!   section and, for a heightfield file, the file's path, length and modification
+//!   time;
+//! - celestial's sky as built (its star catalogue loaded), keyed by the atmosphere and
+//!   the sky's options, placed anew for each frame's instant.
 
 use std::sync::{Arc, Mutex, PoisonError};
 
@@ -39,8 +41,8 @@ pub(crate) struct TerrainKey {
     pub(crate) file: Option<(std::path::PathBuf, u64, Option<std::time::SystemTime>)>,
 }
 
-/// The most table sets kept (each ~0.3 MB): a scene's sun and moon, and a few
-/// atmospheres a user switches between.
+/// The most table sets kept in memory: a scene's sun and moon, and a few atmospheres a
+/// user switches between.
 const KEPT_TABLES: usize = 4;
 
 /// Preparation products kept across preparations (see the module documentation).
@@ -187,15 +189,21 @@ impl PrepareCache {
 }
 
 /// The name of a static-table file: FNV-1a (64-bit) over the atmosphere's air (its
-/// light zeroed), the table settings and this crate's version. A name, not a check:
-/// `StaticLuts::from_bytes` compares the whole header.
+/// light zeroed), the table settings, this crate's version and, in the workspace, a
+/// fingerprint of `atmos`' sources (`build.rs`), so tables baked by other code are
+/// never read back. A name, not a check: `StaticLuts::from_bytes` compares the whole
+/// header.
 fn tables_key(atmosphere: &atmos::Atmosphere, settings: &LutSettings) -> u64 {
     let air = atmos::Atmosphere {
         sun_irradiance: [0.0; 3],
         sun_angular_radius: 0.0,
         ..atmosphere.clone()
     };
-    let text = format!("{air:?} {settings:?} {}", env!("CARGO_PKG_VERSION"));
+    let text = format!(
+        "{air:?} {settings:?} {} {}",
+        env!("CARGO_PKG_VERSION"),
+        option_env!("SKYSCAPE_ATMOS_SOURCE_HASH").unwrap_or("")
+    );
     text.bytes().fold(0xcbf2_9ce4_8422_2325, |hash, byte| {
         (hash ^ u64::from(byte)).wrapping_mul(0x0100_0000_01b3)
     })
