@@ -187,9 +187,31 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
 fn caller_gpu(gpu: &skyscape_harness::GpuContext) -> Result<Vec<f32>, String> {
     let luts = gpu_tables(gpu)?;
     let offsets = offsets();
+    run_lut_caller(
+        gpu,
+        &luts,
+        CALLER_KERNEL,
+        bytemuck::cast_slice(&offsets),
+        offsets.len(),
+        (offsets.len() * 9 * 4) as u64,
+    )
+}
+
+/// Runs `kernel` (a caller's compute shader: its input in group 0 binding 0, its
+/// results in binding 1, atmos' tables in groups 2 and 3) over `invocations` threads
+/// with `luts` bound, and reads back `output_bytes` of f32 results: what a user's own
+/// shader calling atmos' WGSL sees.
+pub(super) fn run_lut_caller(
+    gpu: &skyscape_harness::GpuContext,
+    luts: &AtmosphereLuts,
+    kernel: &str,
+    input: &[u8],
+    invocations: usize,
+    output_bytes: u64,
+) -> Result<Vec<f32>, String> {
     let source = composer_with_lut_groups(2, 3)
         .map_err(|e| e.to_string())?
-        .compose("caller", CALLER_KERNEL)
+        .compose("caller", kernel)
         .map_err(|e| e.to_string())?;
     let device = &gpu.device;
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -233,13 +255,13 @@ fn caller_gpu(gpu: &skyscape_harness::GpuContext) -> Result<Vec<f32>, String> {
         cache: None,
     });
     let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("offsets"),
-        contents: bytemuck::cast_slice(&offsets),
+        label: Some("caller input"),
+        contents: input,
         usage: wgpu::BufferUsages::STORAGE,
     });
     let output = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("results"),
-        size: (offsets.len() * 9 * 4) as u64,
+        size: output_bytes,
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
@@ -270,7 +292,7 @@ fn caller_gpu(gpu: &skyscape_harness::GpuContext) -> Result<Vec<f32>, String> {
         pass.set_bind_group(1, &empty_group, &[]);
         pass.set_bind_group(2, luts.uniform_bind_group(), &[]);
         pass.set_bind_group(3, luts.table_bind_group(), &[]);
-        pass.dispatch_workgroups((offsets.len() as u32).div_ceil(64), 1, 1);
+        pass.dispatch_workgroups((invocations as u32).div_ceil(64), 1, 1);
     }
     gpu.queue.submit([encoder.finish()]);
     let bytes = skyscape_harness::read_buffer(gpu, "results", &output, 0, output.size())

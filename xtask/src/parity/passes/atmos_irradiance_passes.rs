@@ -11,12 +11,11 @@ use std::sync::OnceLock;
 use super::*;
 use atmos::Atmosphere;
 use atmos::frame::FrameCamera;
-use atmos::gpu::{AtmosphereLuts, composer_with_lut_groups};
+use atmos::gpu::AtmosphereLuts;
 use atmos::lut::drop_in::{sky_irradiance, sun_transmittance_at};
 use atmos::lut::sky_irradiance::bake_sky_irradiance_lut;
 use atmos::lut::{Lut2d, LutSettings, StaticLuts};
 use glam::DVec3;
-use wgpu::util::DeviceExt as _;
 
 const PLANET_RADIUS: f64 = 6_360_000.0;
 
@@ -158,97 +157,14 @@ fn lookup_gpu(gpu: &skyscape_harness::GpuContext) -> Result<Vec<f32>, String> {
     let luts = gpu_tables(gpu)?;
     let points = points();
     let count = points.len() / 2;
-    let source = composer_with_lut_groups(2, 3)
-        .map_err(|e| e.to_string())?
-        .compose("caller", CALLER_KERNEL)
-        .map_err(|e| e.to_string())?;
-    let device = &gpu.device;
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("caller kernel"),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    });
-    let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    };
-    let own = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("caller buffers"),
-        entries: &[storage(0, true), storage(1, false)],
-    });
-    let empty = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("caller's unused group 1"),
-        entries: &[],
-    });
-    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some("caller"),
-        bind_group_layouts: &[
-            Some(&own),
-            Some(&empty),
-            Some(&luts.layouts().uniforms),
-            Some(&luts.layouts().tables),
-        ],
-        immediate_size: 0,
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("caller"),
-        layout: Some(&layout),
-        module: &module,
-        entry_point: Some("main"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
-    let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("points"),
-        contents: bytemuck::cast_slice(&points),
-        usage: wgpu::BufferUsages::STORAGE,
-    });
-    let output = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("results"),
-        size: (count * 6 * 4) as u64,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
-    let group = |layout: &wgpu::BindGroupLayout, entries: &[wgpu::BindGroupEntry<'_>]| {
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: None,
-            layout,
-            entries,
-        })
-    };
-    let own_group = group(
-        &own,
-        &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: input.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: output.as_entire_binding(),
-            },
-        ],
-    );
-    let empty_group = group(&empty, &[]);
-    let mut encoder = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &own_group, &[]);
-        pass.set_bind_group(1, &empty_group, &[]);
-        pass.set_bind_group(2, luts.uniform_bind_group(), &[]);
-        pass.set_bind_group(3, luts.table_bind_group(), &[]);
-        pass.dispatch_workgroups((count as u32).div_ceil(64), 1, 1);
-    }
-    gpu.queue.submit([encoder.finish()]);
-    let bytes = skyscape_harness::read_buffer(gpu, "results", &output, 0, output.size())
-        .map_err(|e| e.to_string())?;
-    Ok(bytemuck::cast_slice::<u8, f32>(&bytes).to_vec())
+    super::atmos_drop_in_passes::run_lut_caller(
+        gpu,
+        &luts,
+        CALLER_KERNEL,
+        bytemuck::cast_slice(&points),
+        count,
+        (count * 6 * 4) as u64,
+    )
 }
 
 /// The sky-irradiance pass cases, in report order.
