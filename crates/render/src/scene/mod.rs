@@ -55,7 +55,7 @@ mod warnings;
 pub use animation::{AnimationSection, MAX_FRAMES};
 pub use cache::PrepareCache;
 pub use error::{Location, Origin, SceneError};
-pub use prepare::{Illuminant, PreparedScene, PreparedTerrain};
+pub use prepare::{CameraMove, Illuminant, PreparedScene, PreparedTerrain};
 
 use std::path::{Path, PathBuf};
 

@@ -261,6 +261,87 @@ impl PreparedScene {
         Ok(())
     }
 
+    /// The same scene seen from `position` (metres in the scene's frame: x east, y up
+    /// above the surface, z south, as `[camera] position`) along `forward`, with a
+    /// vertical field of view `vertical_fov` (radians), into the frame's size: the
+    /// camera, its planet-centred position, the viewer's radius, the sky objects' frame
+    /// and the cloud layers' draw order change, nothing else is prepared again.
+    ///
+    /// A move at the prepared altitude gives the scene a preparation there gives
+    /// ([`CameraMove::Moved`]; `tests/move_camera.rs`). A move to another altitude keeps
+    /// `celestial`'s paint of the prepared one — the fog's and cloud layers' colours and
+    /// the stars' brightness, which `Sky::repaint` works out for the viewer's altitude
+    /// — and says so ([`CameraMove::MovedKeepingPaint`]): prepare the scene again there
+    /// for the exact picture. What a viewpoint's preparation holds and a move cannot
+    /// carry is refused with [`CameraMove::NeedsPrepare`] and the reason (the scene
+    /// then is unchanged): the per-vertex dome's grid (built per viewpoint), and the
+    /// cloud layers when the camera crossed one while another light than the sun
+    /// lights them. The shell deck's light is taken above the prepared viewpoint; it
+    /// varies over tens of kilometres, so a caller prepares again a camera that moved
+    /// far.
+    pub fn move_camera(
+        &mut self,
+        position: DVec3,
+        forward: DVec3,
+        vertical_fov: f64,
+    ) -> Result<CameraMove, crate::RenderError> {
+        if !position.is_finite() {
+            return Err(crate::RenderError::InvalidParameter {
+                field: "camera.position",
+                value: format!("{position:?}"),
+                reason: "must be finite",
+            });
+        }
+        let planet_centred = position + DVec3::new(0.0, self.atmosphere.planet_radius, 0.0);
+        if planet_centred == self.camera_position {
+            self.look_along(forward, vertical_fov, self.camera.width, self.camera.height)?;
+            return Ok(CameraMove::Moved);
+        }
+        if self.rung == Rung::ClosedFormVertex {
+            return Ok(CameraMove::NeedsPrepare(
+                "the per-vertex dome's grid is built for one viewpoint",
+            ));
+        }
+        // Where atmos accepts a viewer (not under the ground).
+        atmos::SkyQuery::new(
+            self.atmosphere.planet_radius,
+            planet_centred,
+            DVec3::Y,
+            self.sun,
+        )
+        .map_err(crate::RenderError::Atmosphere)?;
+        let layers = match &self.celestial_sky {
+            Some(sky) if !self.cloud_layers.is_empty() => Some(
+                sky.cloud_layers_in_draw_order(position.y)?
+                    .into_iter()
+                    .map(|(_, uniforms)| uniforms)
+                    .collect::<Vec<_>>(),
+            ),
+            _ => None,
+        };
+        if let Some(layers) = layers
+            && layers != self.cloud_layers
+        {
+            if !self.other_lights.is_empty() {
+                return Ok(CameraMove::NeedsPrepare(
+                    "the camera crossed a cloud layer lit by more than the sun",
+                ));
+            }
+            self.cloud_layers = layers;
+        }
+        let altitude_change_m = planet_centred.y - self.camera_position.y;
+        self.camera_position = planet_centred;
+        self.viewer_radius = planet_centred.y;
+        self.look_along(forward, vertical_fov, self.camera.width, self.camera.height)?;
+        Ok(
+            if self.celestial_sky.is_some() && altitude_change_m != 0.0 {
+                CameraMove::MovedKeepingPaint { altitude_change_m }
+            } else {
+                CameraMove::Moved
+            },
+        )
+    }
+
     /// The scene's lights, the sun first, then [`PreparedScene::other_lights`] in order:
     /// what every pass runs once per light.
     pub fn lights(&self) -> Vec<Illuminant<'_>> {
@@ -356,4 +437,21 @@ pub fn world_direction(elevation: f64, azimuth: f64) -> DVec3 {
     let (sin_e, cos_e) = elevation.sin_cos();
     let (sin_a, cos_a) = azimuth.sin_cos();
     DVec3::new(cos_e * sin_a, sin_e, -cos_e * cos_a)
+}
+
+/// What [`PreparedScene::move_camera`] did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CameraMove {
+    /// The camera moved; the scene is what a preparation at the new viewpoint gives.
+    Moved,
+    /// The camera moved to another altitude (by this many metres); `celestial`'s
+    /// paint (fog and cloud-layer colours, star brightness) is still the prepared
+    /// altitude's until the scene is prepared there.
+    MovedKeepingPaint {
+        /// New altitude − prepared altitude, metres.
+        altitude_change_m: f64,
+    },
+    /// The scene holds something prepared for its viewpoint that a move cannot carry
+    /// (the reason): prepare the scene again from the new position.
+    NeedsPrepare(&'static str),
 }

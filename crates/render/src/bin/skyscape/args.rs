@@ -76,21 +76,30 @@ pub(crate) struct RenderArgs {
 impl RenderArgs {
     /// The preparation cache these arguments ask for.
     pub(crate) fn prepare_cache(&self) -> render::scene::PrepareCache {
-        let home_cache = || {
-            let base = std::env::var_os("XDG_CACHE_HOME")
-                .filter(|v| !v.is_empty())
-                .map(PathBuf::from)
-                .or_else(|| {
-                    std::env::var_os("HOME")
-                        .filter(|v| !v.is_empty())
-                        .map(|home| PathBuf::from(home).join(".cache"))
-                })?;
-            Some(base.join("skyscape"))
-        };
-        match (self.no_cache, self.cache_dir.clone().or_else(home_cache)) {
-            (false, Some(folder)) => render::scene::PrepareCache::in_folder(folder),
-            _ => render::scene::PrepareCache::new(),
-        }
+        prepare_cache(self.no_cache, self.cache_dir.clone())
+    }
+}
+
+/// The preparation cache `--no-cache` and `--cache-dir` ask for: in memory only, or
+/// also in a folder (by default `$XDG_CACHE_HOME/skyscape`, else `~/.cache/skyscape`).
+pub(crate) fn prepare_cache(
+    no_cache: bool,
+    cache_dir: Option<PathBuf>,
+) -> render::scene::PrepareCache {
+    let home_cache = || {
+        let base = std::env::var_os("XDG_CACHE_HOME")
+            .filter(|v| !v.is_empty())
+            .map(PathBuf::from)
+            .or_else(|| {
+                std::env::var_os("HOME")
+                    .filter(|v| !v.is_empty())
+                    .map(|home| PathBuf::from(home).join(".cache"))
+            })?;
+        Some(base.join("skyscape"))
+    };
+    match (no_cache, cache_dir.or_else(home_cache)) {
+        (false, Some(folder)) => render::scene::PrepareCache::in_folder(folder),
+        _ => render::scene::PrepareCache::new(),
     }
 }
 

@@ -10,6 +10,8 @@ mod output;
 mod progress;
 mod projected;
 mod runtime_dir;
+#[cfg(feature = "view")]
+mod view;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -56,6 +58,10 @@ enum Command {
         #[arg(long)]
         backend: Option<String>,
     },
+    /// Show a scene in a window and fly through it while the sun moves (a shipped
+    /// scene's name or a .toml; default: "default"). Controls: docs/viewer.md.
+    #[cfg(feature = "view")]
+    View(view::ViewArgs),
     /// List the shipped scenes.
     Scenes,
     /// List the adapters wgpu finds and which one skyscape would use.
@@ -96,6 +102,8 @@ fn main() -> ExitCode {
         None => render_command(RenderArgs::default()),
         Some(Command::Render(args)) => render_command(args),
         Some(Command::Explain { scene, backend }) => explain_command(&scene, backend.as_deref()),
+        #[cfg(feature = "view")]
+        Some(Command::View(args)) => view::view_command(args),
         Some(Command::Scenes) => {
             for scene in SHIPPED {
                 println!("{:<10} {}", scene.name, scene.description);
