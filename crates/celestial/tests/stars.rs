@@ -52,6 +52,7 @@ fn reference() -> Vec<Row<'static>> {
     let table = include_str!("data/star_reference.csv");
     table
         .lines()
+        .filter(|line| !line.starts_with('#'))
         .skip(1)
         .map(|line| {
             let f: Vec<&str> = line.split(',').collect();

