@@ -113,6 +113,26 @@ pub enum CelestialError {
         #[source]
         source: star_catalog::Error,
     },
+    /// Data embedded in the crate failed to decode (a bug in the shipped file).
+    #[error("the embedded data {field} is corrupt at byte {offset}")]
+    CorruptData {
+        /// Which file.
+        field: &'static str,
+        /// Where decoding failed.
+        offset: usize,
+    },
+    /// A star name or Hipparcos number that names no star of the loaded catalogue.
+    #[error(
+        "{field} = {value:?} names no star of the catalogue (magnitude ≤ {limiting_magnitude})"
+    )]
+    UnknownStar {
+        /// The rejected field.
+        field: &'static str,
+        /// The text given.
+        value: String,
+        /// The catalogue's limiting magnitude.
+        limiting_magnitude: f64,
+    },
 }
 
 /// `Result` with [`CelestialError`].

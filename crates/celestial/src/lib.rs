@@ -11,12 +11,17 @@
 //! * [`sun_position`]: the sun by NREL SPA (crate `solar-positioning`), topocentric,
 //!   airless; [`refraction`] the separate Sæmundsson step to the apparent elevation;
 //! * [`moon_position`]: the moon (Schlyter + parallax), topocentric, with distance,
-//!   angular size and phase; [`planet_position`]: Mercury–Saturn with magnitudes;
-//! * [`StarCatalogue`]: the Hipparcos stars to V = 8 precessed to the date, with
-//!   illuminance and colour ([`colour`]: B−V → linear sRGB);
+//!   angular size and phase; [`planet_position`]: Mercury–Neptune with magnitudes;
+//!   every body's `apparent` direction through the one refraction step
+//!   [`apparent_direction`];
+//! * [`StarCatalogue`]: the Hipparcos stars to V = 8 at their apparent places
+//!   ([`astrometry`]: proper motion, parallax, aberration, precession, nutation), with
+//!   illuminance, colour ([`colour`]: B−V → linear sRGB) and IAU names
+//!   ([`StarCatalogue::find`]);
 //! * [`moon_phase()`]: phase angle, illuminated fraction and bright limb from the sun's
-//!   and moon's places (Meeus ch. 48); [`moon_disc_incidence_cosine`] the lit part of
-//!   the disc per point;
+//!   and moon's places (Meeus ch. 48), [`geocentric_moon_phase`] the same from an
+//!   instant in one call; [`moon_disc_incidence_cosine`] the lit part of the disc per
+//!   point;
 //! * [`equatorial_to_horizontal`], [`illuminance_from_magnitude`] and
 //!   [`moon_disc_incidence_cosine`]: formulas written once over the float type, with
 //!   WGSL twins in [`WGSL_MODULES`].
@@ -33,6 +38,7 @@
 //! `cargo xtask parity` calls on their own.
 
 pub mod angle;
+pub mod astrometry;
 pub mod clouds;
 pub mod colour;
 pub mod dome;
@@ -62,13 +68,15 @@ pub use error::{CelestialError, Result};
 pub use horizontal::{Horizontal, equatorial_to_horizontal, parallactic_angle};
 pub use light::{LuminanceScale, MoonLight};
 pub use moon::{MoonPosition, moon_position};
-pub use moon_phase::{EquatorialPlace, MoonPhase, moon_disc_incidence_cosine, moon_phase};
+pub use moon_phase::{
+    EquatorialPlace, MoonPhase, geocentric_moon_phase, moon_disc_incidence_cosine, moon_phase,
+};
 pub use observer::Observer;
 pub use photometry::{ZERO_MAGNITUDE_ILLUMINANCE_LX, illuminance_from_magnitude};
 pub use planets::{Planet, PlanetPosition, planet_position};
-pub use refraction::{AirConditions, apparent_elevation};
+pub use refraction::{AirConditions, apparent_direction, apparent_elevation};
 pub use sky::{FogModel, Sky, SkyOptions};
-pub use stars::{SkyStar, StarCatalogue};
+pub use stars::{CatalogueStar, SkyStar, StarCatalogue};
 pub use sun::{SunPosition, sun_position};
 pub use time::Instant;
 

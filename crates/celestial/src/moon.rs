@@ -15,8 +15,8 @@ use crate::error::Result;
 use crate::horizontal::{Horizontal, parallactic_angle};
 use crate::moon_phase::{EquatorialPlace, MoonPhase, moon_phase};
 use crate::observer::Observer;
+use crate::refraction::{AirConditions, apparent_direction};
 use crate::sidereal::{local_apparent_sidereal_time, nutation, true_obliquity};
-use crate::sun::sun_position;
 use crate::time::Instant;
 
 /// Earth's equatorial radius (m), the unit of the moon's mean distance below.
@@ -202,6 +202,13 @@ pub struct MoonPosition {
 }
 
 impl MoonPosition {
+    /// The direction an observer sees through `air`: azimuth unchanged, elevation
+    /// lifted by refraction ([`crate::refraction::apparent_direction`], as for every
+    /// body).
+    pub fn apparent(&self, air: &AirConditions) -> Horizontal {
+        apparent_direction(self.airless, air)
+    }
+
     /// The bright limb's tilt as the observer sees it: the angle χ − q of the bright
     /// limb's midpoint from the zenith direction on the disc, counted like position
     /// angles (toward celestial east's side), in [0°, 360°) (Meeus ch. 48).
@@ -210,33 +217,34 @@ impl MoonPosition {
     }
 }
 
-/// The moon for `observer` at `instant`: Schlyter's place, apparent (nutation,
-/// true obliquity), then topocentric; the phase from the topocentric moon and the
-/// sun by SPA.
-pub fn moon_position(instant: &Instant, observer: &Observer) -> Result<MoonPosition> {
+/// The moon's geocentric apparent place at `instant`: Schlyter's place with
+/// nutation in longitude, on the true equator of date.
+pub(crate) fn geocentric_place(instant: &Instant) -> EquatorialPlace {
     let t = instant.julian_centuries_tt();
     let place = moon_ecliptic(instant.julian_day_tt());
     let longitude = place.longitude + nutation(t).longitude;
     let (right_ascension, declination) =
         ecliptic_to_equatorial(longitude, place.latitude, true_obliquity(t));
-    let geocentric = EquatorialPlace {
+    EquatorialPlace {
         right_ascension,
         declination,
         distance_m: place.distance_m,
-    };
-    let hour_angle = local_apparent_sidereal_time(instant, observer) - right_ascension;
+    }
+}
+
+/// The moon for `observer` at `instant`: Schlyter's place, apparent (nutation,
+/// true obliquity), then topocentric; the phase from the topocentric moon and the
+/// sun by SPA.
+pub fn moon_position(instant: &Instant, observer: &Observer) -> Result<MoonPosition> {
+    let geocentric = geocentric_place(instant);
+    let hour_angle = local_apparent_sidereal_time(instant, observer) - geocentric.right_ascension;
     let (topocentric, topocentric_hour_angle) = topocentric(&geocentric, hour_angle, observer);
     let airless = Horizontal::from_equatorial(
         topocentric_hour_angle,
         topocentric.declination,
         observer.latitude(),
     );
-    let sun = sun_position(instant, observer)?;
-    let sun_place = EquatorialPlace {
-        right_ascension: sun.right_ascension,
-        declination: sun.declination,
-        distance_m: sun.distance_m,
-    };
+    let sun_place = crate::sun::geocentric_place(instant)?;
     let parallactic_angle = Angle::from_radians(parallactic_angle(
         topocentric_hour_angle.radians(),
         topocentric.declination.radians(),

@@ -2,9 +2,12 @@
 //! fraction and the position angle of the bright limb (Meeus, *Astronomical
 //! Algorithms*, 2nd ed., ch. 48), and the lit part of the disc per point.
 //!
-//! The inputs are the geocentric (or, for the observer's own view, topocentric)
-//! right ascensions, declinations and distances of the sun and the moon; this
-//! module does not compute the moon's position.
+//! [`moon_phase`] takes the geocentric (or, for the observer's own view,
+//! topocentric) right ascensions, declinations and distances of the sun and the moon.
+//! The phase an observer sees is [`crate::MoonPosition::phase`] (topocentric: it
+//! differs from the geocentric one by up to the moon's parallax, ~1°, in phase
+//! angle); the phase of the almanacs, the same for everyone on Earth, is
+//! [`geocentric_moon_phase`], one call from an instant.
 //!
 //! [`moon_disc_incidence_cosine`] is written once over the float type: its f32
 //! instance is the twin of the WGSL function of the same name.
@@ -12,6 +15,8 @@
 use num_traits::Float;
 
 use crate::angle::Angle;
+use crate::error::Result;
+use crate::time::Instant;
 
 /// Equatorial place of a body: right ascension, declination, distance (m).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -56,6 +61,17 @@ pub fn moon_phase(moon: &EquatorialPlace, sun: &EquatorialPlace) -> MoonPhase {
         illuminated_fraction: 0.5 * (1.0 + phase_angle.cos()),
         bright_limb: Angle::from_radians(bright_limb).wrapped_positive(),
     }
+}
+
+/// The moon's phase seen from the Earth's centre at `instant`: the geocentric
+/// apparent places of the moon ([`crate::moon::moon_ecliptic`] with nutation, the
+/// method of [`crate::moon_position`]) and of the sun (SPA's geocentric α, δ and
+/// distance) through [`moon_phase`]. It does not depend on the observer; for the
+/// phase and bright limb a given observer sees, use [`crate::MoonPosition::phase`].
+pub fn geocentric_moon_phase(instant: &Instant) -> Result<MoonPhase> {
+    let moon = crate::moon::geocentric_place(instant);
+    let sun = crate::sun::geocentric_place(instant)?;
+    Ok(moon_phase(&moon, &sun))
 }
 
 /// Cosine of the sun's incidence on the moon's sphere at the disc point (`east`,
@@ -121,6 +137,58 @@ mod tests {
             (phase.bright_limb.degrees() - 285.0).abs() < 0.05,
             "{phase:?}"
         );
+    }
+
+    /// Meeus Example 48.a from the ephemerides in one call: 1992 April 12, 0h
+    /// (UT here, TD there: 58 s apart, 0.008° of lunar motion) → i = 69.0756°,
+    /// k = 0.6786, χ = 285.0°. Schlyter's moon is 0.015° off Meeus' there
+    /// (`moon::tests::meeus_example_47a`), so i within 0.05°.
+    #[test]
+    fn geocentric_phase_of_meeus_example_48a() {
+        let instant = Instant::parse("1992-04-12T00:00:00Z").unwrap();
+        let phase = geocentric_moon_phase(&instant).unwrap();
+        println!(
+            "Meeus 48.a from the ephemerides: i {:.4}°, k {:.4}, χ {:.2}°",
+            phase.phase_angle.degrees(),
+            phase.illuminated_fraction,
+            phase.bright_limb.degrees()
+        );
+        assert!(
+            (phase.phase_angle.degrees() - 69.0756).abs() < 0.05,
+            "{phase:?}"
+        );
+        assert!(
+            (phase.illuminated_fraction - 0.6786).abs() < 1e-3,
+            "{phase:?}"
+        );
+        assert!(
+            (phase.bright_limb.degrees() - 285.0).abs() < 0.5,
+            "{phase:?}"
+        );
+    }
+
+    /// The observer's phase differs from the geocentric one by at most the moon's
+    /// parallax (≤ 1.02°: its horizontal parallax at perigee), and the geocentric
+    /// one is the same from anywhere.
+    #[test]
+    fn topocentric_phase_is_within_the_parallax_of_the_geocentric() {
+        use crate::{Observer, moon_position};
+        let mut largest = 0.0_f64;
+        for day in 0..30 {
+            let instant = Instant::from_calendar(2024, 4, 1, 0, 0, 0.0).unwrap();
+            let instant =
+                Instant::from_utc(instant.utc() + chrono::Duration::hours(day * 23)).unwrap();
+            let geocentric = geocentric_moon_phase(&instant).unwrap();
+            for (lat, lon) in [(52.0, 5.0), (-33.9, 18.4), (0.0, -100.0)] {
+                let observer =
+                    Observer::new(Angle::from_degrees(lat), Angle::from_degrees(lon), 0.0).unwrap();
+                let seen = moon_position(&instant, &observer).unwrap().phase;
+                let difference = (seen.phase_angle - geocentric.phase_angle).degrees().abs();
+                assert!(difference <= 1.02, "{instant:?} {lat}: {difference}");
+                largest = largest.max(difference);
+            }
+        }
+        assert!(largest > 0.5, "{largest}");
     }
 
     /// The lit area of the disc (midpoint rule on a 400×400 grid) is the illuminated

@@ -1,8 +1,9 @@
-//! Planets Mercury–Saturn: positions by P. Schlyter's method ("How to compute
+//! Planets Mercury–Neptune: positions by P. Schlyter's method ("How to compute
 //! planetary positions": mean orbital elements of the equinox of date, Kepler's
-//! equation, and for Jupiter and Saturn their mutual perturbations — the "great
-//! inequality" alone moves Saturn by 0.8°), and visual magnitudes by the formulas
-//! of G. Müller as given in Meeus, *Astronomical Algorithms* (2nd ed.), ch. 41.
+//! equation, and for Jupiter, Saturn and Uranus the perturbations by the others — the
+//! "great inequality" alone moves Saturn by 0.8°), and visual magnitudes by the
+//! formulas of G. Müller as given in Meeus, *Astronomical Algorithms* (2nd ed.),
+//! ch. 41.
 //! Müller's coefficients date from 1893; modern ones (Mallama & Hilton 2018) differ
 //! by up to several tenths of a magnitude, and only Meeus' Example 41.a is checked
 //! here — replacing them is future work.
@@ -19,6 +20,7 @@ use crate::horizontal::Horizontal;
 use crate::moon::{ecliptic_to_equatorial, topocentric};
 use crate::moon_phase::EquatorialPlace;
 use crate::observer::Observer;
+use crate::refraction::{AirConditions, apparent_direction};
 use crate::sidereal::{local_apparent_sidereal_time, nutation, true_obliquity};
 use crate::sun::ASTRONOMICAL_UNIT_M;
 use crate::time::Instant;
@@ -39,16 +41,22 @@ pub enum Planet {
     Jupiter,
     /// Saturn.
     Saturn,
+    /// Uranus.
+    Uranus,
+    /// Neptune.
+    Neptune,
 }
 
 impl Planet {
     /// All of them, inner to outer.
-    pub const ALL: [Planet; 5] = [
+    pub const ALL: [Planet; 7] = [
         Planet::Mercury,
         Planet::Venus,
         Planet::Mars,
         Planet::Jupiter,
         Planet::Saturn,
+        Planet::Uranus,
+        Planet::Neptune,
     ];
 
     /// The planet's B−V colour index (Allen's *Astrophysical Quantities*, 4th ed., Cox
@@ -60,12 +68,14 @@ impl Planet {
             Planet::Mars => 1.36,
             Planet::Jupiter => 0.83,
             Planet::Saturn => 1.04,
+            Planet::Uranus => 0.56,
+            Planet::Neptune => 0.41,
         }
     }
 }
 
-/// Orbital elements at day `d`: node, inclination, argument of perihelion (radians),
-/// semi-major axis (AU), eccentricity, mean anomaly (radians).
+/// Orbital elements at day `d` (Schlyter's): node, inclination, argument of
+/// perihelion (radians), semi-major axis (AU), eccentricity, mean anomaly (radians).
 struct Elements {
     node: f64,
     inclination: f64,
@@ -76,8 +86,9 @@ struct Elements {
 }
 
 fn elements(planet: Planet, d: f64) -> Elements {
-    // (N0, N1, i0, i1, w0, w1, a, e0, e1, M0, M1): degrees and degrees/day.
-    let c: [f64; 11] = match planet {
+    // (N0, N1, i0, i1, w0, w1, a0, a1, e0, e1, M0, M1): degrees, degrees/day, AU and
+    // AU/day.
+    let c: [f64; 12] = match planet {
         Planet::Mercury => [
             48.3313,
             3.24587e-5,
@@ -86,6 +97,7 @@ fn elements(planet: Planet, d: f64) -> Elements {
             29.1241,
             1.01444e-5,
             0.387098,
+            0.0,
             0.205635,
             5.59e-10,
             168.6562,
@@ -99,6 +111,7 @@ fn elements(planet: Planet, d: f64) -> Elements {
             54.8910,
             1.38374e-5,
             0.723330,
+            0.0,
             0.006773,
             -1.302e-9,
             48.0052,
@@ -112,6 +125,7 @@ fn elements(planet: Planet, d: f64) -> Elements {
             286.5016,
             2.92961e-5,
             1.523688,
+            0.0,
             0.093405,
             2.516e-9,
             18.6021,
@@ -125,6 +139,7 @@ fn elements(planet: Planet, d: f64) -> Elements {
             273.8777,
             1.64505e-5,
             5.20256,
+            0.0,
             0.048498,
             4.469e-9,
             19.8950,
@@ -138,19 +153,48 @@ fn elements(planet: Planet, d: f64) -> Elements {
             339.3939,
             2.97661e-5,
             9.55475,
+            0.0,
             0.055546,
             -9.499e-9,
             316.9670,
             0.033_444_228_2,
+        ],
+        Planet::Uranus => [
+            74.0005,
+            1.3978e-5,
+            0.7733,
+            1.9e-8,
+            96.6612,
+            3.0565e-5,
+            19.18171,
+            -1.55e-8,
+            0.047318,
+            7.45e-9,
+            142.5905,
+            0.011_725_806,
+        ],
+        Planet::Neptune => [
+            131.7806,
+            3.0173e-5,
+            1.7700,
+            -2.55e-7,
+            272.8461,
+            -6.027e-6,
+            30.05826,
+            3.313e-8,
+            0.008606,
+            2.15e-9,
+            260.2471,
+            0.005_995_147,
         ],
     };
     Elements {
         node: (c[0] + c[1] * d).to_radians(),
         inclination: (c[2] + c[3] * d).to_radians(),
         perihelion: (c[4] + c[5] * d).to_radians(),
-        semi_major_axis: c[6],
-        eccentricity: c[7] + c[8] * d,
-        mean_anomaly: (c[9] + c[10] * d).to_radians().rem_euclid(TAU),
+        semi_major_axis: c[6] + c[7] * d,
+        eccentricity: c[8] + c[9] * d,
+        mean_anomaly: (c[10] + c[11] * d).to_radians().rem_euclid(TAU),
     }
 }
 
@@ -180,16 +224,17 @@ fn heliocentric(planet: Planet, d: f64) -> (f64, f64, f64) {
     let z = r * sin_u * el.inclination.sin();
     let mut longitude = y.atan2(x);
     let mut latitude = z.atan2(x.hypot(y));
-    // Jupiter–Saturn perturbations (Schlyter; degrees).
+    // Jupiter–Saturn–Uranus perturbations (Schlyter; degrees).
     let mj = elements(Planet::Jupiter, d).mean_anomaly;
     let ms = elements(Planet::Saturn, d).mean_anomaly;
+    let mu = elements(Planet::Uranus, d).mean_anomaly;
     let s = |amplitude: f64, argument_deg: f64| {
         amplitude.to_radians() * argument_deg.to_radians().sin()
     };
     let c = |amplitude: f64, argument_deg: f64| {
         amplitude.to_radians() * argument_deg.to_radians().cos()
     };
-    let (mj, ms) = (mj.to_degrees(), ms.to_degrees());
+    let (mj, ms, mu) = (mj.to_degrees(), ms.to_degrees(), mu.to_degrees());
     match planet {
         Planet::Jupiter => {
             longitude += s(-0.332, 2.0 * mj - 5.0 * ms - 67.6)
@@ -207,6 +252,11 @@ fn heliocentric(planet: Planet, d: f64) -> (f64, f64, f64) {
                 + s(0.046, 2.0 * mj - 6.0 * ms - 69.0)
                 + s(0.014, mj - 3.0 * ms + 32.0);
             latitude += c(-0.020, 2.0 * mj - 4.0 * ms - 2.0) + s(0.018, 2.0 * mj - 6.0 * ms - 49.0);
+        }
+        Planet::Uranus => {
+            longitude += s(0.040, ms - 2.0 * mu + 6.0)
+                + s(0.035, ms - 3.0 * mu + 33.0)
+                + s(-0.015, mj - mu + 20.0);
         }
         _ => {}
     }
@@ -245,6 +295,15 @@ pub struct PlanetPosition {
     pub magnitude: f64,
 }
 
+impl PlanetPosition {
+    /// The direction an observer sees through `air`: azimuth unchanged, elevation
+    /// lifted by refraction ([`crate::refraction::apparent_direction`], as for every
+    /// body).
+    pub fn apparent(&self, air: &AirConditions) -> Horizontal {
+        apparent_direction(self.airless, air)
+    }
+}
+
 /// Müller's visual magnitude (Meeus ch. 41) for heliocentric distance `r`, geocentric
 /// distance `delta` (AU), phase angle `i` (degrees) and, for Saturn, the rings'
 /// tilt `ring_tilt` B toward the Earth (degrees). Saturn's |ΔU| term uses the phase
@@ -262,6 +321,8 @@ pub fn visual_magnitude(planet: Planet, r: f64, delta: f64, i: f64, ring_tilt: f
             let sin_b = ring_tilt.to_radians().sin().abs();
             -8.68 + distance + 0.044 * i - 2.60 * sin_b + 1.25 * sin_b * sin_b
         }
+        Planet::Uranus => -6.85 + distance,
+        Planet::Neptune => -7.05 + distance,
     }
 }
 

@@ -15,6 +15,7 @@
 
 use crate::angle::Angle;
 use crate::error::{Result, check_range};
+use crate::horizontal::Horizontal;
 
 /// Airless elevation below which refraction is not applied (degrees, as in SPA).
 pub const REFRACTION_CUTOFF_DEGREES: f64 = -0.83337;
@@ -72,6 +73,16 @@ pub fn refraction(true_elevation: Angle, air: &AirConditions) -> Angle {
 /// Apparent elevation: `true_elevation` lifted by [`refraction`].
 pub fn apparent_elevation(true_elevation: Angle, air: &AirConditions) -> Angle {
     true_elevation + refraction(true_elevation, air)
+}
+
+/// The direction a body at airless direction `airless` is seen in through `air`:
+/// azimuth unchanged, elevation lifted by [`refraction`]. The one step every body's
+/// `apparent` takes (sun, moon, planets, stars).
+pub fn apparent_direction(airless: Horizontal, air: &AirConditions) -> Horizontal {
+    Horizontal {
+        azimuth: airless.azimuth,
+        elevation: apparent_elevation(airless.elevation, air),
+    }
 }
 
 #[cfg(test)]

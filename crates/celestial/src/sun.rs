@@ -12,8 +12,9 @@ use solar_positioning::{Location, SolarPositions};
 use crate::angle::Angle;
 use crate::error::{CelestialError, Result};
 use crate::horizontal::Horizontal;
+use crate::moon_phase::EquatorialPlace;
 use crate::observer::Observer;
-use crate::refraction::{AirConditions, apparent_elevation};
+use crate::refraction::{AirConditions, apparent_direction};
 use crate::time::Instant;
 
 /// The astronomical unit (m, IAU 2012 resolution B2).
@@ -38,16 +39,26 @@ impl SunPosition {
     /// The direction an observer sees through `air`: azimuth unchanged, elevation
     /// lifted by refraction.
     pub fn apparent(&self, air: &AirConditions) -> Horizontal {
-        Horizontal {
-            azimuth: self.airless.azimuth,
-            elevation: apparent_elevation(self.airless.elevation, air),
-        }
+        apparent_direction(self.airless, air)
     }
 
     /// Angular radius of the solar disc.
     pub fn angular_radius(&self) -> Angle {
         Angle::from_radians((SUN_RADIUS_M / self.distance_m).asin())
     }
+}
+
+/// The sun's geocentric apparent place (SPA's α, δ and distance) at `instant`: it
+/// does not depend on the observer, whose place SPA needs only for the topocentric
+/// direction.
+pub(crate) fn geocentric_place(instant: &Instant) -> Result<EquatorialPlace> {
+    let anywhere = Observer::new(Angle::ZERO, Angle::ZERO, 0.0)?;
+    let sun = sun_position(instant, &anywhere)?;
+    Ok(EquatorialPlace {
+        right_ascension: sun.right_ascension,
+        declination: sun.declination,
+        distance_m: sun.distance_m,
+    })
 }
 
 /// The sun's position for `observer` at `instant` (SPA, airless topocentric).

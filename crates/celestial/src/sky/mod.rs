@@ -95,7 +95,7 @@ pub struct Placement {
     pub sun: SunPosition,
     /// The moon.
     pub moon: MoonPosition,
-    /// Mercury–Saturn.
+    /// Mercury–Neptune.
     pub planets: Vec<PlanetPosition>,
     /// The catalogue's stars in this sky.
     pub stars: Vec<SkyStar>,

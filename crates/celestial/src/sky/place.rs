@@ -19,7 +19,7 @@ use crate::photometry::{
     luminance_from_surface_brightness,
 };
 use crate::planets::{Planet, planet_position};
-use crate::refraction::apparent_elevation;
+use crate::refraction::apparent_direction;
 use crate::stars::StarCatalogue;
 use crate::sun::sun_position;
 use crate::{Angle, Horizontal, Instant, Observer};
@@ -176,10 +176,7 @@ impl Sky {
 
     pub(super) fn apparent(&self, direction: Horizontal) -> Horizontal {
         match &self.options.air {
-            Some(air) => Horizontal {
-                azimuth: direction.azimuth,
-                elevation: apparent_elevation(direction.elevation, air),
-            },
+            Some(air) => apparent_direction(direction, air),
             None => direction,
         }
     }

@@ -29,7 +29,7 @@ start = Time("1950-01-01T00:00:00", scale="utc").unix
 end = Time("2100-12-31T00:00:00", scale="utc").unix
 print("planet,instant,latitude_deg,longitude_deg,elevation_m,azimuth_deg,elevation_deg")
 with solar_system_ephemeris.set("builtin"):
-    for planet in ["mercury", "venus", "mars", "jupiter", "saturn"]:
+    for planet in ["mercury", "venus", "mars", "jupiter", "saturn", "uranus", "neptune"]:
         for k in range(60):
             unix = start + (end - start) * k / 59.0 + rng.uniform(0, 86400)
             t = Time(min(unix, end), format="unix", scale="utc")
