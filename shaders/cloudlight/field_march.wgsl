@@ -44,8 +44,9 @@ struct MarchParams {
     image: vec4<u32>,
     // Light steps, octave count, powder (0/1), ambient steps.
     counts: vec4<u32>,
-    // View steps; y: 1 when the entry reads a per-pixel distance limit, 0 when none; zw
-    // unused.
+    // View steps; y: 1 when the entry reads a per-pixel distance limit, 0 when none;
+    // z: 1 when the march is temporally amortised (cloudlight::gpu::TemporalMarch: only
+    // the pixels its reprojection marked are marched); w: the frame's phase (0..3).
     view: vec4<u32>,
 }
 

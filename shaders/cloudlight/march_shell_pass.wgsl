@@ -21,6 +21,10 @@ fn march_shell_main(@builtin(global_invocation_id) gid: vec3<u32>) {
     if gid.x >= size.x || gid.y >= size.y {
         return;
     }
+    // Temporally amortised (view.z = 1): only the pixels the reprojection left to march.
+    if params.view.z == 1u && image_out[2u * (gid.x + size.x * gid.y) + 1u].y == 0.0 {
+        return;
+    }
     var limit = INFINITE_DISTANCE;
     if params.view.y != 0u {
         limit = max_distance[gid.x + size.x * gid.y];

@@ -24,7 +24,7 @@ pub use field_shadow::SHADOW_WORKGROUP_SIZE;
 mod march;
 pub use march::{
     FieldMarchPass, MARCH_WORKGROUP_SIZE, MarchGpuError, MarchPass, MarchShellPass, MarchedField,
-    OutsideShadow, compose_march_shader, compose_march_shell_shader,
+    OutsideShadow, SKY_DISTANCE_M, TemporalMarch, compose_march_shader, compose_march_shell_shader,
 };
 
 mod noise_bake;

@@ -88,6 +88,7 @@ mod image;
 mod lighting;
 mod settings;
 mod step;
+pub mod temporal;
 mod view;
 
 pub use atmos_light::{AtmosLight, apply_aerial_perspective, atmos_light};

@@ -11,6 +11,7 @@
 
 use crate::gpu::layout::{buffer_entry, compute_pipeline, depth_entry};
 use crate::light::LightIndex;
+use cloudlight::gpu::TemporalMarch;
 use cloudlight::march::Lighting;
 
 /// A march whose image the composite reads (one `MarchResult` of 32 bytes per pixel).
@@ -20,6 +21,23 @@ pub(crate) trait CloudMarch {
     /// Records the march, a compute pass of its own.
     fn encode(
         &self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), crate::RenderError>;
+    /// Marches, from the next prepare, only the pixels `temporal`'s reprojection leaves
+    /// it (its phase for a `size` image), or every pixel without it.
+    fn set_phase(&mut self, temporal: Option<&TemporalMarch>, size: [u32; 2]);
+    /// After the march's prepare: binds it to `temporal`'s history.
+    fn prepare_temporal(
+        &self,
+        temporal: &mut TemporalMarch,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Result<(), crate::RenderError>;
+    /// Records the reprojection, the march and the history's update.
+    fn encode_temporal(
+        &self,
+        temporal: &TemporalMarch,
         encoder: &mut wgpu::CommandEncoder,
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), crate::RenderError>;
@@ -39,6 +57,25 @@ macro_rules! cloud_march {
             ) -> Result<(), crate::RenderError> {
                 Ok(self.encode_timed(encoder, timestamp_writes)?)
             }
+            fn set_phase(&mut self, temporal: Option<&TemporalMarch>, size: [u32; 2]) {
+                <$pass>::set_phase(self, temporal.and_then(|t| t.phase(size)));
+            }
+            fn prepare_temporal(
+                &self,
+                temporal: &mut TemporalMarch,
+                device: &wgpu::Device,
+                queue: &wgpu::Queue,
+            ) -> Result<(), crate::RenderError> {
+                Ok(temporal.prepare(device, queue, self)?)
+            }
+            fn encode_temporal(
+                &self,
+                temporal: &TemporalMarch,
+                encoder: &mut wgpu::CommandEncoder,
+                timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+            ) -> Result<(), crate::RenderError> {
+                Ok(temporal.encode(encoder, self, timestamp_writes)?)
+            }
         }
     };
 }
@@ -57,6 +94,8 @@ struct LitMarch<M> {
     /// The other cloud's shadow map for this light on the GPU (`crate::mutual_shadow`;
     /// kept across prepares while its values are unchanged).
     shadow: crate::mutual_shadow::ShadowValues,
+    /// The march amortised over frames ([`CloudComposite::amortise`]), if it is.
+    temporal: Option<TemporalMarch>,
 }
 
 /// The timestamp writes of one cloud's passes (each `None` when untimed).
@@ -165,6 +204,16 @@ fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEn
 }
 
 impl<M: CloudMarch> CloudComposite<M> {
+    /// Amortises each light's march over frames (`cloudlight::gpu::TemporalMarch`:
+    /// a quarter of the pixels marched a frame, the rest reprojected from the last
+    /// frame), for a renderer that draws a sequence of frames, such as a viewer.
+    pub(crate) fn amortise(&mut self, device: &wgpu::Device) -> Result<(), crate::RenderError> {
+        for lit in &mut self.lights {
+            lit.temporal = Some(TemporalMarch::new(device)?);
+        }
+        Ok(())
+    }
+
     /// The air and composite pipelines and the marches `march` builds, one per light of
     /// `airs` (each light's air: its tables or its rung's passes, the sun's first),
     /// each light's layouts in its air pass's groups 0 and 1. `name` labels the passes,
@@ -227,6 +276,7 @@ impl<M: CloudMarch> CloudComposite<M> {
                 air_pipeline: luts.pipeline(device, label, &air_layout)?,
                 air: None,
                 shadow: Default::default(),
+                temporal: None,
             })
         };
         let lights = airs
@@ -349,8 +399,13 @@ impl<M: CloudMarch> CloudComposite<M> {
             .as_ref()
             .ok_or(crate::RenderError::NotPrepared)?;
         let air_label = format!("render {name} air");
+        let size = [camera.width, camera.height];
         for (light, (lit, lighting)) in self.lights.iter_mut().zip(lightings).enumerate() {
+            lit.march.set_phase(lit.temporal.as_ref(), size);
             prepare_march(&mut lit.march, light, lighting, distances, &mut lit.shadow)?;
+            if let Some(temporal) = &mut lit.temporal {
+                lit.march.prepare_temporal(temporal, device, queue)?;
+            }
             let image = lit.march.image().ok_or(crate::RenderError::NotPrepared)?;
             let air = storage(
                 &air_label,
@@ -449,7 +504,13 @@ impl<M: CloudMarch> CloudComposite<M> {
         }
         let mut marches = marches.into_iter();
         for lit in &self.lights {
-            lit.march.encode(encoder, marches.next().flatten())?;
+            match &lit.temporal {
+                Some(temporal) => {
+                    lit.march
+                        .encode_temporal(temporal, encoder, marches.next().flatten())?
+                }
+                None => lit.march.encode(encoder, marches.next().flatten())?,
+            }
         }
         let air_label = format!("render {name} air");
         for (lit, tables) in self.lights.iter().zip(airs.iter().copied()) {

@@ -29,6 +29,12 @@ pub struct SceneRendererSettings {
     pub terrain_error_px: f64,
     /// Record GPU timestamps per pass (when the device has `TIMESTAMP_QUERY`).
     pub timestamps: bool,
+    /// Amortise the marched clouds over frames (`cloudlight::gpu::TemporalMarch`: a
+    /// quarter of the cloud pixels marched each frame, the others reprojected from the
+    /// last frame; a still camera's image is the full march's after four frames). For a
+    /// renderer that draws a sequence of frames from a moving camera (`skyscape view`);
+    /// off by default, so that every frame is the full march.
+    pub temporal_clouds: bool,
 }
 
 impl Default for SceneRendererSettings {
@@ -36,6 +42,7 @@ impl Default for SceneRendererSettings {
         Self {
             terrain_error_px: crate::aerial_vertex::TERRAIN_ERROR_PX,
             timestamps: false,
+            temporal_clouds: false,
         }
     }
 }

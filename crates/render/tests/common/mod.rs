@@ -122,11 +122,13 @@ pub fn parse_error(text: &str) -> SceneError {
 }
 
 /// The renderer's settings the CPU comparisons use: every terrain tile at full
-/// resolution (the CPU ray casts the full heightfield), no timestamps.
+/// resolution (the CPU ray casts the full heightfield), no timestamps, every cloud
+/// pixel marched every frame.
 pub fn exact_settings() -> SceneRendererSettings {
     SceneRendererSettings {
         terrain_error_px: 0.0,
         timestamps: false,
+        temporal_clouds: false,
     }
 }
 

@@ -19,6 +19,7 @@ mod cloudlight_cases;
 mod cloudlight_march_cases;
 mod cloudlight_shadow_cases;
 mod cloudlight_shell_cases;
+mod cloudlight_temporal_cases;
 mod cloudlight_weather_grid_cases;
 mod cloudsim_cases;
 mod common_cases;
@@ -381,6 +382,7 @@ pub fn all() -> Vec<Case> {
         cloudlight_cases::cases(),
         cloudlight_cases::cone_cases(),
         cloudlight_march_cases::cases(),
+        cloudlight_temporal_cases::cases(),
         cloudlight_shell_cases::cases(),
         cloudlight_weather_grid_cases::cases(),
         cloudlight_billboard_cases::cases(),

@@ -28,11 +28,13 @@
 
 mod pass;
 mod shared;
+mod temporal;
 
 pub use pass::{
     FieldMarchPass, MarchPass, MarchShellPass, MarchedField, compose_march_shader,
     compose_march_shell_shader,
 };
+pub use temporal::{SKY_DISTANCE_M, TemporalMarch};
 
 /// Pixels per workgroup along each image axis.
 pub const MARCH_WORKGROUP_SIZE: u32 = 8;

@@ -68,6 +68,7 @@ fn params_words(
     lighting: &Lighting<f32>,
     horizon_fade: [f64; 2],
     limited: bool,
+    phase: Option<u32>,
 ) -> [u32; 52] {
     let c = settings.config();
     let f = |x: f64| (x as f32).to_bits();
@@ -133,8 +134,8 @@ fn params_words(
         c.ambient_steps,
         c.view_steps,
         u32::from(limited),
-        0,
-        0,
+        u32::from(phase.is_some()),
+        phase.unwrap_or(0),
     ]
 }
 
@@ -145,6 +146,8 @@ pub struct FieldMarchPass<F> {
     pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
     prepared: Option<Prepared>,
+    /// The temporal amortisation's phase for the next `prepare` (`None`: every pixel).
+    phase: Option<u32>,
     field: PhantomData<fn(&F)>,
 }
 
@@ -182,8 +185,24 @@ impl<F: MarchedField> FieldMarchPass<F> {
             pipeline,
             layout,
             prepared: None,
+            phase: None,
             field: PhantomData,
         })
+    }
+
+    /// Marches, from the next `prepare` on, only the pixels a
+    /// [`TemporalMarch`](crate::gpu::TemporalMarch)'s reprojection leaves to it in frame
+    /// `phase` (0..3); `None` (the default) marches every pixel. Set by
+    /// [`TemporalMarch::phase`](crate::gpu::TemporalMarch::phase).
+    pub fn set_phase(&mut self, phase: Option<u32>) {
+        self.phase = phase.map(|p| p % 4);
+    }
+
+    /// The prepared parameters' buffer and words, and the image's size.
+    pub(crate) fn prepared_params(&self) -> Option<(&wgpu::Buffer, &[u32; 52], [u32; 2])> {
+        self.prepared
+            .as_ref()
+            .map(|p| (&p._inputs[0], &p.params, p.size))
     }
 
     /// Uploads the field (its density source), the camera, settings and lighting,
@@ -281,6 +300,7 @@ impl<F: MarchedField> FieldMarchPass<F> {
             lighting,
             field.horizon_fade(),
             max_distance.is_some(),
+            self.phase,
         );
         let params = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some(&format!("{} params", F::LABEL)),
@@ -309,6 +329,7 @@ impl<F: MarchedField> FieldMarchPass<F> {
             workgroups,
             size,
             image,
+            params: words,
             _inputs: vec![params, distance, outside_params, outside_values],
             _source: source,
         });

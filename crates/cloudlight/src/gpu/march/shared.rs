@@ -75,6 +75,8 @@ pub(super) struct Prepared {
     pub(super) workgroups: [u32; 2],
     pub(super) size: [u32; 2],
     pub(super) image: wgpu::Buffer,
+    /// The parameters' words (`MarchParams`), as uploaded.
+    pub(super) params: [u32; 52],
     pub(super) _inputs: Vec<wgpu::Buffer>,
     pub(super) _source: SourceBuffers,
 }

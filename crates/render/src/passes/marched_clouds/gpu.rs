@@ -49,6 +49,15 @@ pub(crate) fn build(
         )?),
         None => None,
     };
+    let (mut volume, mut shell) = (volume, shell);
+    if shared.settings.temporal_clouds {
+        if let Some(volume) = &mut volume {
+            volume.amortise(device)?;
+        }
+        if let Some(shell) = &mut shell {
+            shell.amortise(device)?;
+        }
+    }
     let order = if volume.is_some() && shell.is_some() {
         Some(CloudOrderPass::new(device, HDR)?)
     } else {

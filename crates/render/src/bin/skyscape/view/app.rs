@@ -218,6 +218,10 @@ impl App {
                 self.overlay_visible = on;
                 Ok(())
             }
+            Action::Temporal(on) => {
+                self.state.temporal_clouds = on;
+                Ok(())
+            }
             Action::Screenshot(stem) => {
                 self.shots_wanted.push(Some(stem));
                 Ok(())
@@ -283,7 +287,7 @@ impl App {
             return;
         };
         if let Some(prepared) = &self.state.prepared
-            && let Err(message) = gpu.prepare(prepared)
+            && let Err(message) = gpu.prepare(prepared, self.state.temporal_clouds)
         {
             let message = format!("drawing: {message}");
             if self.script.is_some() {

@@ -10,6 +10,7 @@
 //! 1 rung precomputed  # the sky rung (names as --rung)
 //! 2 exposure 1.5
 //! 2 overlay off
+//! 2 temporal off      # march every cloud pixel every frame (on: a quarter a frame)
 //! 3 screenshot shot   # shot.png and shot.exr beside each other (never replaced)
 //! 4 quit
 //! ```
@@ -33,6 +34,8 @@ pub(crate) enum Action {
     Exposure(f64),
     /// Show or hide the overlay.
     Overlay(bool),
+    /// Amortise the marched clouds over frames, or march every pixel every frame.
+    Temporal(bool),
     /// Write the frame as NAME.png and NAME.exr.
     Screenshot(PathBuf),
     /// Close the window.
@@ -129,6 +132,11 @@ impl Script {
                     "off" => Action::Overlay(false),
                     other => return Err(at(format!("`overlay` {other}: on or off"))),
                 },
+                "temporal" => match one_word()? {
+                    "on" => Action::Temporal(true),
+                    "off" => Action::Temporal(false),
+                    other => return Err(at(format!("`temporal` {other}: on or off"))),
+                },
                 "screenshot" => Action::Screenshot(PathBuf::from(one_word()?)),
                 "quit" => {
                     if !arguments.is_empty() {
@@ -143,7 +151,7 @@ impl Script {
                 other => {
                     return Err(at(format!(
                         "`{other}`: not an action (turn, move, time, sun, rung, exposure, \
-                         overlay, screenshot, quit)"
+                         overlay, temporal, screenshot, quit)"
                     )));
                 }
             };

@@ -34,6 +34,8 @@ pub(crate) struct ViewState {
     growth_accumulated: f64,
     /// Render size = window size × this (a CPU adapter draws fewer pixels).
     pub(crate) scale: f64,
+    /// Amortise the marched clouds over frames (`SceneRendererSettings::temporal_clouds`).
+    pub(crate) temporal_clouds: bool,
     /// The last prepared scene, moved to the current camera.
     pub(crate) prepared: Option<PreparedScene>,
     /// Where the prepared scene was prepared (scene frame).
@@ -58,6 +60,7 @@ impl ViewState {
             growth_rate: 0.0,
             growth_accumulated: 0.0,
             scale,
+            temporal_clouds: true,
             prepared: None,
             prepared_at: None,
             dirty: true,

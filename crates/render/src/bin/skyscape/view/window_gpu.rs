@@ -40,6 +40,8 @@ pub(crate) struct WindowGpu {
     present_uniforms: wgpu::Buffer,
     present_bind_group: Option<wgpu::BindGroup>,
     pub(crate) renderer: Option<SceneRenderer>,
+    /// Whether the renderer amortises the marched clouds over frames.
+    temporal_clouds: bool,
     /// Renderers built so far (the first, then one per change the last one refused).
     pub(crate) renderers_built: u32,
     pub(crate) overlay: egui_wgpu::Renderer,
@@ -125,6 +127,7 @@ impl WindowGpu {
             present_uniforms,
             present_bind_group: None,
             renderer: None,
+            temporal_clouds: false,
             renderers_built: 0,
             overlay,
         })
@@ -151,18 +154,26 @@ impl WindowGpu {
     }
 
     /// Writes `scene`'s frame uniforms into the renderer, building a new renderer when
-    /// there is none or the current one refuses the scene (other passes, size, tables
-    /// or terrain). Returns whether a renderer was built.
-    pub(crate) fn prepare(&mut self, scene: &PreparedScene) -> Result<bool, String> {
+    /// there is none, the current one refuses the scene (other passes, size, tables or
+    /// terrain) or `temporal_clouds` (the marched clouds amortised over frames)
+    /// changed. Returns whether a renderer was built.
+    pub(crate) fn prepare(
+        &mut self,
+        scene: &PreparedScene,
+        temporal_clouds: bool,
+    ) -> Result<bool, String> {
         if let Some(renderer) = &mut self.renderer
+            && temporal_clouds == self.temporal_clouds
             && renderer.prepare(&self.queue, scene).is_ok()
         {
             return Ok(false);
         }
+        self.temporal_clouds = temporal_clouds;
         self.renderer = None;
         self.present_bind_group = None;
         let settings = SceneRendererSettings {
             timestamps: self.timestamps,
+            temporal_clouds,
             ..Default::default()
         };
         let mut renderer = SceneRenderer::new(&self.device, &self.queue, scene, settings)
