@@ -463,7 +463,7 @@ fn grazing_views_at_the_atmosphere_edge_have_no_spikes() {
 #[test]
 fn radiance_is_continuous_when_crossing_the_top() {
     // Inside: sky-view lookup blended into the march over the top kilometre; outside:
-    // march from the entry point. Seed 001's bug: a jump at the top. The issue bounds the
+    // march from the entry point. A shell-entry march jumps at the top; the test bounds the
     // change for ±1 m by 0.5 % (every ray), over the upper hemisphere and the limb, sun 30°.
     let sky = PrecomputedSky::new(&Atmosphere::earth(), &LutSettings::default()).unwrap();
     let sun = DVec3::new(30f64.to_radians().cos(), 0.0, 30f64.to_radians().sin());
