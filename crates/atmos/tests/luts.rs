@@ -761,8 +761,8 @@ fn gpu_frame_matches_the_cpu_shading_with(
 
 /// Error against the Reference (rung 4): mean and max relative luminance error per
 /// sun elevation, viewer altitudes 0–10 km, directions over the upper hemisphere and
-/// just below the horizon; the mean must stay below 1 % for suns ≥ 5° (the README's
-/// headline figure; CI runs it: about 6 s in the dev profile, which optimises atmos).
+/// just below the horizon; the mean must stay below 1 % for suns ≥ 5° (the user
+/// guide's headline figure; CI runs it: about 6 s in the dev profile, which optimises atmos).
 /// Figures: `cargo test -p atmos --test luts -- --nocapture precomputed_against_the_reference`.
 #[test]
 fn precomputed_against_the_reference() {
@@ -841,7 +841,7 @@ fn view_transmittance_against_the_reference() {
         .map(|q| reference.evaluate(q).transmittance)
         .collect();
     // (mean, max) absolute error each source must stay within: the measured figures
-    // (atmos README) with headroom, so a regression of either source fails.
+    // (printed with `--nocapture`) with headroom, so a regression of either source fails.
     for (view_transmittance, mean_bound, max_bound) in [
         (ViewTransmittance::SkyViewLut, 3e-4, 3e-2),
         (ViewTransmittance::TransmittanceLut, 2e-4, 3e-3),

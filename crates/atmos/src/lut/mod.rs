@@ -104,7 +104,7 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
 ///
 /// Measured against the default-settings reference on 2,304 queries (viewers 0 – 50 km,
 /// suns −6° … 90°; `cargo test -p atmos --test luts -- --nocapture
-/// view_transmittance_against_the_reference`); see the atmos README for
+/// view_transmittance_against_the_reference`); see `docs/atmos-methods.md` for
 /// the figures and the per-query cost of each choice.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ViewTransmittance {
