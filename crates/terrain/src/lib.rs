@@ -127,6 +127,11 @@ pub fn composer() -> skyscape_wgsl::Composer {
     composer
 }
 
+/// The README's examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
+
 #[cfg(test)]
 mod wgsl_tests {
     #[test]
