@@ -17,8 +17,8 @@
 //!   `L − 6Δ` (a corrected far sample: it stands for the rest of the path).
 //!
 //! [`march_optical_depth`] is the accurate option: `n` midpoint steps over `[0, L]`.
-//! All three are measured against the exact transmittance ([`crate::reference`]) in the
-//! crate README.
+//! All three are measured against the exact transmittance ([`crate::reference`]) by
+//! `cargo xtask tradeoff cloudlight` (`docs/tradeoffs/cloudlight.md`).
 
 use atmos::real::Real;
 

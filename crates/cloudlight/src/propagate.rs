@@ -19,7 +19,7 @@
 //!   the density (the original field, no accumulated blur) always bilinearly. Repeated
 //!   bilinear resampling at the same fractional offset is first-order upwind advection: it
 //!   diffuses shadow edges by about `√(k·f(1−f))` texels after `k` slices; the clamped
-//!   cubic diffuses far less and cannot overshoot. Figures in the crate README.
+//!   cubic diffuses far less and cannot overshoot. Figures in `docs/cloudlight-methods.md`.
 //! * **faithful**: Dobashi et al. 2000 as published: the light is shifted by whole texels (the offset of
 //!   slice `k` is `round(k·s) − round((k−1)·s)`, so the shifts follow the light ray), and
 //!   attenuated by the previous slice's 5-tap cross-smoothed density:
