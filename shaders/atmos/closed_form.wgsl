@@ -1,4 +1,4 @@
-// Seed 000's closed-form (Hoffman–Preetham) scattering: a homogeneous medium with
+// Closed-form scattering (Hoffman & Preetham 2002): a homogeneous medium with
 // Rayleigh and Mie scattering along a path of length path_length (m).
 // Twin: atmos::closed_form (f32). Radiance is per unit sun irradiance (1/sr).
 #import atmos::phase

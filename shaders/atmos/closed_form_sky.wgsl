@@ -1,4 +1,4 @@
-// Rung 1 of the ladder: seed 000's closed form in spherical geometry. A path through
+// Rung 1 of the ladder: Hoffman & Preetham's (2002) closed form in spherical geometry. A path through
 // Earth's exponential layers becomes its equivalent sea-level path (the length of air
 // at ground density with the same optical depth, through an exponential layer of the
 // Rayleigh scale height H_R, by the Chapman function in closed form), valid for a

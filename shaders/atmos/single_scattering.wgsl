@@ -1,5 +1,5 @@
 // Rung 2 of the scattering ladder: single scattering in a spherical atmosphere
-// (Nishita et al. 1993, O'Neil 2005; seed 001's setting, without its bugs).
+// (Nishita et al. 1993, O'Neil 2005).
 // Twin: atmos::single_scattering (f32) and atmos::reference (f64), same names,
 // arguments and units (metres, 1/m, cosines in the r/mu/mu_s/nu convention).
 //

@@ -1,6 +1,6 @@
 // The sky drawn into a caller's colour target (a render pipeline: one full-screen
-// triangle, normally drawn first with depth writes off, as seed 000 draws its sky
-// hemisphere): each pixel of the frame view (frame_view: the caller's view and
+// triangle, normally drawn first with depth writes off, as Hoffman & Preetham 2002
+// draw their sky hemisphere): each pixel of the frame view (frame_view: the caller's view and
 // projection matrices and viewport, so a viewport anywhere in the target and any
 // perspective projection draw the right sky) gets the whole view ray's in-scatter
 // (atmos::lut_shading's unlimited_view_segment) and, where the ray sees the sun's disc

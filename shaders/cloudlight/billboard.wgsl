@@ -1,4 +1,4 @@
-// Seed 002's billboards: the soft splat and a billboard's place and size on the image.
+// Dobashi et al. 2000's billboards: the soft splat and a billboard's place and size on the image.
 // Twin: cloudlight::billboard (Rust, generic over the float type: the f32 instantiation
 // mirrors these operations).
 
@@ -11,7 +11,7 @@ struct BillboardFrame {
     half_width: f32,
     forward: vec3<f32>,
     half_height: f32,
-    // 0: seed 002's size = (k·ρ/d)·ρ pixels; 1: a world diameter scale·ρ metres, projected.
+    // 0: Dobashi et al. 2000's size = (k·ρ/d)·ρ pixels; 1: a world diameter scale·ρ metres, projected.
     size_mode: u32,
     // k (pixel·metres) or metres per unit density.
     size_scale: f32,

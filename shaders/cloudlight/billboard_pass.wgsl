@@ -1,4 +1,4 @@
-// Seed 002's billboards as a render pass: cloudlight::billboard_quad's instanced quads
+// Dobashi et al. 2000's billboards as a render pass: cloudlight::billboard_quad's instanced quads
 // (one per particle, sorted back to front on the CPU) at depth 0, premultiplied, blended
 // "over" (One, OneMinusSrcAlpha). Twin: cloudlight::billboard::rasterise (Rust).
 

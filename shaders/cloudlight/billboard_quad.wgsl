@@ -1,4 +1,4 @@
-// Seed 002's billboards as instanced quads, the vertex and fragment work that
+// Dobashi et al. 2000's billboards as instanced quads, the vertex and fragment work that
 // cloudlight::billboard_pass and render::billboard_clouds share: one quad per instance
 // (six vertices; instance layout cloudlight::gpu::billboard::instance_layout), each a
 // pixel wider than its splat's disc on every side so that the fragment shader, not the

@@ -1,4 +1,4 @@
-// Seed 003's light sampling toward the sun (Schneider's 6 cone samples + 1 far sample),
+// Light sampling toward the sun (Schneider 2015's 6 cone samples + 1 far sample),
 // Beer–Lambert, the powder term and dual-lobe Henyey–Greenstein (atmos' lobe, imported).
 // Twin: cloudlight::cone (Rust, generic over the float type: the f32 instantiation mirrors
 // these operations).

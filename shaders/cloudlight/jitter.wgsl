@@ -1,4 +1,4 @@
-// Seed 003: ray-march start offsets from a 4×4 Bayer matrix, to break up the
+// Ray-march start offsets (Schneider 2015) from a 4×4 Bayer matrix, to break up the
 // layering of fixed-step marching without white-noise grain. Twin: cloudlight::jitter.
 
 // The Bayer threshold of a pixel as a fraction of a step, in {0, 1/16, …, 15/16}:

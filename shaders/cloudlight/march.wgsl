@@ -1,4 +1,4 @@
-// Seed 003's view ray-march, per-sample functions: Hillaire's energy-conserving step,
+// The view ray-march (Schneider 2015), per-sample functions: Hillaire's energy-conserving step,
 // the multiple-scattering octaves of the sun light, and the pinhole camera's pixel
 // direction. Twin: cloudlight::march (Rust, generic over the float type: the f32
 // instantiation mirrors these operations).

@@ -1,4 +1,4 @@
-// Tileable 3-D noise for seed 003's cloud shell: Perlin gradient noise and Worley F1
+// Tileable 3-D noise for the cloud shell (Schneider 2015): Perlin gradient noise and Worley F1
 // with an integer period, their fBm sums, Schneider's Perlin–Worley, and the shape
 // (4-channel) and detail (3-channel) noise the shell samples and the bake pass writes.
 // Twin: cloudlight::noise (Rust, generic over the float type: the f32 instantiation

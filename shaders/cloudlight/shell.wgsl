@@ -1,4 +1,4 @@
-// Seed 003's procedural cloud shell (Schneider, GPU Pro 7): the height profiles per
+// The procedural cloud shell (Schneider 2015, 2017): the height profiles per
 // cloud type, the density from the shape and detail noise, the density at a
 // planet-centred point, procedural weather, a weather grid's bilinear lookup, the
 // horizon fade and a ray's spans inside the shell (atmos' stable ray–sphere roots,

@@ -1,4 +1,4 @@
-// Seed 002's slice-by-slice light attenuation: light leaving a volume slice is the
+// Slice-by-slice light attenuation (Dobashi et al. 2000): light leaving a volume slice is the
 // light that reached it from the previous slice (towards the sun) times the slice's
 // attenuation, 1 − (1 − attenuation_ratio)·density, with density in [0, 1] the
 // smoothed cloud density and attenuation_ratio the fraction of light a fully dense

@@ -1,4 +1,4 @@
-// Seed 002's slice propagation, the per-texel arithmetic. Twins: cloudlight::propagate
+// Slice propagation (Dobashi et al. 2000), the per-texel arithmetic. Twins: cloudlight::propagate
 // (Rust, generic over the float type: the f32 instantiation mirrors these operations).
 // The pass that sweeps the slices is cloudlight::slice_propagation_pass.
 
@@ -12,7 +12,7 @@ fn slice_optical_depth(tau_prev: f32, rho_prev: f32, rho: f32, sigma_ds: f32) ->
     return min(tau_prev + (half_step * rho_prev + half_step * rho), 1e30);
 }
 
-// Seed 002's 5-tap cross smoothing of the density.
+// Dobashi et al. 2000's 5-tap cross smoothing of the density.
 fn cross_smooth(centre: f32, left: f32, right: f32, down: f32, up: f32) -> f32 {
     return (centre + left + right + down + up) / 5.0;
 }

@@ -1,4 +1,4 @@
-// Seed 002's slice propagation as a compute pass: one dispatch per slice, from the sun
+// Slice propagation (Dobashi et al. 2000) as a compute pass: one dispatch per slice, from the sun
 // side. The previous slice's carried value (optical depth in physical mode, light in
 // faithful mode) is read from one ping-pong buffer and this slice's written to the other;
 // the light of every cell goes into one 3-D output (the seed's combine step folded in).

@@ -1,4 +1,4 @@
-// `[clouds.volume]` drawn as seed 002's billboards over the opaque scene: cloudlight's
+// `[clouds.volume]` drawn as Dobashi et al. 2000's billboards over the opaque scene: cloudlight's
 // instanced quads (cloudlight::billboard_quad: one per particle, sorted back to front on
 // the CPU; instance layout of cloudlight::gpu::billboard), each a pixel wider than its
 // splat's disc so the fragment shader decides coverage at the pixel centre

@@ -1,6 +1,6 @@
 // The sky of a scene whose rung has no tables (the closed form per pixel or per dome
-// vertex, single scattering), drawn first with depth writes off as seed 000 draws its
-// sky hemisphere: atmos' frame renderer of the rung (atmos::gpu::ClosedFormRenderer,
+// vertex, single scattering), drawn first with depth writes off as Hoffman & Preetham
+// 2002 draw their sky hemisphere: atmos' frame renderer of the rung (atmos::gpu::ClosedFormRenderer,
 // SingleScatteringRenderer) has written each pixel's view-ray radiance and
 // transmittance into an atmos::gpu::FrameOutput; this full-screen triangle adds the
 // sun's disc through the transmittance (render::present's present_radiance: zero disc

@@ -1,5 +1,5 @@
 // The terrain pass with its aerial perspective per vertex (`[terrain] aerial_perspective
-// = "per-vertex"`, seed 000): render::terrain's vertices, bindings and shading, with the
+// = "per-vertex"`, as Hoffman & Preetham 2002): render::terrain's vertices, bindings and shading, with the
 // segment camera → vertex (atmos::aerial_perspective, the function render::terrain's
 // fragments call per pixel) evaluated in the vertex stage and interpolated to the
 // fragments by the rasteriser (perspective-correct). A fragment shades its surface as

@@ -1,4 +1,4 @@
-// What a scene adds to seed 000's terrain term: the albedo ramp by elevation and slope,
+// What a scene adds to Hoffman & Preetham 2002's terrain term: the albedo ramp by elevation and slope,
 // and the sum of the sun's and the sky's light. Twin: render::terrain_shading (Rust),
 // same names, argument order and units.
 #import common::constants

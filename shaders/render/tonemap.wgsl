@@ -1,9 +1,9 @@
-// Display encoding: exposure tone map (seed 001), sRGB transfer, dithered 8-bit
+// Display encoding: exposure tone map (O'Neil 2005), sRGB transfer, dithered 8-bit
 // quantisation. Twin: render::tonemap (Rust). Same names and arguments.
 #import common::hash
 #import atmos::transmittance
 
-// Seed 001's tone map, 1 − exp(−radiance·exposure) per channel, using the accurate
+// O'Neil 2005's tone map, 1 − exp(−radiance·exposure) per channel, using the accurate
 // 1 − e^{−x} so that dim radiance keeps its digits.
 fn tonemap_exposure(radiance: vec3<f32>, exposure: f32) -> vec3<f32> {
     let x = radiance * exposure;

@@ -1,4 +1,4 @@
-// terrain::shading — the seed-000 terrain surface term.
+// terrain::shading — the terrain surface term of Hoffman & Preetham 2002.
 // Twin: terrain::shadow::terrain_shading (Rust): same name, argument order and units.
 
 // (N.L) * albedo * self_shadow * cloud_shadow, N.L clamped at 0; normal and

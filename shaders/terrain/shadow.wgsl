@@ -75,7 +75,7 @@ fn azimuth_layers(sun_azimuth: f32, count: u32) -> AzimuthLayers {
     return AzimuthLayers(lower, (lower + 1u) % count, f - k);
 }
 
-// Self-shadow from the two seed-000 maps: east horizon while the sun is in the east.
+// Self-shadow from the east/west pair of horizon maps: east horizon while the sun is in the east.
 fn self_shadow_east_west(horizon_east: f32, horizon_west: f32, sun_direction: vec3<f32>, sun_angular_radius: f32) -> f32 {
     let horizon = select(horizon_west, horizon_east, sun_direction.x >= 0.0);
     return soft_shadow(sun_elevation(sun_direction), horizon, sun_angular_radius);

@@ -10,7 +10,7 @@
 //!   `--self-test` evaluates the CPU sides only (no GPU).
 //! * `tradeoff <atmos|terrain|sky-dome|cloudlight> [--quick] [--backend …]` — speed against
 //!   accuracy for each quality setting of a subsystem, measured; writes
-//!   `docs/tradeoffs/<subsystem>.md` (`sky-dome`: seed 004's 12-sided dome against the
+//!   `docs/tradeoffs/<subsystem>.md` (`sky-dome`: SGSky's 12-sided dome against the
 //!   per-pixel sky, `sky_dome.md`).
 
 mod parity;

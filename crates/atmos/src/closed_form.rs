@@ -1,4 +1,5 @@
-//! Seed 000's closed-form (Hoffman–Preetham) scattering in a homogeneous medium.
+//! Closed-form scattering in a homogeneous medium (Hoffman & Preetham 2002,
+//! `docs/references.md#hoffman-preetham-2002`).
 //! Twin of `shaders/atmos/closed_form.wgsl`. Radiance per unit sun irradiance (1/sr).
 //!
 //! Written once, generic over [`Real`]: the f64 instantiation is the parity reference
@@ -71,7 +72,7 @@ mod tests {
 
     #[test]
     fn rayleigh_only_zenith_is_blue() {
-        // Seed 000: without Mie the sky is blue.
+        // Hoffman & Preetham 2002: without Mie the sky is blue.
         let l = closed_form_inscatter(BETA_R, [0.0; 3], 0.5, 0.8, 8000.0);
         assert!(l[2] > l[1] && l[1] > l[0], "{l:?}");
     }

@@ -1,4 +1,4 @@
-//! Rung 1 of the ladder: seed 000's closed form in spherical geometry, per pixel
+//! Rung 1 of the ladder: Hoffman & Preetham's (2002) closed form in spherical geometry, per pixel
 //! ([`ClosedFormSky`]) or per vertex of a dome ([`crate::dome::DomeInterpolated`]).
 //! Twin of `shaders/atmos/closed_form_sky.wgsl`.
 //!
@@ -10,16 +10,16 @@
 //! that both constituents keep their true vertical optical depth from the ground; ozone
 //! is not modelled. Because the path follows the density from the camera's own
 //! altitude, the closed form holds for a camera at any altitude, in the air or in space
-//! (issue 13: the former homogeneous shell `H_R` thick left a camera above it a black
-//! sky). In-scatter along the view path is driven by sunlight attenuated by the
+//! (a homogeneous shell `H_R` thick would leave a camera above it a black sky).
+//! In-scatter along the view path is driven by sunlight attenuated by the
 //! transmittance *averaged* over the sun's path to space, `(1 − e^{−τ})/τ`: the closed
 //! form needs one value for the whole path, and most scattering happens above the
 //! viewer where the sun is less dimmed. The parts of the view path inside the planet's
 //! shadow (the cylinder of the planet's radius behind it,
 //! [`closed_form_shadow_interval`]) get no sunlight; the lit parts before and after it
-//! are still in closed form (issue 13: the whole path used to be lit with the sunlight
-//! at the camera, so a camera above the terminator saw the night side lit). A camera
-//! in the shadow has no sunlight at all, as before.
+//! are still in closed form (lit with the sunlight at the camera, a camera above the
+//! terminator would see the night side lit). A camera in the shadow has no sunlight at
+//! all.
 
 use crate::closed_form::{closed_form_extinction, closed_form_inscatter};
 use crate::geometry::ray_sphere_intersect;
@@ -34,7 +34,7 @@ use crate::{AtmosError, Atmosphere};
 pub struct ClosedFormSkyParameters {
     /// Rayleigh scattering (1/m).
     pub beta_rayleigh: [f32; 3],
-    /// Mie anisotropy (Henyey–Greenstein, as in seed 000).
+    /// Mie anisotropy (Henyey–Greenstein, as in Hoffman & Preetham 2002).
     pub mie_g: f32,
     /// Homogeneous-equivalent Mie scattering, `β_M · H_M / H_R` (1/m).
     pub beta_mie: [f32; 3],

@@ -1,6 +1,6 @@
 //! Per-vertex evaluation: any [`SkyModel`] evaluated at the vertices of a dome mesh
 //! around the viewer and interpolated across its faces, as a vertex shader over a sky
-//! dome does (seed 000's dome). Cost moves from per pixel to per vertex; the error is
+//! dome does (Hoffman & Preetham 2002's sky hemisphere). Cost moves from per pixel to per vertex; the error is
 //! the interpolation's, measured by `cargo xtask tradeoff atmos`.
 //!
 //! The dome is a latitude–longitude sphere in the viewer's local frame: `rings`

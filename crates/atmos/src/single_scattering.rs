@@ -1,5 +1,5 @@
 //! Rung 2 of the ladder: single scattering in a spherical atmosphere (Nishita et al.
-//! 1993, O'Neil 2005; seed 001's setting without its bugs). f32 twin of
+//! 1993, O'Neil 2005; `docs/references.md#oneil-2005`). f32 twin of
 //! `shaders/atmos/single_scattering.wgsl`, function for function. Each function is
 //! written once, generic over the atmosphere's float type ([`AtmosphereFields`]): the
 //! f32 instantiation (on [`AtmosphereParameters`]) mirrors the WGSL, the f64 one (on
@@ -351,8 +351,8 @@ impl Default for SingleScatteringSettings {
 impl SingleScatteringSettings {
     /// Why the defaults are what they are (measured by the tests in
     /// `crates/atmos/tests/single_scattering.rs`, `default_sample_counts_are_converged`).
-    pub const DEFAULT_JUSTIFICATION: &'static str = "32 view / 8 light samples (O'Neil's and \
-        seed 001's order of magnitude): with samples crowded where each ray passes lowest, the \
+    pub const DEFAULT_JUSTIFICATION: &'static str = "32 view / 8 light samples (the order of \
+        magnitude of O'Neil 2005): with samples crowded where each ray passes lowest, the \
         mean relative luminance error against 512/128 at sun elevations ≥ 10° is 0.21 % \
         (16 view: 0.27 %, 4 light: 0.42 %, 64/16: 0.05 %), far below rung 2's physics error \
         (no multiple scattering, ~25 % of the sky)";

@@ -1,6 +1,5 @@
-//! The closed form at any camera altitude (issue 13): the former homogeneous shell
-//! `H_R` thick gave a camera at 7.9 km or higher a black sky over a bright lower half.
-//! Measured here against the single-scattering rung (which integrates the exact
+//! The closed form at any camera altitude: a homogeneous shell `H_R` thick would give a
+//! camera at 7.9 km or higher a black sky over a bright lower half. Measured here against the single-scattering rung (which integrates the exact
 //! exponential profiles) at 0, 5, 8, 10, 50 and 1,000 km.
 
 use atmos::closed_form_sky::ClosedFormSky;

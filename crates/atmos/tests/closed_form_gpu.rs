@@ -97,7 +97,7 @@ fn per_pixel_matches_the_cpu_twin() {
 
 /// A 1,000 km camera above the terminator (sun on its horizon) looking down at the
 /// night side: the GPU applies the planet's shadow as the CPU twin does, and the frame
-/// is dark (issue 13: it was lit by the sunlight at the camera).
+/// is dark, not lit by the sunlight at the camera.
 #[test]
 fn night_side_from_orbit_is_dark_on_the_gpu() {
     let Some(gpu) = skyscape_harness::gpu_or_skip("atmos::closed_form night side") else {

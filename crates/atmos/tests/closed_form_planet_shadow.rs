@@ -1,7 +1,7 @@
-//! The closed form's planet shadow (issue 13): points along the view path that are in
-//! the planet's shadow get no sunlight. The closed form used to light the whole path
-//! with the sunlight at the camera, so a camera high above the terminator looking down
-//! at the night side (sun at 0°) saw it lit. Measured against the single-scattering
+//! The closed form's planet shadow: points along the view path that are in the planet's
+//! shadow get no sunlight. Lighting the whole path with the sunlight at the camera would
+//! show a camera high above the terminator looking down at the night side (sun at 0°)
+//! a lit night. Measured against the single-scattering
 //! rung, which lights each sample only where the sun is above its horizon.
 
 use atmos::closed_form_sky::{ClosedFormSky, closed_form_shadow_interval};

@@ -2,8 +2,8 @@
 //! "Rays at the ground"): a ray that starts on the ground and points along or above the
 //! tangent plane sees the sky; only a ray pointing strictly below it hits the ground.
 //! Every rung must agree, at altitudes 0, 1 mm and 1 m and view elevations −0.01°, 0°
-//! and +0.01° (issue 13: at altitude exactly 0 and elevation exactly 0° the closed-form
-//! and precomputed rungs returned radiance 0 and transmittance 1).
+//! and +0.01° (at altitude exactly 0 and elevation exactly 0° a ground test that is not
+//! strict returns radiance 0 and transmittance 1).
 
 use atmos::closed_form_sky::ClosedFormSky;
 use atmos::ladder::luminance;

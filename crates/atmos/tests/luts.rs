@@ -463,7 +463,7 @@ fn grazing_views_at_the_atmosphere_edge_have_no_spikes() {
 #[test]
 fn radiance_is_continuous_when_crossing_the_top() {
     // Inside: sky-view lookup blended into the march over the top kilometre; outside:
-    // march from the entry point. Seed 001's bug: a jump at the top. The issue bounds the
+    // march from the entry point. A shell-entry march jumps at the top; the test bounds the
     // change for ±1 m by 0.5 % (every ray), over the upper hemisphere and the limb, sun 30°.
     let sky = PrecomputedSky::new(&Atmosphere::earth(), &LutSettings::default()).unwrap();
     let sun = DVec3::new(30f64.to_radians().cos(), 0.0, 30f64.to_radians().sin());
@@ -761,8 +761,8 @@ fn gpu_frame_matches_the_cpu_shading_with(
 
 /// Error against the Reference (rung 4): mean and max relative luminance error per
 /// sun elevation, viewer altitudes 0–10 km, directions over the upper hemisphere and
-/// just below the horizon; the mean must stay below 1 % for suns ≥ 5° (the README's
-/// headline figure; CI runs it: about 6 s in the dev profile, which optimises atmos).
+/// just below the horizon; the mean must stay below 1 % for suns ≥ 5° (the user
+/// guide's headline figure; CI runs it: about 6 s in the dev profile, which optimises atmos).
 /// Figures: `cargo test -p atmos --test luts -- --nocapture precomputed_against_the_reference`.
 #[test]
 fn precomputed_against_the_reference() {
@@ -841,7 +841,7 @@ fn view_transmittance_against_the_reference() {
         .map(|q| reference.evaluate(q).transmittance)
         .collect();
     // (mean, max) absolute error each source must stay within: the measured figures
-    // (atmos README) with headroom, so a regression of either source fails.
+    // (printed with `--nocapture`) with headroom, so a regression of either source fails.
     for (view_transmittance, mean_bound, max_bound) in [
         (ViewTransmittance::SkyViewLut, 3e-4, 3e-2),
         (ViewTransmittance::TransmittanceLut, 2e-4, 3e-3),

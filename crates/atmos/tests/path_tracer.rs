@@ -888,8 +888,8 @@ fn reference_error_causes() {
     }
 }
 
-/// The iterated-orders Reference's orders ≥ 2 against the path tracer where its
-/// resolutions used to fail (issue 13.2), at the small `ReferenceSettings::low()`
+/// The iterated-orders Reference's orders ≥ 2 against the path tracer where coarse
+/// resolutions fail, at the small `ReferenceSettings::low()`
 /// tables so that it runs in CI: cameras at 100 and 1,000 km looking down in daylight
 /// (the source interpolated the exponential densities linearly between its radius
 /// rows: the Mie source over 1–5 km several tens of % too bright), a ground camera
@@ -898,9 +898,8 @@ fn reference_error_causes() {
 /// interpolation between sun-angle rows 10° apart, across the terminator).
 ///
 /// Measured (`cargo test -p atmos --test path_tracer -- --nocapture
-/// reference_orders_two_and_up`, deterministic): before issue 13.2's fixes −2.3 / −0.6 /
-/// −1.6 / −14.4 % in daylight and +1358 / +160 % in twilight; after −2.3 / −2.8 / −1.5 /
-/// −4.6 % and −8.9 / −21.3 % (the low tables stop at order 4; the path tracer has all).
+/// reference_orders_two_and_up`, deterministic): −2.3 / −2.8 / −1.5 / −4.6 % in daylight
+/// and −8.9 / −21.3 % in twilight (the low tables stop at order 4; the path tracer has all).
 #[test]
 fn reference_orders_two_and_up_follow_the_path_tracer() {
     let earth = Atmosphere::earth();
@@ -942,7 +941,7 @@ fn reference_orders_two_and_up_follow_the_path_tracer() {
 }
 
 /// Rung 3 (the precomputed sky, default settings) against the same path-traced set as
-/// `reference_error_causes` (issue 13.3: its twilight).
+/// `reference_error_causes`, twilight included.
 /// `SKYSCAPE_PT_SAMPLES=4096 SKYSCAPE_PT_CACHE=… cargo test -p atmos --test path_tracer
 /// -- --ignored --nocapture precomputed_against_the_path_tracer` (`SKYSCAPE_PT_SUNS`: a
 /// subset of the suns; `SKYSCAPE_PT_REFINE`: re-trace the worst twilight views with that
@@ -1078,7 +1077,7 @@ fn precomputed_against_the_path_tracer() {
             100.0 * t[6]
         );
     }
-    // Issue 13's goals for rung 3 (measured at 4,096 samples: day 0.50 %, twilight 2.2 %;
+    // Rung 3's bounds (measured at 4,096 samples: day 0.50 %, twilight 2.2 %;
     // refined 16×, twilight max 19.8 % (σ 1.9 %)).
     if refine > 1 {
         assert!(
@@ -1099,7 +1098,7 @@ fn precomputed_against_the_path_tracer() {
     );
 }
 
-/// Rung 3's twilight against the path tracer (issue 13.3), CI-sized: views from the
+/// Rung 3's twilight against the path tracer, CI-sized: views from the
 /// ground and from 10 km at sun −4° and −2°, where Hillaire's 32 μ_s texels of the
 /// multiple-scattering table read the light across the terminator too bright.
 /// Measured (`cargo test -p atmos --test path_tracer -- --nocapture

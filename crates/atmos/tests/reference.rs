@@ -138,7 +138,7 @@ fn multiple_scattering_adds_light_and_the_last_order_is_small() {
 }
 
 #[test]
-fn seed_000_observations_hold_in_the_reference() {
+fn hoffman_preetham_observations_hold_in_the_reference() {
     let earth = Atmosphere::earth();
     let clear = Atmosphere {
         mie_scattering: [0.0; 3],

@@ -1,5 +1,5 @@
-//! Rung 2 (single scattering): robustness sweeps, seed 001's bugs as tests, seed 000's
-//! observations, the default sample counts' convergence, and the GPU frame against the
+//! Rung 2 (single scattering): robustness sweeps, the known artefacts of a shell-entry
+//! march (O'Neil 2005) as tests, Hoffman & Preetham 2002's observations, the default sample counts' convergence, and the GPU frame against the
 //! CPU twin.
 
 use atmos::ladder::luminance;
@@ -144,7 +144,7 @@ fn zero_density_is_an_empty_sky() {
 
 #[test]
 fn continuous_across_the_top_of_the_atmosphere() {
-    // Seed 001's "painted shell" jump: the outside path starts at the shell, the inside
+    // The "painted shell" jump of a shell-entry march: the outside path starts at the shell, the inside
     // path at the camera; ±1 m around the top must agree to 0.5 %.
     let model = sky(&Atmosphere::earth(), 32, 8);
     let tangent_ground = -(1.0 - (R / TOP).powi(2)).sqrt();
@@ -182,7 +182,7 @@ fn continuous_across_the_top_of_the_atmosphere() {
 
 #[test]
 fn no_spike_at_the_sunlit_limb_seen_from_space() {
-    // Seed 001's edge artefact: a dense sweep of views across the limb, lit from the
+    // The sunlit limb's edge artefact of a shell-entry march: a dense sweep of views across the limb, lit from the
     // side and from behind the viewer. The f32 twin must stay within 1 % (plus a floor
     // far below the limb's brightness) of the f64 twin at the same sample counts.
     let earth = Atmosphere::earth();
@@ -234,7 +234,7 @@ fn no_spike_at_the_sunlit_limb_seen_from_space() {
 
 #[test]
 fn aerial_perspective_grows_with_distance() {
-    // Seed 001's "painted shell": distant geometry must take more in-scatter and less
+    // No "painted shell": distant geometry must take more in-scatter and less
     // transmittance the farther it is.
     let model = sky(&Atmosphere::earth(), 32, 8);
     let sun = direction(0.5, 1.0);
@@ -264,7 +264,7 @@ fn aerial_perspective_grows_with_distance() {
 }
 
 #[test]
-fn seed_000_observations_hold() {
+fn hoffman_preetham_observations_hold() {
     let earth = Atmosphere::earth();
     // Zenith at noon without Mie: B > G > R.
     let clear = Atmosphere {

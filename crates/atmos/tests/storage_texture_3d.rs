@@ -7,7 +7,7 @@
 //! `ImageBinding::array_layer` is `None`, i.e. layered, only for `D2Array` and
 //! `CubeArray` views), so every slice but the first keeps its zero initialisation.
 //! On GL the test passes while that limitation holds and fails once wgpu writes every
-//! slice, so that crates/render/README.md's GL paragraph gets updated.
+//! slice, so that docs/render-methods.md's GL section gets updated.
 
 const SIZE: [u32; 3] = [4, 4, 8];
 
@@ -116,7 +116,7 @@ fn every_slice_of_a_3d_storage_texture_is_written_except_on_gl() {
         assert!(
             got[1..].iter().all(|v| *v == 0.0),
             "wgpu's GL backend now writes slices beyond the first ({got:?}): update \
-             crates/render/README.md's GL paragraph"
+             docs/render-methods.md's GL section"
         );
     } else {
         assert_eq!(got, expected);

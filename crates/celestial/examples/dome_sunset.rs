@@ -1,5 +1,5 @@
-//! A sunset (sun 2° up, 2024-06-21 at 52° N 5° E) three ways, side by side: atmos'
-//! rung 3 per pixel with the sun's disc; seed 004's 12-sided dome with its 70/30 and
+//! A sunset (sun 2° up, on the evening of 21 June 2024 at 52° N 5° E) three ways, side by
+//! side: atmos' rung 3 per pixel with the sun's disc; SimGear SGSky's 12-sided dome with its 70/30 and
 //! 10/90 sky/fog weights (sky = the zenith, fog = the horizon in each vertex's azimuth,
 //! rotated so vertex 0 faces the sun) plus the sun's aureole and disc; the same dome
 //! with every vertex from rung 3. One exposure for all three. The dome's error over the

@@ -1,5 +1,5 @@
 //! The moon through a month as a phase strip: every 2 days from the new moon of
-//! 2024-04-08, each frame 0.8° wide centred on the moon for an observer who has it
+//! 8 April 2024, each frame 0.8° wide centred on the moon for an observer who has it
 //! 50° up on the meridian, one fixed exposure, so crescents are as
 //! faint as the moon's magnitude makes them. Image up is the zenith: the bright limb
 //! points at the sun with the tilt χ − q the observer sees.

@@ -1,4 +1,4 @@
-//! SGSky's low-cost sky: seed 004's 12-sided dome — a centre fan and inner, middle and
+//! SGSky's low-cost sky: SimGear's 12-sided dome — a centre fan and inner, middle and
 //! outer rings (plus SimGear's skirt below the horizon) — whose vertex colours are
 //! blended across the triangles, rotated so that vertex 0 of every ring faces the sun.
 //!
@@ -8,7 +8,7 @@
 //! 2 km below (−2.3°); 12 vertices per ring, 30° apart.
 //!
 //! Two colourings:
-//! * [`DomeColouring::SeedWeights`] — exactly seed 004: the centre gets the sky colour,
+//! * [`DomeColouring::SeedWeights`] — exactly SimGear's SGSky: the centre gets the sky colour,
 //!   the inner ring 70 % sky + 30 % fog, the middle ring 10 % sky + 90 % fog, the outer
 //!   ring (and the skirt) the fog colour. The `Sky` facade passes the atmosphere's
 //!   zenith radiance as the sky colour and its horizon radiance in each ring vertex's
@@ -22,7 +22,7 @@
 //! Gouraud shading of the dome gives). Below the skirt the dome is open: the skirt's
 //! (fog) colour.
 //!
-//! **Rotation.** [`tangent_plane_spin`] is seed 004's construction: project the vector
+//! **Rotation.** [`tangent_plane_spin`] is SGSky's construction: project the vector
 //! toward the sub-solar point `S` onto the tangent plane at the viewer, project the
 //! Earth's south axis `(0, 0, −1)` likewise to get local south `w`, take
 //! `θ = acos(v̂·ŵ)`, and resolve the sign with local east `n̂ × ŵ` (w rotated by 90°
@@ -51,7 +51,7 @@ pub const DOME_RINGS_M: [(f64, f64); 5] = [
     (50_000.0, -2_000.0),
 ];
 
-/// Seed 004's sky weights of the centre, inner, middle and outer rings (the fog takes
+/// SGSky's sky weights of the centre, inner, middle and outer rings (the fog takes
 /// the rest); the skirt is fog.
 pub const SEED_SKY_WEIGHTS: [f64; 5] = [1.0, 0.7, 0.1, 0.0, 0.0];
 
@@ -60,7 +60,7 @@ pub fn spin_from_azimuth(azimuth_from_north: Angle) -> Angle {
     (Angle::from_degrees(180.0) - azimuth_from_north).wrapped_signed()
 }
 
-/// Seed 004's tangent-plane construction of the dome's rotation, from the viewer's
+/// SGSky's tangent-plane construction of the dome's rotation, from the viewer's
 /// position `view_position` and the sub-solar point `sun_point` (both planet-centred,
 /// in an Earth-fixed frame with +z toward the north pole; only directions matter).
 /// Errors: non-finite input; the viewer at a pole (local south undefined); the sun
@@ -134,7 +134,7 @@ pub fn dome_vertex(ring: usize, index: usize, spin: Angle) -> DVec3 {
 /// How the dome's vertices are coloured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum DomeColouring {
-    /// Seed 004's weights between the sky colour (the model's zenith) and a fog colour
+    /// SGSky's weights between the sky colour (the model's zenith) and a fog colour
     /// per azimuth (the model's horizon in that vertex's azimuth)
     /// ([`SkyDome::seed_weights`]).
     #[default]
@@ -172,7 +172,7 @@ fn slot(ring: usize, index: usize) -> usize {
 }
 
 impl SkyDome {
-    /// Seed 004's colouring.
+    /// SGSky's colouring.
     pub fn seed_weights(sky: [f64; 3], fog: [[f64; 3]; DOME_SIDES], spin: Angle) -> Self {
         let mut colours = vec![[0.0; 3]; 1 + 4 * DOME_SIDES];
         colours[0] = sky;
@@ -438,7 +438,7 @@ mod tests {
         }
     }
 
-    /// Seed 004's construction is the sun's azimuth from south toward east, with the
+    /// SGSky's construction is the sun's azimuth from south toward east, with the
     /// east/west sign resolved, everywhere but the poles.
     #[test]
     fn tangent_plane_spin_is_the_azimuth_from_south() {

@@ -6,7 +6,7 @@
 //! what separates the topocentric moon from the geocentric one.
 //!
 //! Measured against Meeus Example 47.a (his full ELP-2000/82 truncation): see the
-//! tests and the crate README.
+//! tests and `docs/celestial-methods.md`.
 
 use std::f64::consts::TAU;
 

@@ -10,7 +10,7 @@
 //!
 //! Light time and aberration are not applied (≤ 0.02°, for Mercury near inferior
 //! conjunction). Accuracy measured against astropy's builtin ephemeris in
-//! `tests/planets.rs` and stated in the crate README.
+//! `tests/planets.rs` and stated in `docs/celestial-methods.md`.
 
 use std::f64::consts::TAU;
 

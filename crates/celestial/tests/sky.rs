@@ -11,7 +11,7 @@ use celestial::objects::BackgroundSampling;
 use celestial::{Angle, Instant, Observer, Sky, SkyOptions, sun_position};
 use proptest::prelude::*;
 
-/// The instant on the evening of 2024-04-`day` when the sun at `observer` sinks to
+/// The instant on the evening of day `day` of April 2024 when the sun at `observer` sinks to
 /// `elevation_deg` (bisection between 16:00 and 23:59 UTC).
 fn sunset_instant(observer: &Observer, day: u32, elevation_deg: f64) -> Instant {
     let at = |minutes: i64| {
@@ -93,7 +93,7 @@ fn twilight_model() -> &'static PrecomputedSky {
 }
 
 /// Stars fade in through twilight by contrast against the sky (no magnitude cut):
-/// sun at −6°, −12°, −18° on a moonless evening (2024-04-05, the moon a thin crescent
+/// sun at −6°, −12°, −18° on a moonless evening (5 April 2024, the moon a thin crescent
 /// below the horizon) at 52° N.
 #[test]
 fn stars_fade_in_through_twilight() {
@@ -132,8 +132,8 @@ fn stars_fade_in_through_twilight() {
     }
 }
 
-/// A full-moon night (2024-04-23 22:30 UTC) against a new-moon night (2024-04-08
-/// 22:30 UTC, the moon below the horizon) at 52° N, sun below −18° in both: the
+/// A full-moon night (2024-04-23 22:30 UTC) against a new-moon night
+/// (2024-04-08 22:30 UTC, the moon below the horizon) at 52° N, sun below −18° in both: the
 /// moonlit sky is brighter, fewer and only brighter stars show, and the moon lights
 /// the ground with ~0.1–0.3 lx.
 #[test]

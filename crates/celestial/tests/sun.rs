@@ -4,8 +4,8 @@
 use celestial::sidereal::greenwich_apparent_sidereal_time;
 use celestial::{AirConditions, Angle, Horizontal, Instant, Observer, sun_position};
 
-/// Reda & Andreas (2004), NREL/TP-560-34302, Table A4.1 / A5.1: 2003-10-17
-/// 12:30:30 local (−7 h), ΔT = 67 s, φ = 39.742476°, λ = −105.1786°, 1830.14 m,
+/// Reda & Andreas (2004), NREL/TP-560-34302, Table A4.1 / A5.1:
+/// 2003-10-17T12:30:30-07:00, ΔT = 67 s, φ = 39.742476°, λ = −105.1786°, 1830.14 m,
 /// 820 hPa, 11 °C → topocentric zenith 50.11162°, azimuth 194.34024°.
 #[test]
 fn spa_report_worked_example() {

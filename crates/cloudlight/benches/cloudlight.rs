@@ -20,7 +20,7 @@ use cloudlight::propagate::{SliceMode, SlicePlan, propagate};
 use cloudlight::shadow_map::{DEFAULT_STEPS, ShadowGrid, ShadowMapPlan, shadow_map};
 use criterion::{Criterion, criterion_group, criterion_main};
 
-/// A paraboloid blob of `n³` cells of 40 m (σ_t 0.01 /m), as in the README's measurements.
+/// A paraboloid blob of `n³` cells of 40 m (σ_t 0.01 /m), as in `docs/cloudlight-methods.md`'s measurements.
 fn blob(n: u32) -> CloudVolume {
     let c = f64::from(n) / 2.0;
     let mut density = Vec::with_capacity((n * n * n) as usize);

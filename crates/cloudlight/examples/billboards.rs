@@ -1,4 +1,4 @@
-//! The automaton's cumulus lit by slices and drawn as billboards (seed 002).
+//! The automaton's cumulus lit by slices and drawn as billboards (Dobashi et al. 2000).
 //!
 //! `cargo run -p cloudlight --example billboards` grows a cumulus with `cloudsim` (seed
 //! 2026, 64×64×24 cells, 600 steps, two ellipsoids, 50 m cells), lights it with the slice
@@ -7,8 +7,8 @@
 //!
 //! * `target/cloudlight/billboards.png`: billboards sized 2.5 cells across at unit density
 //!   (`SizeRule::World`), 512×384;
-//! * `target/cloudlight/billboards_seed_size.png`: the same with seed 002's size formula
-//!   (`(9500·ρ/d)·ρ` pixels), whose `k` was tuned for the seed's own scene scale: in metres
+//! * `target/cloudlight/billboards_seed_size.png`: the same with Dobashi et al. 2000's size formula
+//!   (`(9500·ρ/d)·ρ` pixels), whose `k` was tuned for another scene scale: in metres
 //!   the particles are a pixel or two across, so the cloud looks sparse;
 //! * `target/cloudlight/splat.png`: the procedural splat texture, 64×64;
 //! * with a GPU adapter (lavapipe counts: `WGPU_BACKEND=vulkan`), also

@@ -1,4 +1,4 @@
-//! Seed 003's procedural cloud shell, ray-marched from the ground at two sun elevations
+//! Schneider's (Nubis) procedural cloud shell, ray-marched from the ground at two sun elevations
 //! (60° top, 10° bottom), lit by `atmos`: the sun's irradiance and the ambient sky at the
 //! layer's middle height from `march::atmos_light`, the sky behind from the same model,
 //! the clouds seen through the air by `march::apply_aerial_perspective`. Writes

@@ -1,4 +1,4 @@
-//! Seed 003's light sampling toward the sun (Schneider's 6 cone samples + 1 far sample),
+//! Light sampling toward the sun (Schneider 2015's 6 cone samples + 1 far sample),
 //! Beer–Lambert, the powder term and dual-lobe Henyey–Greenstein scattering, written once
 //! over the float type: the f32 instantiations mirror `shaders/cloudlight/cone.wgsl`
 //! operation for operation, the f64 ones are the parity references.
@@ -7,7 +7,7 @@
 //! samples ([`cone_sample`] gives each offset and weight), turned into light by
 //! [`beer_lambert`]. Two weightings ([`ConeWeights`]):
 //!
-//! * [`ConeWeights::Raw`]: seed 003 / Schneider as published: six samples at `(i + 1)·Δ`
+//! * [`ConeWeights::Raw`]: Schneider as published: six samples at `(i + 1)·Δ`
 //!   spreading sideways in a cone, one far sample at `9Δ`, every weight `Δ`. The samples
 //!   cover `7Δ` of the path whatever its length, so the light is biased bright wherever
 //!   the cloud extends past the cone.
@@ -17,12 +17,12 @@
 //!   `L − 6Δ` (a corrected far sample: it stands for the rest of the path).
 //!
 //! [`march_optical_depth`] is the accurate option: `n` midpoint steps over `[0, L]`.
-//! All three are measured against the exact transmittance ([`crate::reference`]) in the
-//! crate README.
+//! All three are measured against the exact transmittance ([`crate::reference`]) by
+//! `cargo xtask tradeoff cloudlight` (`docs/tradeoffs/cloudlight.md`).
 
 use atmos::real::Real;
 
-/// Seed 003's six cone directions (Schneider's noise kernel, here fixed unit vectors in
+/// The six cone directions (Schneider's noise kernel, here fixed unit vectors in
 /// all directions), scaled by the cone's spread and the sample's distance.
 pub const CONE_KERNEL: [[f64; 3]; 6] = [
     [0.38051305, 0.92453450, -0.02111345],

@@ -1,6 +1,6 @@
 //! [`DensityField`]: what a view or light march needs to know about a cloud, whatever
-//! made it — a [`CloudVolume`] grid (seed 002's automaton, or any user grid) or a
-//! procedural shell around the planet (seed 003).
+//! made it — a [`CloudVolume`] grid (Dobashi et al. 2000's automaton, or any user grid) or a
+//! procedural shell around the planet (Schneider's Nubis).
 //!
 //! A field is written in one frame of metres (the volume's world frame, or planet-centred
 //! for a shell) and answers two questions: the dimensionless density at a point, and the

@@ -1,4 +1,4 @@
-//! Seed 003's ordered ray-march jitter. Twin of `shaders/cloudlight/jitter.wgsl`.
+//! Ordered ray-march jitter (Schneider 2015). Twin of `shaders/cloudlight/jitter.wgsl`.
 
 /// The 4×4 Bayer threshold of a pixel as a fraction of a step: `{0, 1/16, …, 15/16}`.
 pub fn bayer_jitter_4x4(pixel: [u32; 2]) -> f32 {

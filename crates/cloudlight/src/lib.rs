@@ -1,6 +1,6 @@
 //! `cloudlight`: the light that reaches the inside of a cloud volume from the sun, once in
-//! Rust and once in WGSL. What exists (the crate README has the measured trade and a
-//! short guide to choosing):
+//! Rust and once in WGSL. What exists (the crate README is a short guide to choosing;
+//! `docs/tradeoffs/cloudlight.md` the measured trade):
 //!
 //! * [`CloudVolume`]: an f32 density grid placed in metres (cloudsim's axis order, x
 //!   fastest) with its extinction per unit density σ_t (1/m); typed errors name the field.
@@ -151,6 +151,11 @@ pub fn composer() -> skyscape_wgsl::Composer {
         .expect("cloudlight WGSL module names are unique and well formed");
     composer
 }
+
+/// The README's examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
 
 #[cfg(test)]
 mod wgsl_tests {

@@ -1,4 +1,4 @@
-//! Tileable 3-D noise for seed 003's procedural cloud shell, generated here (no
+//! Tileable 3-D noise for the procedural cloud shell (Schneider 2015), generated here (no
 //! downloaded textures): Perlin gradient noise and Worley cellular noise with an integer
 //! period, their fBm sums, Schneider's Perlin–Worley, and the two noise sets a cloud
 //! shell samples (the 4-channel shape noise and the 3-channel detail noise).

@@ -1,4 +1,4 @@
-//! Seed 002's slice propagation: the light reaching every cell centre of a
+//! Slice propagation (Dobashi et al. 2000): the light reaching every cell centre of a
 //! [`CloudVolume`], in one sweep of slices perpendicular to the volume axis most aligned
 //! with the light, each slice computed from the one before it (toward the sun).
 //!
@@ -19,8 +19,8 @@
 //!   the density (the original field, no accumulated blur) always bilinearly. Repeated
 //!   bilinear resampling at the same fractional offset is first-order upwind advection: it
 //!   diffuses shadow edges by about `√(k·f(1−f))` texels after `k` slices; the clamped
-//!   cubic diffuses far less and cannot overshoot. Figures in the crate README.
-//! * **faithful**: exactly seed 002: the light is shifted by whole texels (the offset of
+//!   cubic diffuses far less and cannot overshoot. Figures in `docs/cloudlight-methods.md`.
+//! * **faithful**: Dobashi et al. 2000 as published: the light is shifted by whole texels (the offset of
 //!   slice `k` is `round(k·s) − round((k−1)·s)`, so the shifts follow the light ray), and
 //!   attenuated by the previous slice's 5-tap cross-smoothed density:
 //!   `light = light_prev · (1 − (1 − attenuation_ratio)·ρ̄)`.
@@ -79,7 +79,7 @@ pub enum Resampling {
 pub enum SliceMode {
     /// Beer–Lambert over the true spacing, bilinear resampling of the optical depth.
     Physical,
-    /// Seed 002: `1 − (1 − attenuation_ratio)·ρ̄`, 5-tap smoothing, whole-texel shifts.
+    /// Dobashi et al. 2000: `1 − (1 − attenuation_ratio)·ρ̄`, 5-tap smoothing, whole-texel shifts.
     /// `attenuation_ratio` ∈ [0, 1] is the light a fully dense slice lets through; densities
     /// must lie in [0, 1] (cloudsim's do; [`SlicePlan::new`] refuses others by name).
     Faithful {
@@ -148,7 +148,7 @@ impl SlicePlan {
                 return Err(bad(
                     "max density",
                     f64::from(max),
-                    "must be ≤ 1 in faithful mode: seed 002's 1 − (1 − r)·ρ̄ needs ρ in [0, 1]",
+                    "must be ≤ 1 in faithful mode: Dobashi et al. 2000's 1 − (1 − r)·ρ̄ needs ρ in [0, 1]",
                 ));
             }
         }
@@ -241,7 +241,7 @@ pub fn slice_optical_depth<F: Real>(tau_prev: F, rho_prev: F, rho: F, sigma_ds: 
 /// resampling (`0·∞` = NaN).
 pub const TAU_SATURATION: f64 = 1e30;
 
-/// Seed 002's 5-tap cross smoothing: `(centre + left + right + down + up) / 5`. WGSL twin
+/// Dobashi et al. 2000's 5-tap cross smoothing: `(centre + left + right + down + up) / 5`. WGSL twin
 /// `cross_smooth`.
 pub fn cross_smooth<F: Real>(centre: F, left: F, right: F, down: F, up: F) -> F {
     (centre + left + right + down + up) / F::of(5.0)
@@ -265,7 +265,7 @@ pub fn catmull_rom<F: Real>(p0: F, p1: F, p2: F, p3: F, t: F) -> F {
             + t * (two * p0 - five * p1 + four * p2 - p3 + t * (three * (p1 - p2) + p3 - p0)))
 }
 
-/// Seed 002's attenuation (generic form of [`crate::slice::slice_attenuation`]).
+/// Dobashi et al. 2000's attenuation (generic form of [`crate::slice::slice_attenuation`]).
 pub fn attenuate<F: Real>(light_prev: F, smoothed_density: F, attenuation_ratio: F) -> F {
     light_prev * (F::one() - (F::one() - attenuation_ratio) * smoothed_density)
 }
@@ -317,7 +317,7 @@ fn texel<F: Real>(field: &[F], nb: u32, nc: u32, i: i64, j: i64, outside: F) -> 
     }
 }
 
-/// The light (transmittance toward the sun in physical mode, seed 002's shading value in
+/// The light (transmittance toward the sun in physical mode, Dobashi et al. 2000's shading value in
 /// faithful mode) at every cell centre, x fastest like the density. A plan made for a
 /// volume of other dimensions is a [`SliceError::PlanMismatch`] naming both.
 pub fn propagate<F: Real>(volume: &CloudVolume, plan: &SlicePlan) -> Result<Vec<F>, SliceError> {
@@ -567,7 +567,7 @@ mod tests {
     }
 
     #[test]
-    fn faithful_mode_is_seed_002_on_a_column() {
+    fn faithful_mode_is_dobashi_2000_on_a_column() {
         // One dense column lit from straight above: each slice below passes `ratio` of
         // the light above it (5-tap smoothing of a lone column: ρ̄ = 1/5).
         let mut density = vec![0f32; 27];

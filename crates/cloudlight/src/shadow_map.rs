@@ -17,7 +17,7 @@
 //!   [`shadow_accumulate`], [`shadow_span_optical_depth`]) are WGSL twins in `shaders/cloudlight/shadow_map.wgsl`.
 //! * [`shadow_map_reference`] is the exact f64 transmittance of a [`CloudVolume`]
 //!   ([`crate::reference::transmittance`]: no discretisation error), which the march is
-//!   measured against (`tests` here, the crate README, `examples/shadow_map.rs`).
+//!   measured against (`tests` here, `docs/cloudlight-methods.md`, `examples/shadow_map.rs`).
 //!
 //! Any sun elevation is accepted. A low sun gives long oblique paths (the span's `steps`
 //! samples stretch over them). A sun at or below the horizon still gives the cloud's own
@@ -35,8 +35,8 @@ use crate::reference::ReferenceError;
 use crate::{CloudVolume, cone};
 
 /// The shadow map's default march: midpoint steps per span. The f32 twin's error against
-/// the exact reference at this setting is in the crate README (measured by
-/// `examples/shadow_map.rs`).
+/// the exact reference at this setting is printed by
+/// `examples/shadow_map.rs` (`docs/cloudlight-methods.md`).
 pub const DEFAULT_STEPS: u32 = 64;
 
 /// The largest step count a plan accepts (the GPU loops this many times per texel).

@@ -1,4 +1,4 @@
-//! Seed 002's slice-by-slice light attenuation. Twin of
+//! Slice-by-slice light attenuation (Dobashi et al. 2000). Twin of
 //! `shaders/cloudlight/slice_attenuation.wgsl`.
 
 /// Light leaving a slice: `light_from_previous_slice · (1 − (1 − attenuation_ratio) ·

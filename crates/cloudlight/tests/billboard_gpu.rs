@@ -5,7 +5,7 @@
 //! Metric: each channel of the premultiplied linear RGBA tone-mapped to 8 bits as
 //! `round(255·srgb(clamp(c, 0, 1)))` for colour (the sRGB transfer function, which resolves
 //! dark values more finely than a linear code would) and `round(255·clamp(a, 0, 1))` for
-//! alpha; a pixel agrees when all four codes are within 2. Goal (issue 14): ≥ 99.9 % of
+//! alpha; a pixel agrees when all four codes are within 2. Bound: ≥ 99.9 % of
 //! pixels. Both sides evaluate the same coverage (pixel centres against the splat's disc),
 //! so the differences are rounding: the f16 target's (2⁻¹¹ relative per blend) and the
 //! shader's arithmetic.
@@ -184,7 +184,7 @@ fn billboard_pass_matches_the_cpu_rasteriser() {
             100.0 * fraction
         );
         assert!(particles.len() > 500, "{}", particles.len());
-        // Seed 002's k, tuned for its own scene scale, draws 1–3 px particles at 3 km
+        // Dobashi et al. 2000's k, tuned for another scene scale, draws 1–3 px particles at 3 km
         // (measured: 533 pixels covered); the world size covers most of the cloud.
         assert!(covered > pixels / 50, "the cloud covers {covered} pixels");
         assert!(fraction >= 0.999, "{:.4} % within 2 LSB", 100.0 * fraction);

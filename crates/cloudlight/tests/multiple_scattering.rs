@@ -1,5 +1,5 @@
-//! Issue 14's goal for the ray march's multiple-scattering octaves: "within 10 % of the
-//! Monte Carlo reference on mean radiance of the cumulus case at sun 60°".
+//! The ray march's multiple-scattering octaves within 10 % of the Monte Carlo reference on
+//! mean radiance of the cumulus case at sun 60°.
 //!
 //! The case: cloudsim's cumulus (the `light_accuracy` example's: seed 2026, 64×64×24 cells,
 //! 600 steps, two ellipsoids, smoothed density) in 50 m cells at 1.5 km, σ_t = 0.03 /m per
@@ -15,8 +15,8 @@
 //! Measured (the ignored test below, release, this machine's 2 shared cores, 2,000,000
 //! paths): MC 0.006558 ± 0.71 %, orders ≥ 2 are 89.3 % of it; the march's single
 //! scattering is the exact single-scattering reference to −0.01 %; the usual octave
-//! defaults a = b = c = 0.5 are 72.7 / 52.1 / 43.9 % too dark at N = 2 / 4 / 8: issue 14's
-//! goal is **not** met by them. N = 8, a = 0.5, b = 0.65, c = 0.5 (still a ≤ b) gives
+//! defaults a = b = c = 0.5 are 72.7 / 52.1 / 43.9 % too dark at N = 2 / 4 / 8: the
+//! 10 % bound is **not** met by them. N = 8, a = 0.5, b = 0.65, c = 0.5 (still a ≤ b) gives
 //! +0.4 % on this case, +7.7 % with the camera facing the sun, −12.3 % with the sun behind
 //! it, and +68 % at sun 10° (where a = b = c = 0.5 gives −9.7 %): a fit to one sun
 //! elevation, not a model that holds across them. With σ_t 0.02 / 0.05 /m
@@ -320,7 +320,7 @@ fn octaves_follow_the_monte_carlo_reference_at_ci_size() {
     );
     // Multiple scattering is most of the light: single scattering alone is far too dark.
     assert!(single < 0.5 * mc.mean, "{single} vs {}", mc.mean);
-    // The octave setting that meets issue 14's goal here must keep meeting it.
+    // The octave setting that meets the 10 % bound here must keep meeting it.
     assert!(
         (fitted - mc.mean).abs() < 0.10 * mc.mean + 3.0 * mc.se,
         "8 octaves a=0.5 b=0.65 c=0.5: {fitted} vs MC {} ± {}",

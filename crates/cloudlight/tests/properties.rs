@@ -1,4 +1,4 @@
-//! Property tests over extreme inputs (issue 14, "Also"): densities 0 and huge
+//! Property tests over extreme inputs: densities 0 and huge
 //! (up to f32::MAX), σ_t from 0 to 1 /m, the sun at the horizon and below, grids from
 //! 1×1×1 to a few hundred cells along an axis, rays starting inside the cloud. Every
 //! result is finite, transmittance and light lie in [0, 1], and bad input is a typed

@@ -526,7 +526,7 @@ fn every_order_agrees_with_forward_photon_tracing_on_a_slab() {
 #[test]
 #[ignore = "~5 s in release, a minute in debug: cargo test --release -p cloudlight --test reference_closed_forms -- --ignored --nocapture"]
 fn path_tracer_order_one_is_the_single_scattering_reference_in_the_procedural_shell() {
-    // Seed 003's shell (cumulus over the Earth, 62.5 m finest noise lattice) with a thin
+    // The procedural shell (cumulus over the Earth, 62.5 m finest noise lattice) with a thin
     // σ_t 0.004 /m to keep delta tracking cheap in debug; looking up at 60° from the ground.
     let r = 6_360_000.0;
     let mut settings = cloudlight::ShellSettings::cumulus_over(r);

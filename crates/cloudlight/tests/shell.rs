@@ -739,7 +739,7 @@ fn baked_against_procedural() {
             worst,
             100.0 * disagree as f64 / n
         );
-        // The README's figures (64³/16³: mean 0.0017, max 0.017, 0.23 % disagree; 128³/32³:
+        // The measured figures (64³/16³: mean 0.0017, max 0.017, 0.23 % disagree; 128³/32³:
         // 0.0006, 0.007, 0.12 %) with a margin of about 2×: the baked density must stay
         // a faithful stand-in for the procedural one.
         let (mean_bound, max_bound, disagree_bound) = if shape == 64 {

@@ -25,7 +25,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             radii: [28.0, 26.0, 14.0],
         },
     ];
-    // Denser towards the cloud base, fading at the top (seed 002's slice table).
+    // Denser towards the cloud base, fading at the top (the per-slice density table of Dobashi et al. 2000).
     config.slice_density = (0..size.nz)
         .map(|z| 1.0 - 0.6 * z as f32 / size.nz as f32)
         .collect();

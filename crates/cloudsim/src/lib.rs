@@ -95,6 +95,11 @@ pub mod twins {
 pub const WGSL_MODULES: &[skyscape_wgsl::Module] =
     include!(concat!(env!("OUT_DIR"), "/wgsl_modules.rs"));
 
+/// The README's examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
+
 #[cfg(test)]
 mod tests {
     #[test]

@@ -132,7 +132,7 @@ impl GridSize {
 /// always read as empty.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
 pub enum Boundary {
-    /// Cells outside the grid read as empty (seed 002). Wind moves cells out and empty
+    /// Cells outside the grid read as empty (Dobashi et al. 2000). Wind moves cells out and empty
     /// cells in.
     #[default]
     Empty,
@@ -160,7 +160,7 @@ pub struct Ellipsoid {
 /// Without ellipsoids they apply everywhere as they are. With ellipsoids, a cell whose
 /// quantised mask is `m = level / 256` (see [`Model::mask_level`]) uses `humidity * m`,
 /// `activation * m` and `extinction * (1 - m)`, and loses its cloud where the level is
-/// 0 (seed 002).
+/// 0 (Dobashi et al. 2000).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Probabilities {
     /// `p_ext`: a cloud cell vanishes.
@@ -172,7 +172,7 @@ pub struct Probabilities {
 }
 
 impl Default for Probabilities {
-    /// Seed 002's factors: 0.1, 0.1 and 0.001.
+    /// Factors 0.1, 0.1 and 0.001 after Dobashi et al. 2000.
     fn default() -> Self {
         Self {
             extinction: 0.1,
@@ -219,14 +219,14 @@ pub struct Config {
     pub ellipsoids: Vec<Ellipsoid>,
     /// Wind per z slice, `[vx, vy]` in cells per step (`|v| <= 16`); empty = no wind.
     pub wind: Vec<[f32; 2]>,
-    /// Density scale per z slice (seed 002's 1D table); empty = 1 everywhere.
+    /// Density scale per z slice (Dobashi et al. 2000's 1D table); empty = 1 everywhere.
     pub slice_density: Vec<f32>,
     /// Density smoothing kernel.
     pub smoothing: Smoothing,
 }
 
 impl Config {
-    /// Defaults for a grid: empty boundaries, seed 0, seed 002's probabilities, no
+    /// Defaults for a grid: empty boundaries, seed 0, Dobashi et al. 2000's probabilities, no
     /// ellipsoids, no wind, unit slice density, default smoothing.
     pub fn new(size: GridSize) -> Self {
         Self {

@@ -21,7 +21,7 @@ fn out_of_range_cells_name_the_coordinate() {
             assert!(error.to_string().contains(&format!("`{field}`")), "{error}");
         }
     }
-    // x = 40 used to name cell (0, 1, 0); the last cell is still reachable.
+    // x = 40 must not alias cell (0, 1, 0); the last cell is still reachable.
     assert_eq!(size.index(39, 2, 1).unwrap(), size.cells() - 1);
     assert_eq!(size.index(0, 1, 0).unwrap(), 40);
     assert!(!state.cloud(39, 2, 1).unwrap());

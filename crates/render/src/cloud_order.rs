@@ -41,8 +41,8 @@
 //! sky is each cloud's own. On the GPU the same maps and formula in cloudlight's march
 //! passes.
 //!
-//! **Measured** (`cargo test -p render --test cloud_overlap -- --nocapture`, 88 s in
-//! the debug test build at load 2–4): the deck (1,000–1,800 m) and a cumulus (a 2.4 ×
+//! **Measured** (`cargo test -p render --test cloud_overlap -- --nocapture`, in the
+//! debug test build): the deck (1,000–1,800 m) and a cumulus (a 2.4 ×
 //! 2.4 × 0.6 km grid, its base at 1,400 m, reaching into the deck, or at 2,000 m), four
 //! 64×36 views from below and above the deck, in f64 with one light and the same march
 //! settings for both clouds, against one march over their union

@@ -65,3 +65,8 @@ pub mod prelude {
 }
 
 pub use wgsl::{WGSL_MODULES, add_composed_crates, composer};
+
+/// The README's examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

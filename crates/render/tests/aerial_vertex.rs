@@ -200,7 +200,7 @@ fn agreement(gpu: &skyscape_harness::GpuContext, scene: &PreparedScene) -> Agree
 /// the interpolation's alone), where it is worst, and the cost of each on the CPU
 /// renderer and, with an adapter, of the GPU's terrain pass at 1280×720.
 #[test]
-#[ignore = "a measurement: minutes; prints the figures of docs/scenes.md"]
+#[ignore = "a measurement: minutes; prints the figures of docs/scene-measurements.md"]
 fn measure_the_trade() {
     let sized = |mut scene: Scene, width, height, variant| {
         scene.file.output.width = width;

@@ -771,8 +771,8 @@ fn the_moon_lights_the_billboards() {
     );
     assert!(moon_air > 0.0 && moon_air.is_finite() && own > 0.0);
     // The scene's rung is the precomputed one: the marched cloud's moonlit air comes
-    // from the moon's tables, the billboards' from the moon's segment model (README,
-    // "Not done"). How far apart the two are in front of these particles:
+    // from the moon's tables, the billboards' from the moon's segment model
+    // (`docs/render-methods.md`, "Limits"). How far apart the two are in front of these particles:
     let moon_light = lit.lights().swap_remove(1);
     let tables = moon_light
         .precomputed
@@ -803,12 +803,12 @@ fn the_moon_lights_the_billboards() {
         100.0 * mean_difference,
         100.0 * worst
     );
-    // The README states them as within 0.1 % (sum) and 0.5 % (worst particle), five
+    // `docs/render-methods.md` states them as within 0.1 % (sum) and 0.5 % (worst particle), five
     // and ten times what was measured (+0.02 %, 0.04 %).
     assert!(
         mean_difference.abs() < 1e-3 && worst < 5e-3,
         "the moon's segment model and tables differ by {mean_difference:+.2e} (sum), \
-         {worst:.2e} (worst particle): more than the README's bound"
+         {worst:.2e} (worst particle): more than the documented bound"
     );
     let with = render::cpu_renderer::render_radiance(&lit).unwrap();
     let gpu_images = common::gpu_or_skip("render::billboard_clouds night")

@@ -27,9 +27,8 @@
 //! error of the maps' shadowing alone. Radiance is the clouds' own over black, no air (the air is
 //! exact, module docs); LSB after the scene's exposure, tone map and sRGB, no dither.
 //!
-//! `cargo test -p render --test cloud_overlap -- --nocapture` prints the figures (88 s
-//! in the debug test build on 2 cores at load 2–4, the maps' two marches per pixel
-//! included; 267 s at load 7).
+//! `cargo test -p render --test cloud_overlap -- --nocapture` prints the figures
+//! (a minute or more in the debug test build: two marches per pixel for the maps).
 
 use cloudlight::DensityField;
 use cloudlight::march::{

@@ -267,7 +267,7 @@ fn a_missing_heightfield_file_names_the_path() {
 }
 
 /// Renders the ridge in a 30° afternoon sun with each rung and checks that the
-/// sunlit flank is lit (not the black ground the sky-only rungs used to draw).
+/// sunlit flank is lit (not black ground, as a sky-only rung would draw).
 fn rungs_draw_lit_terrain(rungs: &[&str]) {
     let folder =
         std::env::temp_dir().join(format!("render-rungs-{}-{}", std::process::id(), rungs[0]));

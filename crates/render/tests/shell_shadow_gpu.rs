@@ -198,7 +198,7 @@ fn a_peak_in_the_cloud_reads_the_column_above_it() {
 /// The shipped `stratocumulus` with its deck lowered to 200–500 m, under all of its
 /// terrain (600–1,200 m): the deck's map is baked and dark, but no terrain point lies
 /// below the deck's top, so the terrain is drawn as without the map, on the CPU and on the
-/// GPU. (Before, every point read the whole column along the light.)
+/// GPU (no point reads the whole column along the light).
 #[test]
 fn terrain_above_the_deck_is_not_in_its_shadow() {
     let mut scene = common::shipped("stratocumulus", 64, 36);

@@ -225,7 +225,7 @@ fn the_cumulus_agrees_on_the_gpu_and_the_cpu() {
     };
     let (width, height) = (160, 90);
     let scene = shipped(width, height).prepare().unwrap();
-    // The metric of tests/scene_gpu.rs (docs/scenes.md), and the cloud's own pixels
+    // The metric of tests/scene_gpu.rs (docs/scene-measurements.md), and the cloud's own pixels
     // (every one within 2 LSB on lavapipe: 402 of 402, worst 1).
     let (gpu_image, cpu_image, agreement) = compare(gpu, &scene);
     let cloud = scene.volume_cloud.as_ref().unwrap();

@@ -1,4 +1,4 @@
-//! The volume cloud at night and far away (issue 16): the moon lights `[clouds.volume]`
+//! The volume cloud at night and far away: the moon lights `[clouds.volume]`
 //! (a second march with the moon's light, as the terrain's second draw), its shadow map
 //! along the moon shades the moonlit terrain, and a cloud beyond the aerial-perspective
 //! volume's range (32 km) is seen through the same air on the GPU as on the CPU.
@@ -116,7 +116,7 @@ fn the_moon_lights_the_volume_cloud() {
         opaque.len()
     );
 
-    // GPU vs CPU (issue 16's metric).
+    // GPU vs CPU.
     let Some(gpu) = gpu_image(&lit, "render::volume_night moon") else {
         return;
     };

@@ -10,7 +10,7 @@
 //! ```
 //!
 //! The normalisation `(a + π/2)/π` is [`crate::encode_horizon_angle`] (computed in
-//! `f64`), so the seed-000 RGBA PNGs ([`crate::NormalMap::to_rgba_png`]) hold the same
+//! `f64`), so the east/west RGBA PNGs ([`crate::NormalMap::to_rgba_png`]) hold the same
 //! integers. The decode is what a shader does after sampling a unorm texture: the
 //! hardware returns `q / (2^b − 1)` and [`crate::twins::decode_horizon_angle`] (WGSL
 //! twin in `terrain::shadow`) maps it back. The round trip is off by at most half a

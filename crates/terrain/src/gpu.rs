@@ -1,4 +1,4 @@
-//! GPU horizon bakes (WGSL compute, `shaders/terrain/horizon_bake.wgsl`): seed 000's
+//! GPU horizon bakes (WGSL compute, `shaders/terrain/horizon_bake.wgsl`): the
 //! east/west pair, and any azimuth with the sampling of [`crate::horizon`].
 //!
 //! Bring your own device: [`GpuHorizonBaker::new`] takes a `&wgpu::Device`,

@@ -1,6 +1,6 @@
 //! `terrain`: heightfields, normal maps and horizon maps for self-shadowed terrain.
 //!
-//! Seed 000 shades terrain with `(N·L) · terrain_color · self_shadow · cloud_shadow`,
+//! Hoffman & Preetham (2002) shade terrain with `(N·L) · terrain_color · self_shadow · cloud_shadow`,
 //! the self-shadow coming from a *horizon angle* stored in the alpha channel of the
 //! normal map — one map for the sun in the east, one for the west. This crate bakes
 //! those maps from a [`Heightfield`] (loaded from PNG / raw `f32`, or
@@ -10,8 +10,8 @@
 //! * [`horizon`]: the horizon angle (definition and sampling documented there), by
 //!   brute force or by the exact convex-hull sweep of Timonen & Westerholm (2010),
 //!   east/west or `N` azimuths, with Earth curvature and a maximum distance;
-//! * [`shadow`]: hard and soft (sun-disc) shadow queries and the seed-000 shading
-//!   term, each with a WGSL twin in [`WGSL_MODULES`];
+//! * [`shadow`]: hard and soft (sun-disc) shadow queries and the
+//!   `(N·L) · albedo · self_shadow · cloud_shadow` shading term, each with a WGSL twin in [`WGSL_MODULES`];
 //! * [`tilted`]: variant (c), east/west measured in the tilted plane of the sun's
 //!   daily path at a latitude;
 //! * [`HorizonEncoding`]: how an angle is stored (u8, u16 unorm or f32), exactly;
@@ -126,6 +126,11 @@ pub fn composer() -> skyscape_wgsl::Composer {
         .expect("terrain WGSL module names are unique and well formed");
     composer
 }
+
+/// The README's examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
 
 #[cfg(test)]
 mod wgsl_tests {

@@ -1,5 +1,5 @@
 //! Normal maps from heightfields, and their export (RGB, or RGBA with a horizon
-//! angle in alpha as seed 000 uses them).
+//! angle in alpha, as Hoffman & Preetham 2002 store them).
 //!
 //! Frame: normals are unit vectors in the local **east–north–up** frame
 //! (`x` east, `y` north, `z` up). Because rows run south, `∂h/∂north = -∂h/∂row`.
@@ -121,7 +121,7 @@ impl NormalMap {
         self.encode(None, depth)
     }
 
-    /// RGBA PNG as seed 000 uses it: RGB the normal (as [`NormalMap::to_png`]), A the
+    /// RGBA PNG as Hoffman & Preetham 2002 store it: RGB the normal (as [`NormalMap::to_png`]), A the
     /// horizon angle encoded with [`encode_horizon_angle`].
     pub fn to_rgba_png(
         &self,

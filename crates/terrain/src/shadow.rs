@@ -1,4 +1,4 @@
-//! Shadow queries and the seed-000 shading term: `f32` twins of
+//! Shadow queries and the terrain shading term (Hoffman & Preetham 2002): `f32` twins of
 //! `shaders/terrain/shadow.wgsl` and `shaders/terrain/shading.wgsl` (same names,
 //! argument order and units). The twins only `cargo xtask parity` calls on their own
 //! (the horizon decode, the hard shadow, the disc's visible fraction) and their `f64`
@@ -134,7 +134,7 @@ pub fn azimuth_layers(sun_azimuth: f32, count: u32) -> Result<AzimuthLayers, Ter
     })
 }
 
-/// Self-shadow from the two seed-000 maps: the east horizon while the sun is in the
+/// Self-shadow from the east/west pair of horizon maps: the east horizon while the sun is in the
 /// east (`x ≥ 0`), the west one otherwise, then [`soft_shadow`] against the sun's
 /// true elevation.
 pub fn self_shadow_east_west(
@@ -151,7 +151,7 @@ pub fn self_shadow_east_west(
     soft_shadow(sun_elevation(sun_direction), horizon, sun_angular_radius)
 }
 
-/// The seed-000 surface term `(N·L) · albedo · self_shadow · cloud_shadow`, with
+/// The surface term of Hoffman & Preetham 2002, `(N·L) · albedo · self_shadow · cloud_shadow`, with
 /// `N·L` clamped at 0 (`normal` and `sun_direction` unit, same frame).
 pub fn terrain_shading(
     normal: Vec3,

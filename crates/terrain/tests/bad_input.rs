@@ -15,7 +15,7 @@ fn hill() -> terrain::Heightfield {
 fn out_of_range_texels_name_the_coordinate() {
     let hf = hill();
     let maps = bake_east_west(&hf, &HorizonOptions::flat(), Algorithm::HullSweep).unwrap();
-    // x = 5 on a 5-wide map used to read texel (0, y + 1).
+    // x = 5 on a 5-wide map must not read texel (0, y + 1).
     for (result, field) in [
         (maps.east.angle(5, 0).map(|_| ()), "x"),
         (maps.east.angle(0, 4).map(|_| ()), "y"),
@@ -95,8 +95,8 @@ fn horizon_encodings_reject_nan_and_angles_beyond_the_poles() {
     );
 }
 
-/// A finite but huge `max_distance` used to count steps up to `max_distance / spacing`
-/// (about 10^299 iterations for 1e300 m): now it means "no limit", like +inf.
+/// A finite but huge `max_distance` means "no limit", like +inf (counting steps up to
+/// `max_distance / spacing` would be about 10^299 iterations for 1e300 m).
 #[test]
 fn a_huge_finite_max_distance_is_no_limit_not_a_hang() {
     let hf = hill();
@@ -117,7 +117,7 @@ fn a_huge_finite_max_distance_is_no_limit_not_a_hang() {
 fn a_generator_finer_than_the_lattice_hash_can_index_is_rejected() {
     use terrain::generate::{GeneratorParams, generate};
     // 16 octaves of lacunarity 1e6 from a 1 m wavelength: the finest octave would sample
-    // lattice cell 10^91 (it used to overflow the corner index and panic).
+    // lattice cell 10^91 (which must not overflow the corner index and panic).
     let params = GeneratorParams {
         octaves: 16,
         wavelength: 1.0,

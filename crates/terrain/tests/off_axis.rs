@@ -1,8 +1,7 @@
-//! Horizon maps off the grid axes (issue 13 §4): against the exact bilinear ray cast,
-//! every azimuth is as accurate as the diagonals. Before the fix, the digital lines
-//! sampled texels up to one texel beside the ray at their distance along the line:
-//! at odd multiples of 22.5° the mean error was several times the diagonals' and
-//! biased towards more shadow.
+//! Horizon maps off the grid axes: against the exact bilinear ray cast, every azimuth is
+//! as accurate as the diagonals. Digital lines that sample texels up to one texel beside
+//! the ray at their distance along the line make the mean error at odd multiples of
+//! 22.5° several times the diagonals' and biased towards more shadow.
 
 use terrain::generate::{GeneratorParams, generate};
 use terrain::raycast::ray_cast_horizon_angle;

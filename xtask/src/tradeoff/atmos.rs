@@ -42,7 +42,7 @@ struct Viewpoint {
     queries: Vec<SkyQuery>,
 }
 
-/// The path-traced truth (issue 13.2): a smaller set (`PT_DIRECTIONS` directions per
+/// The path-traced truth: a smaller set (`PT_DIRECTIONS` directions per
 /// viewpoint of the fixed set's suns and altitudes), each view path traced with
 /// `PT_SAMPLES` samples, luminance and its standard error.
 const PT_DIRECTIONS: usize = 24;
@@ -128,7 +128,7 @@ fn path_tracer_markdown(traced: &PathTracedSet, rows: &[(String, [[f64; 6]; 2])]
         md,
         "\n## Against the path tracer\n\nThe truth above is the iterated-orders Reference; \
          here every rung and the Reference itself are measured against the unbiased Monte \
-         Carlo path tracer (`atmos::reference::PathTracedSky`, issue 13.2): the fixed set's \
+         Carlo path tracer (`atmos::reference::PathTracedSky`): the fixed set's \
          suns and altitudes with {PT_DIRECTIONS} directions each, {} samples per view \
          ({} views brighter than {DARK_LUMINANCE:e}, {:.0} s). e = (model − path tracer) / \
          path tracer in luminance; ± is the Monte Carlo standard error of the mean, σ the \

@@ -1,14 +1,14 @@
 //! `cargo xtask tradeoff cloudlight`: what each way of lighting a cloud costs and how
-//! wrong it is against `cloudlight::reference`, which approximates nothing it can compute
-//! (issue 14): the exact optical depth of the trilinear density, single scattering with
+//! wrong it is against `cloudlight::reference`, which approximates nothing it can
+//! compute: the exact optical depth of the trilinear density, single scattering with
 //! the exact light path at every point of an adaptive view quadrature, and a Monte Carlo
 //! path tracer for every scattering order.
 //!
 //! Three studies on cloudsim's cumulus (seed 2026, 64×64×24 cells of 50 m at 1.5 km,
 //! 600 steps, σ_t = 0.03 /m per unit density), suns at 60° and 10° (azimuth 30°):
 //!
-//! * **Light transmittance** toward the sun at every cell with density > 0 — seed 002's
-//!   slice propagation (physical, both resamplings; faithful), seed 003's 6 + 1 cone (raw
+//! * **Light transmittance** toward the sun at every cell with density > 0 — Dobashi et al.
+//!   2000's slice propagation (physical, both resamplings; faithful), Schneider's 6 + 1 cone (raw
 //!   and partitioned) and the full light march of N steps — RMSE and max error against
 //!   the exact transmittance, CPU cost per cloudy cell by criterion (f32 twins, the
 //!   arithmetic the WGSL mirrors).
@@ -167,7 +167,7 @@ fn light_methods() -> Vec<(String, String, LightMethod)> {
             LightMethod::Slices(SliceMode::Physical, Resampling::Bilinear),
         ),
         (
-            "slices, faithful (seed 002, ratio e^−σ_t·Δ)".into(),
+            "slices, faithful (Dobashi et al. 2000, ratio e^−σ_t·Δ)".into(),
             "1 sweep".into(),
             // Filled per volume: a slice of density 1 passes e^{−σ_t Δ}.
             LightMethod::Slices(
@@ -338,7 +338,7 @@ fn light_study(volume: &CloudVolume, quick: bool) -> Result<Vec<LightRow>, Strin
 }
 
 // ---------------------------------------------------------------------------------------
-// Slices against a per-voxel light march: issue 14's 20× goal at 128³
+// Slices against a per-voxel light march at up to 128³
 
 struct VolumeCost {
     n: u32,
@@ -804,7 +804,7 @@ pub fn run(options: &super::Options) -> Result<(), String> {
     );
     let _ = writeln!(
         w,
-        "A paraboloid blob of {n}³ cells (σ_t 0.01 /m, sun 60°), every cell lit; criterion's median of one call, f32, one thread (issue 14's goal: slices ≥ 20× cheaper than a per-voxel march at 128³).\n",
+        "A paraboloid blob of {n}³ cells (σ_t 0.01 /m, sun 60°), every cell lit; criterion's median of one call, f32, one thread (the target: slices ≥ 20× cheaper than a per-voxel march at 128³).\n",
         n = volume_costs.first().map_or(0, |r| r.n)
     );
     let _ = writeln!(w, "| method | CPU ms | slices are cheaper by |");

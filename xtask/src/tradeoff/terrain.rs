@@ -9,8 +9,8 @@
 //! bilinear surface, with the same curvature and **no** distance limit. Reported: the
 //! fraction of (texel, sun) pairs whose hard shadow is wrong, the horizon-angle error,
 //! the measured bake time and the bytes per texel. Then every azimuth `k · 22.5°` on
-//! its own against the ray cast (mean, max, bias, wrong shadows at a 20° sun; before
-//! and after issue 13 §4's sampling), and the 16-direction bake of a 1024² map with and
+//! its own against the ray cast (mean, max, bias, wrong shadows at a 20° sun; for
+//! the sampling of `terrain::horizon` and a digital-line sampling), and the 16-direction bake of a 1024² map with and
 //! without a maximum distance against GRASS `r.horizon`'s march (full run only).
 
 use std::fmt::Write as _;
@@ -27,7 +27,7 @@ use terrain::{
 
 use super::plot::{Plot, Point, Series};
 
-/// Azimuth counts; 2 stands for seed 000's east/west pair.
+/// Azimuth counts; 2 stands for the east/west pair.
 const AZIMUTH_COUNTS: [usize; 6] = [2, 4, 8, 16, 32, 64];
 /// Maximum search distances, metres (`None`: up to the map edge).
 const MAX_DISTANCES: [Option<f64>; 3] = [None, Some(6_000.0), Some(2_000.0)];
@@ -486,7 +486,7 @@ fn markdown(rows: &[Row], studies: &Studies, c: &Context<'_>) -> String {
         md,
         "**Maps.** Hull-sweep bakes (`Algorithm::HullSweep`, identical to brute force) on the \
          sampling of `terrain::horizon` (the axes and diagonals read texels; other azimuths \
-         interpolate across the grid lines, see the per-azimuth section). *E/W*: seed 000's pair; a sun azimuth \
+         interpolate across the grid lines, see the per-azimuth section). *E/W*: the east/west pair; a sun azimuth \
          with `sin(azimuth) ≥ 0` reads the east map, otherwise the west map (as \
          `shadow::self_shadow_east_west`). *N*: layers at `k·2π/N`, linear interpolation \
          between the two neighbours (`shadow::azimuth_layers`). Encodings (`HorizonEncoding`): \
@@ -592,7 +592,7 @@ fn json(rows: &[Row], c: &Context<'_>) -> String {
 }
 
 // ---------------------------------------------------------------------------
-// Per-azimuth accuracy (issue 13 §4) and the 1024² speed study.
+// Per-azimuth accuracy and the 1024² speed study.
 
 /// Azimuths of the per-azimuth study: `k · 22.5°`, `k = 0..16` (the axes, the
 /// diagonals and the odd multiples of 22.5° in between).
@@ -797,8 +797,8 @@ fn azimuth_study(
 /// One row of [`BEFORE_AZIMUTHS`].
 type BeforeRow = (&'static str, f64, f64, f64, f64, f64);
 
-/// The per-azimuth study on the sampling before issue 13 §4 (commit bf74ace, the same
-/// study run there; raw rows in `docs/tradeoffs/terrain_before.json`): map, azimuth (°),
+/// The per-azimuth study on the earlier digital-line sampling (the same study run on
+/// it; raw rows in `docs/tradeoffs/terrain_before.json`): map, azimuth (°),
 /// mean error (°), max error where both see terrain (°), bias (°), wrong hard shadows at
 /// a 20° sun (fraction).
 const BEFORE_AZIMUTHS: [BeforeRow; 32] = [
@@ -836,7 +836,7 @@ const BEFORE_AZIMUTHS: [BeforeRow; 32] = [
     ("10 m", 315.0, 0.2976, 9.358, -0.2976, 0.007324),
     ("10 m", 337.5, 1.2881, 22.151, 0.7038, 0.041016),
 ];
-/// The speed study on commit bf74ace: maximum distance, 16-direction hull sweep (s),
+/// The speed study on the earlier digital-line sampling: maximum distance, 16-direction hull sweep (s),
 /// r.horizon-style march (s), on this machine under other work.
 const BEFORE_SPEED: [(Option<f64>, f64, f64); 3] = [
     (None, 1.566, 219.65),
@@ -898,7 +898,7 @@ fn study_markdown(md: &mut String, studies: &Studies, c: &Context<'_>) {
     let s = c.setup;
     let _ = writeln!(
         md,
-        "## Every azimuth against the ray cast (issue 13 §4)\n\n\
+        "## Every azimuth against the ray cast\n\n\
          Each azimuth `k · 22.5°` baked on its own (`bake_horizon`, hull sweep, default \
          options: curvature on, no maximum distance) and read at {0} texels drawn uniformly \
          (the same texels for every azimuth), against `ray_cast_horizon_angle` along the same \

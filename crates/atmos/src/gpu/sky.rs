@@ -1,6 +1,6 @@
 //! The sky drawn into a caller's colour target: a render pipeline (one full-screen
 //! triangle) that reads the precomputed rung's tables, for a render pass the caller
-//! owns. Normally drawn first, with depth writes off (seed 000's sky hemisphere), then
+//! owns. Normally drawn first, with depth writes off (the sky hemisphere of Hoffman & Preetham 2002), then
 //! the caller's geometry over it; or drawn last at the far plane with a `LessEqual`
 //! depth test so covered pixels cost nothing. CPU twin:
 //! [`crate::lut::drop_in::sky_pass_radiance`].

@@ -104,7 +104,7 @@ pub const WGSL_MODULES: &[skyscape_wgsl::Module] = &[
 ///
 /// Measured against the default-settings reference on 2,304 queries (viewers 0 – 50 km,
 /// suns −6° … 90°; `cargo test -p atmos --test luts -- --nocapture
-/// view_transmittance_against_the_reference`); see the atmos README for
+/// view_transmittance_against_the_reference`); see `docs/atmos-methods.md` for
 /// the figures and the per-query cost of each choice.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ViewTransmittance {
@@ -164,7 +164,7 @@ impl Default for LutSettings {
             // scattering falls by orders of magnitude within a few degrees, and 32
             // texels (3.7° apart at the horizon) read it too bright in twilight:
             // against the path tracer, twilight mean 17.8 % with 32, 6.2 % with 64,
-            // 2.2 % with 128 (issue 13.3; `precomputed_against_the_path_tracer` in
+            // 2.2 % with 128 (`precomputed_against_the_path_tracer` in
             // tests/path_tracer.rs). A static bake: no per-frame cost.
             multiple_scattering_size: [128, 32],
             multiple_scattering_samples: 20,

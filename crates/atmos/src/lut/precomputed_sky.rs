@@ -299,7 +299,7 @@ pub fn shade_pixel(luts: &StaticLuts, frame: &FrameLuts, pixel: [u32; 2]) -> Sca
 
 /// Below the top of the atmosphere, within this band (m), the sky-view lookup is blended
 /// linearly into the LUT march that takes over above the top, so radiance is continuous
-/// as a camera crosses the top (seed 001's "painted shell" jump). Without it the step is
+/// as a camera crosses the top (the "painted shell" jump of a shell-entry march). Without it the step is
 /// the sky-view LUT's interpolation error, 3.7 % mean (8.2 % max) for ±1 m. Only
 /// viewers in the band (the top kilometre of a 100 km atmosphere) pay for both.
 pub const TOP_BLEND_BAND: f32 = 1_000.0;

@@ -15,8 +15,8 @@
 //! multiple-scattering table's bands ≤ 2), and integrates every layer's normal
 //! against the clamped cosine: E(n) = ∫ L(ω) max(0, n·ω) dω, in the unit of
 //! `sun_irradiance`. A band-limited form (the multiple-scattering moments against the
-//! clamped cosine's bands 0–2) would miss the sharp horizon and the sun's aureole (the
-//! atmos README has both against the Reference).
+//! clamped cosine's bands 0–2) would miss the sharp horizon and the sun's aureole (`cargo test -p
+//! atmos --test sky_irradiance -- --nocapture` measures the per-normal table).
 //!
 //! Rows are quadratic in altitude (x_r = √((r − R)/(top − R)): 100 m apart at the
 //! ground, where the Mie layer's 1.2 km scale height lives), columns linear in μ_s.

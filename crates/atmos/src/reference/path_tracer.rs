@@ -86,8 +86,8 @@ pub enum FreePaths {
     /// the weight `T·σ_s/pdf` — never an escape. The distance is drawn from the
     /// majorant's free flight restricted to the segment, mixed with the majorant over
     /// the segment's sunlit part where the planet's shadow covers some of it; `T` by
-    /// quadrature. Lower variance per unit time, most of all at twilight (measured in
-    /// the atmos README).
+    /// quadrature. Lower variance per unit time, most of all at twilight (measured by
+    /// `crates/atmos/tests/path_tracer.rs`).
     #[default]
     Forced,
     /// Analog delta (Woodcock) tracking through the exact densities: free flights at the

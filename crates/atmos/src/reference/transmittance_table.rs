@@ -133,8 +133,7 @@ mod tests {
 
     /// The grazing sun paths of twilight, where the transmittance falls by orders of
     /// magnitude over a few texels: interpolating the optical depth keeps the relative
-    /// error at 2.5 % (interpolating the transmittance itself: 24 %, measured by this
-    /// test on the former lookup; `cargo test -p atmos --lib grazing_rays_keep --
+    /// error at 2.5 % (interpolating the transmittance itself would give 24 %; `cargo test -p atmos --lib grazing_rays_keep --
     /// --nocapture`).
     #[test]
     fn grazing_rays_keep_a_small_relative_error() {

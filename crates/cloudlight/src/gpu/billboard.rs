@@ -1,4 +1,4 @@
-//! [`BillboardPass`]: seed 002's billboards drawn into the caller's colour target
+//! [`BillboardPass`]: Dobashi et al. 2000's billboards drawn into the caller's colour target
 //! (`shaders/cloudlight/billboard_pass.wgsl`); bring your own device.
 //!
 //! [`BillboardPass::new`] builds the pipeline for a colour format ([`billboard_pipeline`]:
@@ -229,7 +229,7 @@ struct Prepared {
     _frame: wgpu::Buffer,
 }
 
-/// Seed 002's billboards on a GPU (see the module documentation).
+/// Dobashi et al. 2000's billboards on a GPU (see the module documentation).
 #[derive(Debug)]
 pub struct BillboardPass {
     pipeline: wgpu::RenderPipeline,

@@ -117,7 +117,7 @@ struct Prepared {
     _ping: [wgpu::Buffer; 2],
 }
 
-/// Seed 002's slice propagation on a GPU (see the module documentation).
+/// Dobashi et al. 2000's slice propagation on a GPU (see the module documentation).
 #[derive(Debug)]
 pub struct SlicePropagation {
     pipeline: wgpu::ComputePipeline,

@@ -1,4 +1,4 @@
-//! Parity cases of `cloudlight::billboard` (seed 002's billboards): the soft splat and a
+//! Parity cases of `cloudlight::billboard` (Dobashi et al. 2000's billboards): the soft splat and a
 //! billboard's place and size on the image. The screen function's reference is the generic
 //! function's f64 instantiation (one formula, two precisions: the error is rounding); the
 //! splat's is an independent factored form.

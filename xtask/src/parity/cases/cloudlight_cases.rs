@@ -302,7 +302,7 @@ fn directions(n: u32) -> Vec<[f64; 3]> {
 const BOX_LO: [f64; 3] = [0.0, 0.0, 1000.0];
 const BOX_HI: [f64; 3] = [1000.0, 800.0, 1600.0];
 
-/// Cone-sampling cases (seed 003): the sample layout, Beer–Lambert, powder, the dual
+/// Cone-sampling cases (Schneider 2015): the sample layout, Beer–Lambert, powder, the dual
 /// lobe, the exit distance.
 pub fn cone_cases() -> Vec<Case> {
     vec![

@@ -1,4 +1,4 @@
-//! Parity cases of `cloudlight::march` (seed 003's view march): the energy-conserving step,
+//! Parity cases of `cloudlight::march` (the view march after Schneider 2015): the energy-conserving step,
 //! the multiple-scattering octaves, the pinhole camera's pixel direction, and the
 //! interleaved-gradient-noise jitter. References are f64 textbook forms (expm1, powi,
 //! glam's normalize), independent of the generic twins.

@@ -1,4 +1,4 @@
-//! Parity cases of `cloudlight`'s procedural cloud shell (seed 003): the tileable noise
+//! Parity cases of `cloudlight`'s procedural cloud shell (Schneider 2015): the tileable noise
 //! (`shaders/cloudlight/noise.wgsl`) and the shell (`shaders/cloudlight/shell.wgsl`).
 //!
 //! The integer lattice hash is checked bit for bit against `integer_references`'

@@ -1,4 +1,4 @@
-//! Parity cases of `terrain`: shadow queries and the seed-000 shading term.
+//! Parity cases of `terrain`: shadow queries and the terrain shading term.
 
 use super::*;
 use crate::parity::compare::ulp_f32;

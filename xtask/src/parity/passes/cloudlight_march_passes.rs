@@ -1,4 +1,4 @@
-//! Parity passes of `cloudlight`'s view march (seed 003): a 32×32 image of a lumpy 32³
+//! Parity passes of `cloudlight`'s view march (Schneider 2015): a 32×32 image of a lumpy 32³
 //! blob by `cloudlight::gpu::MarchPass`, per pixel (radiance r, g, b, transmittance).
 //! Reference: the generic march at f64 (`march::render_image::<f64>`); cpu: the same at
 //! f32 (the WGSL's twin).

@@ -1,4 +1,4 @@
-//! Parity passes of `cloudlight`'s view march through a procedural cloud shell (seed 003):
+//! Parity passes of `cloudlight`'s view march through a procedural cloud shell (Schneider 2015):
 //! an image (64×48, 112×90) by `cloudlight::gpu::MarchShellPass` (`march_shell_pass.wgsl`, entry
 //! `march_shell_main`), per pixel (radiance r, g, b, transmittance), of the cumulus layer
 //! seen from the ground and of the shipped `stratocumulus` deck seen from above.

@@ -1,4 +1,4 @@
-//! Parity passes of `cloudlight`'s noise bake (seed 003's cloud shell): every texel of a
+//! Parity passes of `cloudlight`'s noise bake (the cloud shell's noise): every texel of a
 //! 32³ shape and a 16³ detail texture. Reference: `cloud_shape_noise` /
 //! `cloud_detail_noise` at f64 on the texel centres (unquantised); cpu: the f32 twins
 //! (`bake_shape_noise`, `bake_detail_noise`) quantised as the `rgba8unorm` store does

@@ -1,4 +1,4 @@
-//! Parity passes of `cloudlight`: seed 002's slice propagation (physical and faithful
+//! Parity passes of `cloudlight`: Dobashi et al. 2000's slice propagation (physical and faithful
 //! modes, oblique light) on a lumpy 40×32×20 volume. Reference: the generic sweep at f64;
 //! cpu: the same sweep at f32 (the WGSL's twin); gpu: `cloudlight::gpu::SlicePropagation`.
 

@@ -58,7 +58,7 @@ fn cloudsim_model() -> Result<cloudsim::Model, String> {
     config.wind = (0..32)
         .map(|z| [0.02 * z as f32, 0.1 - 0.01 * z as f32])
         .collect();
-    // seed 002-like slice table: denser at the base
+    // a slice table like Dobashi et al. 2000's: denser at the base
     config.slice_density = (0..32).map(|z| 1.0 - 0.015 * z as f32).collect();
     cloudsim::Model::new(config).map_err(|e| e.to_string())
 }

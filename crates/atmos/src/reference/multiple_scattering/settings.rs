@@ -58,7 +58,7 @@ impl Default for ReferenceSettings {
 
 impl ReferenceSettings {
     /// Why the defaults: measured by `crates/atmos/tests/reference.rs`
-    /// (`reference_convergence`, release only) and reported in the atmos README.
+    /// (`reference_convergence`, release only; `--nocapture` prints the figures).
     pub const DEFAULT_JUSTIFICATION: &'static str = "7 orders: the 7th contributes at most \
         0.035 % of the luminance at sun elevations ≥ 5° (orders ≥ 2 are 25 % on average); \
         256 view / 64 light samples per query (doubling both: 0.002 % mean change); a \

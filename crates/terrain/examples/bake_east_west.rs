@@ -1,12 +1,12 @@
-//! Bakes the two seed-000 maps (RGBA: normal in RGB, horizon angle in A; one map for
+//! Bakes the east/west pair of horizon maps (RGBA: normal in RGB, horizon angle in A; one map for
 //! the sun in the east, one for the west) from a 16-bit greyscale PNG, or from a
 //! generated heightfield when no file is given.
 //!
 //! ```text
-//! cargo run -p terrain --release --example bake_seed000 -- [heightmap.png SPACING_M SCALE_M_PER_COUNT OFFSET_M]
+//! cargo run -p terrain --release --example bake_east_west -- [heightmap.png SPACING_M SCALE_M_PER_COUNT OFFSET_M]
 //! ```
 //!
-//! Writes `seed000_east.png` and `seed000_west.png` (16-bit RGBA) into
+//! Writes `horizon_east.png` and `horizon_west.png` (16-bit RGBA) into
 //! `$CARGO_TARGET_DIR` (default `target/`).
 
 use std::path::PathBuf;
@@ -30,7 +30,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         _ => {
             return Err(
-                "usage: bake_seed000 [heightmap.png SPACING_M SCALE_M_PER_COUNT OFFSET_M]".into(),
+                "usage: bake_east_west [heightmap.png SPACING_M SCALE_M_PER_COUNT OFFSET_M]".into(),
             );
         }
     };
@@ -46,7 +46,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let dir = PathBuf::from(std::env::var("CARGO_TARGET_DIR").unwrap_or_else(|_| "target".into()));
     std::fs::create_dir_all(&dir)?;
     for (name, map) in [("east", &maps.east), ("west", &maps.west)] {
-        let path = dir.join(format!("seed000_{name}.png"));
+        let path = dir.join(format!("horizon_{name}.png"));
         std::fs::write(&path, normals.to_rgba_png(map, BitDepth::Sixteen)?)?;
         println!("wrote {}", path.display());
     }
