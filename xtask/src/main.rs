@@ -12,7 +12,10 @@
 //!   accuracy for each quality setting of a subsystem, measured; writes
 //!   `docs/tradeoffs/<subsystem>.md` (`sky-dome`: SGSky's 12-sided dome against the
 //!   per-pixel sky, `sky_dome.md`).
+//! * `gallery` — every shipped scene rendered by the CPU reference renderer into
+//!   `docs/gallery/NAME.png`, and `docs/gallery.md` listing them.
 
+mod gallery;
 mod parity;
 mod tradeoff;
 
@@ -29,13 +32,15 @@ pub fn workspace_root() -> PathBuf {
 
 const USAGE: &str = "usage: cargo xtask parity [--filter NAME] [--backend BACKENDS] [--inject CASE]
                           [--markdown PATH] [--check-markdown PATH] [--self-test]
-       cargo xtask tradeoff <atmos|terrain|sky-dome|cloudlight> [--quick] [--backend BACKENDS]";
+       cargo xtask tradeoff <atmos|terrain|sky-dome|cloudlight> [--quick] [--backend BACKENDS]
+       cargo xtask gallery";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     match args.first().map(String::as_str) {
         Some("parity") => run_parity(&args[1..]),
         Some("tradeoff") => tradeoff::run(&args[1..]),
+        Some("gallery") => gallery::run(&args[1..]),
         Some("-h" | "--help") | None => {
             println!("{USAGE}");
             ExitCode::SUCCESS
