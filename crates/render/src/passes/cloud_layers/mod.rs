@@ -53,13 +53,16 @@ fn plan(scene: &PreparedScene) -> Vec<PlanLine> {
     let fog: Result<String, String> = match &scene.in_cloud_fog {
         Some(fog) => Ok(format!(
             "the camera is in layer {}'s band: in-cloud fog (celestial's Sky::in_cloud_fog, \
-             SGSky's closed-in visibility {:.0} m at the camera) over terrain and sky, \
-             exp(−min({:.3e}/m × distance, column {:.2} up / {:.2} down ÷ |μ|))",
+             the layers' own {:.0} m visibility at the camera) over terrain and sky: \
+             {:.3e}/m at the camera, columns of optical depth {:.2} up and {:.2} down \
+             through bands reaching {:.0} m above and {:.0} m below",
             fog.layer,
             celestial::visibility::visibility_from_extinction(fog.extinction_per_m),
             fog.extinction_per_m,
             fog.optical_depth_up,
-            fog.optical_depth_down
+            fog.optical_depth_down,
+            fog.band_above_m,
+            fog.band_below_m
         )),
         None => Err("the camera is in no cloud layer's band: no in-cloud fog".into()),
     };
