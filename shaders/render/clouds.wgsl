@@ -4,7 +4,7 @@
 // are in front of the scene (the terrain's distance from its reverse-z depth). Twin:
 // render::clouds (Rust): same names, argument order and units.
 //
-// The fragment writes the composite as c + a·background with c = F(0) and
+// The fragment writes the composite (the layers, then the in-cloud fog) as c + a·background with c = F(0) and
 // a = F(1) − F(0) (F is affine in the background: each layer mixes it with its own
 // colour by its opacity), so fixed-function blending (One, OneMinusSrcAlpha) applies it
 // over the scene already in the colour target (which holds radiance × exposure: c is
@@ -12,6 +12,7 @@
 #import atmos::frame
 #import celestial::clouds
 #import common::frames
+#import render::in_cloud_fog
 
 struct CloudComposite {
     camera: FrameCamera,
@@ -22,6 +23,8 @@ struct CloudComposite {
     layer_count: u32,
     // Multiplies the layers' own light (the HDR target holds radiance × exposure).
     radiance_scale: f32,
+    // The fog of the layers the camera is in or near, over everything drawn so far.
+    fog: InCloudFogUniforms,
 }
 
 @group(0) @binding(0) var<uniform> composite: CloudComposite;
@@ -39,7 +42,8 @@ fn cloud_hit_distance(view: vec3<f32>, r: f32, layer: CloudLayerUniforms) -> f32
 }
 
 // `background` through the layers along the world direction `view` from radius r, each
-// drawn only where it is nearer than the scene (scene_distance, m along the view).
+// drawn only where it is nearer than the scene (scene_distance, m along the view), then
+// through the in-cloud fog around the camera.
 fn composite_cloud_layers(view: vec3<f32>, r: f32, scene_distance: f32, background: vec3<f32>) -> vec3<f32> {
     let enu = world_to_enu(view);
     var out = background;
@@ -50,7 +54,7 @@ fn composite_cloud_layers(view: vec3<f32>, r: f32, scene_distance: f32, backgrou
             out = cloud_layer_radiance(enu, r, layer, out);
         }
     }
-    return out;
+    return in_cloud_fog(enu.z, scene_distance, composite.fog, out);
 }
 
 // The scene's distance along `view` from its reverse-z depth with an infinite far

@@ -22,12 +22,14 @@ pub fn cloud_hit_distance(view: [f32; 3], r: f32, layer: &CloudLayerUniforms) ->
 
 /// `background` seen through the layers (farthest first) along the world direction
 /// `view` from radius `r`, each layer drawn only where it is nearer than the scene
-/// (`scene_distance`, m along the view; infinite for the sky).
+/// (`scene_distance`, m along the view; infinite for the sky), then through the in-cloud
+/// fog around the camera (`crate::in_cloud_fog`).
 pub fn composite_cloud_layers(
     view: [f32; 3],
     r: f32,
     scene_distance: f32,
     layers: &[CloudLayerUniforms],
+    fog: &crate::in_cloud_fog::InCloudFogUniforms,
     background: [f32; 3],
 ) -> [f32; 3] {
     let view = world_to_enu(view);
@@ -38,7 +40,7 @@ pub fn composite_cloud_layers(
             out = celestial::clouds::cloud_layer_radiance(view, r, layer, out);
         }
     }
-    out
+    crate::in_cloud_fog::in_cloud_fog(view[2], scene_distance, fog, out)
 }
 
 /// The direct sun's fraction through every layer at `offset` (world axes, metres from
@@ -55,6 +57,20 @@ pub fn cloud_shadow_at(offset: [f32; 3], r: f32, layers: &[CloudLayerUniforms]) 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    const NO_FOG: crate::in_cloud_fog::InCloudFogUniforms =
+        crate::in_cloud_fog::InCloudFogUniforms {
+            radiance: [0.0; 3],
+            extinction: 0.0,
+            optical_depth_up: 0.0,
+            optical_depth_down: 0.0,
+            band_above: 0.0,
+            band_below: 0.0,
+            enabled: 0,
+            padding0: 0,
+            padding1: 0,
+            padding2: 0,
+        };
 
     fn layer(base: f32, top: f32) -> CloudLayerUniforms {
         let mut layer = celestial::clouds::CloudLayer::new(
@@ -88,16 +104,31 @@ mod tests {
         let background = [0.2, 0.3, 0.4];
         let hit = cloud_hit_distance(world_to_enu(view), 1000.0, &overcast);
         assert!((hit - 2000.0).abs() < 1e-2, "{hit}");
-        let sky = composite_cloud_layers(view, 1000.0, f32::INFINITY, &[overcast], background);
+        let sky = composite_cloud_layers(
+            view,
+            1000.0,
+            f32::INFINITY,
+            &[overcast],
+            &NO_FOG,
+            background,
+        );
         assert_ne!(sky, background);
-        let behind = composite_cloud_layers(view, 1000.0, 1500.0, &[overcast], background);
+        let behind = composite_cloud_layers(view, 1000.0, 1500.0, &[overcast], &NO_FOG, background);
         assert_eq!(behind, background);
-        let in_front = composite_cloud_layers(view, 1000.0, 2500.0, &[overcast], background);
+        let in_front =
+            composite_cloud_layers(view, 1000.0, 2500.0, &[overcast], &NO_FOG, background);
         assert_eq!(in_front, sky);
         // Looking down from below: the layer is not reached.
         let down = [0.0, -0.5, -(0.75f32).sqrt()];
         assert_eq!(
-            composite_cloud_layers(down, 1000.0, f32::INFINITY, &[overcast], background),
+            composite_cloud_layers(
+                down,
+                1000.0,
+                f32::INFINITY,
+                &[overcast],
+                &NO_FOG,
+                background
+            ),
             background
         );
     }
@@ -107,7 +138,8 @@ mod tests {
         // The GPU pass blends c + a·background with c = F(0) and a = F(1) − F(0).
         let layers = [layer(2000.0, 2300.0), layer(1500.0, 1600.0)];
         let view = [0.3, 0.6, -0.74];
-        let f = |b: [f32; 3]| composite_cloud_layers(view, 1000.0, f32::INFINITY, &layers, b);
+        let f =
+            |b: [f32; 3]| composite_cloud_layers(view, 1000.0, f32::INFINITY, &layers, &NO_FOG, b);
         let (c, one) = (f([0.0; 3]), f([1.0; 3]));
         let background = [0.25, 0.5, 0.75];
         let direct = f(background);

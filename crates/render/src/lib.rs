@@ -27,6 +27,7 @@ pub mod error;
 pub mod frames;
 #[cfg(feature = "gpu")]
 pub mod gpu;
+pub mod in_cloud_fog;
 pub mod light;
 pub mod marched_cloud;
 pub mod mutual_shadow;

@@ -80,6 +80,7 @@ mod wgsl_tests {
         #[cfg(feature = "gpu")]
         let twins = {
             use crate::gpu::cloud_composite::VolumeDistanceParams;
+            use crate::in_cloud_fog::InCloudFogUniforms;
             use crate::passes::cloud_layers::CloudComposite;
             use crate::passes::display::DisplayParameters;
             use crate::passes::terrain::uniforms::{TerrainUniform, VolumeShadowUniform};
@@ -146,8 +147,24 @@ mod wgsl_tests {
                     near,
                     layer_count,
                     radiance_scale,
+                    fog,
                 }),
                 wgsl("render::clouds", "CloudComposite"),
+            ));
+            twins.push((
+                skyscape_wgsl::rust_layout!(InCloudFogUniforms {
+                    radiance,
+                    extinction,
+                    optical_depth_up,
+                    optical_depth_down,
+                    band_above,
+                    band_below,
+                    enabled,
+                    padding0,
+                    padding1,
+                    padding2,
+                }),
+                wgsl("render::in_cloud_fog", "InCloudFogUniforms"),
             ));
             twins
         };

@@ -460,9 +460,54 @@ fn scene_cases() -> Vec<(String, String, &'static str)> {
         ("base_m", "nan", "clouds.layers.0.base_m"),
         ("span_m", "0.0", "clouds.layers.0.span_m"),
         ("transition_m", "-1.0", "clouds.layers.0.transition_m"),
+        ("coverage", "\"lots\"", "clouds.layers.0.coverage"),
+        ("coverage", "\"Broken\"", "Broken"),
+        ("coverage", "true", "clouds.layers.0.coverage"),
+        ("wind_m_per_s", "[nan, 0.0]", "clouds.layers.0.wind_m_per_s"),
+        (
+            "wind_m_per_s",
+            "[300.0, 0.0]",
+            "clouds.layers.0.wind_m_per_s",
+        ),
+        (
+            "wind_m_per_s",
+            "[0.0, -inf]",
+            "clouds.layers.0.wind_m_per_s",
+        ),
+        ("wind_m_per_s", "[1.0]", "clouds.layers.0.wind_m_per_s"),
     ] {
         add(&format!("layer {key} {value}"), layer(key, value), names);
     }
+    // [visibility]
+    for v in ["0.0", "-5.0", "nan", "inf", "2e6", "\"far\""] {
+        add(
+            &format!("visibility {v}"),
+            plus(&format!("[visibility]\ndistance_m = {v}\n")),
+            "visibility.distance_m",
+        );
+    }
+    add(
+        "visibility and mie_scale",
+        plus("[visibility]\ndistance_m = 5000.0\n").replace(
+            "rung = \"closed-form\"",
+            "rung = \"closed-form\"\nmie_scale = 2.0",
+        ),
+        "visibility.distance_m",
+    );
+    add(
+        "visibility from orbit",
+        with(
+            &plus("[visibility]\ndistance_m = 5000.0\n"),
+            "position",
+            "[0.0, 400000.0, 0.0]",
+        ),
+        "visibility.distance_m",
+    );
+    add(
+        "visibility unknown key",
+        plus("[visibility]\ndistance_m = 5000.0\nfog = true\n"),
+        "fog",
+    );
     // [clouds.volume]
     let volume = |key: &str, value: &str| {
         let text = plus(VOLUME);
@@ -588,6 +633,68 @@ fn scene_cases() -> Vec<(String, String, &'static str)> {
         ),
         "animation.automaton_steps_per_frame",
     );
+    // [[animation.layers]] and the camera's travel
+    let layered = format!("{}\n{LAYER}", timed());
+    for (name, lines, names) in [
+        (
+            "layer change of a missing layer",
+            "frames = 4\n[[animation.layers]]\nlayer = 3\ncoverage_per_frame = 0.1",
+            "animation.layers.0.layer",
+        ),
+        (
+            "layer coverage rate nan",
+            "frames = 4\n[[animation.layers]]\nlayer = 0\ncoverage_per_frame = nan",
+            "animation.layers.0.coverage_per_frame",
+        ),
+        (
+            "layer coverage past 1",
+            "frames = 10\n[[animation.layers]]\nlayer = 0\ncoverage_per_frame = 0.2",
+            "animation.layers.0.coverage_per_frame",
+        ),
+        (
+            "layer thinned to nothing",
+            "frames = 10\n[[animation.layers]]\nlayer = 0\nthickness_m_per_frame = -100.0",
+            "animation.layers.0.thickness_m_per_frame",
+        ),
+        (
+            "layer base into space",
+            "frames = 10\n[[animation.layers]]\nlayer = 0\nbase_m_per_frame = 50000.0",
+            "animation.layers.0.base_m_per_frame",
+        ),
+        (
+            "layer to_frame before from_frame",
+            "frames = 10\n[[animation.layers]]\nlayer = 0\nfrom_frame = 5\nto_frame = 2",
+            "animation.layers.0.to_frame",
+        ),
+        (
+            "layer removed before it appears",
+            "frames = 10\n[[animation.layers]]\nlayer = 0\nappear_at_frame = 5\n\
+             remove_at_frame = 5",
+            "animation.layers.0.remove_at_frame",
+        ),
+        (
+            "layer change to an unknown kind",
+            "frames = 4\n[[animation.layers]]\nlayer = 0\nkind = \"nimbus\"",
+            "animation.layers.0.kind",
+        ),
+        (
+            "layer change unknown key",
+            "frames = 4\n[[animation.layers]]\nlayer = 0\nwind_per_frame = 1.0",
+            "wind_per_frame",
+        ),
+        (
+            "camera travel nan",
+            "frames = 4\ncamera_m_per_frame = [0.0, nan, 0.0]",
+            "animation.camera_m_per_frame",
+        ),
+        (
+            "camera travel underground",
+            "frames = 10\ncamera_m_per_frame = [0.0, -100.0, 0.0]",
+            "animation.camera_m_per_frame",
+        ),
+    ] {
+        add(name, animation(&layered, lines), names);
+    }
     // Syntax
     add("unclosed array", set("position", "[0.0, 2.0, 0.0"), "");
     add(
@@ -611,7 +718,7 @@ fn scene_error(text: &str) -> Option<String> {
         Ok(scene) => scene,
         Err(e) => return Some(e.to_string()),
     };
-    let frames = scene.file.animation.map_or(1, |a| a.frames.max(1));
+    let frames = scene.file.animation.as_ref().map_or(1, |a| a.frames.max(1));
     if let Err(e) = scene.check_animation(0..frames) {
         return Some(e.to_string());
     }

@@ -113,3 +113,28 @@ fn what_a_move_cannot_carry_is_refused_with_its_reason() {
         .to_string();
     assert!(error.contains("camera.position"), "{error}");
 }
+
+#[test]
+fn the_layers_texture_stays_on_the_world_as_the_camera_travels() {
+    // The default scene's cumulus layer: a move of 3 km east and 1 km north at the same
+    // altitude adds exactly that travel to the layer's texture offset (east, north), so
+    // the clouds stay where they were over the ground.
+    let scene = common::shipped("default", 32, 18);
+    let mut moved = at(scene, [-2000.0, 3300.0, 14500.0], [0.0, -0.1, -1.0])
+        .prepare()
+        .unwrap();
+    let before = moved.cloud_layers[0].offset;
+    assert_eq!(
+        before,
+        [-2000.0, -14500.0],
+        "anchored to the camera's east and north"
+    );
+    moved
+        .move_camera(
+            DVec3::new(1000.0, 3300.0, 13500.0),
+            DVec3::new(0.0, -0.1, -1.0),
+            50f64.to_radians(),
+        )
+        .unwrap();
+    assert_eq!(moved.cloud_layers[0].offset, [1000.0, -13500.0]);
+}

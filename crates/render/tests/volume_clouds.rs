@@ -264,7 +264,11 @@ fn the_cumulus_agrees_on_the_gpu_and_the_cpu() {
 fn animation_grows_the_cloud_between_frames() {
     let text = format!("{VALID}{VOLUME}[animation]\nframes = 3\nautomaton_steps_per_frame = 15\n");
     let scene = Scene::parse(&text, ".").unwrap();
-    let animation = scene.file.animation.expect("the scene has [animation]");
+    let animation = scene
+        .file
+        .animation
+        .clone()
+        .expect("the scene has [animation]");
     let steps_at = |frame: u32| {
         let mut frame_scene = scene.clone();
         animation.apply(&mut frame_scene.file, frame);

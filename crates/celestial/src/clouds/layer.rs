@@ -71,6 +71,15 @@ impl CloudKind {
         }
     }
 
+    /// The coverage a layer of this kind has unless told otherwise: the sheets
+    /// (overcast, stratus) cover the sky, the others half of it.
+    pub fn default_coverage(self) -> f64 {
+        match self {
+            CloudKind::Overcast | CloudKind::Stratus => 1.0,
+            _ => 0.5,
+        }
+    }
+
     /// Index used by the GPU uniform.
     pub fn index(self) -> u32 {
         Self::ALL.iter().position(|&k| k == self).expect("listed") as u32
@@ -131,10 +140,7 @@ impl CloudLayer {
             transition_m,
             span_m,
             kind,
-            coverage: match kind {
-                CloudKind::Overcast | CloudKind::Stratus => 1.0,
-                _ => 0.5,
-            },
+            coverage: kind.default_coverage(),
             shape: LayerShape::Curved,
             in_cloud_visibility_m: SGSKY_IN_CLOUD_VISIBILITY_M,
             seed: 0,

@@ -21,6 +21,7 @@ mod render;
 mod tests;
 mod weather;
 
+pub use render::InCloudFog;
 pub use weather::puff_envelope;
 
 use atmos::Atmosphere;

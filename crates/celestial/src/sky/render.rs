@@ -3,12 +3,96 @@
 use atmos::frame::FrameCamera;
 
 use super::*;
-use crate::clouds::{CloudLayerFrame, CloudLayerUniforms, draw_order};
+use crate::clouds::{CloudLayerFrame, CloudLayerUniforms, draw_order, immersion_column};
 use crate::dome::DOME_SIDES;
 use crate::error::{CelestialError, Result};
 use crate::objects::{SkyObjectsFrame, render_sky_objects_cpu};
 
+/// The fog of the cloud layers a viewer is in or near (in a layer or its transition
+/// zone): SGSky's closed-in visibility as a medium to see through ([`Sky::in_cloud_fog`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InCloudFog {
+    /// The layers' in-cloud extinction at the viewer (1/m): per layer, its immersion ×
+    /// coverage × 3.912 / in-cloud visibility — the terms [`Sky::modify_vis`] adds to
+    /// the clear air's (without the puffs, which change the reported visibility only).
+    pub extinction_per_m: f64,
+    /// That extinction integrated from the viewer up through the layers (vertical
+    /// optical depth).
+    pub optical_depth_up: f64,
+    /// That extinction integrated from the viewer down to sea level.
+    pub optical_depth_down: f64,
+    /// Height above the viewer (m) past which no layer's band reaches: a view that
+    /// climbs this far has crossed the whole column above.
+    pub band_above_m: f64,
+    /// Depth below the viewer (m, to sea level at most) past which no layer's band
+    /// reaches.
+    pub band_below_m: f64,
+    /// The fog's radiance: the most immersed layer's inside
+    /// ([`crate::clouds::cloud_interior_radiance`]), in the atmosphere's unit.
+    pub radiance: [f32; 3],
+    /// The most immersed layer's index.
+    pub layer: usize,
+}
+
 impl Sky {
+    /// The in-cloud fog around a viewer at `altitude_m`, or `None` when the viewer is
+    /// in no layer's band (the layer or its transition zones). A view of zenith cosine
+    /// μ sees `exp(−optical_depth/|μ|)` of what lies beyond the layers (|μ| ≥ 10⁻³,
+    /// flat bands: [`crate::clouds::in_cloud_transmittance`]).
+    pub fn in_cloud_fog(&self, altitude_m: f64) -> Result<Option<InCloudFog>> {
+        let paint = self.painted("in_cloud_fog")?;
+        let Some(layer) = (0..self.layers.len())
+            .filter(|&i| self.layers[i].immersion(altitude_m) > 0.0)
+            .max_by(|&a, &b| {
+                self.layers[a]
+                    .immersion(altitude_m)
+                    .total_cmp(&self.layers[b].immersion(altitude_m))
+            })
+        else {
+            return Ok(None);
+        };
+        let k = -crate::visibility::KOSCHMIEDER_CONTRAST.ln();
+        let (mut extinction_per_m, mut optical_depth_up, mut optical_depth_down) = (0.0, 0.0, 0.0);
+        for l in &self.layers {
+            let per_immersion = l.coverage * k / l.in_cloud_visibility_m;
+            extinction_per_m += per_immersion * l.immersion(altitude_m);
+            optical_depth_up += per_immersion * immersion_column(l, altitude_m, true);
+            optical_depth_down += per_immersion * immersion_column(l, altitude_m, false);
+        }
+        let top = self
+            .layers
+            .iter()
+            .map(|l| l.top_m() + l.transition_m)
+            .fold(altitude_m, f64::max);
+        let bottom = self
+            .layers
+            .iter()
+            .map(|l| l.base_m - l.transition_m)
+            .fold(altitude_m, f64::min)
+            .max(0.0f64.min(altitude_m));
+        let light = &paint.layer_light[layer];
+        let frame = CloudLayerFrame {
+            planet_radius_m: self.atmosphere.planet_radius,
+            offset_m: [0.0, 0.0],
+            fog_extinction_per_m: 0.0,
+            exp2_fog: false,
+            sun_direction: light.direction,
+            sunlight: light.irradiance,
+            skylight: light.skylight,
+            fog_colour: [0.0; 3],
+        };
+        let radiance = crate::clouds::cloud_interior_radiance(&self.layers[layer].uniforms(&frame));
+        Ok(Some(InCloudFog {
+            extinction_per_m,
+            optical_depth_up,
+            optical_depth_down,
+            band_above_m: top - altitude_m,
+            band_below_m: altitude_m - bottom,
+            radiance,
+            layer,
+        }))
+    }
+
     /// Stage 1's objects for `camera` (made by [`Sky::camera`]): what
     /// [`render_sky_objects_cpu`] and `celestial::gpu::SkyObjectsPass` draw over a sky.
     pub fn sky_objects_frame(&self, camera: &FrameCamera) -> Result<SkyObjectsFrame> {
@@ -100,29 +184,7 @@ impl Sky {
                 unit: "pixels",
             });
         }
-        // The layer whose fog the viewer is in (the most immersed), with its colour.
-        let paint = self.painted("render_clouds_cpu")?;
-        let fog_layer = (0..self.layers.len())
-            .filter(|&i| self.layers[i].immersion(altitude) > 0.0)
-            .max_by(|&a, &b| {
-                self.layers[a]
-                    .immersion(altitude)
-                    .total_cmp(&self.layers[b].immersion(altitude))
-            });
-        let interior = fog_layer.map(|i| {
-            let light = &paint.layer_light[i];
-            let frame = CloudLayerFrame {
-                planet_radius_m: self.atmosphere.planet_radius,
-                offset_m: [0.0, 0.0],
-                fog_extinction_per_m: 0.0,
-                exp2_fog: false,
-                sun_direction: light.direction,
-                sunlight: light.irradiance,
-                skylight: light.skylight,
-                fog_colour: [0.0; 3],
-            };
-            crate::clouds::cloud_interior_radiance(&self.layers[i].uniforms(&frame))
-        });
+        let fog = self.in_cloud_fog(altitude)?;
         for y in 0..camera.height {
             for x in 0..camera.width {
                 let view = atmos::frame::frame_view_direction([x, y], camera);
@@ -130,14 +192,14 @@ impl Sky {
                 for (_, layer) in &layers {
                     *out = crate::clouds::cloud_layer_radiance(view, r, layer, *out);
                 }
-                if let Some(colour) = interior {
+                if let Some(fog) = &fog {
                     let t = crate::clouds::in_cloud_transmittance(
                         &self.layers,
                         altitude,
                         f64::from(view[2]),
                     ) as f32;
-                    for i in 0..3 {
-                        out[i] = t * out[i] + (1.0 - t) * colour[i];
+                    for (channel, fog) in out.iter_mut().zip(fog.radiance) {
+                        *channel = t * *channel + (1.0 - t) * fog;
                     }
                 }
             }

@@ -6,7 +6,21 @@
 use glam::DVec3;
 
 use super::prepare::*;
+use super::sgsky_prepare::cloud_layers_at;
 use super::{PrepareCache, Rung, Scene, SceneError};
+
+/// What the celestial sky made of the scene's cloud layers and visibility.
+#[derive(Default)]
+struct SkyClouds {
+    /// The layers drawn, farthest first, anchored to the world.
+    cloud_layers: Vec<celestial::clouds::CloudLayerUniforms>,
+    /// Each layer's wind drift (m, east and north), in the file's order.
+    drift: Vec<[f64; 2]>,
+    /// The fog of the layers the camera is in or near.
+    in_cloud_fog: Option<celestial::sky::InCloudFog>,
+    /// SGSky's effective visibility at the camera (with `[visibility]`).
+    effective_m: Option<f64>,
+}
 use crate::present::PresentParameters;
 
 fn deg(value: f64) -> String {
@@ -68,7 +82,7 @@ impl Scene {
         stage: &mut dyn FnMut(&'static str),
     ) -> Result<PreparedScene, SceneError> {
         stage("checking the scene");
-        let atmosphere = self.atmosphere()?;
+        let (atmosphere, mut visibility) = self.atmosphere_and_visibility()?;
         let file = &self.file;
 
         let (sun, mut sky) = self.sun(cache)?;
@@ -202,7 +216,7 @@ impl Scene {
         stage("terrain and horizon maps");
         let terrain = self.cached_terrain(cache)?;
         stage("sky objects and cloud layers");
-        let (sky_objects, cloud_layers) = match sky.as_mut() {
+        let (sky_objects, clouds) = match sky.as_mut() {
             Some(sky) => self.sky_objects_and_clouds(sky, &*sky_model, forward, cam, out)?,
             None => {
                 if let Some(clouds) = file.clouds.as_ref().filter(|c| !c.layers.is_empty()) {
@@ -214,9 +228,18 @@ impl Scene {
                             .into(),
                     ));
                 }
-                (None, Vec::new())
+                (None, SkyClouds::default())
             }
         };
+        let SkyClouds {
+            cloud_layers,
+            drift: cloud_layer_drift_m,
+            in_cloud_fog,
+            effective_m,
+        } = clouds;
+        if let Some(visibility) = visibility.as_mut() {
+            visibility.effective_m = effective_m;
+        }
         stage("moonlit sky");
         let other_lights: Vec<LightSky> = match &sky {
             Some(sky) => self.moonlit_sky(sky, &atmosphere, sun, &cloud_layers, cache)?,
@@ -285,6 +308,9 @@ impl Scene {
             precomputed,
             sky_objects,
             cloud_layers,
+            cloud_layer_drift_m,
+            in_cloud_fog,
+            visibility,
             viewer_radius: planet + cam.position[1],
             billboard_cloud,
             other_lights,
@@ -454,7 +480,6 @@ impl Scene {
     /// The sky objects of the placed `sky` (when drawn) and its cloud layers, painted
     /// from `model`, seen by the scene's camera (the same pixel rays in celestial's
     /// east/north/up frame), the objects depth-tested against reverse-z terrain.
-    #[allow(clippy::type_complexity)]
     fn sky_objects_and_clouds(
         &self,
         sky: &mut celestial::sky::Sky,
@@ -462,13 +487,7 @@ impl Scene {
         forward: DVec3,
         cam: &super::CameraSection,
         out: &super::OutputSection,
-    ) -> Result<
-        (
-            Option<celestial::objects::SkyObjectsFrame>,
-            Vec<celestial::clouds::CloudLayerUniforms>,
-        ),
-        SceneError,
-    > {
+    ) -> Result<(Option<celestial::objects::SkyObjectsFrame>, SkyClouds), SceneError> {
         let at_time = |e| {
             self.celestial_error(
                 &["time", "utc"],
@@ -479,69 +498,29 @@ impl Scene {
                 e,
             )
         };
-        if let Some(clouds) = &self.file.clouds {
-            for (index, layer) in clouds.layers.iter().enumerate() {
-                let index = index.to_string();
-                let value_of = |key: &str| match key {
-                    "base_m" => metres(layer.base_m),
-                    "thickness_m" => metres(layer.thickness_m),
-                    "transition_m" => metres(layer.transition_m),
-                    "span_m" => metres(layer.span_m),
-                    "coverage" => layer
-                        .coverage
-                        .map_or_else(|| "(the kind's)".to_owned(), |c| c.to_string()),
-                    _ => format!("{:?}", layer.kind).to_lowercase(),
-                };
-                let field = |e: celestial::CelestialError| {
-                    let message = e.to_string();
-                    let key = [
-                        "base_m",
-                        "thickness_m",
-                        "transition_m",
-                        "span_m",
-                        "coverage",
-                    ]
-                    .into_iter()
-                    .find(|k| message.contains(k.trim_end_matches("_m")))
-                    .unwrap_or("kind");
-                    self.celestial_error(&["clouds", "layers", &index, key], value_of(key), e)
-                };
-                // celestial draws a layer of no thickness; nothing would be there.
-                if !(layer.thickness_m > 0.0 && layer.thickness_m.is_finite()) {
-                    return Err(self.invalid(
-                        &["clouds", "layers", &index, "thickness_m"],
-                        value_of("thickness_m"),
-                        "must be finite and > 0 m".into(),
-                    ));
-                }
-                let mut built = celestial::clouds::CloudLayer::new(
-                    layer.base_m,
-                    layer.thickness_m,
-                    layer.transition_m,
-                    layer.span_m,
-                    layer.kind.into(),
-                )
-                .map_err(field)?;
-                if let Some(coverage) = layer.coverage {
-                    built.coverage = coverage;
-                }
-                built.seed = layer.seed;
-                if layer.flat {
-                    built.shape = celestial::clouds::LayerShape::Flat;
-                }
-                built.validate().map_err(field)?;
-                sky.add_cloud_layer(built).map_err(field)?;
-            }
-        }
+        let drift = self.add_cloud_layers(sky)?;
         sky.repaint(model).map_err(at_time)?;
-        let cloud_layers = sky
-            .cloud_layers_in_draw_order(cam.position[1])
-            .map_err(at_time)?
-            .into_iter()
-            .map(|(_, uniforms)| uniforms)
-            .collect();
+        let position = DVec3::from_array(cam.position);
+        let cloud_layers = cloud_layers_at(sky, position, &drift).map_err(at_time)?;
+        let in_cloud_fog = sky.in_cloud_fog(position.y).map_err(at_time)?;
+        // SGSky's effective visibility at the camera, for `explain`; the sky keeps the
+        // clear air's, which the layers' own fog uses (the in-cloud fog is drawn per view).
+        let effective_m = match self.file.visibility {
+            Some(section) => {
+                let closed_in = sky.modify_vis(position.y, 0.0).map_err(at_time)?;
+                sky.set_visibility(section.distance_m).map_err(at_time)?;
+                Some(closed_in)
+            }
+            None => None,
+        };
+        let clouds = SkyClouds {
+            cloud_layers,
+            drift,
+            in_cloud_fog,
+            effective_m,
+        };
         if !self.file.sky_objects.is_none_or(|o| o.enabled) {
-            return Ok((None, cloud_layers));
+            return Ok((None, clouds));
         }
         // World x east, y up, z south → east, north, up: a rotation, so the pixel rays
         // are the scene camera's.
@@ -558,11 +537,25 @@ impl Scene {
         let mut frame = sky.sky_objects_frame(&camera).map_err(at_time)?;
         // Reverse z: the sky is at depth 0, terrain in front of it hides the objects.
         frame.uniforms.far_depth = 0.0;
-        Ok((Some(frame), cloud_layers))
+        Ok((Some(frame), clouds))
     }
 
-    /// Earth's atmosphere with the scene's overrides, validated by atmos.
+    /// Earth's atmosphere with the scene's overrides and `[visibility]`'s aerosol.
     fn atmosphere(&self) -> Result<atmos::Atmosphere, SceneError> {
+        Ok(self.atmosphere_and_visibility()?.0)
+    }
+
+    /// Earth's atmosphere with the scene's overrides, validated by atmos, then with
+    /// `[visibility]`'s aerosol (and what it made of the scene).
+    fn atmosphere_and_visibility(
+        &self,
+    ) -> Result<
+        (
+            atmos::Atmosphere,
+            Option<super::sgsky_prepare::PreparedVisibility>,
+        ),
+        SceneError,
+    > {
         let section = &self.file.atmosphere;
         let mut atmosphere = atmos::Atmosphere::earth();
         if let Some(scale) = section.mie_scale {
@@ -598,7 +591,7 @@ impl Scene {
             let value = value.map_or_else(|| "(default)".to_owned(), |v| v.to_string());
             self.atmos_error(&["atmosphere", key], value, e)
         })?;
-        Ok(atmosphere)
+        self.with_visibility(atmosphere)
     }
 
     /// The rung's models (sky, finite segments); the precomputed rung's static tables

@@ -102,6 +102,18 @@ fn find(table: &DeTable<'_>, span: &std::ops::Range<usize>, path: &mut Vec<Strin
         {
             return true;
         }
+        // A `[[table]]` array: each table by its index (`clouds.layers.0.coverage`).
+        if let DeValue::Array(items) = value.get_ref() {
+            for (index, item) in items.iter().enumerate() {
+                if let DeValue::Table(inner) = item.get_ref() {
+                    path.push(index.to_string());
+                    if find(inner, span, path) {
+                        return true;
+                    }
+                    path.pop();
+                }
+            }
+        }
         if covers(key.span()) || covers(value.span()) {
             return true;
         }

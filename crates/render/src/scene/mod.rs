@@ -48,14 +48,17 @@ mod error;
 mod ground;
 mod locate;
 pub mod prepare;
+mod sgsky;
+mod sgsky_prepare;
 pub mod shipped;
 mod terrain_prepare;
 mod warnings;
 
-pub use animation::{AnimationSection, MAX_FRAMES};
+pub use animation::{AnimationSection, LayerChange, MAX_FRAMES};
 pub use cache::PrepareCache;
 pub use error::{Location, Origin, SceneError};
 pub use prepare::{CameraMove, Illuminant, PreparedScene, PreparedTerrain};
+pub use sgsky::{CloudKindName, CloudLayerSection, Coverage, CoverageName, VisibilitySection};
 
 use std::path::{Path, PathBuf};
 
@@ -214,9 +217,12 @@ pub struct SceneFile {
     pub output: OutputSection,
     /// A sequence of frames (`skyscape render --frames`, numbered files).
     pub animation: Option<AnimationSection>,
-    /// Cloud layers (SimGear's SGSky SGSky layers from `celestial`), lit by its `Sky`:
+    /// Cloud layers (SimGear's SGSky layers from `celestial`), lit by its `Sky`:
     /// needs `[time]`.
     pub clouds: Option<CloudsSection>,
+    /// The meteorological visibility (SGSky's `set_visibility`): the aerosol of the
+    /// atmosphere and the fog of the cloud layers.
+    pub visibility: Option<VisibilitySection>,
 }
 
 /// `[clouds]`: `[[clouds.layers]]` tables, drawn after the opaque scene, farthest
@@ -317,71 +323,6 @@ fn default_octaves_volume() -> u32 {
 }
 fn half() -> f64 {
     0.5
-}
-
-/// One `[[clouds.layers]]` table (`celestial::clouds::CloudLayer`).
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct CloudLayerSection {
-    /// The type: its texture and optical thickness.
-    pub kind: CloudKindName,
-    /// Base above sea level (m).
-    pub base_m: f64,
-    /// Thickness (m).
-    pub thickness_m: f64,
-    /// Transition zone above and below, where visibility closes in (m).
-    #[serde(default = "default_transition_m")]
-    pub transition_m: f64,
-    /// Size of the layer's patch around the viewer (m).
-    #[serde(default = "default_span_m")]
-    pub span_m: f64,
-    /// Fraction of the sky covered, 0 to 1 (default: the kind's).
-    pub coverage: Option<f64>,
-    /// The texture's seed.
-    #[serde(default)]
-    pub seed: u32,
-    /// A horizontal plane instead of a sphere concentric with the planet.
-    #[serde(default)]
-    pub flat: bool,
-}
-
-fn default_transition_m() -> f64 {
-    100.0
-}
-fn default_span_m() -> f64 {
-    80_000.0
-}
-
-/// The cloud kinds by name (`celestial::clouds::CloudKind`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum CloudKindName {
-    /// High fibrous streaks.
-    Cirrus,
-    /// Small high cells.
-    Cirrocumulus,
-    /// A grey middle sheet.
-    Altostratus,
-    /// Heaped low cells.
-    Cumulus,
-    /// A thick low sheet.
-    Stratus,
-    /// A thick sheet covering the sky.
-    Overcast,
-}
-
-impl From<CloudKindName> for celestial::clouds::CloudKind {
-    fn from(name: CloudKindName) -> Self {
-        use celestial::clouds::CloudKind as K;
-        match name {
-            CloudKindName::Cirrus => K::Cirrus,
-            CloudKindName::Cirrocumulus => K::Cirrocumulus,
-            CloudKindName::Altostratus => K::Altostratus,
-            CloudKindName::Cumulus => K::Cumulus,
-            CloudKindName::Stratus => K::Stratus,
-            CloudKindName::Overcast => K::Overcast,
-        }
-    }
 }
 
 /// `[camera]`: a pinhole camera in the world frame.

@@ -7,6 +7,7 @@ use glam::DVec3;
 use terrain::{Heightfield, NormalMap};
 
 use super::Rung;
+pub use super::sgsky_prepare::{PreparedVisibility, cloud_layers_at};
 use crate::present::PresentParameters;
 use crate::terrain_shading::AlbedoRamp;
 
@@ -96,6 +97,15 @@ pub struct PreparedScene {
     /// The scene's cloud layers lit for this frame, farthest first (a layer the viewer
     /// is inside is left out: celestial models it as closed-in visibility).
     pub cloud_layers: Vec<celestial::clouds::CloudLayerUniforms>,
+    /// Each `[[clouds.layers]]` layer's wind drift (m, east and north: −wind ×
+    /// `[time] offset_s`), in the file's order: with the camera's east and north, the
+    /// layers' texture offset ([`super::sgsky_prepare::cloud_layers_at`]).
+    pub cloud_layer_drift_m: Vec<[f64; 2]>,
+    /// The fog of the cloud layers the camera is in or near (celestial's
+    /// `Sky::in_cloud_fog`), drawn by the cloud layers' pass over terrain and sky.
+    pub in_cloud_fog: Option<celestial::sky::InCloudFog>,
+    /// What `[visibility]` made of the scene.
+    pub visibility: Option<PreparedVisibility>,
     /// The viewer's distance from the planet's centre (m): celestial's frame puts the
     /// viewer on its +z axis.
     pub viewer_radius: f64,
@@ -265,7 +275,8 @@ impl PreparedScene {
     /// above the surface, z south, as `[camera] position`) along `forward`, with a
     /// vertical field of view `vertical_fov` (radians), into the frame's size: the
     /// camera, its planet-centred position, the viewer's radius, the sky objects' frame
-    /// and the cloud layers' draw order change, nothing else is prepared again.
+    /// and the cloud layers' draw order, texture offsets (anchored to the world) and
+    /// in-cloud fog change, nothing else is prepared again.
     ///
     /// A move at the prepared altitude gives the scene a preparation there gives
     /// ([`CameraMove::Moved`]; `tests/move_camera.rs`). A move to another altitude keeps
@@ -310,24 +321,39 @@ impl PreparedScene {
             self.sun,
         )
         .map_err(crate::RenderError::Atmosphere)?;
+        // The layers (their texture anchored to the world: the offsets follow the
+        // camera's east and north) and the in-cloud fog at the new viewpoint.
         let layers = match &self.celestial_sky {
-            Some(sky) if !self.cloud_layers.is_empty() => Some(
-                sky.cloud_layers_in_draw_order(position.y)?
-                    .into_iter()
-                    .map(|(_, uniforms)| uniforms)
-                    .collect::<Vec<_>>(),
-            ),
+            Some(sky) if !self.cloud_layer_drift_m.is_empty() => Some((
+                cloud_layers_at(sky, position, &self.cloud_layer_drift_m)?,
+                sky.in_cloud_fog(position.y)?,
+            )),
             _ => None,
         };
-        if let Some(layers) = layers
-            && layers != self.cloud_layers
-        {
-            if !self.other_lights.is_empty() {
+        if let Some((layers, in_cloud_fog)) = layers {
+            let geometry = |l: &[celestial::clouds::CloudLayerUniforms]| -> Vec<_> {
+                l.iter()
+                    .map(|u| celestial::clouds::CloudLayerUniforms {
+                        offset: [0.0; 2],
+                        ..*u
+                    })
+                    .collect()
+            };
+            let crossed = geometry(&layers) != geometry(&self.cloud_layers);
+            if crossed && !self.other_lights.is_empty() {
                 return Ok(CameraMove::NeedsPrepare(
                     "the camera crossed a cloud layer lit by more than the sun",
                 ));
             }
+            // The other lights' layers are the same layers lit from elsewhere: the same
+            // offsets.
+            for light in &mut self.other_lights {
+                for (theirs, ours) in light.cloud_layers.iter_mut().zip(&layers) {
+                    theirs.offset = ours.offset;
+                }
+            }
             self.cloud_layers = layers;
+            self.in_cloud_fog = in_cloud_fog;
         }
         let altitude_change_m = planet_centred.y - self.camera_position.y;
         self.camera_position = planet_centred;

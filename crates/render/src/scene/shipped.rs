@@ -51,6 +51,21 @@ pub const SHIPPED: &[ShippedScene] = &[
         source: include_str!("../../scenes/stratocumulus.toml"),
     },
     ShippedScene {
+        name: "fog",
+        description: "3 km visibility under two broken decks drifting on the wind: hills fading into the haze",
+        source: include_str!("../../scenes/fog.toml"),
+    },
+    ShippedScene {
+        name: "flight",
+        description: "48 frames climbing through a broken stratus deck: in-cloud fog, then above the deck",
+        source: include_str!("../../scenes/flight.toml"),
+    },
+    ShippedScene {
+        name: "starfield",
+        description: "a moonless January night: Orion, Sirius and the Pleiades to the south-south-east",
+        source: include_str!("../../scenes/starfield.toml"),
+    },
+    ShippedScene {
         name: "orbit",
         description: "the planet's limb from 400 km up, the sun just above it",
         source: include_str!("../../scenes/orbit.toml"),

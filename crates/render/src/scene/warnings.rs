@@ -44,6 +44,20 @@ impl Scene {
                 pixel.to_degrees()
             ));
         }
+        if let Some(section) = file.visibility
+            && let Ok(aerosol) =
+                celestial::visibility::aerosol_for_visibility(&earth, section.distance_m, altitude)
+            && aerosol.rayleigh_limited
+        {
+            warnings.push(format!(
+                "{}`visibility.distance_m` = {} m: the air alone (Rayleigh scattering and \
+                 ozone) limits the visibility at the camera to {:.0} m, so the aerosol is \
+                 zero and the image shows that visibility",
+                At(self.location(&["visibility", "distance_m"])),
+                section.distance_m,
+                aerosol.effective_visibility_m
+            ));
+        }
         warnings
     }
 }

@@ -27,6 +27,7 @@ mod integer_references;
 mod render_billboard_cases;
 mod render_cases;
 mod render_cloud_order_cases;
+mod render_fog_cases;
 mod render_volume_cases;
 mod terrain_cases;
 
@@ -378,6 +379,7 @@ pub fn all() -> Vec<Case> {
         render_billboard_cases::cases(),
         render_volume_cases::cases(),
         render_cloud_order_cases::cases(),
+        render_fog_cases::cases(),
         terrain_cases::cases(),
         cloudlight_cases::cases(),
         cloudlight_cases::cone_cases(),

@@ -147,7 +147,7 @@ pub(crate) fn render_command(args: RenderArgs) -> Result<(), Failure> {
         // The `.partial` exists from here: a failure or Ctrl-C removes it.
         let reserved = Reserved::new(target.clone(), &destination.label)?;
         let mut frame_scene = scene.clone();
-        if let Some(animation) = scene.file.animation {
+        if let Some(animation) = &scene.file.animation {
             animation.apply(&mut frame_scene.file, frame);
         }
         let start = std::time::Instant::now();

@@ -156,7 +156,7 @@ pub(crate) fn frames(scene: &mut Scene, args: &RenderArgs) -> Result<Frames, Fai
             })?;
         scene.set_by_flag(&["animation", "frames"], "--frames");
     }
-    let total = scene.file.animation.map_or(1, |a| a.frames);
+    let total = scene.file.animation.as_ref().map_or(1, |a| a.frames);
     let range = match animation.frame_range {
         Some((a, b)) => {
             if (1..=render::scene::MAX_FRAMES).contains(&total) && b > total {

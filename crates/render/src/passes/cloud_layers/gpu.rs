@@ -131,6 +131,7 @@ impl CloudPass {
             near: scene.near.max(0.01) as f32,
             layer_count: scene.cloud_layers.len() as u32,
             radiance_scale: scene.present.exposure,
+            fog: crate::in_cloud_fog::InCloudFogUniforms::new(scene.in_cloud_fog.as_ref()),
         };
         queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
         if !scene.cloud_layers.is_empty() {

@@ -1,5 +1,6 @@
 //! The cloud layers (celestial's SGSky layers: coverage, thickness, wind): composited
-//! over the opaque scene farthest first, each hidden where the terrain is nearer.
+//! over the opaque scene farthest first, each hidden where the terrain is nearer; then
+//! the in-cloud fog of the layers the camera is in or near (`crate::in_cloud_fog`).
 
 #[cfg(feature = "gpu")]
 pub(crate) mod gpu;
@@ -14,7 +15,7 @@ use crate::scene::prepare::PreparedScene;
 /// The cloud layers' entry in the frame.
 pub(crate) const ENTRY: PassEntry = PassEntry {
     name: "cloud layers",
-    runs: |scene| !scene.cloud_layers.is_empty(),
+    runs: |scene| !scene.cloud_layers.is_empty() || scene.in_cloud_fog.is_some(),
     plan,
     cpu,
     #[cfg(feature = "gpu")]
@@ -35,11 +36,13 @@ pub struct CloudComposite {
     pub layer_count: u32,
     /// Multiplies the layers' own light (the HDR target holds radiance × exposure).
     pub radiance_scale: f32,
+    /// The in-cloud fog around the camera.
+    pub fog: crate::in_cloud_fog::InCloudFogUniforms,
 }
 
 fn plan(scene: &PreparedScene) -> Vec<PlanLine> {
-    let status = if scene.cloud_layers.is_empty() {
-        Err("no [[clouds.layers]] in front of the viewer: no cloud pipeline".into())
+    let layers: Result<String, String> = if scene.cloud_layers.is_empty() {
+        Err("no [[clouds.layers]] in front of the viewer: no layer drawn".into())
     } else {
         Ok(format!(
             "{} celestial layer(s) farthest first over the opaque scene, each hidden where \
@@ -47,7 +50,35 @@ fn plan(scene: &PreparedScene) -> Vec<PlanLine> {
             scene.cloud_layers.len()
         ))
     };
-    vec![PlanLine::timed("clouds", status)]
+    let fog: Result<String, String> = match &scene.in_cloud_fog {
+        Some(fog) => Ok(format!(
+            "the camera is in layer {}'s band: in-cloud fog (celestial's Sky::in_cloud_fog, \
+             the layers' own {:.0} m visibility at the camera) over terrain and sky: \
+             {:.3e}/m at the camera, columns of optical depth {:.2} up and {:.2} down \
+             through bands reaching {:.0} m above and {:.0} m below",
+            fog.layer,
+            celestial::visibility::visibility_from_extinction(fog.extinction_per_m),
+            fog.extinction_per_m,
+            fog.optical_depth_up,
+            fog.optical_depth_down,
+            fog.band_above_m,
+            fog.band_below_m
+        )),
+        None => Err("the camera is in no cloud layer's band: no in-cloud fog".into()),
+    };
+    let status = if layers.is_err() && fog.is_err() {
+        Err(
+            "no [[clouds.layers]] in front of the viewer and none around it: no cloud \
+             pipeline"
+                .into(),
+        )
+    } else {
+        layers.clone().or_else(|_| fog.clone())
+    };
+    vec![
+        PlanLine::timed("clouds", status),
+        PlanLine::untimed("in-cloud fog", fog),
+    ]
 }
 
 /// The CPU twin: the layers nearer than the terrain over each pixel.
@@ -56,6 +87,7 @@ fn cpu(frame: &mut CpuFrame<'_>) -> Result<(), RenderError> {
     let camera = &scene.camera;
     let r = scene.viewer_radius as f32;
     let width = frame.width();
+    let fog = crate::in_cloud_fog::InCloudFogUniforms::new(scene.in_cloud_fog.as_ref());
     frame
         .pixels
         .par_chunks_mut(width)
@@ -68,6 +100,7 @@ fn cpu(frame: &mut CpuFrame<'_>) -> Result<(), RenderError> {
                     r,
                     pixel.terrain_distance.unwrap_or(f32::INFINITY),
                     &scene.cloud_layers,
+                    &fog,
                     pixel.radiance,
                 );
             }

@@ -31,7 +31,32 @@ fn plan(scene: &PreparedScene) -> Vec<PlanLine> {
              drawn first with depth writes off"
         ),
     };
-    vec![PlanLine::timed("sky", Ok(what))]
+    let visibility = match &scene.visibility {
+        Some(v) => Ok(format!(
+            "[visibility] {:.0} m: the aerosol at the camera gives 3.912/V (Koschmieder){}; \
+             the sky and the terrain's air are fogged by the rung itself{}",
+            v.distance_m,
+            if v.rayleigh_limited {
+                format!(
+                    " — the air alone limits it to {:.0} m, so the aerosol is zero",
+                    v.aerosol_visibility_m
+                )
+            } else {
+                String::new()
+            },
+            v.effective_m
+                .filter(|&e| e < v.distance_m)
+                .map_or_else(String::new, |e| format!(
+                    "; SGSky's modify_vis closes it in to {e:.0} m at the camera (the \
+                     in-cloud fog)"
+                ))
+        )),
+        None => Err("no [visibility]: the atmosphere's own aerosol".into()),
+    };
+    vec![
+        PlanLine::timed("sky", Ok(what)),
+        PlanLine::untimed("visibility", visibility),
+    ]
 }
 
 /// The CPU twin: the sun's sky (with its disc) at every pixel whose ray misses the
