@@ -37,7 +37,11 @@ fn a_moved_scene_draws_what_a_scene_prepared_there_draws() {
         )
         .unwrap();
     assert_eq!(outcome, CameraMove::Moved);
-    let there = at(scene, second, forward_b).prepare().unwrap();
+    // Prepared there after the same travel (the cloud layers' texture offset is the
+    // camera's travel from the scene's start: they keep their place on the ground).
+    let mut there = at(scene, second, forward_b);
+    there.file.camera.travel_m = std::array::from_fn(|a| second[a] - first[a]);
+    let there = there.prepare().unwrap();
     assert_eq!(moved.camera_position, there.camera_position);
     assert_eq!(moved.viewer_radius, there.viewer_radius);
     assert_eq!(moved.cloud_layers, there.cloud_layers);
@@ -116,19 +120,16 @@ fn what_a_move_cannot_carry_is_refused_with_its_reason() {
 
 #[test]
 fn the_layers_texture_stays_on_the_world_as_the_camera_travels() {
-    // The default scene's cumulus layer: a move of 3 km east and 1 km north at the same
-    // altitude adds exactly that travel to the layer's texture offset (east, north), so
-    // the clouds stay where they were over the ground.
+    // The default scene's cumulus layer: its texture offset is 0 where the scene starts
+    // the camera (SGSky's offset: the viewer's travel plus the wind's drift), and a move
+    // of 3 km east and 1 km north at the same altitude adds exactly that travel to it
+    // (east, north), so the clouds stay where they were over the ground.
     let scene = common::shipped("default", 32, 18);
     let mut moved = at(scene, [-2000.0, 3300.0, 14500.0], [0.0, -0.1, -1.0])
         .prepare()
         .unwrap();
     let before = moved.cloud_layers[0].offset;
-    assert_eq!(
-        before,
-        [-2000.0, -14500.0],
-        "anchored to the camera's east and north"
-    );
+    assert_eq!(before, [0.0, 0.0], "no travel yet");
     moved
         .move_camera(
             DVec3::new(1000.0, 3300.0, 13500.0),
@@ -136,5 +137,5 @@ fn the_layers_texture_stays_on_the_world_as_the_camera_travels() {
             50f64.to_radians(),
         )
         .unwrap();
-    assert_eq!(moved.cloud_layers[0].offset, [1000.0, -13500.0]);
+    assert_eq!(moved.cloud_layers[0].offset, [3000.0, 1000.0]);
 }

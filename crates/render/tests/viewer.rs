@@ -67,8 +67,8 @@ fn display() -> Option<(String, Option<Xvfb>)> {
 
 /// The default scene's camera after the script's `turn 20 -3` and `move 300 100 50`,
 /// worked out here from the scene file (x east, y up, z south; azimuth clockwise from
-/// north), not by the viewer's code.
-fn expected_pose(extra_turn_deg: f64) -> ([f64; 3], [f64; 3]) {
+/// north), not by the viewer's code: where it starts, its view and its travel.
+fn expected_pose(extra_turn_deg: f64) -> ([f64; 3], [f64; 3], [f64; 3]) {
     let position = [-2000.0, 3300.0, 14500.0];
     let look_at = [0.0, 1900.0, 0.0];
     let f: Vec<f64> = (0..3).map(|i| look_at[i] - position[i]).collect();
@@ -81,26 +81,30 @@ fn expected_pose(extra_turn_deg: f64) -> ([f64; 3], [f64; 3]) {
         -azimuth.cos() * elevation.cos(),
     ];
     let right = [azimuth.cos(), 0.0, azimuth.sin()];
-    let moved = [
-        position[0] + 300.0 * forward[0] + 100.0 * right[0],
-        position[1] + 300.0 * forward[1] + 100.0 * right[1] + 50.0,
-        position[2] + 300.0 * forward[2] + 100.0 * right[2],
+    let travel = [
+        300.0 * forward[0] + 100.0 * right[0],
+        300.0 * forward[1] + 100.0 * right[1] + 50.0,
+        300.0 * forward[2] + 100.0 * right[2],
     ];
-    (moved, forward)
+    (position, forward, travel)
 }
 
 /// `skyscape render` (`--cpu` when `cpu`) of the default scene from `pose`, 1800 s
-/// later.
+/// later: frame 1 of an animation whose camera travels the viewer's move, so that the
+/// cloud layers keep their place on the ground as they do in the viewer (their texture
+/// offset is the camera's travel from the scene's start).
 fn render(
     folder: &Path,
     name: &str,
-    (position, forward): ([f64; 3], [f64; 3]),
+    (position, forward, travel): ([f64; 3], [f64; 3], [f64; 3]),
     cpu: bool,
 ) -> Vec<u32> {
     let source = render::scene::shipped::shipped("default").unwrap().source;
+    let look_at: Vec<f64> = (0..3).map(|a| position[a] + 1000.0 * forward[a]).collect();
     let camera = format!(
-        "[camera]\nposition = {position:?}\nlook_direction = {forward:?}\n\
-         vertical_fov_deg = 50.0\nnear = 1.0\nfar = 120000.0\n"
+        "[camera]\nposition = {position:?}\nlook_at = {look_at:?}\n\
+         vertical_fov_deg = 50.0\nnear = 1.0\nfar = 120000.0\n\n\
+         [animation]\nframes = 2\ncamera_m_per_frame = {travel:?}\n"
     );
     let start = source.find("[camera]").unwrap();
     let end = source.find("[time]").unwrap();
@@ -114,12 +118,12 @@ fn render(
     );
     let path = folder.join(format!("{name}.toml"));
     std::fs::write(&path, scene).unwrap();
-    let image = folder.join(format!("{name}.png"));
+    let image = folder.join(format!("{name}-{{frame}}.png"));
     let output = Command::new(SKYSCAPE)
         .arg("render")
         .arg(&path)
         .args(cpu.then_some("--cpu"))
-        .args(["--no-cache", "--width"])
+        .args(["--frame-range", "1..2", "--no-cache", "--width"])
         .arg(SIZE.0.to_string())
         .arg("--height")
         .arg(SIZE.1.to_string())
@@ -132,7 +136,7 @@ fn render(
         "{}",
         String::from_utf8_lossy(&output.stderr)
     );
-    pixels(&image)
+    pixels(&folder.join(format!("{name}-0001.png")))
 }
 
 fn pixels(path: &Path) -> Vec<u32> {

@@ -122,6 +122,7 @@ impl AnimationSection {
         let travel = self.camera_m_per_frame.map(|v| k * v);
         for (i, step) in travel.iter().enumerate() {
             file.camera.position[i] += step;
+            file.camera.travel_m[i] += step;
             if let Some(target) = file.camera.look_at.as_mut() {
                 target[i] += step;
             }

@@ -344,6 +344,12 @@ pub struct CameraSection {
     /// Terrain farther than this (metres along the ray) is not drawn: the sky shows.
     #[serde(default = "default_far")]
     pub far: f64,
+    /// The camera's travel from where the scene starts it (m, world frame): an
+    /// animation's `camera_m_per_frame` sums. The cloud layers' texture offset is the
+    /// travel from the start (SimGear's SGSky: "the viewer's travel plus wind drift"),
+    /// so a layer keeps its place on the ground while the camera moves. Not a key.
+    #[serde(skip)]
+    pub travel_m: [f64; 3],
 }
 
 fn default_fov_deg() -> f64 {

@@ -147,7 +147,9 @@ impl Scene {
 
     /// Adds the scene's layers to `sky` and sets its visibility; returns each layer's
     /// wind drift (m, east and north: −wind × `[time] offset_s`, the texture moving
-    /// downwind), in the file's order.
+    /// downwind) less the east and north of where the scene starts its camera (the
+    /// camera's position less its travel), in the file's order: with the camera's east
+    /// and north, [`cloud_layers_at`]'s offset is the viewer's travel plus the drift.
     pub(super) fn add_cloud_layers(
         &self,
         sky: &mut celestial::sky::Sky,
@@ -158,6 +160,8 @@ impl Scene {
             })?;
         }
         let seconds = self.file.time.as_ref().map_or(0.0, |t| t.offset_s);
+        let camera = &self.file.camera;
+        let start = [0, 2].map(|a| camera.position[a] - camera.travel_m[a]);
         let mut drift = Vec::new();
         for (index, layer) in self
             .file
@@ -174,16 +178,19 @@ impl Scene {
                     e,
                 )
             })?;
-            drift.push(layer.wind_m_per_s.map(|w| -w * seconds));
+            let [east, north] = layer.wind_m_per_s.map(|w| -w * seconds);
+            drift.push([east - start[0], north + start[1]]);
         }
         Ok(drift)
     }
 }
 
 /// The cloud layers of `sky` for a camera at world `position` (x east, y altitude, z
-/// south), farthest first, their texture anchored to the world: each layer's offset is
-/// the camera's east and north plus the layer's wind drift (`drift_m`, by celestial
-/// layer index). A layer the camera is inside is left out (its in-cloud fog draws it).
+/// south), farthest first, their texture anchored to the ground: each layer's offset is
+/// the camera's east and north plus `drift_m` (by celestial layer index: the layer's
+/// wind drift less where the scene starts its camera, so that the offset is SGSky's
+/// viewer's travel plus wind drift, 0 at the scene's own camera without wind). A layer
+/// the camera is inside is left out (its in-cloud fog draws it).
 pub fn cloud_layers_at(
     sky: &celestial::sky::Sky,
     position: glam::DVec3,

@@ -150,6 +150,7 @@ mod tests {
             vertical_fov_deg: 50.0,
             near: 0.5,
             far: 1.0e5,
+            travel_m: [0.0; 3],
         }
     }
 

@@ -72,8 +72,14 @@ impl ViewState {
     pub(crate) fn request(&mut self, size: (u32, u32)) -> Scene {
         self.dirty = false;
         let mut scene = self.scene.clone();
+        let loaded = &self.loaded.file.camera;
         let camera = &mut scene.file.camera;
         camera.position = self.camera.position.to_array();
+        // The travel from the scene's camera: the cloud layers keep their place on the
+        // ground (their texture offset is the viewer's travel plus the wind's drift).
+        camera.travel_m = std::array::from_fn(|a| {
+            self.camera.position[a] - loaded.position[a] + loaded.travel_m[a]
+        });
         camera.look_at = None;
         camera.look_direction = Some(self.camera.forward().to_array());
         camera.vertical_fov_deg = self.camera.vertical_fov.to_degrees();
