@@ -46,7 +46,15 @@ fn sky_pass_radiance(position: vec2<f32>, parameters: SkyPassParameters) -> vec3
     return segment.radiance;
 }
 
+// The largest finite f16. A colour brighter than it (the sun's disc times an exposure)
+// is scaled down as a whole to fit an Rgba16Float target: a target clamps (or
+// overflows) each channel alone, which would turn a reddened sun's hue to yellow and
+// white.
+const SKY_PASS_LARGEST: f32 = 65504.0;
+
 @fragment
 fn sky_pass_fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
-    return vec4<f32>(sky_pass_radiance(position.xy, sky_pass) * sky_pass.radiance_scale, 1.0);
+    let radiance = sky_pass_radiance(position.xy, sky_pass) * sky_pass.radiance_scale;
+    let peak = max(max(radiance.x, radiance.y), radiance.z);
+    return vec4<f32>(radiance * select(1.0, SKY_PASS_LARGEST / peak, peak > SKY_PASS_LARGEST), 1.0);
 }

@@ -7,9 +7,13 @@
 #import common::hash
 #import common::constants
 #import atmos::geometry
+#import atmos::transmittance
 
 // −ln 0.02: the optical depth of Koschmieder's contrast threshold.
 const KOSCHMIEDER_OPTICAL_DEPTH: f32 = 3.912023;
+// The diffusivity factor: a slab's diffuse transmission of its own uniform source,
+// 1 − 2E₃(τ), is close to 1 − exp(−1.66 τ) (Elsasser 1942; Liou 2002, §4.4).
+const DIFFUSIVITY: f32 = 1.66;
 
 // Twin of celestial::clouds::CloudLayerUniforms.
 struct CloudLayerUniforms {
@@ -160,7 +164,7 @@ fn cloud_layer_radiance(view: vec3<f32>, r: f32, layer: CloudLayerUniforms, back
     }
     let rim = min(2.0 * (1.0 - reach / layer.half_span), 1.0);
     let density = cloud_density(horizontal.x + layer.offset.x, horizontal.y + layer.offset.y, layer);
-    if density <= 0.0 {
+    if density <= 0.0 || layer.optical_thickness <= 0.0 {
         return background;
     }
     let hit_z = r + mu * distance;
@@ -193,9 +197,13 @@ fn cloud_layer_radiance(view: vec3<f32>, r: f32, layer: CloudLayerUniforms, back
     } else {
         fog = exp(-layer.fog_extinction * distance);
     }
+    // The Eddington factors give what the whole slab sends out (a thin slab little);
+    // over the background the view sees the slab's source function J through its
+    // opacity, so J is that output over the slab's own emissivity 1 − exp(−1.66 τ).
+    let emissivity = one_minus_exp_neg(DIFFUSIVITY * tau);
     var result: vec3<f32>;
     for (var i = 0; i < 3; i++) {
-        let lit = (diffuse_factor * layer.sunlight[i] * max(mu_sun, 0.0) + sky_factor * layer.skylight[i]) * INV_PI;
+        let lit = (diffuse_factor * layer.sunlight[i] * max(mu_sun, 0.0) + sky_factor * layer.skylight[i]) * INV_PI / emissivity;
         let seen = fog * lit + (1.0 - fog) * layer.fog_colour[i];
         result[i] = background[i] + opacity * (seen - background[i]);
     }

@@ -1,5 +1,5 @@
 // The last pass of a scene: the HDR radiance image to display pixels — exposure,
-// 1 − exp(−x), sRGB, triangular dither, packed RGBA8 (R in the low byte). Twin: the
+// the scene's display transform, sRGB, triangular dither, packed RGBA8 (R in the low byte). Twin: the
 // CPU renderer's render::cpu_renderer::render_cpu (the same render::tonemap functions).
 #import render::tonemap
 
@@ -8,6 +8,11 @@ struct DisplayParameters {
     height: u32,
     exposure: f32,
     dither_seed: u32,
+    // render::tonemap::DisplayTransform::code.
+    display_transform: u32,
+    padding_a: u32,
+    padding_b: u32,
+    padding_c: u32,
 }
 
 @group(0) @binding(0) var<uniform> display: DisplayParameters;
@@ -20,6 +25,6 @@ fn display_main(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     let radiance = textureLoad(radiance_image, gid.xy, 0).xyz;
-    let encoded = tonemap_exposure(radiance, display.exposure);
+    let encoded = display_transform(radiance, display.exposure, display.display_transform);
     display_pixels[gid.x + display.width * gid.y] = pack_rgba8(quantize_srgb8(encoded, gid.xy, display.dither_seed));
 }

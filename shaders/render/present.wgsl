@@ -1,6 +1,6 @@
 // Presents a frame of sky radiance from any rung of the atmos ladder (FrameOutput:
 // in-scattered radiance and transmittance per pixel): adds the sun disc seen through
-// the atmosphere, tone-maps, sRGB-encodes, dithers and packs RGBA8.
+// the atmosphere, applies the display transform, sRGB-encodes, dithers and packs RGBA8.
 // Twin: render::present (Rust).
 
 #import atmos::frame
@@ -15,7 +15,8 @@ struct PresentParameters {
     planet_radius: f32,
     exposure: f32,
     dither_seed: u32,
-    padding: u32,
+    // render::tonemap::DisplayTransform::code.
+    display_transform: u32,
 }
 
 @group(0) @binding(0) var<uniform> camera: FrameCamera;
@@ -44,6 +45,6 @@ fn present_main(@builtin(global_invocation_id) gid: vec3<u32>) {
     let index = gid.x + camera.width * gid.y;
     let view = frame_view_direction(gid.xy, camera);
     let radiance = present_radiance(view, textureLoad(radiance_in, gid.xy, 0).xyz, textureLoad(transmittance_in, gid.xy, 0).xyz, camera, present);
-    let display = tonemap_exposure(radiance, present.exposure);
+    let display = display_transform(radiance, present.exposure, present.display_transform);
     pixels[index] = pack_rgba8(quantize_srgb8(display, gid.xy, present.dither_seed));
 }

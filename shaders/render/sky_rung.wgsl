@@ -23,5 +23,8 @@ fn rung_sky_fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec
     let pixel = vec2<u32>(position.xy);
     let view = frame_view_direction(pixel, camera);
     let radiance = present_radiance(view, textureLoad(radiance_in, pixel, 0).xyz, textureLoad(transmittance_in, pixel, 0).xyz, camera, present);
-    return vec4<f32>(radiance * present.exposure, 1.0);
+    // Scaled as a whole to fit the f16 target (the sun's disc), keeping its hue.
+    let exposed = radiance * present.exposure;
+    let peak = max(max(exposed.x, exposed.y), exposed.z);
+    return vec4<f32>(exposed * select(1.0, HDR_LARGEST / peak, peak > HDR_LARGEST), 1.0);
 }

@@ -1,5 +1,6 @@
-// Display encoding: exposure tone map (O'Neil 2005), sRGB transfer, dithered 8-bit
-// quantisation. Twin: render::tonemap (Rust). Same names and arguments.
+// Display encoding: the display transforms (O'Neil 2005's per-channel tone map, a
+// hue-preserving neutral one), sRGB transfer, dithered 8-bit quantisation.
+// Twin: render::tonemap (Rust). Same names and arguments.
 #import common::hash
 #import atmos::transmittance
 
@@ -8,6 +9,47 @@
 fn tonemap_exposure(radiance: vec3<f32>, exposure: f32) -> vec3<f32> {
     let x = radiance * exposure;
     return vec3<f32>(one_minus_exp_neg(x.x), one_minus_exp_neg(x.y), one_minus_exp_neg(x.z));
+}
+
+// The scene's display transform (render::tonemap::DisplayTransform::code).
+const DISPLAY_NEUTRAL: u32 = 0u;
+const DISPLAY_PER_CHANNEL: u32 = 1u;
+// The largest finite f16, the HDR target's (render::tonemap::HDR_LARGEST).
+const HDR_LARGEST: f32 = 65504.0;
+// Khronos PBR Neutral's startCompression (0.8 − 0.04) and desaturation.
+const NEUTRAL_COMPRESSION_START: f32 = 0.76;
+const NEUTRAL_DESATURATION: f32 = 0.15;
+// The most white mixed into an infinitely bright colour (a bright light keeps three
+// quarters of its saturation).
+const NEUTRAL_WHITE_MIX_LIMIT: f32 = 0.25;
+
+// Hue-preserving display transform after Khronos PBR Neutral (2024): the peak channel
+// follows the identity to 0.76, then 1 − 0.24² / (p − 0.52); the colour is scaled with
+// it (hue and saturation kept), then mixed a bounded fraction towards white at the new
+// peak. No toe (it turns dark saturated colours' hue). A colour brighter than
+// HDR_LARGEST is scaled down to it as a whole first (an infinite channel counts as the
+// largest f32). Twin: render::tonemap::tonemap_neutral.
+fn tonemap_neutral(radiance: vec3<f32>, exposure: f32) -> vec3<f32> {
+    let unfitted = clamp(radiance * exposure, vec3<f32>(0.0), vec3<f32>(3.40282347e38));
+    let brightest = max(max(unfitted.x, unfitted.y), unfitted.z);
+    let exposed = unfitted * select(1.0, HDR_LARGEST / brightest, brightest > HDR_LARGEST);
+    let peak = max(max(exposed.x, exposed.y), exposed.z);
+    if peak < NEUTRAL_COMPRESSION_START {
+        return exposed;
+    }
+    let new_peak = 1.0 - 0.0576 / (peak - 0.52);
+    let scale = new_peak / peak;
+    let white_mix = NEUTRAL_WHITE_MIX_LIMIT * (1.0 - 1.0 / (NEUTRAL_DESATURATION * (peak - new_peak) + 1.0));
+    return exposed * scale * (1.0 - white_mix) + vec3<f32>(new_peak * white_mix);
+}
+
+// The scene's display transform: DISPLAY_PER_CHANNEL is tonemap_exposure, any other
+// code tonemap_neutral. Twin: render::tonemap::display_transform.
+fn display_transform(radiance: vec3<f32>, exposure: f32, transform: u32) -> vec3<f32> {
+    if transform == DISPLAY_PER_CHANNEL {
+        return tonemap_exposure(radiance, exposure);
+    }
+    return tonemap_neutral(radiance, exposure);
 }
 
 // The sRGB transfer function (IEC 61966-2-1) for one channel in [0, 1].

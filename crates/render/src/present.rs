@@ -9,7 +9,7 @@ use atmos::geometry::ray_sphere_intersect;
 use atmos::ladder::{SkyModel, SkyQuery};
 
 use crate::RenderError;
-use crate::tonemap::{pack_rgba8, quantize_srgb8, tonemap_exposure};
+use crate::tonemap::{DisplayTransform, display_transform, pack_rgba8, quantize_srgb8};
 
 /// Per-frame display constants; layout identical to WGSL `PresentParameters`.
 #[repr(C)]
@@ -21,16 +21,17 @@ pub struct PresentParameters {
     pub cos_sun_radius: f32,
     /// Planet radius (m).
     pub planet_radius: f32,
-    /// Exposure before the `1 − exp(−x)` tone map.
+    /// Exposure before the display transform.
     pub exposure: f32,
     /// Dither seed.
     pub dither_seed: u32,
-    /// Keeps the struct a multiple of 16 bytes.
-    pub padding: u32,
+    /// [`DisplayTransform::code`].
+    pub display_transform: u32,
 }
 
 impl PresentParameters {
-    /// Display constants for `atmosphere` (validated) with `exposure` > 0.
+    /// Display constants for `atmosphere` (validated) with `exposure` > 0, displayed
+    /// by the default [`DisplayTransform`] ([`Self::with_display_transform`] chooses).
     pub fn new(
         atmosphere: &Atmosphere,
         exposure: f32,
@@ -46,8 +47,16 @@ impl PresentParameters {
             planet_radius: atmosphere.planet_radius as f32,
             exposure,
             dither_seed,
-            padding: 0,
+            display_transform: DisplayTransform::default().code(),
         })
+    }
+
+    /// The same constants displayed by `transform`.
+    pub fn with_display_transform(self, transform: DisplayTransform) -> Self {
+        Self {
+            display_transform: transform.code(),
+            ..self
+        }
     }
 }
 
@@ -84,7 +93,8 @@ pub fn present_pixel(
 ) -> u32 {
     let view = frame_view_direction(pixel, camera);
     let light = present_radiance(view, radiance, transmittance, camera, present);
-    let display = tonemap_exposure(light, present.exposure);
+    let transform = DisplayTransform::from_code(present.display_transform);
+    let display = display_transform(light, present.exposure, transform);
     pack_rgba8(quantize_srgb8(display, pixel, present.dither_seed))
 }
 

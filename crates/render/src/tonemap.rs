@@ -2,11 +2,117 @@
 
 use crate::RenderError;
 use atmos::transmittance::one_minus_exp_neg;
+use serde::Deserialize;
 use skyscape_wgsl::common::{hash_combine, hash_u32};
+
+/// How exposed radiance becomes a display value in [0, 1]³ (`[output]
+/// display_transform`, `--display-transform`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DisplayTransform {
+    /// [`tonemap_neutral`]: the brightest channel follows a curve and the others keep
+    /// their ratios to it, so a colour keeps its hue; a bounded path to white.
+    #[default]
+    Neutral,
+    /// [`tonemap_exposure`]: 1 − exp(−x) on each channel alone (O'Neil 2005's tone map):
+    /// bright saturated colours drift towards the primaries' mixtures and white.
+    PerChannel,
+}
+
+impl DisplayTransform {
+    /// As the scene file and `--display-transform` spell it.
+    pub fn name(self) -> &'static str {
+        match self {
+            DisplayTransform::Neutral => "neutral",
+            DisplayTransform::PerChannel => "per-channel",
+        }
+    }
+
+    /// The WGSL encoding (`DISPLAY_NEUTRAL`, `DISPLAY_PER_CHANNEL` in
+    /// `render::tonemap`).
+    pub fn code(self) -> u32 {
+        match self {
+            DisplayTransform::Neutral => 0,
+            DisplayTransform::PerChannel => 1,
+        }
+    }
+
+    /// The transform a WGSL code stands for (any code but 1 is the neutral one, as in
+    /// the WGSL).
+    pub fn from_code(code: u32) -> Self {
+        if code == 1 {
+            DisplayTransform::PerChannel
+        } else {
+            DisplayTransform::Neutral
+        }
+    }
+}
 
 /// The tone map of O'Neil's planet shader (GPU Gems 2, ch. 16, 2005): 1 − exp(−radiance·exposure) per channel.
 pub fn tonemap_exposure(radiance: [f32; 3], exposure: f32) -> [f32; 3] {
     radiance.map(|c| one_minus_exp_neg(c * exposure))
+}
+
+/// The largest finite value of the GPU's HDR target (f16). The sky passes scale a
+/// brighter colour (the sun's disc) down as a whole to fit it, keeping its hue;
+/// [`tonemap_neutral`] does the same, so that the CPU's f32 radiance displays as the
+/// GPU's target does.
+pub const HDR_LARGEST: f32 = 65_504.0;
+/// Where the neutral curve leaves the identity: Khronos PBR Neutral's
+/// `startCompression` (0.8 − 0.04).
+pub const NEUTRAL_COMPRESSION_START: f32 = 0.76;
+/// Khronos PBR Neutral's `desaturation`: how fast compressed light moves towards white.
+pub const NEUTRAL_DESATURATION: f32 = 0.15;
+/// The most white mixed into an infinitely bright colour: a bright light keeps three
+/// quarters of its saturation, so a reddened sun stays red (its displayed R/B is
+/// above 2 for any linear R/B above 4.7, the smallest the f16 target leaves it at
+/// sunset), while Khronos' unbounded path turns every light far above display white
+/// into white.
+pub const NEUTRAL_WHITE_MIX_LIMIT: f32 = 0.25;
+
+/// Hue-preserving display transform after Khronos PBR Neutral (Khronos 3D Commerce
+/// "PBR Neutral" tone mapper specification, 2024): the peak channel `p` of the exposed
+/// radiance follows the identity up to 0.76 and then the shoulder
+/// `1 − 0.24² / (p − 0.52)` (slope 1 and value 0.76 at the start, approaching 1); the
+/// colour is scaled with it, keeping its channel ratios (hue and saturation); then a
+/// fraction `0.25 · (1 − 1 / (0.15 (p − p′) + 1))` of the way to white at the new peak
+/// `p′`, so very bright light pales. Two departures from the specification, both for
+/// hue: no toe (its offset, subtracted from every channel alike, turns dark
+/// saturated colours' hue), and a bounded path to white ([`NEUTRAL_WHITE_MIX_LIMIT`]).
+/// A colour brighter than [`HDR_LARGEST`] is first scaled down to it as a whole (an
+/// infinite channel, which a GPU target may hold, counts as `f32::MAX`).
+pub fn tonemap_neutral(radiance: [f32; 3], exposure: f32) -> [f32; 3] {
+    let unfitted = radiance.map(|c| (c * exposure).clamp(0.0, f32::MAX));
+    let brightest = unfitted[0].max(unfitted[1]).max(unfitted[2]);
+    let fit = if brightest > HDR_LARGEST {
+        HDR_LARGEST / brightest
+    } else {
+        1.0
+    };
+    let exposed = unfitted.map(|c| c * fit);
+    let peak = exposed[0].max(exposed[1]).max(exposed[2]);
+    if peak < NEUTRAL_COMPRESSION_START {
+        return exposed;
+    }
+    // 1 − d² / (p + d − start) with d = 1 − start = 0.24: d² = 0.0576, d − start = −0.52.
+    let new_peak = 1.0 - 0.0576 / (peak - 0.52);
+    let scale = new_peak / peak;
+    let white_mix =
+        NEUTRAL_WHITE_MIX_LIMIT * (1.0 - 1.0 / (NEUTRAL_DESATURATION * (peak - new_peak) + 1.0));
+    exposed.map(|c| c * scale * (1.0 - white_mix) + new_peak * white_mix)
+}
+
+/// The scene's display transform of exposed radiance: [`tonemap_neutral`] or
+/// [`tonemap_exposure`]. WGSL takes `transform` as [`DisplayTransform::code`].
+pub fn display_transform(
+    radiance: [f32; 3],
+    exposure: f32,
+    transform: DisplayTransform,
+) -> [f32; 3] {
+    match transform {
+        DisplayTransform::PerChannel => tonemap_exposure(radiance, exposure),
+        DisplayTransform::Neutral => tonemap_neutral(radiance, exposure),
+    }
 }
 
 /// The sRGB transfer function (IEC 61966-2-1) for one channel in [0, 1].

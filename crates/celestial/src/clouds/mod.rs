@@ -39,6 +39,6 @@ pub use layer::{
     CloudKind, CloudKindParameters, CloudLayer, LayerShape, SGSKY_IN_CLOUD_VISIBILITY_M,
 };
 pub use shading::{
-    CloudLayerFrame, CloudLayerUniforms, cloud_density, cloud_fbm, cloud_layer_distance,
-    cloud_layer_radiance, cloud_reflectance, cloud_shadow, cloud_value_noise,
+    CloudLayerFrame, CloudLayerUniforms, DIFFUSIVITY, cloud_density, cloud_fbm,
+    cloud_layer_distance, cloud_layer_radiance, cloud_reflectance, cloud_shadow, cloud_value_noise,
 };

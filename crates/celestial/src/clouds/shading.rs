@@ -165,12 +165,19 @@ pub fn cloud_layer_distance(r: f32, mu: f32, layer_radius: f32, curved: u32) -> 
     -1.0
 }
 
+/// The diffusivity factor: a slab's diffuse transmission of its own uniform source,
+/// `1 − 2E₃(τ)`, is close to `1 − exp(−1.66 τ)` (Elsasser 1942; Liou 2002, An
+/// Introduction to Atmospheric Radiation, §4.4).
+pub const DIFFUSIVITY: f32 = 1.66;
+
 /// The layer seen along `view` (unit, east/north/up) from a viewer at radius `r` on
 /// the +z axis, composited over `background` (the radiance behind it, per channel):
 /// the layer's surface facing the viewer (its base from below, its top from above;
 /// nothing from inside), the texture's density there, the cloud's opacity
-/// `1 − exp(−τ·density/|μ_layer|)` and radiance (reflected or diffusely transmitted
-/// sun and sky light), faded into the fog colour by the fog over the distance and
+/// `1 − exp(−τ·density/|μ_layer|)` and source radiance J (the reflected or diffusely
+/// transmitted sun and sky light of Eddington's two-stream slab, over the slab's
+/// emissivity `1 − exp(−1.66 τ)`: a thin edge is as bright as its scattering, not
+/// darker than the sky behind it), faded into the fog colour by the fog over the distance and
 /// toward the patch's rim (linearly over its outer half). Returns the composited
 /// radiance.
 pub fn cloud_layer_radiance(
@@ -205,7 +212,7 @@ pub fn cloud_layer_radiance(
         horizontal[1] + layer.offset[1],
         layer,
     );
-    if density <= 0.0 {
+    if density <= 0.0 || layer.optical_thickness <= 0.0 {
         return background;
     }
     // Zenith cosine of the view at the hit point (the local vertical there for a
@@ -245,10 +252,15 @@ pub fn cloud_layer_radiance(
     } else {
         (-layer.fog_extinction * distance).exp()
     };
+    // The Eddington factors give what the whole slab sends out (a thin slab little);
+    // over the background the view sees the slab's source function J through its
+    // opacity, so J is that output over the slab's own emissivity 1 − exp(−1.66 τ).
+    let emissivity = atmos::transmittance::one_minus_exp_neg(DIFFUSIVITY * tau);
     std::array::from_fn(|i| {
         let lit = (diffuse_factor * layer.sunlight[i] * mu_sun.max(0.0)
             + sky_factor * layer.skylight[i])
-            * skyscape_wgsl::common::INV_PI;
+            * skyscape_wgsl::common::INV_PI
+            / emissivity;
         let seen = fog * lit + (1.0 - fog) * layer.fog_colour[i];
         background[i] + opacity * (seen - background[i])
     })

@@ -128,6 +128,7 @@ impl Scene {
             ));
         }
         let mut present = PresentParameters::new(&atmosphere, out.exposure, out.dither_seed)
+            .map(|p| p.with_display_transform(out.display_transform))
             .map_err(|e| {
                 self.invalid(
                     &["output", "exposure"],

@@ -658,9 +658,12 @@ pub struct OutputSection {
     /// Pixels.
     #[serde(default = "default_height")]
     pub height: u32,
-    /// Exposure before the `1 − exp(−x)` tone map (radiance per unit sun irradiance).
+    /// Exposure before the display transform (radiance per unit sun irradiance).
     #[serde(default = "default_exposure")]
     pub exposure: f32,
+    /// `neutral` (hue-preserving, the default) or `per-channel` (1 − exp(−x)).
+    #[serde(default)]
+    pub display_transform: crate::tonemap::DisplayTransform,
     /// Dither seed.
     #[serde(default)]
     pub dither_seed: u32,
@@ -695,6 +698,7 @@ impl Default for OutputSection {
             width: default_width(),
             height: default_height(),
             exposure: default_exposure(),
+            display_transform: Default::default(),
             dither_seed: 0,
             path: None,
             projection: Default::default(),

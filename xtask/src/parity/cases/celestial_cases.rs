@@ -1297,7 +1297,7 @@ fn layer_radiance64(x: &[f64], stretch: f64) -> Vec<f64> {
         horizontal[1] + f64::from(l.offset[1]),
         &l,
     );
-    if density <= 0.0 {
+    if density <= 0.0 || l.optical_thickness <= 0.0 {
         return background.to_vec();
     }
     let hit_z = r + view[2] * distance;
@@ -1332,11 +1332,13 @@ fn layer_radiance64(x: &[f64], stretch: f64) -> Vec<f64> {
     } else {
         (-beta * distance).exp()
     };
+    let emissivity = -(-f64::from(celestial::clouds::DIFFUSIVITY) * tau).exp_m1();
     (0..3)
         .map(|i| {
             let lit = (diffuse * f64::from(l.sunlight[i]) * mu_sun.max(0.0)
                 + sky * f64::from(l.skylight[i]))
-                / std::f64::consts::PI;
+                / std::f64::consts::PI
+                / emissivity;
             let seen = fog * lit + (1.0 - fog) * f64::from(l.fog_colour[i]);
             background[i] + opacity * (seen - background[i])
         })

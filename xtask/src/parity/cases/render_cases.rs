@@ -67,6 +67,44 @@ pub fn cases() -> Vec<Case> {
             },
         },
         Case {
+            name: "render::tonemap_neutral",
+            imports: &["render::tonemap"],
+            arity: (4, 3),
+            wgsl: "let d = tonemap_neutral(vec3<f32>(x0, x1, x2), x3); y0 = d.x; y1 = d.y; y2 = d.z;",
+            grid: || {
+                // Greys, mild and strong colours (a sunset sun's R/B is ~15) across
+                // the toe, the compression start (0.76), the shoulder and past the
+                // f16 target's largest value, at several exposures.
+                let mut grid = Vec::new();
+                for exposure in [0.5, 1.0, 30.0] {
+                    for radiance in std::iter::once(0.0).chain(logspace(1e-6, 1e7, 1100)) {
+                        for ratios in [[1.0, 1.0, 1.0], [1.0, 0.5, 2.0], [1.0, 0.36, 1.0 / 15.0]] {
+                            grid.push(vec![
+                                radiance * ratios[0],
+                                radiance * ratios[1],
+                                radiance * ratios[2],
+                                exposure,
+                            ]);
+                        }
+                    }
+                }
+                grid
+            },
+            cpu: |x| render::tonemap::tonemap_neutral([x[0], x[1], x[2]], x[3]).to_vec(),
+            reference: tonemap_neutral_f64,
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 12.0,
+                bound: None,
+                why: "one product (exposure), then on the shoulder peak − 0.52 (the product's \
+                      rounding grows up to 0.76/0.24 ≈ 3.2× relative), a division, 1 − q \
+                      (q ≤ 0.24), the scale's division and the mix's three roundings: \
+                      about 10 u, no cancellation (the mix adds non-negative terms)",
+            },
+        },
+        Case {
             name: "render::linear_to_srgb",
             imports: &["render::tonemap"],
             arity: (1, 1),
@@ -212,7 +250,7 @@ fn present_parameters() -> render::present::PresentParameters {
         planet_radius: 6_360_000.0,
         exposure: 20.0,
         dither_seed: 0,
-        padding: 0,
+        display_transform: 0,
     }
 }
 
@@ -352,5 +390,32 @@ fn volume_shadow_bound(x: &[f64]) -> Vec<f64> {
             let coordinate = (x[k] + t * x[3 + k] - x[7 + k]).abs() / x[9];
             2.0 * ((position * 4.0 * U + t_bound * s) / x[9] + coordinate * 3.0 * U + 0.5 * U)
         })
+        .collect()
+}
+
+/// `render::tonemap::tonemap_neutral` in f64 on the same f32 constants.
+fn tonemap_neutral_f64(x: &[f64]) -> Vec<f64> {
+    let constant = |c: f32| f64::from(c);
+    let largest = constant(render::tonemap::HDR_LARGEST);
+    let start = constant(render::tonemap::NEUTRAL_COMPRESSION_START);
+    let desaturation = constant(render::tonemap::NEUTRAL_DESATURATION);
+    let limit = constant(render::tonemap::NEUTRAL_WHITE_MIX_LIMIT);
+    let unfitted: Vec<f64> = (0..3).map(|i| (x[i] * x[3]).max(0.0)).collect();
+    let brightest = unfitted[0].max(unfitted[1]).max(unfitted[2]);
+    let fit = if brightest > largest {
+        largest / brightest
+    } else {
+        1.0
+    };
+    let exposed: Vec<f64> = unfitted.iter().map(|c| c * fit).collect();
+    let peak = exposed[0].max(exposed[1]).max(exposed[2]);
+    if peak < start {
+        return exposed;
+    }
+    let new_peak = 1.0 - constant(0.0576) / (peak - constant(0.52));
+    let white_mix = limit * (1.0 - 1.0 / (desaturation * (peak - new_peak) + 1.0));
+    exposed
+        .iter()
+        .map(|c| c * (new_peak / peak) * (1.0 - white_mix) + new_peak * white_mix)
         .collect()
 }

@@ -41,6 +41,15 @@ pub(crate) enum ProjectionArg {
     Fisheye,
 }
 
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum DisplayTransformArg {
+    /// Hue-preserving: the brightest channel follows a curve, the others keep their
+    /// ratios to it, with a bounded path to white.
+    Neutral,
+    /// 1 − exp(−x) on each channel alone.
+    PerChannel,
+}
+
 #[derive(Debug, Args, Default)]
 pub(crate) struct RenderArgs {
     /// The scene: a .toml file or a shipped scene's name (`skyscape scenes`).
@@ -144,9 +153,13 @@ pub(crate) struct SceneOverrides {
     /// The sun's azimuth clockwise from north, degrees (overrides the scene's).
     #[arg(long, allow_hyphen_values = true)]
     pub(crate) sun_azimuth_deg: Option<f64>,
-    /// Exposure before the 1 − exp(−x) tone map (overrides the scene's).
+    /// Exposure before the display transform (overrides the scene's).
     #[arg(long, allow_hyphen_values = true)]
     pub(crate) exposure: Option<f32>,
+    /// How exposed radiance becomes display values (overrides the scene's): neutral
+    /// (hue-preserving) or per-channel (1 − exp(−x)).
+    #[arg(long, value_enum)]
+    pub(crate) display_transform: Option<DisplayTransformArg>,
 }
 
 /// Which frames of the scene's animation.

@@ -62,6 +62,14 @@ pub(crate) fn apply_overrides(scene: &mut Scene, args: &RenderArgs) -> Result<()
         scene.file.output.exposure = exposure;
         scene.set_by_flag(&["output", "exposure"], "--exposure");
     }
+    if let Some(transform) = args.overrides.display_transform {
+        use render::tonemap::DisplayTransform;
+        scene.file.output.display_transform = match transform {
+            DisplayTransformArg::Neutral => DisplayTransform::Neutral,
+            DisplayTransformArg::PerChannel => DisplayTransform::PerChannel,
+        };
+        scene.set_by_flag(&["output", "display_transform"], "--display-transform");
+    }
     // An explicit sun replaces the scene's [time] (then no sky objects are placed).
     let current = scene
         .file

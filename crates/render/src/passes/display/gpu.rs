@@ -123,6 +123,10 @@ impl GpuPass for DisplayPass {
                 // The HDR target already holds radiance × exposure.
                 exposure: 1.0,
                 dither_seed: scene.present.dither_seed,
+                display_transform: scene.present.display_transform,
+                padding_a: 0,
+                padding_b: 0,
+                padding_c: 0,
             }),
         );
         Ok(())

@@ -1,5 +1,6 @@
-//! The display: exposure, the tone map `1 − exp(−x)`, sRGB and a triangular dither to
-//! RGBA8 ([`crate::tonemap`]).
+//! The display: exposure, the scene's display transform (hue-preserving neutral or
+//! per-channel `1 − exp(−x)`), sRGB and a triangular dither to RGBA8
+//! ([`crate::tonemap`]).
 
 #[cfg(feature = "gpu")]
 pub(crate) mod gpu;
@@ -11,7 +12,7 @@ use crate::RenderError;
 use crate::cpu_frame::CpuFrame;
 use crate::present::PresentParameters;
 use crate::scene::prepare::PreparedScene;
-use crate::tonemap::{pack_rgba8, quantize_srgb8, tonemap_exposure};
+use crate::tonemap::{DisplayTransform, display_transform, pack_rgba8, quantize_srgb8};
 
 /// The display's entry in the frame.
 pub(crate) const ENTRY: PassEntry = PassEntry {
@@ -31,16 +32,29 @@ pub struct DisplayParameters {
     pub width: u32,
     /// Pixels.
     pub height: u32,
-    /// Exposure before `1 − exp(−x)`.
+    /// Exposure before the display transform.
     pub exposure: f32,
     /// Dither seed.
     pub dither_seed: u32,
+    /// [`crate::tonemap::DisplayTransform::code`].
+    pub display_transform: u32,
+    /// Keeps the struct a multiple of 16 bytes.
+    pub padding_a: u32,
+    /// Keeps the struct a multiple of 16 bytes.
+    pub padding_b: u32,
+    /// Keeps the struct a multiple of 16 bytes.
+    pub padding_c: u32,
 }
 
-fn plan(_scene: &PreparedScene) -> Vec<PlanLine> {
+fn plan(scene: &PreparedScene) -> Vec<PlanLine> {
+    let transform = DisplayTransform::from_code(scene.present.display_transform);
+    let curve = match transform {
+        DisplayTransform::Neutral => "the neutral hue-preserving curve",
+        DisplayTransform::PerChannel => "1 − exp(−x) per channel",
+    };
     vec![PlanLine::timed(
         "display",
-        Ok("exposure, 1 − exp(−x), sRGB, dither to RGBA8".into()),
+        Ok(format!("exposure, {curve}, sRGB, dither to RGBA8")),
     )]
 }
 
@@ -56,8 +70,8 @@ fn cpu(frame: &mut CpuFrame<'_>) -> Result<(), RenderError> {
     Ok(())
 }
 
-/// Row-major radiance `width` pixels wide to display pixels: the exposure, the tone
-/// map, sRGB and the triangular dither of `present` (the display pass's twin), packed
+/// Row-major radiance `width` pixels wide to display pixels: the exposure, the
+/// display transform, sRGB and the triangular dither of `present` (the display pass's twin), packed
 /// RGBA8.
 pub fn display_pixels(radiance: &[[f32; 3]], width: u32, present: &PresentParameters) -> Vec<u32> {
     let width = width.max(1) as usize;
@@ -66,7 +80,8 @@ pub fn display_pixels(radiance: &[[f32; 3]], width: u32, present: &PresentParame
         .enumerate()
         .map(|(i, radiance)| {
             let pixel = [(i % width) as u32, (i / width) as u32];
-            let display = tonemap_exposure(*radiance, present.exposure);
+            let transform = DisplayTransform::from_code(present.display_transform);
+            let display = display_transform(*radiance, present.exposure, transform);
             pack_rgba8(quantize_srgb8(display, pixel, present.dither_seed))
         })
         .collect()

@@ -1,0 +1,92 @@
+//! The default scene's cloud layers have no dark specks along their edges: where a
+//! layer thins out over the sky its pixels lie between the sky's and the cloud's
+//! brightness, never darker than the sky behind them (celestial's
+//! `cloud_layer_radiance` sees the slab's source function through its opacity).
+
+mod common;
+
+/// Rows of the default scene at 960×540 that show only sky and cloud layers (the
+/// highest ridge reaches row 205).
+const SKY_ROWS: usize = 200;
+
+/// Relative luminance (Rec. 709) of display-linear values decoded from sRGB codes.
+fn displayed_luminance(pixel: u32) -> f64 {
+    let decode = |channel: usize| {
+        let c = f64::from(common::code(pixel, channel)) / 255.0;
+        if c <= 0.040_45 {
+            c / 12.92
+        } else {
+            ((c + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    0.2126 * decode(0) + 0.7152 * decode(1) + 0.0722 * decode(2)
+}
+
+/// The pixels of the first `rows` rows whose luminance is below `factor` × the
+/// luminance of the same pixel without the layers (`sky`).
+fn darker_than_the_sky(image: &[f64], sky: &[f64], width: usize, factor: f64) -> Vec<usize> {
+    (0..SKY_ROWS * width)
+        .filter(|&i| image[i] < factor * sky[i])
+        .collect()
+}
+
+#[test]
+fn the_default_scenes_cloud_layer_edges_are_not_darker_than_the_sky() {
+    let scene = common::shipped("default", 960, 540).prepare().unwrap();
+    let mut cloudless = common::shipped("default", 960, 540);
+    cloudless.file.clouds = None;
+    let cloudless = cloudless.prepare().unwrap();
+    let width = scene.camera.width as usize;
+    let luminance = |scene: &render::scene::PreparedScene| -> Vec<f64> {
+        render::cpu_renderer::render_radiance(scene)
+            .unwrap()
+            .iter()
+            .map(|p| f64::from(common::luminance(p.radiance)))
+            .collect()
+    };
+    let (with_layers, sky) = (luminance(&scene), luminance(&cloudless));
+    // The default's cumulus are lit from the south-west at 33°: their bases, seen from
+    // below, are over three times the sky's luminance, so no pixel of a layer should be
+    // darker than the sky behind it; 1 % allows for f32 rounding.
+    let interior = (0..SKY_ROWS * width)
+        .map(|i| with_layers[i] / sky[i])
+        .fold(0.0f64, f64::max);
+    assert!(
+        interior > 3.0,
+        "the brightest cloud is {interior} × the sky"
+    );
+    let dark = darker_than_the_sky(&with_layers, &sky, width, 0.99);
+    let darkest = dark
+        .iter()
+        .map(|&i| with_layers[i] / sky[i])
+        .fold(1.0f64, f64::min);
+    eprintln!(
+        "CPU: {} pixels of the layers darker than the sky behind them (darkest {darkest:.3} × \
+         the sky)",
+        dark.len()
+    );
+    assert!(
+        dark.is_empty(),
+        "CPU: {} pixels, darkest {darkest}",
+        dark.len()
+    );
+
+    let Some(gpu) = common::gpu_or_skip("render::cloud_layer_edges") else {
+        return;
+    };
+    let shown = |scene: &render::scene::PreparedScene| -> Vec<f64> {
+        common::gpu_pixels(gpu, scene)
+            .iter()
+            .map(|&p| displayed_luminance(p))
+            .collect()
+    };
+    let (with_layers, sky) = (shown(&scene), shown(&cloudless));
+    // Displayed: 8-bit codes with a ±1 code dither each (up to 4 % of a dark sky's
+    // linear value between two images).
+    let dark = darker_than_the_sky(&with_layers, &sky, width, 0.95);
+    eprintln!(
+        "GPU: {} displayed pixels of the layers 5 % darker than the sky behind them",
+        dark.len()
+    );
+    assert!(dark.is_empty(), "GPU: {} pixels", dark.len());
+}
