@@ -5,8 +5,8 @@
 
 use glam::DVec3;
 
+use super::layer_frame::cloud_layers_at;
 use super::prepare::*;
-use super::sgsky_prepare::cloud_layers_at;
 use super::{PrepareCache, Rung, Scene, SceneError};
 
 /// What the celestial sky made of the scene's cloud layers and visibility.
@@ -553,7 +553,7 @@ impl Scene {
     ) -> Result<
         (
             atmos::Atmosphere,
-            Option<super::sgsky_prepare::PreparedVisibility>,
+            Option<super::layer_frame::PreparedVisibility>,
         ),
         SceneError,
     > {

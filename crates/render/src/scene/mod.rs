@@ -46,6 +46,7 @@ mod assemble;
 pub mod cache;
 mod error;
 mod ground;
+mod layer_frame;
 mod locate;
 pub mod prepare;
 mod sgsky;

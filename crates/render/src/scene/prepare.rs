@@ -7,7 +7,7 @@ use glam::DVec3;
 use terrain::{Heightfield, NormalMap};
 
 use super::Rung;
-pub use super::sgsky_prepare::{PreparedVisibility, cloud_layers_at};
+pub use super::layer_frame::{PreparedVisibility, cloud_layers_at};
 use crate::present::PresentParameters;
 use crate::terrain_shading::AlbedoRamp;
 
@@ -99,7 +99,7 @@ pub struct PreparedScene {
     pub cloud_layers: Vec<celestial::clouds::CloudLayerUniforms>,
     /// Each `[[clouds.layers]]` layer's wind drift (m, east and north: −wind ×
     /// `[time] offset_s`), in the file's order: with the camera's east and north, the
-    /// layers' texture offset ([`super::sgsky_prepare::cloud_layers_at`]).
+    /// layers' texture offset ([`super::layer_frame::cloud_layers_at`]).
     pub cloud_layer_drift_m: Vec<[f64; 2]>,
     /// The fog of the cloud layers the camera is in or near (celestial's
     /// `Sky::in_cloud_fog`), drawn by the cloud layers' pass over terrain and sky.
