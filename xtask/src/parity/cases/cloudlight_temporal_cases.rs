@@ -11,7 +11,7 @@ fn reprojection_grid() -> Vec<Vec<f64>> {
     use glam::DVec3;
     let mut grid = Vec::new();
     let sizes = [[64.0, 48.0], [1280.0, 720.0], [320.0, 180.0]];
-    for k in 0..24u32 {
+    for k in 0..170u32 {
         let t = f64::from(k);
         let forward =
             DVec3::new((0.7 * t).cos(), (0.7 * t).sin(), 0.2 * (0.3 * t).sin()).normalize();
@@ -87,9 +87,9 @@ pub fn cases() -> Vec<Case> {
                    u32(x2)));",
             grid: || {
                 let mut grid = Vec::new();
-                for y in 0..6 {
-                    for x in 0..6 {
-                        for phase in 0..9 {
+                for y in 0..12 {
+                    for x in 0..12 {
+                        for phase in 0..70 {
                             grid.push(vec![f64::from(x), f64::from(y), f64::from(phase)]);
                         }
                     }

@@ -77,7 +77,7 @@ pub fn cases() -> Vec<Case> {
                 // f16 target's largest value, at several exposures.
                 let mut grid = Vec::new();
                 for exposure in [0.5, 1.0, 30.0] {
-                    for radiance in std::iter::once(0.0).chain(logspace(1e-6, 1e7, 1100)) {
+                    for radiance in std::iter::once(0.0).chain(logspace(1e-6, 1e7, 1120)) {
                         for ratios in [[1.0, 1.0, 1.0], [1.0, 0.5, 2.0], [1.0, 0.36, 1.0 / 15.0]] {
                             grid.push(vec![
                                 radiance * ratios[0],
