@@ -1,6 +1,8 @@
 //! The view march against closed forms and at its extremes.
 #![allow(clippy::needless_range_loop)] // channel loops read three arrays
 
+mod common;
+
 use std::num::NonZeroU32;
 
 use cloudlight::CloudVolume;
@@ -513,20 +515,7 @@ fn march_accuracy_and_cost() {
     use cloudlight::march::{PinholeCamera, pixel_direction};
     use cloudlight::reference::single_scattering::{SingleScatteringSettings, single_scattering};
     use cloudlight::reference::{Phase, Sun};
-    let n = 32u32;
-    let mut density = Vec::new();
-    for z in 0..n {
-        for y in 0..n {
-            for x in 0..n {
-                let p = [x, y, z].map(|c| (f64::from(c) + 0.5) / f64::from(n) * 2.0 - 1.0);
-                let r2 = p[0] * p[0] + p[1] * p[1] + 1.4 * p[2] * p[2];
-                let wobble = 0.3 * ((x * 7 + y * 3 + z * 5) % 5) as f64 / 4.0;
-                density.push((1.5 * (1.0 + wobble) * (1.0 - r2).max(0.0)) as f32);
-            }
-        }
-    }
-    let volume =
-        CloudVolume::new([n, n, n], [-400.0, -400.0, 1000.0], 25.0, 0.02, density).unwrap();
+    let volume = common::lumpy_blob();
     let size = [32u32, 32];
     let camera =
         PinholeCamera::look_at([0.0, -100.0, 0.0], [0.0, 0.0, 1400.0], [0.0, 0.0, 1.0], 0.9)

@@ -12,22 +12,9 @@ use cloudlight::march::{
     render_image,
 };
 
-/// A lumpy blob on a 32³ grid of 25 m cells, 1 km up.
-fn volume() -> CloudVolume {
-    let n = 32u32;
-    let mut density = Vec::new();
-    for z in 0..n {
-        for y in 0..n {
-            for x in 0..n {
-                let p = [x, y, z].map(|c| (f64::from(c) + 0.5) / f64::from(n) * 2.0 - 1.0);
-                let r2 = p[0] * p[0] + p[1] * p[1] + 1.4 * p[2] * p[2];
-                let wobble = 0.3 * ((x * 7 + y * 3 + z * 5) % 5) as f64 / 4.0;
-                density.push((1.5 * (1.0 + wobble) * (1.0 - r2).max(0.0)) as f32);
-            }
-        }
-    }
-    CloudVolume::new([n, n, n], [-400.0, -400.0, 1000.0], 25.0, 0.02, density).unwrap()
-}
+mod common;
+
+use common::lumpy_blob;
 
 fn run(
     gpu: &skyscape_harness::GpuContext,
@@ -59,7 +46,7 @@ fn march_pass_matches_the_f32_twin() {
     let Some(gpu) = skyscape_harness::gpu_or_skip("march_pass_matches_the_f32_twin") else {
         return;
     };
-    let v = volume();
+    let v = lumpy_blob();
     let mut pass = MarchPass::new(&gpu.device).unwrap();
     let size = [32, 32];
     let cameras = [
@@ -189,7 +176,7 @@ fn encode_before_prepare_and_bad_sizes_are_errors() {
         .prepare(
             &gpu.device,
             &gpu.queue,
-            &volume(),
+            &lumpy_blob(),
             &camera,
             [0, 4],
             &MarchSettings::default(),
@@ -450,7 +437,7 @@ fn march_passes_with_a_distance_buffer_match_render_image_limited() {
     };
 
     // The volume, seen from beside it, cut by a tilted wall through its middle.
-    let v = volume();
+    let v = lumpy_blob();
     let camera = PinholeCamera::look_at(
         [-1500.0, -300.0, 1300.0],
         [0.0, 0.0, 1400.0],

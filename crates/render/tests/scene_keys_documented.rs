@@ -153,7 +153,8 @@ fn the_probe_tells_tables_from_values() {
 }
 
 #[test]
-#[ignore]
+#[ignore = "a tool, not a check: prints the parser's keys for docs/scenes.md \
+           (cargo test -p render --test scene_keys_documented -- --ignored --nocapture)"]
 fn print_the_parsers_keys() {
     for key in accepted_keys() {
         println!("{key}");

@@ -7,24 +7,8 @@
 
 mod common;
 
-use common::{Agreement, exact_settings};
+use common::{Agreement, draw, exact_settings};
 use render::gpu::{SceneRenderer, SceneRendererSettings};
-use render::scene::PreparedScene;
-
-fn draw(
-    gpu: &skyscape_harness::GpuContext,
-    renderer: &mut SceneRenderer,
-    scene: &PreparedScene,
-) -> Vec<u32> {
-    renderer.prepare(&gpu.queue, scene).unwrap();
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    renderer.encode(&mut encoder).unwrap();
-    gpu.queue.submit([encoder.finish()]);
-    let buffer = renderer.pixel_buffer();
-    let bytes =
-        skyscape_harness::read_buffer(gpu, "scene pixels", buffer, 0, buffer.size()).unwrap();
-    bytemuck::cast_slice(&bytes).to_vec()
-}
 
 #[test]
 fn amortised_clouds_converge_to_the_full_march() {

@@ -139,6 +139,12 @@ pub fn gpu_pixels_with(
     settings: SceneRendererSettings,
 ) -> Vec<u32> {
     let mut renderer = SceneRenderer::new(&gpu.device, &gpu.queue, scene, settings).unwrap();
+    draw(gpu, &mut renderer, scene)
+}
+
+/// One frame of `scene` drawn by `renderer` (prepared, encoded, submitted), RGBA8
+/// packed as `u32`.
+pub fn draw(gpu: &GpuContext, renderer: &mut SceneRenderer, scene: &PreparedScene) -> Vec<u32> {
     renderer.prepare(&gpu.queue, scene).unwrap();
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     renderer.encode(&mut encoder).unwrap();

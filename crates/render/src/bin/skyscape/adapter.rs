@@ -137,23 +137,24 @@ pub(crate) fn read_buffer(
     Ok(bytes)
 }
 
-/// The GPU frame's HDR radiance (rgba16float) as f32 RGB.
-pub(crate) fn read_radiance(
+/// Records a copy of `texture` (`COPY_SRC`, `bytes_per_texel` a texel) into a new
+/// buffer whose rows are padded to wgpu's copy alignment; returns it and its row pitch.
+pub(crate) fn copy_texture(
     device: &wgpu::Device,
-    queue: &wgpu::Queue,
+    encoder: &mut wgpu::CommandEncoder,
     texture: &wgpu::Texture,
-) -> Result<Vec<[f32; 3]>, String> {
+    bytes_per_texel: u32,
+) -> (wgpu::Buffer, u32) {
     let size = texture.size();
-    let row = size.width * 8;
+    let row = size.width * bytes_per_texel;
     let padded =
         row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
     let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("skyscape radiance"),
+        label: Some("skyscape texture copy"),
         size: u64::from(padded) * u64::from(size.height),
         usage: wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
-    let mut encoder = device.create_command_encoder(&Default::default());
     encoder.copy_texture_to_buffer(
         texture.as_image_copy(),
         wgpu::TexelCopyBufferInfo {
@@ -166,6 +167,18 @@ pub(crate) fn read_radiance(
         },
         size,
     );
+    (buffer, padded)
+}
+
+/// The GPU frame's HDR radiance (rgba16float) as f32 RGB.
+pub(crate) fn read_radiance(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+) -> Result<Vec<[f32; 3]>, String> {
+    let row = texture.size().width * 8;
+    let mut encoder = device.create_command_encoder(&Default::default());
+    let (buffer, padded) = copy_texture(device, &mut encoder, texture, 8);
     queue.submit([encoder.finish()]);
     let bytes = read_buffer(device, queue, &buffer)?;
     Ok(bytes

@@ -9,7 +9,7 @@ use render::gpu::{SceneRenderer, SceneRendererSettings};
 use render::scene::PreparedScene;
 use winit::window::Window;
 
-use crate::adapter::{describe, read_buffer, read_radiance};
+use crate::adapter::{copy_texture, describe, read_buffer, read_radiance};
 
 /// What the window shows, read back: RGBA8 (R in the low byte, as `Rendered::pixels`)
 /// and the HDR radiance behind it.
@@ -343,7 +343,6 @@ impl WindowGpu {
         encoder: &mut wgpu::CommandEncoder,
         texture: &wgpu::Texture,
     ) -> (wgpu::Buffer, u32, bool) {
-        let (width, height) = (self.config.width, self.config.height);
         if !self.config.usage.contains(wgpu::TextureUsages::COPY_SRC) {
             let renderer = self.renderer.as_ref().expect("drawn with a renderer");
             let pixels = renderer.pixel_buffer();
@@ -356,31 +355,7 @@ impl WindowGpu {
             encoder.copy_buffer_to_buffer(pixels, 0, &copy, 0, pixels.size());
             return (copy, 0, false);
         }
-        let row = width * 4;
-        let padded =
-            row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-        let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("skyscape view shot"),
-            size: u64::from(padded) * u64::from(height),
-            usage: wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        encoder.copy_texture_to_buffer(
-            texture.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &buffer,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(padded),
-                    rows_per_image: None,
-                },
-            },
-            wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-        );
+        let (buffer, padded) = copy_texture(&self.device, encoder, texture, 4);
         (buffer, padded, true)
     }
 
