@@ -328,6 +328,24 @@ impl Heightfield {
         f64::from(self.samples[y * self.width + x]) * self.vertical_scale
     }
 
+    /// The elevation (metres) of the bilinear surface through the texels at map
+    /// position `(x, y)` in texel units (texel `(i, j)` at `(i, j)`); a position
+    /// outside the map extends its edge cells.
+    pub fn bilinear_elevation(&self, x: f64, y: f64) -> f64 {
+        let (w, h) = (self.width, self.height);
+        let i = (x.floor().max(0.0) as usize).min(w.saturating_sub(2));
+        let j = (y.floor().max(0.0) as usize).min(h.saturating_sub(2));
+        let (i1, j1) = ((i + 1).min(w - 1), (j + 1).min(h - 1));
+        let (fx, fy) = (x - i as f64, y - j as f64);
+        let h00 = self.elevation_at(i, j);
+        let h10 = self.elevation_at(i1, j);
+        let h01 = self.elevation_at(i, j1);
+        let h11 = self.elevation_at(i1, j1);
+        let top = h00 + (h10 - h00) * fx;
+        let bottom = h01 + (h11 - h01) * fx;
+        top + (bottom - top) * fy
+    }
+
     /// All elevations in metres, row-major, as `f64`.
     pub fn elevations(&self) -> Vec<f64> {
         self.samples
@@ -401,4 +419,25 @@ pub(crate) fn encode_png(
         .write_image(data, width as u32, height as u32, color)
         .map_err(|e| png_error("encode", e))?;
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Heightfield;
+
+    #[test]
+    fn the_bilinear_surface_passes_through_the_scaled_texels() {
+        let hf = Heightfield::from_fn(3, 2, 10.0, |x, y| (x + 10 * y) as f32)
+            .unwrap()
+            .with_vertical_scale(2.0)
+            .unwrap();
+        for (x, y) in [(0, 0), (2, 0), (1, 1), (2, 1)] {
+            let at = hf.bilinear_elevation(x as f64, y as f64);
+            assert_eq!(at, hf.elevation(x, y).unwrap(), "({x}, {y})");
+        }
+        // Between texels: the plane through them (x + 10 y, doubled).
+        assert!((hf.bilinear_elevation(0.5, 0.25) - 2.0 * (0.5 + 2.5)).abs() < 1e-12);
+        // Outside: the edge cells extended.
+        assert!((hf.bilinear_elevation(3.0, 0.0) - 2.0 * 3.0).abs() < 1e-12);
+    }
 }

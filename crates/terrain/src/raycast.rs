@@ -38,22 +38,6 @@ use crate::{Heightfield, TerrainError};
 /// 6e−17, not 0).
 const AXIS_SNAP: f64 = 1e-15;
 
-/// The bilinear height at map position `(x, y)` (texel units), metres.
-fn bilinear(hf: &Heightfield, x: f64, y: f64) -> f64 {
-    let (w, h) = (hf.width(), hf.height());
-    let i = (x.floor().max(0.0) as usize).min(w.saturating_sub(2));
-    let j = (y.floor().max(0.0) as usize).min(h.saturating_sub(2));
-    let (i1, j1) = ((i + 1).min(w - 1), (j + 1).min(h - 1));
-    let (fx, fy) = (x - i as f64, y - j as f64);
-    let h00 = hf.elevation_at(i, j);
-    let h10 = hf.elevation_at(i1, j);
-    let h01 = hf.elevation_at(i, j1);
-    let h11 = hf.elevation_at(i1, j1);
-    let top = h00 + (h10 - h00) * fx;
-    let bottom = h01 + (h11 - h01) * fx;
-    top + (bottom - top) * fy
-}
-
 /// The exact horizon angle of texel `(x, y)` along `azimuth` over the bilinear
 /// surface (definition in the [module docs](self)), radians in `[−π/2, π/2]`.
 /// `options.threads` is ignored.
@@ -104,7 +88,7 @@ pub fn ray_cast_horizon_angle(
     let at = |s: f64| (x0 + dx * s, y0 + dy * s);
     let quotient = |s: f64| {
         let (px, py) = at(s);
-        (bilinear(hf, px, py) - h_p - s * s * inv_two_r) / s
+        (hf.bilinear_elevation(px, py) - h_p - s * s * inv_two_r) / s
     };
     // Grid-line crossings: the next integer coordinate ahead on each axis.
     let first_line = |p: f64, d: f64| {

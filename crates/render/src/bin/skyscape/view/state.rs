@@ -150,14 +150,7 @@ impl ViewState {
         if x < 0.0 || z < 0.0 || x > (width - 1) as f64 || z > (height - 1) as f64 {
             return None;
         }
-        let samples = terrain.heightfield.samples();
-        let at =
-            |i: usize, j: usize| f64::from(samples[j.min(height - 1) * width + i.min(width - 1)]);
-        let (i, j) = (x.floor() as usize, z.floor() as usize);
-        let (fx, fz) = (x - i as f64, z - j as f64);
-        let top = at(i, j) * (1.0 - fx) + at(i + 1, j) * fx;
-        let bottom = at(i, j + 1) * (1.0 - fx) + at(i + 1, j + 1) * fx;
-        Some(top * (1.0 - fz) + bottom * fz)
+        Some(terrain.heightfield.bilinear_elevation(x, z))
     }
 
     /// Adds `seconds` to `[time]` (a scene with `[sun]` has no time to move).
