@@ -34,6 +34,7 @@
 use atmos::Atmosphere;
 use atmos::ladder::{SkyModel, SkyQuery};
 use glam::DVec3;
+use num_traits::Float;
 
 use crate::angle::Angle;
 use crate::error::{CelestialError, Result};
@@ -307,71 +308,183 @@ impl SkyDome {
     /// The dome's triangles as (ring, index) triples: the centre fan, then the three
     /// strips between consecutive rings split as GL triangle strips split them.
     pub fn triangles() -> Vec<[(usize, usize); 3]> {
-        let mut triangles = Vec::with_capacity(7 * DOME_SIDES);
-        for i in 0..DOME_SIDES {
-            let j = (i + 1) % DOME_SIDES;
-            triangles.push([(0, 0), (1, i), (1, j)]);
-            for upper in 1..4 {
-                let lower = upper + 1;
-                triangles.push([(lower, i), (upper, i), (lower, j)]);
-                triangles.push([(upper, i), (lower, j), (upper, j)]);
-            }
-        }
-        triangles
+        (0..DOME_SIDES).flat_map(sector_triangles).collect()
     }
 
-    /// The dome's colour along `view` (east/north/up, from the dome's centre): the
-    /// barycentric blend over the triangle the ray meets; the skirt's colour below it.
+    /// The dome's colour along `view` (east/north/up, from the dome's centre):
+    /// [`sky_dome_radiance`] over this dome's vertex colours.
     pub fn radiance(&self, view: [f64; 3]) -> [f64; 3] {
-        let d = DVec3::from_array(view).normalize_or_zero();
-        // Sector by azimuth from south toward east, relative to vertex 0.
-        let phi = d.x.atan2(-d.y) - self.spin.radians();
-        let step = std::f64::consts::TAU / DOME_SIDES as f64;
-        let sector = (phi.rem_euclid(std::f64::consts::TAU) / step).floor() as usize % DOME_SIDES;
-        let triangles = Self::triangles();
-        // The sector's 7 triangles, and its neighbours' (a chord's azimuth range is its
-        // sector's; rounding at the seam is covered by the neighbours).
-        for s in [
-            sector,
-            (sector + 1) % DOME_SIDES,
-            (sector + DOME_SIDES - 1) % DOME_SIDES,
-        ] {
-            for t in &triangles[7 * s..7 * s + 7] {
-                let p: [DVec3; 3] = t.map(|(ring, i)| dome_vertex(ring, i, self.spin));
-                if let Some(w) = ray_triangle(d, p) {
-                    let c: [[f64; 3]; 3] = t.map(|(ring, i)| self.vertex_colour(ring, i));
-                    return std::array::from_fn(|k| {
-                        w[0] * c[0][k] + w[1] * c[1][k] + w[2] * c[2][k]
-                    });
-                }
-            }
-        }
-        // Open below the skirt: the skirt's colour in the nearest azimuth.
-        let index = ((phi.rem_euclid(std::f64::consts::TAU) / step).round() as usize) % DOME_SIDES;
-        self.vertex_colour(4, index)
+        sky_dome_radiance(view, self.spin.radians(), &self.vertex_colours())
+    }
+
+    /// The vertex colours in [`sky_dome_radiance`]'s order: the centre, then rings 1–4
+    /// (inner, middle, outer, skirt) of [`DOME_SIDES`] vertices each, vertex 0 first.
+    pub fn vertex_colours(&self) -> [[f64; 3]; DOME_VERTICES] {
+        std::array::from_fn(|k| self.colours[k])
     }
 }
 
-/// Barycentric weights where the ray from the origin along `d` meets triangle `p`
-/// (Möller–Trumbore), or `None`.
-fn ray_triangle(d: DVec3, p: [DVec3; 3]) -> Option<[f64; 3]> {
-    let e1 = p[1] - p[0];
-    let e2 = p[2] - p[0];
-    let h = d.cross(e2);
-    let det = e1.dot(h);
-    if det.abs() < 1e-12 {
+/// Vertices of the dome: the centre and four rings of [`DOME_SIDES`].
+pub const DOME_VERTICES: usize = 1 + 4 * DOME_SIDES;
+
+fn constant<F: Float>(x: f64) -> F {
+    F::from(x).expect("a float type holds the dome's constants")
+}
+
+fn sub<F: Float>(a: [F; 3], b: [F; 3]) -> [F; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot<F: Float>(a: [F; 3], b: [F; 3]) -> F {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross<F: Float>(a: [F; 3], b: [F; 3]) -> [F; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// Position (km) of ring `ring`, vertex `index` of a dome rotated by `spin` (radians,
+/// from south toward east): [`dome_vertex`] in kilometres, over the float type.
+fn sky_dome_vertex<F: Float>(ring: usize, index: usize, spin: F) -> [F; 3] {
+    let (horizontal, height) = DOME_RINGS_M[ring];
+    let step = constant::<F>(std::f64::consts::TAU / DOME_SIDES as f64);
+    let phi = spin + F::from(index % DOME_SIDES).expect("a small integer") * step;
+    let horizontal = constant::<F>(horizontal / 1000.0);
+    [
+        horizontal * phi.sin(),
+        -horizontal * phi.cos(),
+        constant(height / 1000.0),
+    ]
+}
+
+/// Barycentric weights of the point where the ray from the origin along `d` meets the
+/// plane of triangle `p` (Möller–Trumbore), or `None` where it is parallel to the plane
+/// or behind the origin. The weights are negative outside the triangle.
+fn sky_dome_ray_triangle<F: Float>(d: [F; 3], p: [[F; 3]; 3]) -> Option<[F; 3]> {
+    let e1 = sub(p[1], p[0]);
+    let e2 = sub(p[2], p[0]);
+    let h = cross(d, e2);
+    let det = dot(e1, h);
+    if det == F::zero() {
         return None;
     }
-    let s = -p[0];
-    let a = s.dot(h) / det;
-    let q = s.cross(e1);
-    let b = d.dot(q) / det;
-    let t = e2.dot(q) / det;
-    let tolerance = 1e-9;
-    if t <= 0.0 || a < -tolerance || b < -tolerance || a + b > 1.0 + tolerance {
+    let s = sub([F::zero(); 3], p[0]);
+    let a = dot(s, h) / det;
+    let q = cross(s, e1);
+    let b = dot(d, q) / det;
+    let t = dot(e2, q) / det;
+    if t <= F::zero() {
         return None;
     }
-    Some([1.0 - a - b, a, b])
+    Some([F::one() - a - b, a, b])
+}
+
+/// SGSky's dome drawn along `view` (unit, east/north/up, from the dome's centre) for a
+/// dome rotated by `spin` (radians: vertex 0's azimuth from south toward east) with
+/// `colours` at its vertices (centre, then rings 1–4 × [`DOME_SIDES`]; see
+/// [`SkyDome::vertex_colours`]): the barycentric blend over the triangle the ray meets,
+/// as a rasteriser's Gouraud shading of the mesh gives.
+///
+/// The ray's azimuth picks its sector exactly (every triangle of a sector lies between
+/// the vertical planes through its two vertex azimuths), so the sector's 7 triangles are
+/// tested, then its neighbours' (rounding at a sector's edge); a ray that rounding
+/// leaves just outside every triangle at a shared edge takes the triangle it is least
+/// outside of (no more than 1024 ε in a barycentric weight). Below the skirt the dome
+/// is open: the skirt's chord colour where the ray's vertical plane crosses the chord
+/// (continuous with the skirt's edge), the skirt's mean straight down.
+///
+/// The WGSL twin is `sky_dome_radiance` in `shaders/celestial/dome.wgsl` (parity case
+/// `celestial::sky_dome_radiance`).
+pub fn sky_dome_radiance<F: Float>(
+    view: [F; 3],
+    spin: F,
+    colours: &[[F; 3]; DOME_VERTICES],
+) -> [F; 3] {
+    let tau = constant::<F>(std::f64::consts::TAU);
+    let step = tau / F::from(DOME_SIDES).expect("12");
+    let mut phi = (view[0].atan2(-view[1]) - spin) % tau;
+    if phi < F::zero() {
+        phi = phi + tau;
+    }
+    let sector = (phi / step).floor().to_usize().unwrap_or(0) % DOME_SIDES;
+    let slot = |ring: usize, index: usize| {
+        if ring == 0 {
+            0
+        } else {
+            1 + (ring - 1) * DOME_SIDES + index % DOME_SIDES
+        }
+    };
+    let blend = |t: [(usize, usize); 3], w: [F; 3]| -> [F; 3] {
+        let c = t.map(|(ring, i)| colours[slot(ring, i)]);
+        std::array::from_fn(|k| w[0] * c[0][k] + w[1] * c[1][k] + w[2] * c[2][k])
+    };
+    // The first triangle that holds the ray; where rounding leaves a ray on a shared
+    // edge outside both, the one it is least outside of (within 1024 ε).
+    let mut best: Option<([(usize, usize); 3], [F; 3], F)> = None;
+    for s in [
+        sector,
+        (sector + 1) % DOME_SIDES,
+        (sector + DOME_SIDES - 1) % DOME_SIDES,
+    ] {
+        for t in sector_triangles(s) {
+            let p = t.map(|(ring, i)| sky_dome_vertex(ring, i, spin));
+            if let Some(w) = sky_dome_ray_triangle(view, p) {
+                let inside = w[0].min(w[1]).min(w[2]);
+                if inside >= F::zero() {
+                    return blend(t, w);
+                }
+                if best.is_none_or(|(_, _, b)| inside > b) {
+                    best = Some((t, w, inside));
+                }
+            }
+        }
+    }
+    if let Some((t, w, inside)) = best
+        && inside >= -F::epsilon() * constant(1024.0)
+    {
+        return blend(t, w);
+    }
+    // Below the skirt: along the sector's skirt chord, where the ray's vertical plane
+    // meets it (t = (P_i × h) / (h × e) in the horizontal plane).
+    let horizontal = [view[0], view[1]];
+    if horizontal[0] == F::zero() && horizontal[1] == F::zero() {
+        let mut mean = [F::zero(); 3];
+        for i in 0..DOME_SIDES {
+            for k in 0..3 {
+                mean[k] = mean[k] + colours[slot(4, i)][k];
+            }
+        }
+        return mean.map(|c| c / F::from(DOME_SIDES).expect("12"));
+    }
+    let start = sky_dome_vertex(4, sector, spin);
+    let end = sky_dome_vertex(4, sector + 1, spin);
+    let edge = [end[0] - start[0], end[1] - start[1]];
+    let cross2 = |a: [F; 2], b: [F; 2]| a[0] * b[1] - a[1] * b[0];
+    let along = cross2([start[0], start[1]], horizontal) / cross2(horizontal, edge);
+    let along = along.max(F::zero()).min(F::one());
+    blend(
+        [(4, sector), (4, sector + 1), (4, sector)],
+        [F::one() - along, along, F::zero()],
+    )
+}
+
+/// The 7 triangles of sector `sector` (between vertices `sector` and `sector + 1`), in
+/// [`SkyDome::triangles`]' order.
+fn sector_triangles(sector: usize) -> [[(usize, usize); 3]; 7] {
+    let (i, j) = (sector, (sector + 1) % DOME_SIDES);
+    [
+        [(0, 0), (1, i), (1, j)],
+        [(2, i), (1, i), (2, j)],
+        [(1, i), (2, j), (1, j)],
+        [(3, i), (2, i), (3, j)],
+        [(2, i), (3, j), (2, j)],
+        [(4, i), (3, i), (4, j)],
+        [(3, i), (4, j), (3, j)],
+    ]
 }
 
 #[cfg(test)]

@@ -18,6 +18,10 @@
 //!
 //! The pixel-for-pixel CPU twin is [`crate::objects::render_sky_objects_cpu`].
 
+mod sky_dome;
+
+pub use sky_dome::{SkyDomeRenderer, sky_dome_shader_source};
+
 use crate::draw::{DiscObject, PointSource};
 use crate::error::{CelestialError, Result};
 use crate::objects::{SkyObjectsFrame, SkyObjectsUniforms};
@@ -48,8 +52,11 @@ pub enum GpuError {
         limit: u64,
     },
     /// `encode` before `prepare`.
-    #[error("SkyObjectsPass: encode called before prepare")]
-    NotPrepared,
+    #[error("{pass}: encode called before prepare")]
+    NotPrepared {
+        /// The pass.
+        pass: &'static str,
+    },
     /// A depth view passed without depth settings, or settings without a view.
     #[error("depth: the pass was created {created} a depth test but encode got {given} view")]
     DepthMismatch {
@@ -309,7 +316,9 @@ impl SkyObjectsPass {
         depth: Option<&wgpu::TextureView>,
         timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) -> Result<()> {
-        let points = self.prepared_points.ok_or(GpuError::NotPrepared)?;
+        let points = self.prepared_points.ok_or(GpuError::NotPrepared {
+            pass: "SkyObjectsPass",
+        })?;
         let depth_attachment = match (self.settings.depth, depth) {
             (Some(_), Some(view)) => Some(wgpu::RenderPassDepthStencilAttachment {
                 view,

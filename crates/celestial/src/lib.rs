@@ -42,6 +42,7 @@ pub mod astrometry;
 pub mod clouds;
 pub mod colour;
 pub mod dome;
+pub mod dome_sky;
 pub mod draw;
 pub mod error;
 #[cfg(feature = "gpu")]
@@ -249,7 +250,7 @@ mod tests {
     #[test]
     fn wgsl_modules_compose_and_validate() {
         let composer = super::composer();
-        assert_eq!(super::WGSL_MODULES.len(), 5);
+        assert_eq!(super::WGSL_MODULES.len(), 7);
         for module in super::WGSL_MODULES {
             assert!(module.name.starts_with("celestial::"));
             let source = composer.compose_module(module.name).unwrap();

@@ -133,7 +133,7 @@ fn sky_objects_pass_matches_the_cpu_twin() {
     let mut encoder = device.create_command_encoder(&Default::default());
     assert!(matches!(
         pass.encode(&mut encoder, &view, None, None),
-        Err(CelestialError::Gpu(GpuError::NotPrepared))
+        Err(CelestialError::Gpu(GpuError::NotPrepared { .. }))
     ));
     pass.prepare(&gpu.queue, &frame).unwrap();
     {

@@ -14,6 +14,7 @@ mod atmos_moments_cases;
 mod atmos_single_scattering_cases;
 mod atmos_view_cases;
 mod celestial_cases;
+mod celestial_dome_cases;
 mod cloudlight_billboard_cases;
 mod cloudlight_cases;
 mod cloudlight_march_cases;
@@ -391,6 +392,7 @@ pub fn all() -> Vec<Case> {
         cloudlight_shadow_cases::cases(),
         cloudsim_cases::cases(),
         celestial_cases::cases(),
+        celestial_dome_cases::cases(),
         common_cases::cases(),
     ]
     .into_iter()
