@@ -1,5 +1,5 @@
-//! The rungs without tables on the GPU (`render::gpu::rungs`): the closed form per
-//! pixel and per dome vertex, and single scattering. Each draws a small scene (sky +
+//! The rungs without tables on the GPU (`render::gpu::rungs`): SGSky's dome, the closed
+//! form per pixel and per dome vertex, and single scattering. Each draws a small scene (sky +
 //! terrain) on the GPU and on the CPU reference renderer: the images agree (the sky
 //! pixel for pixel, the terrain up to the rasteriser-vs-ray-caster gap that
 //! `tests/scene_gpu.rs` measures), the terrain is lit and the zenith blue under every
@@ -13,7 +13,12 @@ mod common;
 use common::{code, compare, gpu_pixels};
 use render::scene::{Rung, Scene};
 
-const GPU_RUNGS: [Rung; 3] = [Rung::ClosedForm, Rung::ClosedFormVertex, Rung::Single];
+const GPU_RUNGS: [Rung; 4] = [
+    Rung::Dome,
+    Rung::ClosedForm,
+    Rung::ClosedFormVertex,
+    Rung::Single,
+];
 
 fn shipped(name: &str, width: u32, height: u32, rung: Rung) -> Scene {
     let mut scene = common::shipped(name, width, height);

@@ -309,7 +309,13 @@ fn rungs_draw_lit_terrain(rungs: &[&str]) {
 
 #[test]
 fn every_real_time_rung_draws_lit_terrain() {
-    rungs_draw_lit_terrain(&["closed-form", "closed-form-vertex", "single", "precomputed"]);
+    rungs_draw_lit_terrain(&[
+        "dome",
+        "closed-form",
+        "closed-form-vertex",
+        "single",
+        "precomputed",
+    ]);
 }
 
 /// The f64 reference rungs take 10 s and 53 s in a debug build:

@@ -16,12 +16,13 @@ use crate::scene::Rung;
 pub(crate) const RUNG_SLOT: &str = "render::rung_sky";
 
 /// The WGSL module that implements [`RUNG_SLOT`] for `rung`, `None` for a rung without
-/// GPU passes of its own: rung 1, the closed form (Hoffman & Preetham 2002), for both its
+/// GPU passes of its own: SGSky's dome (its terrain and clouds see the closed form's
+/// air), rung 1, the closed form (Hoffman & Preetham 2002), for both its
 /// sky evaluations (per pixel, per dome vertex: their air and terrain light are per
 /// pixel); rung 2, single scattering.
 pub(crate) fn rung_module(rung: Rung) -> Option<&'static str> {
     match rung {
-        Rung::ClosedForm | Rung::ClosedFormVertex => Some("render::rung_closed_form"),
+        Rung::Dome | Rung::ClosedForm | Rung::ClosedFormVertex => Some("render::rung_closed_form"),
         Rung::Single => Some("render::rung_single"),
         Rung::Precomputed | Rung::Reference | Rung::ReferenceSpectral => None,
     }
@@ -48,7 +49,7 @@ pub(crate) fn rung_parameters(
     atmosphere: &atmos::Atmosphere,
 ) -> Result<Vec<u8>, RenderError> {
     Ok(match rung {
-        Rung::ClosedForm | Rung::ClosedFormVertex => bytemuck::bytes_of(
+        Rung::Dome | Rung::ClosedForm | Rung::ClosedFormVertex => bytemuck::bytes_of(
             &atmos::closed_form_sky::ClosedFormSkyParameters::from_atmosphere(atmosphere)?,
         )
         .to_vec(),

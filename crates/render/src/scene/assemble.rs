@@ -614,6 +614,22 @@ impl Scene {
         let rung = self.file.atmosphere.rung;
         let e = |e| self.atmos_error(&["atmosphere", "rung"], format!("\"{}\"", rung.name()), e);
         let model: SharedSkyModel = match rung {
+            Rung::Dome => {
+                let dome = celestial::dome_sky::SgskyDomeSky::new(
+                    ClosedFormSky::new(atmosphere).map_err(e)?,
+                    atmosphere,
+                    celestial::dome::DomeColouring::SeedWeights,
+                )
+                .map_err(|error| {
+                    self.invalid(
+                        &["atmosphere", "rung"],
+                        "\"dome\"".to_owned(),
+                        error.to_string(),
+                    )
+                })?;
+                let per_pixel = Box::new(ClosedFormSky::new(atmosphere).map_err(e)?);
+                return Ok((Box::new(dome), per_pixel, None));
+            }
             Rung::ClosedForm => Box::new(ClosedFormSky::new(atmosphere).map_err(e)?),
             Rung::ClosedFormVertex => {
                 let dome = atmos::dome::DomeInterpolated::new(

@@ -409,6 +409,10 @@ fn default_true() -> bool {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
 #[serde(rename_all = "kebab-case")]
 pub enum Rung {
+    /// SimGear's SGSky dome: 12-sided, painted from the closed form with SGSky's weights
+    /// (13 queries per frame), the sun's aureole per pixel; terrain and clouds see the
+    /// closed form's air (the cheapest sky).
+    Dome,
     /// Rung 1, Hoffman and Preetham's closed form, per pixel.
     ClosedForm,
     /// Rung 1 evaluated per vertex of a 16×32 dome for the sky (terrain segments per pixel).
@@ -432,7 +436,8 @@ pub const DOME: atmos::dome::DomeResolution = atmos::dome::DomeResolution {
 
 impl Rung {
     /// Every rung.
-    pub const ALL: [Rung; 6] = [
+    pub const ALL: [Rung; 7] = [
+        Self::Dome,
         Self::ClosedForm,
         Self::ClosedFormVertex,
         Self::Single,
@@ -449,6 +454,7 @@ impl Rung {
     /// The name as written in a scene file and on the command line.
     pub fn name(self) -> &'static str {
         match self {
+            Self::Dome => "dome",
             Self::ClosedForm => "closed-form",
             Self::ClosedFormVertex => "closed-form-vertex",
             Self::Single => "single",
@@ -463,6 +469,7 @@ impl Rung {
     /// tables (or with no GPU passes).
     pub fn gpu_model(self) -> Option<&'static str> {
         match self {
+            Self::Dome => Some("SGSky's dome of the closed form"),
             Self::ClosedForm | Self::ClosedFormVertex => Some("the closed form"),
             Self::Single => Some("single scattering"),
             _ => None,
@@ -473,6 +480,12 @@ impl Rung {
     /// for a rung with passes of its own.
     pub fn gpu_sky_evaluation(self) -> Option<String> {
         match self {
+            Self::Dome => Some(
+                "celestial's SkyDomeRenderer: SGSky's 12-sided dome painted from the closed \
+                 form on the CPU (13 queries), blended per pixel with the sun's aureole \
+                 (compute)"
+                    .to_owned(),
+            ),
             Self::ClosedForm => Some(
                 "atmos' ClosedFormRenderer, Hoffman and Preetham's closed form per pixel \
                  (compute)"

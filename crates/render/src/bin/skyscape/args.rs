@@ -143,8 +143,8 @@ pub(crate) struct SceneOverrides {
     /// strip; width = 6 × height), equirectangular, fisheye.
     #[arg(long, value_enum)]
     pub(crate) projection: Option<ProjectionArg>,
-    /// The atmosphere's rung (overrides the scene's): closed-form, closed-form-vertex,
-    /// single, precomputed, reference, reference-spectral.
+    /// The atmosphere's rung (overrides the scene's): dome, closed-form,
+    /// closed-form-vertex, single, precomputed, reference, reference-spectral.
     #[arg(long)]
     pub(crate) rung: Option<String>,
     /// The sun's elevation, degrees (overrides the scene's).

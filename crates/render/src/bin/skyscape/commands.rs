@@ -69,7 +69,7 @@ fn gpu_draws(rung: render::scene::Rung) -> bool {
     use render::scene::Rung;
     matches!(
         rung,
-        Rung::Precomputed | Rung::ClosedForm | Rung::ClosedFormVertex | Rung::Single
+        Rung::Precomputed | Rung::Dome | Rung::ClosedForm | Rung::ClosedFormVertex | Rung::Single
     )
 }
 
@@ -83,8 +83,8 @@ pub(crate) fn render_command(args: RenderArgs) -> Result<(), Failure> {
         // against itself.
         return Err(Failure::Input(format!(
             "{} needs a GPU image, and rung `{}` renders on the CPU reference renderer only \
-             (the GPU scene renderer draws the closed-form, closed-form-vertex, single and \
-             precomputed rungs)",
+             (the GPU scene renderer draws the dome, closed-form, closed-form-vertex, single \
+             and precomputed rungs)",
             if args.compare {
                 "--compare"
             } else {

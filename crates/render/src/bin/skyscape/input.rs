@@ -113,10 +113,8 @@ pub(crate) fn apply_overrides(scene: &mut Scene, args: &RenderArgs) -> Result<()
     }
     if let Some(rung) = &args.overrides.rung {
         scene.file.atmosphere.rung = render::scene::Rung::from_name(rung).ok_or_else(|| {
-            Failure::Input(format!(
-                "--rung `{rung}`: not one of closed-form, closed-form-vertex, single, \
-                 precomputed, reference, reference-spectral"
-            ))
+            let names: Vec<&str> = render::scene::Rung::ALL.iter().map(|r| r.name()).collect();
+            Failure::Input(format!("--rung `{rung}`: not one of {}", names.join(", ")))
         })?;
         scene.set_by_flag(&["atmosphere", "rung"], "--rung");
     }

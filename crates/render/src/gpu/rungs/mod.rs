@@ -1,4 +1,6 @@
-//! The GPU passes of the rungs without tables: rung 1, the closed form per pixel
+//! The GPU passes of the rungs without tables: SGSky's dome (`dome`: celestial's
+//! `SkyDomeRenderer` for the sky, the closed form's passes for terrain and clouds),
+//! rung 1, the closed form per pixel
 //! (`closed-form`) or per vertex of Hoffman and Preetham's sky dome (`closed-form-vertex`), and rung 2,
 //! single scattering (`single`). The precomputed rung keeps `atmos`' tables and sky
 //! pass ([`crate::gpu::scene`]); the reference rungs (f64, orders of scattering or Monte

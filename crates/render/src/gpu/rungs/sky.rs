@@ -12,6 +12,12 @@ use crate::scene::Rung;
 /// `atmos`' frame renderer of the rung.
 #[derive(Debug)]
 pub(super) enum SkyRenderer {
+    /// SGSky's dome: painted on the CPU from the closed form at each prepare, drawn by
+    /// celestial's pass.
+    Dome(
+        celestial::gpu::SkyDomeRenderer,
+        Box<celestial::dome_sky::SgskyDomeSky<atmos::closed_form_sky::ClosedFormSky>>,
+    ),
     ClosedForm(ClosedFormRenderer),
     Single(SingleScatteringRenderer),
 }
@@ -23,6 +29,14 @@ impl SkyRenderer {
         atmosphere: &atmos::Atmosphere,
     ) -> Result<Self, RenderError> {
         Ok(match rung {
+            Rung::Dome => Self::Dome(
+                celestial::gpu::SkyDomeRenderer::new(device)?,
+                Box::new(celestial::dome_sky::SgskyDomeSky::new(
+                    atmos::closed_form_sky::ClosedFormSky::new(atmosphere)?,
+                    atmosphere,
+                    celestial::dome::DomeColouring::SeedWeights,
+                )?),
+            ),
             Rung::ClosedForm => Self::ClosedForm(ClosedFormRenderer::new(
                 device,
                 atmosphere,
@@ -49,6 +63,12 @@ impl SkyRenderer {
         output: &FrameOutput,
     ) -> Result<(), RenderError> {
         match self {
+            Self::Dome(r, sky) => {
+                let position = glam::Vec3::from_array(camera.position).as_dvec3();
+                let sun = glam::Vec3::from_array(camera.sun).as_dvec3().normalize();
+                let dome = sky.uniforms(position, sun)?;
+                r.prepare(queue, camera, &dome, output)?
+            }
             Self::ClosedForm(r) => r.prepare(queue, camera, output)?,
             Self::Single(r) => r.prepare(queue, camera, output)?,
         }
@@ -61,6 +81,7 @@ impl SkyRenderer {
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), RenderError> {
         match self {
+            Self::Dome(r, _) => r.encode(encoder, timestamp_writes)?,
             Self::ClosedForm(r) => r.encode(encoder, timestamp_writes)?,
             Self::Single(r) => r.encode(encoder, timestamp_writes)?,
         }

@@ -31,11 +31,12 @@ pub(crate) struct Readings<'a> {
 }
 
 /// The rungs the GPU renderer draws (the reference rungs are CPU only).
-const GPU_RUNGS: [Rung; 4] = [
+const GPU_RUNGS: [Rung; 5] = [
     Rung::Precomputed,
     Rung::Single,
     Rung::ClosedForm,
     Rung::ClosedFormVertex,
+    Rung::Dome,
 ];
 
 /// Draws the overlay; edits of the scene's values mark the state dirty.
@@ -291,6 +292,7 @@ fn models(ui: &mut egui::Ui, state: &mut ViewState) {
 /// The atmos report's rows for a rung start with its number and family.
 fn rung_row_prefix(rung: Rung) -> &'static str {
     match rung {
+        Rung::Dome => "0 SGSky dome/",
         Rung::ClosedForm => "1 closed form/closed form, per pixel",
         Rung::ClosedFormVertex => "1 closed form/closed form per vertex (16×32",
         Rung::Single => "2 single scattering/",
