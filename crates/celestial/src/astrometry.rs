@@ -247,12 +247,16 @@ impl ApparentFrame {
 
     /// The apparent place (α, δ), true equator and equinox of date.
     pub fn apparent_place(&self, star: &StarAstrometry) -> (Angle, Angle) {
-        let v = self.icrs_to_true_equator * self.aberrated_direction(star);
-        (
-            Angle::from_radians(v.y.atan2(v.x)).wrapped_positive(),
-            Angle::from_radians(v.z.atan2(v.x.hypot(v.y))),
-        )
+        direction_to_place(self.icrs_to_true_equator * self.aberrated_direction(star))
     }
+}
+
+/// (α, δ) of a direction in equatorial axes (x toward the equinox, z toward the pole).
+pub(crate) fn direction_to_place(v: DVec3) -> (Angle, Angle) {
+    (
+        Angle::from_radians(v.y.atan2(v.x)).wrapped_positive(),
+        Angle::from_radians(v.z.atan2(v.x.hypot(v.y))),
+    )
 }
 
 #[cfg(test)]

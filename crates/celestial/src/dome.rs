@@ -163,6 +163,16 @@ pub struct SkyDome {
     colours: Vec<[f64; 3]>,
 }
 
+/// `colour` less `aureole(direction)`, per channel, not below 0.
+fn without_aureole(
+    direction: [f64; 3],
+    colour: [f64; 3],
+    aureole: impl Fn([f64; 3]) -> [f64; 3],
+) -> [f64; 3] {
+    let a = aureole(direction);
+    std::array::from_fn(|i| (colour[i] - a[i]).max(0.0))
+}
+
 /// Index of ring `ring`, vertex `index` in the colour list.
 fn slot(ring: usize, index: usize) -> usize {
     if ring == 0 {
@@ -185,6 +195,23 @@ impl SkyDome {
             }
         }
         Self { spin, colours }
+    }
+
+    /// SGSky's colouring of the full radiances `sky` (zenith) and `fog` (horizon, in
+    /// the 12 vertex azimuths) less `aureole(direction)` at the zenith and at each
+    /// horizon vertex (the aureole is drawn per pixel over the dome): what
+    /// [`SkyDome::paint`] builds with [`DomeColouring::SeedWeights`].
+    pub fn seed_weights_less_aureole(
+        sky: [f64; 3],
+        fog: [[f64; 3]; DOME_SIDES],
+        spin: Angle,
+        aureole: impl Fn([f64; 3]) -> [f64; 3],
+    ) -> Self {
+        let mut fog = fog;
+        for (i, f) in fog.iter_mut().enumerate() {
+            *f = without_aureole(dome_vertex(3, i, spin).normalize().to_array(), *f, &aureole);
+        }
+        SkyDome::seed_weights(without_aureole([0.0, 0.0, 1.0], sky, &aureole), fog, spin)
     }
 
     /// Every vertex coloured by `colour(direction)` (unit east/north/up direction).
@@ -242,10 +269,8 @@ impl SkyDome {
         mut sky: impl FnMut([f64; 3]) -> Result<[f64; 3]>,
         aureole: impl Fn([f64; 3]) -> [f64; 3],
     ) -> Result<PaintedDome> {
-        let residual = |direction: [f64; 3], colour: [f64; 3]| -> [f64; 3] {
-            let a = aureole(direction);
-            std::array::from_fn(|i| (colour[i] - a[i]).max(0.0))
-        };
+        let residual =
+            |direction: [f64; 3], colour: [f64; 3]| without_aureole(direction, colour, &aureole);
         let zenith = [0.0, 0.0, 1.0];
         let sky_colour = sky(zenith)?;
         let mut fog_colours = [[0.0; 3]; DOME_SIDES];
@@ -254,11 +279,7 @@ impl SkyDome {
         }
         let dome = match colouring {
             DomeColouring::SeedWeights => {
-                let mut fog = fog_colours;
-                for (i, f) in fog.iter_mut().enumerate() {
-                    *f = residual(dome_vertex(3, i, spin).normalize().to_array(), *f);
-                }
-                SkyDome::seed_weights(residual(zenith, sky_colour), fog, spin)
+                SkyDome::seed_weights_less_aureole(sky_colour, fog_colours, spin, &aureole)
             }
             DomeColouring::Model => {
                 SkyDome::from_fn(spin, |direction| Ok(residual(direction, sky(direction)?)))?

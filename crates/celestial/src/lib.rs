@@ -76,7 +76,9 @@ pub use observer::Observer;
 pub use photometry::{ZERO_MAGNITUDE_ILLUMINANCE_LX, illuminance_from_magnitude};
 pub use planets::{Planet, PlanetPosition, planet_position};
 pub use refraction::{AirConditions, apparent_direction, apparent_elevation};
-pub use sky::{FogModel, Sky, SkyOptions};
+pub use sky::{
+    ExplicitPaint, ExplicitPlacement, ExplicitPlanet, FogModel, HorizonColours, Sky, SkyOptions,
+};
 pub use stars::{CatalogueStar, SkyStar, StarCatalogue};
 pub use sun::{SunPosition, sun_position};
 pub use time::Instant;

@@ -183,6 +183,29 @@ pub fn topocentric(
     )
 }
 
+/// Topocentric → geocentric place, the inverse of [`topocentric`]: the body's vector
+/// from `observer` plus the observer's from the Earth's centre (Meeus ch. 11's
+/// ρ sin φ′ and ρ cos φ′), on the equator of date at `local_sidereal_time`.
+pub fn geocentric_from_topocentric(
+    place: &EquatorialPlace,
+    local_sidereal_time: Angle,
+    observer: &Observer,
+) -> EquatorialPlace {
+    let (rho_sin, rho_cos) = geocentric_factors(observer);
+    let (sin_a, cos_a) = place.right_ascension.radians().sin_cos();
+    let (sin_d, cos_d) = place.declination.radians().sin_cos();
+    let (sin_t, cos_t) = local_sidereal_time.radians().sin_cos();
+    let (d, a) = (place.distance_m, EARTH_EQUATORIAL_RADIUS_M);
+    let x = d * cos_d * cos_a + a * rho_cos * cos_t;
+    let y = d * cos_d * sin_a + a * rho_cos * sin_t;
+    let z = d * sin_d + a * rho_sin;
+    EquatorialPlace {
+        right_ascension: Angle::from_radians(y.atan2(x)).wrapped_positive(),
+        declination: Angle::from_radians(z.atan2(x.hypot(y))),
+        distance_m: (x * x + y * y + z * z).sqrt(),
+    }
+}
+
 /// Where the moon is, and how it looks, for one observer at one instant.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MoonPosition {

@@ -4,8 +4,8 @@
 //! | SGSky | here |
 //! |---|---|
 //! | `build(sun_size, moon_size, planets, stars…)` | [`Sky::build`] (the sizes are the atmosphere's and the ephemerides'; the stars are the catalogue's) |
-//! | `reposition(view_pos, lon, lat, alt, spin, gst, sun/moon ra, dec…)` | [`Sky::reposition`]: an [`Observer`] (latitude, longitude, altitude) and an [`Instant`] place every object and the dome's spin |
-//! | `repaint(sky_color, fog_color, sun_angle, moon_angle, planets, stars)` | [`Sky::repaint`]: sky and fog colours, sun and moon angles, star and planet brightness, all from an atmos [`SkyModel`](atmos::ladder::SkyModel) |
+//! | `reposition(view_pos, lon, lat, alt, spin, gst, sun/moon ra, dec…)` | [`Sky::reposition`]: an [`Observer`] (latitude, longitude, altitude) and an [`Instant`] place every object and the dome's spin; or, driven by your own simulation as FlightGear drives SGSky, [`Sky::reposition_explicit`]: an [`ExplicitPlacement`] (observer, Greenwich sidereal time, the sun's, moon's and planets' apparent topocentric α, δ and distances, the stars' instant) |
+//! | `repaint(sky_color, fog_color, sun_angle, moon_angle, planets, stars)` | [`Sky::repaint`]: sky and fog colours, sun and moon angles, star and planet brightness, all from an atmos [`SkyModel`](atmos::ladder::SkyModel); or [`Sky::repaint_explicit`]: an [`ExplicitPaint`] (sky and fog colours, the air's transmittance toward the sun, the moon and the zenith) |
 //! | `add_cloud_layer` / change / remove | [`Sky::add_cloud_layer`], [`Sky::change_cloud_layer`], [`Sky::remove_cloud_layer`] |
 //! | `set_visibility`, `modify_vis(alt, time_factor)`, `get_visibility` | [`Sky::set_visibility`], [`Sky::modify_vis`], [`Sky::visibility`] |
 //! | `get_num_layers`, `get_cloud_layer(i)` | [`Sky::num_layers`], [`Sky::cloud_layer`] |
@@ -15,12 +15,16 @@
 //! ([`Sky::viewer_position`]); cameras are `atmos::frame::FrameCamera`s there
 //! ([`Sky::camera`]).
 
+mod explicit;
 mod place;
 mod render;
 #[cfg(test)]
 mod tests;
 mod weather;
 
+pub use explicit::{
+    ExplicitPaint, ExplicitPlacement, ExplicitPlanet, HorizonColours, kasten_young_airmass,
+};
 pub use render::InCloudFog;
 pub use weather::puff_envelope;
 

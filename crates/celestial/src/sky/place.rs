@@ -24,6 +24,10 @@ use crate::stars::StarCatalogue;
 use crate::sun::sun_position;
 use crate::{Angle, Horizontal, Instant, Observer};
 
+/// Stars and planets whose apparent elevation is below this (rad) are not drawn (a
+/// viewer high up sees a little below the astronomical horizon).
+pub(super) const POINT_LOWEST_ELEVATION_RAD: f64 = -0.05;
+
 impl Sky {
     /// SGSky's `build`: a sky over `atmosphere` (which owns the sun's size and
     /// irradiance) with the catalogue loaded to the options' limit. Visibility starts
@@ -213,20 +217,18 @@ impl Sky {
         let mut add =
             |index: u32, place: Horizontal, illuminance: f64, colour: [f64; 3]| -> Result<()> {
                 let apparent = self.apparent(place);
-                if apparent.elevation.radians() < -0.05 {
+                if apparent.elevation.radians() < POINT_LOWEST_ELEVATION_RAD {
                     return Ok(());
                 }
                 let mut point = builder.point_source(apparent.to_enu(), illuminance, colour)?;
-                if let Some(s) = &self.options.scintillation {
-                    let t = f64::from(point.transmittance[1]);
-                    let airmass = if t > 0.0 && zenith_transmittance < 1.0 {
+                let t = f64::from(point.transmittance[1]);
+                self.scintillate(&mut point, index, altitude, || {
+                    if t > 0.0 && zenith_transmittance < 1.0 {
                         t.ln() / zenith_transmittance.ln()
                     } else {
                         1.0
-                    };
-                    let sigma = s.relative_deviation(airmass, altitude);
-                    point.scintillation = s.factor(index, self.clock_s, sigma) as f32;
-                }
+                    }
+                });
                 points.push(point);
                 Ok(())
             };
@@ -273,20 +275,11 @@ impl Sky {
             let moon_t = at_layer.transmittance(placement.moon_light.direction)?;
             let moon_irradiance: [f64; 3] =
                 std::array::from_fn(|i| placement.moon_light.irradiance[i] * moon_t[i]);
-            let lum = atmos::ladder::luminance;
-            let sun_strength = lum(sun_irradiance) * sun_light[2].max(0.0);
-            let moon_strength = lum(moon_irradiance) * placement.moon_light.direction[2].max(0.0);
-            let (direction, irradiance) = if sun_strength >= moon_strength {
-                (sun_light, sun_irradiance)
-            } else {
-                (placement.moon_light.direction, moon_irradiance)
-            };
-            let zenith = at_layer.sky([0.0, 0.0, 1.0])?.radiance;
-            layer_light.push(LayerLight {
-                direction,
-                irradiance,
-                skylight: zenith.map(|l| l * std::f64::consts::PI),
-            });
+            layer_light.push(LayerLight::stronger_source(
+                (sun_light, sun_irradiance),
+                (placement.moon_light.direction, moon_irradiance),
+                at_layer.sky([0.0, 0.0, 1.0])?.radiance,
+            ));
         }
         let sun_angle = placement.sun.airless.zenith_angle();
         let moon_angle = placement.moon.airless.zenith_angle();
@@ -303,5 +296,47 @@ impl Sky {
             layer_light,
         });
         Ok(self.paint.as_ref().expect("set above"))
+    }
+}
+
+impl Sky {
+    /// Sets `point`'s twinkle (the options' scintillation, if any) for the airmass
+    /// `airmass()` toward it, seen from `altitude_m`; the index seeds its sequence.
+    pub(super) fn scintillate(
+        &self,
+        point: &mut PointSource,
+        index: u32,
+        altitude_m: f64,
+        airmass: impl FnOnce() -> f64,
+    ) {
+        if let Some(s) = &self.options.scintillation {
+            let sigma = s.relative_deviation(airmass(), altitude_m);
+            point.scintillation = s.factor(index, self.clock_s, sigma) as f32;
+        }
+    }
+}
+
+impl LayerLight {
+    /// A layer lit by the stronger of `sun` and `moon` (each a unit east/north/up
+    /// direction and its irradiance at the layer: the one of larger luminance × sine
+    /// of elevation), under an isotropic sky of zenith radiance `zenith_radiance`.
+    pub(super) fn stronger_source(
+        sun: ([f64; 3], [f64; 3]),
+        moon: ([f64; 3], [f64; 3]),
+        zenith_radiance: [f64; 3],
+    ) -> Self {
+        let strength = |(direction, irradiance): ([f64; 3], [f64; 3])| {
+            atmos::ladder::luminance(irradiance) * direction[2].max(0.0)
+        };
+        let (direction, irradiance) = if strength(sun) >= strength(moon) {
+            sun
+        } else {
+            moon
+        };
+        LayerLight {
+            direction,
+            irradiance,
+            skylight: zenith_radiance.map(|l| l * std::f64::consts::PI),
+        }
     }
 }

@@ -198,19 +198,51 @@ impl StarCatalogue {
             local_apparent_sidereal_time(instant, observer),
             observer.latitude(),
         ) * frame.icrs_to_true_equator();
+        self.place(&frame, |aberrated| {
+            Horizontal::from_enu((icrs_to_horizon * aberrated).to_array())
+        })
+    }
+
+    /// Every star's apparent place at `instant` (α, δ on the true equator and equinox
+    /// of date, the astrometry [`StarCatalogue::sky`] uses) turned to the horizon by a
+    /// caller's `local_sidereal_time` at `latitude`: hour angle = local sidereal time −
+    /// α, then [`Horizontal::from_equatorial`]. For a sky driven by its own clock
+    /// (`Sky::reposition_explicit`).
+    pub fn sky_at_sidereal_time(
+        &self,
+        instant: &Instant,
+        local_sidereal_time: Angle,
+        latitude: Angle,
+    ) -> Vec<SkyStar> {
+        let frame = ApparentFrame::at(instant);
+        let to_true_equator = frame.icrs_to_true_equator();
+        self.place(&frame, |aberrated| {
+            let (right_ascension, declination) =
+                crate::astrometry::direction_to_place(to_true_equator * aberrated);
+            Horizontal::from_equatorial(
+                local_sidereal_time - right_ascension,
+                declination,
+                latitude,
+            )
+        })
+    }
+
+    /// Every star with its appearance, placed by `direction(aberrated ICRS direction)`.
+    fn place(
+        &self,
+        frame: &ApparentFrame,
+        direction: impl Fn(DVec3) -> Horizontal,
+    ) -> Vec<SkyStar> {
         self.stars
             .iter()
             .zip(&self.appearance)
             .zip(&self.astrometry)
-            .map(|((star, &(illuminance_lx, colour)), astrometry)| {
-                let enu = icrs_to_horizon * frame.aberrated_direction(astrometry);
-                SkyStar {
-                    hip: star.hip,
-                    airless: Horizontal::from_enu(enu.to_array()),
-                    magnitude: star.magnitude,
-                    illuminance_lx,
-                    colour,
-                }
+            .map(|((star, &(illuminance_lx, colour)), astrometry)| SkyStar {
+                hip: star.hip,
+                airless: direction(frame.aberrated_direction(astrometry)),
+                magnitude: star.magnitude,
+                illuminance_lx,
+                colour,
             })
             .collect()
     }

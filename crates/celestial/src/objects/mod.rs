@@ -84,7 +84,7 @@ impl std::fmt::Debug for SkyObjectsBuilder<'_> {
     }
 }
 
-fn unit_direction(field: &'static str, v: [f64; 3]) -> Result<DVec3> {
+pub(crate) fn unit_direction(field: &'static str, v: [f64; 3]) -> Result<DVec3> {
     for c in v {
         if !c.is_finite() {
             return Err(CelestialError::NotFinite { field, value: c });
@@ -106,6 +106,14 @@ fn unit_direction(field: &'static str, v: [f64; 3]) -> Result<DVec3> {
 
 fn atmos_error(field: &'static str) -> impl Fn(atmos::AtmosError) -> CelestialError {
     move |source| CelestialError::Atmos { field, source }
+}
+
+/// Whether a view ray (unit, east/north/up) from a viewer `altitude_m` up hits the
+/// ground (docs/architecture.md, "Rays at the ground").
+pub(crate) fn ray_hits_ground(atmosphere: &Atmosphere, altitude_m: f64, view: DVec3) -> bool {
+    let r = atmosphere.planet_radius + altitude_m;
+    let mu = view.z;
+    mu < 0.0 && atmos::reference::ray_sphere_intersect(r, mu, atmosphere.planet_radius)[0] >= 0.0
 }
 
 impl<'a> SkyObjectsBuilder<'a> {
@@ -178,14 +186,8 @@ impl<'a> SkyObjectsBuilder<'a> {
             .map_err(atmos_error("sky query"))
     }
 
-    /// Whether a view ray from the viewer hits the ground (docs/architecture.md, "Rays
-    /// at the ground").
     fn hits_ground(&self, view: DVec3) -> bool {
-        let r = self.atmosphere.planet_radius + self.altitude_m;
-        let mu = view.z;
-        mu < 0.0
-            && atmos::reference::ray_sphere_intersect(r, mu, self.atmosphere.planet_radius)[0]
-                >= 0.0
+        ray_hits_ground(self.atmosphere, self.altitude_m, view)
     }
 
     /// The atmosphere's transmittance from the viewer toward `direction` to space
@@ -275,31 +277,8 @@ impl<'a> SkyObjectsBuilder<'a> {
     /// the air stays lit from the builder's sun.
     pub fn sun_disc_towards(&self, direction: [f64; 3]) -> Result<DiscObject> {
         let direction = unit_direction("sun disc direction", direction)?;
-        let radius = self.atmosphere.sun_angular_radius;
-        let solid_angle = std::f64::consts::TAU * (1.0 - radius.cos());
-        let TransmittanceFit {
-            log_transmittance: log_t,
-            slope,
-            curvature,
-            mu_centre,
-        } = self.transmittance_fit(direction, radius)?;
-        Ok(DiscObject {
-            direction: direction.as_vec3().to_array(),
-            sin_radius: radius.sin() as f32,
-            radiance: self
-                .atmosphere
-                .sun_irradiance
-                .map(|e| (e / solid_angle) as f32),
-            kind: DISC_SUN,
-            shading: draw::solar_limb_darkening_exponents().map(|a| a as f32),
-            mu_centre,
-            log_transmittance: log_t,
-            padding0: 0.0,
-            log_transmittance_slope: slope,
-            padding1: 0.0,
-            log_transmittance_curvature: curvature,
-            padding2: 0.0,
-        })
+        let fit = self.transmittance_fit(direction, self.atmosphere.sun_angular_radius)?;
+        Ok(sun_disc_object(self.atmosphere, direction, fit))
     }
 
     /// The moon's disc (if the builder has the moon): Lommel–Seeliger shading lit from
@@ -317,32 +296,9 @@ impl<'a> SkyObjectsBuilder<'a> {
         let Some(moon) = &self.moon else {
             return Ok(DiscObject::NONE);
         };
-        let radius = moon.angular_radius.radians();
-        let solid_angle = std::f64::consts::TAU * (1.0 - radius.cos());
-        let mean = draw::lommel_seeliger_disc_mean(moon.phase_angle);
         let direction = unit_direction("moon disc direction", direction)?;
-        if mean <= 0.0 {
-            return Ok(DiscObject::NONE);
-        }
-        let TransmittanceFit {
-            log_transmittance: log_t,
-            slope,
-            curvature,
-            mu_centre,
-        } = self.transmittance_fit(direction, radius)?;
-        Ok(DiscObject {
-            direction: direction.as_vec3().to_array(),
-            sin_radius: radius.sin() as f32,
-            radiance: moon.irradiance.map(|e| (e / (solid_angle * mean)) as f32),
-            kind: DISC_MOON,
-            shading: moon.toward_sun.map(|c| c as f32),
-            mu_centre,
-            log_transmittance: log_t,
-            padding0: 0.0,
-            log_transmittance_slope: slope,
-            padding1: 0.0,
-            log_transmittance_curvature: curvature,
-            padding2: 0.0,
+        moon_disc_object(moon, direction, |radius| {
+            self.transmittance_fit(direction, radius)
         })
     }
 
@@ -424,42 +380,90 @@ impl<'a> SkyObjectsBuilder<'a> {
     /// [`Self::aureole`] around the sun drawn along `direction`.
     pub fn aureole_towards(&self, direction: [f64; 3]) -> Result<Aureole> {
         let direction = unit_direction("aureole direction", direction)?;
-        let atmosphere = self.atmosphere;
-        let r = atmosphere.planet_radius + self.altitude_m.max(0.0);
-        if self.hits_ground(direction) {
-            return Ok(Aureole {
-                irradiance: atmosphere.sun_irradiance,
-                transmittance: [0.0; 3],
-                mie_optical_depth: [0.0; 3],
-                mie_g: atmosphere.mie_g,
-                direction: direction.to_array(),
-            });
-        }
-        let mu = direction.z;
-        let exit = atmos::reference::ray_sphere_intersect(r, mu, atmosphere.top_radius)[1].max(0.0);
-        let path = atmos::closed_form_sky::closed_form_segment_path(
-            r,
-            mu,
-            exit,
-            atmosphere.planet_radius,
-            atmosphere.mie_scale_height,
-        );
-        Ok(Aureole {
-            irradiance: atmosphere.sun_irradiance,
-            transmittance: self.transmittance(direction.to_array())?,
-            mie_optical_depth: atmosphere.mie_scattering.map(|b| b * path),
-            mie_g: atmosphere.mie_g,
-            direction: direction.to_array(),
-        })
+        Ok(Aureole::along(
+            self.atmosphere,
+            self.altitude_m,
+            direction,
+            self.transmittance(direction.to_array())?,
+        ))
     }
 }
 
+/// The sun's disc along `direction` (unit): the atmosphere's angular radius and
+/// irradiance, limb-darkened per channel, through `fit`.
+pub(crate) fn sun_disc_object(
+    atmosphere: &Atmosphere,
+    direction: DVec3,
+    fit: TransmittanceFit,
+) -> DiscObject {
+    let radius = atmosphere.sun_angular_radius;
+    let solid_angle = std::f64::consts::TAU * (1.0 - radius.cos());
+    DiscObject {
+        direction: direction.as_vec3().to_array(),
+        sin_radius: radius.sin() as f32,
+        radiance: atmosphere.sun_irradiance.map(|e| (e / solid_angle) as f32),
+        kind: DISC_SUN,
+        shading: draw::solar_limb_darkening_exponents().map(|a| a as f32),
+        mu_centre: fit.mu_centre,
+        log_transmittance: fit.log_transmittance,
+        padding0: 0.0,
+        log_transmittance_slope: fit.slope,
+        padding1: 0.0,
+        log_transmittance_curvature: fit.curvature,
+        padding2: 0.0,
+    }
+}
+
+/// The moon's disc along `direction` (unit): Lommel–Seeliger shading lit from the sun
+/// as seen from the moon, scaled so the disc delivers the moon's irradiance, through
+/// `fit(angular radius)`; [`DiscObject::NONE`] when no lit part faces the viewer.
+pub(crate) fn moon_disc_object(
+    moon: &MoonLight,
+    direction: DVec3,
+    fit: impl FnOnce(f64) -> Result<TransmittanceFit>,
+) -> Result<DiscObject> {
+    let radius = moon.angular_radius.radians();
+    let solid_angle = std::f64::consts::TAU * (1.0 - radius.cos());
+    let mean = draw::lommel_seeliger_disc_mean(moon.phase_angle);
+    if mean <= 0.0 {
+        return Ok(DiscObject::NONE);
+    }
+    let fit = fit(radius)?;
+    Ok(DiscObject {
+        direction: direction.as_vec3().to_array(),
+        sin_radius: radius.sin() as f32,
+        radiance: moon.irradiance.map(|e| (e / (solid_angle * mean)) as f32),
+        kind: DISC_MOON,
+        shading: moon.toward_sun.map(|c| c as f32),
+        mu_centre: fit.mu_centre,
+        log_transmittance: fit.log_transmittance,
+        padding0: 0.0,
+        log_transmittance_slope: fit.slope,
+        padding1: 0.0,
+        log_transmittance_curvature: fit.curvature,
+        padding2: 0.0,
+    })
+}
+
 /// ln T ≈ `log_transmittance` + `slope`·Δμ + `curvature`·Δμ² around `mu_centre`.
-struct TransmittanceFit {
+pub(crate) struct TransmittanceFit {
     log_transmittance: [f32; 3],
     slope: [f32; 3],
     curvature: [f32; 3],
     mu_centre: f32,
+}
+
+impl TransmittanceFit {
+    /// One transmittance across the disc (slope and curvature zero) centred at
+    /// zenith cosine `mu_centre`; ln T as the fit takes it (T ≥ 10⁻³⁰).
+    pub(crate) fn flat(transmittance: [f64; 3], mu_centre: f64) -> Self {
+        Self {
+            log_transmittance: transmittance.map(|t| t.max(1e-30).ln() as f32),
+            slope: [0.0; 3],
+            curvature: [0.0; 3],
+            mu_centre: mu_centre as f32,
+        }
+    }
 }
 
 /// What [`draw::sun_aureole_radiance`] needs along the sun.
@@ -478,6 +482,44 @@ pub struct Aureole {
 }
 
 impl Aureole {
+    /// The aureole around the sun along `direction` (unit) for a viewer `altitude_m`
+    /// up, seen through `transmittance`: the Mie scattering optical depth of the
+    /// viewer's path to space that way; transmittance and optical depth 0 when the
+    /// planet hides the sun.
+    pub fn along(
+        atmosphere: &Atmosphere,
+        altitude_m: f64,
+        direction: DVec3,
+        transmittance: [f64; 3],
+    ) -> Self {
+        if ray_hits_ground(atmosphere, altitude_m, direction) {
+            return Aureole {
+                irradiance: atmosphere.sun_irradiance,
+                transmittance: [0.0; 3],
+                mie_optical_depth: [0.0; 3],
+                mie_g: atmosphere.mie_g,
+                direction: direction.to_array(),
+            };
+        }
+        let r = atmosphere.planet_radius + altitude_m.max(0.0);
+        let mu = direction.z;
+        let exit = atmos::reference::ray_sphere_intersect(r, mu, atmosphere.top_radius)[1].max(0.0);
+        let path = atmos::closed_form_sky::closed_form_segment_path(
+            r,
+            mu,
+            exit,
+            atmosphere.planet_radius,
+            atmosphere.mie_scale_height,
+        );
+        Aureole {
+            irradiance: atmosphere.sun_irradiance,
+            transmittance,
+            mie_optical_depth: atmosphere.mie_scattering.map(|b| b * path),
+            mie_g: atmosphere.mie_g,
+            direction: direction.to_array(),
+        }
+    }
+
     /// The aureole's radiance along `view` (unit).
     pub fn radiance(&self, view: [f32; 3]) -> [f32; 3] {
         let d = self.direction.map(|c| c as f32);
@@ -633,139 +675,4 @@ pub fn render_sky_objects_cpu(frame: &SkyObjectsFrame, radiance: &mut [[f32; 3]]
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use atmos::single_scattering::{SingleScatteringSettings, SingleScatteringSky};
-
-    fn dir(elevation_deg: f64, azimuth_deg: f64) -> [f64; 3] {
-        let (e, a) = (elevation_deg.to_radians(), azimuth_deg.to_radians());
-        [e.cos() * a.sin(), e.cos() * a.cos(), e.sin()]
-    }
-
-    /// The aureole is the Mie part of the per-pixel sky near the sun: against rung 2
-    /// (single scattering, 128/32 samples) of a Mie-only atmosphere, sun at 30°.
-    #[test]
-    fn aureole_matches_single_scattering_near_the_sun() {
-        let atmosphere = Atmosphere {
-            rayleigh_scattering: [0.0; 3],
-            ozone_absorption: [0.0; 3],
-            ..Atmosphere::earth()
-        };
-        let model = SingleScatteringSky::new(
-            &atmosphere,
-            SingleScatteringSettings {
-                view_samples: 128,
-                light_samples: 32,
-            },
-        )
-        .unwrap();
-        let sun = dir(30.0, 180.0);
-        let builder = SkyObjectsBuilder::new(
-            &atmosphere,
-            &model,
-            0.0,
-            sun,
-            crate::sun::ASTRONOMICAL_UNIT_M,
-            None,
-            BackgroundSampling::PerObject,
-        )
-        .unwrap();
-        let aureole = builder.aureole().unwrap();
-        let error = |view: [f64; 3]| {
-            let exact = builder.sky(view).unwrap().radiance[1];
-            let drawn = f64::from(aureole.radiance(view.map(|c| c as f32))[1]);
-            (drawn - exact) / exact
-        };
-        let mut rows = Vec::new();
-        for offset in [0.25, 0.5, 1.0, 2.0, 5.0] {
-            // Above, below and beside the sun (the azimuth offset for a great-circle
-            // offset θ at elevation 30°).
-            let above = error(dir(30.0 + offset, 180.0));
-            let below = error(dir(30.0 - offset, 180.0));
-            let beside = error(dir(30.0, 180.0 + offset / 30f64.to_radians().cos()));
-            rows.push((offset, above, below, beside));
-        }
-        println!("aureole vs single scattering (θ°, above, below, beside): {rows:?}");
-        for (offset, above, below, beside) in rows {
-            // First order in θ: the view path tilts against the sun's (its Mie optical
-            // depth differs by ≈ θ·cot e), which cancels between opposite sides.
-            for e in [above, below] {
-                assert!(e.abs() < 0.035 * offset, "θ = {offset}°: {e}");
-            }
-            assert!(
-                ((above + below) / 2.0).abs() < 0.01 * offset.max(1.0),
-                "θ = {offset}°"
-            );
-            assert!(
-                beside.abs() < 0.01 * offset.max(1.0),
-                "θ = {offset}°: beside {beside}"
-            );
-        }
-    }
-
-    #[test]
-    fn sun_disc_is_red_at_the_horizon_and_fades_below() {
-        let atmosphere = Atmosphere::earth();
-        let model = atmos::closed_form_sky::ClosedFormSky::new(&atmosphere).unwrap();
-        let make = |elevation: f64| {
-            SkyObjectsBuilder::new(
-                &atmosphere,
-                &model,
-                2.0,
-                dir(elevation, 270.0),
-                crate::sun::ASTRONOMICAL_UNIT_M,
-                None,
-                BackgroundSampling::PerObject,
-            )
-            .unwrap()
-            .sun_disc()
-            .unwrap()
-        };
-        let high = make(60.0);
-        let low = make(0.5);
-        let t = |d: &DiscObject| d.log_transmittance.map(f32::exp);
-        assert!(t(&high)[2] > 0.6 && t(&high)[0] > 0.85, "{:?}", t(&high));
-        // Near the horizon blue is all but gone and red dims.
-        assert!(
-            t(&low)[2] < 0.05 && t(&low)[0] > 5.0 * t(&low)[2],
-            "{:?}",
-            t(&low)
-        );
-        // Transmittance falls toward the lower limb (slope in μ is positive).
-        assert!(low.log_transmittance_slope.iter().all(|&s| s > 0.0));
-        // The disc's total irradiance is the atmosphere's (quadrature over the disc).
-        let n = 400;
-        let sin_r = high.sin_radius as f64;
-        let mut sum = [0.0f64; 3];
-        let centre = DVec3::from_array(high.direction.map(f64::from));
-        let e = centre.cross(DVec3::Z).normalize();
-        let nn = e.cross(centre);
-        let step = 2.0 * sin_r / n as f64;
-        let flat = DiscObject {
-            log_transmittance: [0.0; 3],
-            log_transmittance_slope: [0.0; 3],
-            log_transmittance_curvature: [0.0; 3],
-            ..high
-        };
-        for a in 0..n {
-            for b in 0..n {
-                let x = -sin_r + (a as f64 + 0.5) * step;
-                let y = -sin_r + (b as f64 + 0.5) * step;
-                let v = (centre + e * x + nn * y).normalize();
-                let l = draw::disc_object_radiance(
-                    v.as_vec3().to_array(),
-                    &flat,
-                    [0.0, 0.0, 1.0],
-                    6_360_002.0,
-                    6_360_000.0,
-                );
-                for i in 0..3 {
-                    sum[i] += f64::from(l[i]) * step * step;
-                }
-            }
-        }
-        for s in sum {
-            assert!((s - 1.0).abs() < 5e-3, "{sum:?}");
-        }
-    }
-}
+mod tests;
