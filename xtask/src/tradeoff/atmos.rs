@@ -19,6 +19,9 @@ use atmos::reference::{
     PathTracedSky, PathTracerSettings, ReferenceSettings, ReferenceSky, SpectralReferenceSky,
 };
 use atmos::single_scattering::{SingleScatteringSettings, SingleScatteringSky};
+use celestial::dome::DomeColouring;
+use celestial::dome_sky::SgskyDomeSky;
+use celestial::gpu::SkyDomeRenderer;
 use glam::DVec3;
 
 use super::plot::{Plot, Point, Series};
@@ -202,6 +205,8 @@ fn fixed_set(atmosphere: &Atmosphere, directions: usize) -> Result<Vec<Viewpoint
 
 /// How a rung runs on the GPU (for the frame cost).
 enum GpuVariant {
+    /// SGSky's dome painted from the closed form (celestial's pass).
+    SgskyDome(DomeColouring),
     ClosedForm(EvaluationFrequency),
     SingleScattering(SingleScatteringSettings),
     Precomputed(LutSettings),
@@ -215,11 +220,28 @@ struct Rung {
 
 fn rungs(atmosphere: &Atmosphere, quick: bool) -> Result<Vec<Rung>, String> {
     let e = |e: atmos::AtmosError| e.to_string();
-    let mut rungs = vec![Rung {
+    let mut rungs = Vec::new();
+    // SGSky's 12-sided dome (celestial), painted from the closed form: SGSky's weights
+    // (13 queries) and every vertex from the model (49).
+    for colouring in [DomeColouring::SeedWeights, DomeColouring::Model] {
+        rungs.push(Rung {
+            rung: "0 SGSky dome",
+            model: Box::new(
+                SgskyDomeSky::new(
+                    ClosedFormSky::new(atmosphere).map_err(e)?,
+                    atmosphere,
+                    colouring,
+                )
+                .map_err(|e| e.to_string())?,
+            ),
+            gpu: Some(GpuVariant::SgskyDome(colouring)),
+        });
+    }
+    rungs.push(Rung {
         rung: "1 closed form",
         model: Box::new(ClosedFormSky::new(atmosphere).map_err(e)?),
         gpu: Some(GpuVariant::ClosedForm(EvaluationFrequency::PerPixel)),
-    }];
+    });
     let domes: &[(u32, u32)] = if quick {
         &[(8, 16)]
     } else {
@@ -525,6 +547,27 @@ fn gpu_frame_seconds(
     .map_err(e)?;
     let output = FrameOutput::new(&ctx.device, FRAME.0, FRAME.1).map_err(e)?;
     let seconds = match variant {
+        GpuVariant::SgskyDome(colouring) => {
+            let c = |e: celestial::CelestialError| e.to_string();
+            let sky = SgskyDomeSky::new(
+                ClosedFormSky::new(atmosphere).map_err(e)?,
+                atmosphere,
+                *colouring,
+            )
+            .map_err(c)?;
+            let position = glam::Vec3::from_array(camera.position).as_dvec3();
+            let sun = glam::Vec3::from_array(camera.sun).as_dvec3().normalize();
+            let dome = sky.uniforms(position, sun).map_err(c)?;
+            let mut renderer = SkyDomeRenderer::new(&ctx.device).map_err(c)?;
+            renderer
+                .prepare(&ctx.queue, &camera, &dome, &output)
+                .map_err(c)?;
+            skyscape_harness::median_pass_seconds(ctx, 5, |encoder, timer, span| {
+                renderer
+                    .encode(encoder, Some(timer.compute_writes(span)))
+                    .expect("prepared above");
+            })
+        }
         GpuVariant::ClosedForm(frequency) => {
             let mut renderer =
                 ClosedFormRenderer::new(&ctx.device, atmosphere, *frequency).map_err(e)?;

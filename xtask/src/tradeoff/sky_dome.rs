@@ -214,13 +214,14 @@ fn markdown(rows: &[Row], reference: &str, directions: usize, quick: bool, load:
          viewer and sun each frame, then answers each direction from it; the dome queries the model \
          13 or 49 times per frame and then finds each direction's triangle (a sector by azimuth, up \
          to 21 ray–triangle tests here) and adds the aureole — on the CPU that per-direction work \
-         costs more than rung 3's table lookup; on a GPU the dome's interpolation is the \
-         rasteriser's.\n\n\
-         Reading: the seed's weights carry the horizon's colour 70 % of the way to 21.8° and 90 % to \
+         costs more than rung 3's table lookup.\n\n\
+         Reading: SGSky's weights carry the horizon's colour 70 % of the way to 21.8° and 90 % to \
          6.5°; with an atmos horizon (bright toward a low sun, dark away from it) that is the \
          scheme's error, measured here, not a bug — SGSky's hand-picked fog colour was a mild haze. \
          Colouring every vertex from the model removes the weights' bias and leaves the \
-         interpolation's error across 30° sectors. There is no GPU pass for the dome yet.\n"
+         interpolation's error across 30° sectors. The dome as a scene rung (`rung = \"dome\"`, \
+         celestial's `SkyDomeRenderer` on the GPU) is measured beside the other rungs in \
+         `docs/tradeoffs/atmos.md`.\n"
     ));
     out
 }

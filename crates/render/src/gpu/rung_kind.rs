@@ -147,7 +147,7 @@ mod tests {
             .into_iter()
             .filter(|&r| has_rung_passes(r))
             .collect();
-        assert_eq!(rungs.len(), 3);
+        assert_eq!(rungs.len(), 4);
         for rung in rungs {
             let module = rung_module(rung).unwrap();
             for &name in &importers {
