@@ -1,5 +1,6 @@
 // celestial::clouds — SGSky's 2-D cloud layers: value-noise fBm textures with a
-// coverage threshold, Eddington two-stream lighting, fading into the fog.
+// coverage threshold, columns thin at their edges and thick at their cores, lit by exact
+// single scattering plus Eddington two-stream multiple scattering, fading into the fog.
 // Twin: crates/celestial/src/clouds.rs (Rust f32): same names, argument order and units
 // (metres, radiance in atmos units per sr, directions east/north/up with the viewer on
 // the +z axis).
@@ -8,6 +9,7 @@
 #import common::constants
 #import atmos::geometry
 #import atmos::transmittance
+#import atmos::phase
 
 // −ln 0.02: the optical depth of Koschmieder's contrast threshold.
 const KOSCHMIEDER_OPTICAL_DEPTH: f32 = 3.912023;
@@ -35,7 +37,7 @@ struct CloudLayerUniforms {
     sun_direction: vec3<f32>,
     exp2_fog: u32,
     sunlight: vec3<f32>,
-    padding0: f32,
+    core_depth: f32,
     skylight: vec3<f32>,
     padding1: f32,
     fog_colour: vec3<f32>,
@@ -98,6 +100,60 @@ fn cloud_reflectance(optical_thickness: f32, asymmetry: f32, mu_sun: f32) -> f32
     let scaled = (1.0 - asymmetry) * optical_thickness;
     let direct = 1.0 - exp(-optical_thickness / mu_sun);
     return clamp((scaled + (2.0 / 3.0 - mu_sun) * direct) / (4.0 / 3.0 + scaled), 0.0, 1.0);
+}
+
+// The column's vertical optical thickness at (u, v) metres: τ × density × the noise's
+// height above the edge's foot over the layer's core depth (thin edges, thick cores).
+fn cloud_optical_thickness(u: f32, v: f32, layer: CloudLayerUniforms) -> f32 {
+    let x = u / (layer.feature_size * layer.stretch);
+    let y = v / layer.feature_size;
+    let n = cloud_fbm(x, y, layer.octaves, layer.seed);
+    let height = (n - layer.threshold) / layer.softness + 0.5;
+    let t = clamp(height, 0.0, 1.0);
+    let density = t * t * (3.0 - 2.0 * t);
+    return layer.optical_thickness * density * (max(height, 0.0) * layer.softness / layer.core_depth);
+}
+
+// (1 − e^{−y})/y for y ≥ 0 (1 at y = 0).
+fn cloud_mean_attenuation(y: f32) -> f32 {
+    if y < 1e-6 {
+        return 1.0 - 0.5 * y;
+    }
+    return one_minus_exp_neg(y) / y;
+}
+
+// Radiance (1/sr per unit normal sun irradiance) of a uniform conservative column of
+// vertical optical thickness τ toward a viewer at |μ| = mu_view, reflected (transmitted
+// 0) or transmitted (1): exact single scattering with Henyey–Greenstein plus the rest
+// of Eddington's flux (less the singly scattered flux, Meador & Weaver's β₀) as a
+// uniform source seen through the opacity.
+fn cloud_sun_scattering(optical_thickness: f32, asymmetry: f32, mu_sun: f32, mu_view: f32, cos_scattering: f32, transmitted: u32) -> f32 {
+    let tau = optical_thickness;
+    if mu_sun <= 0.0 || tau <= 0.0 {
+        return 0.0;
+    }
+    let phase = henyey_greenstein_phase(cos_scattering, asymmetry);
+    let backscatter = min(max(0.5 - 0.75 * asymmetry * mu_sun, 0.0), 1.0);
+    let reflectance = cloud_reflectance(tau, asymmetry, mu_sun);
+    var single: f32;
+    var flux: f32;
+    if transmitted != 0u {
+        single = tau / mu_view
+            * exp(-tau / max(mu_sun, mu_view))
+            * cloud_mean_attenuation(tau * abs(1.0 / mu_view - 1.0 / mu_sun));
+        let single_flux = (1.0 - backscatter) * tau / mu_sun
+            * exp(-tau / max(mu_sun, 1.0 / DIFFUSIVITY))
+            * cloud_mean_attenuation(tau * abs(DIFFUSIVITY - 1.0 / mu_sun));
+        let diffuse = 1.0 - reflectance - exp(-tau / mu_sun);
+        flux = max(diffuse - single_flux, 0.0);
+    } else {
+        single = tau / mu_view * cloud_mean_attenuation(tau * (1.0 / mu_sun + 1.0 / mu_view));
+        let single_flux = backscatter * tau / mu_sun * cloud_mean_attenuation(tau * (1.0 / mu_sun + DIFFUSIVITY));
+        flux = max(reflectance - single_flux, 0.0);
+    }
+    let opacity = one_minus_exp_neg(tau / mu_view);
+    let emissivity = one_minus_exp_neg(DIFFUSIVITY * tau);
+    return phase * single + flux * mu_sun * INV_PI * opacity / emissivity;
 }
 
 // Fraction of the direct sun reaching `point` (east/north/up metres from the viewer at
@@ -163,10 +219,6 @@ fn cloud_layer_radiance(view: vec3<f32>, r: f32, layer: CloudLayerUniforms, back
         return background;
     }
     let rim = min(2.0 * (1.0 - reach / layer.half_span), 1.0);
-    let density = cloud_density(horizontal.x + layer.offset.x, horizontal.y + layer.offset.y, layer);
-    if density <= 0.0 || layer.optical_thickness <= 0.0 {
-        return background;
-    }
     let hit_z = r + mu * distance;
     var hit_radius = hit_z;
     var mu_hit = mu;
@@ -175,21 +227,20 @@ fn cloud_layer_radiance(view: vec3<f32>, r: f32, layer: CloudLayerUniforms, back
         mu_hit = (view.x * horizontal.x + view.y * horizontal.y + view.z * hit_z) / hit_radius;
     }
     let slant = max(abs(mu_hit), 0.01);
-    let tau = layer.optical_thickness * density;
-    let opacity = (1.0 - exp(-tau / slant)) * rim;
+    let tau = cloud_optical_thickness(horizontal.x + layer.offset.x, horizontal.y + layer.offset.y, layer);
+    if tau <= 0.0 {
+        return background;
+    }
+    let opacity = one_minus_exp_neg(tau / slant);
     let sun = layer.sun_direction;
     let mu_sun = sun.z;
-    let reflectance = cloud_reflectance(tau, layer.asymmetry, mu_sun);
-    var direct = 1.0;
-    if mu_sun > 0.0 {
-        direct = exp(-tau / mu_sun);
-    }
-    var diffuse_factor = reflectance;
+    let cos_scattering = view.x * sun.x + view.y * sun.y + view.z * sun.z;
+    let sun_scattering = cloud_sun_scattering(tau, layer.asymmetry, mu_sun, slant, cos_scattering, u32(below));
     var sky_factor = cloud_reflectance(tau, layer.asymmetry, 0.5);
     if below {
-        diffuse_factor = max(1.0 - reflectance - direct, 0.0);
         sky_factor = max(1.0 - cloud_reflectance(tau, layer.asymmetry, 0.5) - exp(-tau / 0.5), 0.0);
     }
+    let emissivity = one_minus_exp_neg(DIFFUSIVITY * tau);
     var fog: f32;
     if layer.exp2_fog != 0u {
         let x = layer.fog_extinction * distance;
@@ -197,15 +248,11 @@ fn cloud_layer_radiance(view: vec3<f32>, r: f32, layer: CloudLayerUniforms, back
     } else {
         fog = exp(-layer.fog_extinction * distance);
     }
-    // The Eddington factors give what the whole slab sends out (a thin slab little);
-    // over the background the view sees the slab's source function J through its
-    // opacity, so J is that output over the slab's own emissivity 1 − exp(−1.66 τ).
-    let emissivity = one_minus_exp_neg(DIFFUSIVITY * tau);
     var result: vec3<f32>;
     for (var i = 0; i < 3; i++) {
-        let lit = (diffuse_factor * layer.sunlight[i] * max(mu_sun, 0.0) + sky_factor * layer.skylight[i]) * INV_PI / emissivity;
-        let seen = fog * lit + (1.0 - fog) * layer.fog_colour[i];
-        result[i] = background[i] + opacity * (seen - background[i]);
+        let lit = sun_scattering * layer.sunlight[i] + sky_factor * layer.skylight[i] * INV_PI * opacity / emissivity;
+        let faded = fog * lit + (1.0 - fog) * opacity * layer.fog_colour[i];
+        result[i] = background[i] + rim * (faded - opacity * background[i]);
     }
     return result;
 }

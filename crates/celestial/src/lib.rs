@@ -124,8 +124,10 @@ pub mod prelude {
 /// splatted with [`point_sprite_weight`](twins::point_sprite_weight), and a cloud
 /// layer's [`clouds::cloud_layer_radiance`] is built from
 /// [`cloud_layer_distance`](twins::cloud_layer_distance),
-/// [`cloud_density`](twins::cloud_density) (over [`cloud_fbm`](twins::cloud_fbm) and
-/// [`cloud_value_noise`](twins::cloud_value_noise)) and
+/// [`cloud_optical_thickness`](twins::cloud_optical_thickness) (the texture of
+/// [`cloud_density`](twins::cloud_density), over [`cloud_fbm`](twins::cloud_fbm) and
+/// [`cloud_value_noise`](twins::cloud_value_noise)),
+/// [`cloud_sun_scattering`](twins::cloud_sun_scattering) and
 /// [`cloud_reflectance`](twins::cloud_reflectance); a program draws through those,
 /// the `Sky` facade or the `gpu` pass. They stay defined in [`draw`] and [`clouds`],
 /// which mirror `shaders/celestial/draw.wgsl` and `clouds.wgsl` function for
@@ -133,7 +135,8 @@ pub mod prelude {
 pub mod twins {
     #[doc(inline)]
     pub use crate::clouds::{
-        cloud_density, cloud_fbm, cloud_layer_distance, cloud_reflectance, cloud_value_noise,
+        cloud_density, cloud_fbm, cloud_layer_distance, cloud_optical_thickness, cloud_reflectance,
+        cloud_sun_scattering, cloud_value_noise,
     };
     #[doc(inline)]
     pub use crate::draw::{
@@ -235,7 +238,7 @@ mod tests {
                     sun_direction,
                     exp2_fog,
                     sunlight,
-                    padding0,
+                    core_depth,
                     skylight,
                     padding1,
                     fog_colour,

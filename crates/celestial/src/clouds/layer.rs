@@ -183,17 +183,9 @@ impl CloudLayer {
         x * x * (3.0 - 2.0 * x)
     }
 
-    /// The noise threshold giving this layer's coverage: the (1 − c) quantile of the
-    /// layer's own noise over 64 × 64 samples 0.37 features apart (the softness is
-    /// centred on it). 2 above the noise's range at c = 0, below it at c = 1.
-    pub fn coverage_threshold(&self) -> f32 {
+    /// The layer's own noise over 64 × 64 samples 0.37 features apart, sorted.
+    fn noise_samples(&self) -> Vec<f32> {
         let p = self.kind.parameters();
-        if self.coverage <= 0.0 {
-            return 2.0;
-        }
-        if self.coverage >= 1.0 {
-            return -2.0;
-        }
         let mut samples: Vec<f32> = (0..64 * 64)
             .map(|k| {
                 let (i, j) = ((k % 64) as f32, (k / 64) as f32);
@@ -201,8 +193,42 @@ impl CloudLayer {
             })
             .collect();
         samples.sort_by(f32::total_cmp);
+        samples
+    }
+
+    /// The noise threshold giving this layer's coverage: the (1 − c) quantile of the
+    /// layer's own noise over 64 × 64 samples 0.37 features apart (the softness is
+    /// centred on it). 2 above the noise's range at c = 0, below it at c = 1.
+    pub fn coverage_threshold(&self) -> f32 {
+        if self.coverage <= 0.0 {
+            return 2.0;
+        }
+        if self.coverage >= 1.0 {
+            return -2.0;
+        }
+        let samples = self.noise_samples();
         let index = ((1.0 - self.coverage) * (samples.len() - 1) as f64).round() as usize;
         samples[index]
+    }
+
+    /// The mean height of the noise above the foot of the cloud edge (threshold −
+    /// softness/2) over the covered samples (noise above the threshold) of the same
+    /// sample set as [`coverage_threshold`](Self::coverage_threshold): the divisor that
+    /// makes the kind's optical thickness the mean over the covered area of
+    /// [`cloud_optical_thickness`]. 1 for a layer without cloud.
+    pub fn core_depth(&self) -> f32 {
+        let threshold = self.coverage_threshold();
+        let softness = self.kind.parameters().softness as f32;
+        let covered: Vec<f32> = self
+            .noise_samples()
+            .into_iter()
+            .filter(|&n| n > threshold)
+            .map(|n| n - threshold + 0.5 * softness)
+            .collect();
+        if covered.is_empty() {
+            return 1.0;
+        }
+        covered.iter().sum::<f32>() / covered.len() as f32
     }
 
     /// The layer's uniform block for the WGSL functions and the CPU twin.
@@ -227,7 +253,7 @@ impl CloudLayer {
             sun_direction: frame.sun_direction.map(|c| c as f32),
             exp2_fog: u32::from(frame.exp2_fog),
             sunlight: frame.sunlight.map(|c| c as f32),
-            padding0: 0.0,
+            core_depth: self.core_depth(),
             skylight: frame.skylight.map(|c| c as f32),
             padding1: 0.0,
             fog_colour: frame.fog_colour.map(|c| c as f32),

@@ -11,15 +11,20 @@
 //! from the layer's noise when the layer is made, so the covered fraction is c by
 //! construction), with a soft edge of the type's width.
 //!
-//! **Optical thickness and lighting.** Each type has the vertical optical thickness τ
-//! of a cloud element from its ISCCP class (Rossow & Schiffer 1999, BAMS 80, 2261:
-//! high, middle and low clouds split at τ = 3.6 and 23); a view crossing it sees
-//! τ/|μ| and lets `exp(−τ/|μ|)` of the background through. The cloud's own radiance is
-//! the Eddington two-stream reflectance of a conservative layer (Lacis & Hansen 1974,
-//! J. Atmos. Sci. 31, 118): `R = ((1 − g)τ + (2/3 − μ₀)(1 − e^{−τ/μ₀})) / (4/3 + (1 −
-//! g)τ)` seen from above, the diffusely transmitted `1 − R − e^{−τ/μ₀}` from below,
-//! both Lambertian, lit by the sun's irradiance at the layer (the atmosphere's
-//! transmittance from the layer toward the sun) and the sky's.
+//! **Optical thickness and lighting.** Each type has the mean vertical optical thickness
+//! τ of its cloud elements from its ISCCP class (Rossow & Schiffer 1999, BAMS 80, 2261:
+//! high, middle and low clouds split at τ = 3.6 and 23). An element's column is thin at
+//! its edge and thick at its core: the local τ grows with the noise's height above the
+//! coverage threshold, scaled so that the covered area's mean is the kind's τ
+//! ([`cloud_optical_thickness`]). A view crossing it sees τ/|μ| and lets `exp(−τ/|μ|)`
+//! of the background through. The column's own radiance ([`cloud_sun_scattering`]) is
+//! its exact single scattering with a Henyey–Greenstein phase function (the forward
+//! glow around the sun, the silver lining of thin edges) plus the rest of the Eddington
+//! two-stream flux (Lacis & Hansen 1974, J. Atmos. Sci. 31, 118; Meador & Weaver 1980)
+//! as a uniform source (a thick core's base darker than its thin edges), lit by the
+//! sun's irradiance at the layer (the atmosphere's transmittance from the layer toward
+//! the sun) and the sky's. `crates/celestial/tests/layer_vs_path_tracer.rs` measures it
+//! against cloudlight's path tracer of the same layer as a volume.
 //!
 //! The texture's feature sizes are appearance choices anchored where a definition
 //! exists (WMO International Cloud Atlas: cirrocumulus elements are narrower than 1°
@@ -40,5 +45,6 @@ pub use layer::{
 };
 pub use shading::{
     CloudLayerFrame, CloudLayerUniforms, DIFFUSIVITY, cloud_density, cloud_fbm,
-    cloud_layer_distance, cloud_layer_radiance, cloud_reflectance, cloud_shadow, cloud_value_noise,
+    cloud_layer_distance, cloud_layer_radiance, cloud_optical_thickness, cloud_reflectance,
+    cloud_shadow, cloud_sun_scattering, cloud_value_noise,
 };

@@ -1,6 +1,7 @@
 //! Shading a layer: its frame uniforms, texture, shadow, reflectance and radiance
 //! (the WGSL twins).
 
+use atmos::real::Real;
 use skyscape_wgsl::common::{hash_combine, unit_float_from_bits};
 
 /// What a layer needs from the frame: the planet, the fog, the light.
@@ -47,7 +48,8 @@ pub struct CloudLayerUniforms {
     pub sun_direction: [f32; 3],
     pub exp2_fog: u32,
     pub sunlight: [f32; 3],
-    pub padding0: f32,
+    /// [`CloudLayer::core_depth`](super::CloudLayer::core_depth).
+    pub core_depth: f32,
     pub skylight: [f32; 3],
     pub padding1: f32,
     pub fog_colour: [f32; 3],
@@ -132,15 +134,109 @@ pub fn cloud_shadow(point: [f32; 3], r: f32, layer: &CloudLayerUniforms) -> f32 
 
 /// Eddington two-stream reflectance of a conservative layer of optical thickness
 /// `optical_thickness` and asymmetry `asymmetry`, lit at cosine `mu_sun` (Lacis &
-/// Hansen 1974); the sun below the layer's horizon (μ₀ ≤ 0) reflects nothing.
+/// Hansen 1974); the sun below the layer's horizon (μ₀ ≤ 0) reflects nothing. One
+/// formula: the f64 instantiation is the reference.
 #[doc(hidden)]
-pub fn cloud_reflectance(optical_thickness: f32, asymmetry: f32, mu_sun: f32) -> f32 {
-    if mu_sun <= 0.0 {
-        return 0.0;
+pub fn cloud_reflectance<F: Real>(optical_thickness: F, asymmetry: F, mu_sun: F) -> F {
+    if mu_sun <= F::zero() {
+        return F::zero();
     }
-    let scaled = (1.0 - asymmetry) * optical_thickness;
-    let direct = 1.0 - (-optical_thickness / mu_sun).exp();
-    ((scaled + (2.0 / 3.0 - mu_sun) * direct) / (4.0 / 3.0 + scaled)).clamp(0.0, 1.0)
+    let scaled = (F::one() - asymmetry) * optical_thickness;
+    let direct = F::one() - (-optical_thickness / mu_sun).exp();
+    ((scaled + (F::of(2.0 / 3.0) - mu_sun) * direct) / (F::of(4.0 / 3.0) + scaled))
+        .max(F::zero())
+        .min(F::one())
+}
+
+/// The column's vertical optical thickness at horizontal position (`u`, `v`) metres on
+/// the layer: the kind's τ × [`cloud_density`] × the noise's height above the foot of
+/// the cloud edge (threshold − softness/2) over the layer's `core_depth` (that height's
+/// mean over the covered area), so an element is thin at its edge and thick at its
+/// core, and τ is the covered area's mean (ISCCP's τ is a mean over cloudy pixels:
+/// Rossow & Schiffer 1999).
+#[doc(hidden)]
+pub fn cloud_optical_thickness(u: f32, v: f32, layer: &CloudLayerUniforms) -> f32 {
+    let x = u / (layer.feature_size * layer.stretch);
+    let y = v / layer.feature_size;
+    let n = cloud_fbm(x, y, layer.octaves, layer.seed);
+    let height = (n - layer.threshold) / layer.softness + 0.5;
+    let t = height.clamp(0.0, 1.0);
+    let density = t * t * (3.0 - 2.0 * t);
+    layer.optical_thickness * density * (height.max(0.0) * layer.softness / layer.core_depth)
+}
+
+/// (1 − e^{−y})/y for y ≥ 0 (1 at y = 0): the mean of e^{−y s} over s ∈ [0, 1].
+fn mean_attenuation<F: Real>(y: F) -> F {
+    if y < F::of(1e-6) {
+        return F::one() - F::of(0.5) * y;
+    }
+    F::one_minus_exp_neg(y) / y
+}
+
+/// Radiance (1/sr, per unit of the sun's irradiance normal to its beam) that a
+/// horizontally uniform conservative column of vertical optical thickness
+/// `optical_thickness` and Henyey–Greenstein asymmetry `asymmetry`, lit from above at
+/// `mu_sun`, sends toward a viewer at zenith-cosine magnitude `mu_view` (> 0) and
+/// scattering-angle cosine `cos_scattering`, reflected from its top (`transmitted` 0)
+/// or transmitted through its base (1).
+///
+/// Two parts (the single-scattering split of Nakajima & Tanaka 1988, with a two-stream
+/// multiple-scattering part as in Liou 2002 §6.5):
+/// * single scattering, exact for the column (Chandrasekhar 1960 §§ 10–11; Liou 2002
+///   eq. 6.4.4): `P(Θ)·(τ/μ)·⟨e^{−…}⟩` with `P` Henyey–Greenstein, which makes the
+///   forward glow around the sun through thin cloud (the silver lining) and the weak
+///   side-scatter of thin cloud away from it;
+/// * the rest of Eddington's two-stream flux (reflectance R of [`cloud_reflectance`],
+///   diffuse transmittance `1 − R − e^{−τ/μ₀}`) less the singly scattered flux (the
+///   Eddington backscatter fraction `β₀ = 1/2 − 3gμ₀/4` of Meador & Weaver 1980, each
+///   half escaping along the diffusivity path 1/1.66), spread as a uniform source seen
+///   through the column's opacity `(1 − e^{−τ/μ})/(1 − e^{−1.66τ})` (Lambertian for a
+///   thick column). A thick core's base is dark because its diffuse transmittance
+///   falls as τ grows.
+///
+/// The two parts together send out Eddington's flux (the single part exactly its own
+/// escaping flux where the β₀ estimate holds), so no column scatters more than it
+/// receives. 0 with the sun at or below the horizon or no cloud.
+#[doc(hidden)]
+pub fn cloud_sun_scattering<F: Real>(
+    optical_thickness: F,
+    asymmetry: F,
+    mu_sun: F,
+    mu_view: F,
+    cos_scattering: F,
+    transmitted: u32,
+) -> F {
+    let tau = optical_thickness;
+    if mu_sun <= F::zero() || tau <= F::zero() {
+        return F::zero();
+    }
+    let diffusivity = F::of(f64::from(DIFFUSIVITY));
+    let phase = atmos::phase::henyey_greenstein_phase(cos_scattering, asymmetry);
+    let backscatter = (F::of(0.5) - F::of(0.75) * asymmetry * mu_sun)
+        .max(F::zero())
+        .min(F::one());
+    let reflectance = cloud_reflectance(tau, asymmetry, mu_sun);
+    let (single, flux) = if transmitted != 0 {
+        // ∫₀^τ e^{−t/μ₀} e^{−(τ−t)/μ} dt/μ = (τ/μ)·e^{−τ/max(μ₀, μ)}·⟨e^{−τ|1/μ − 1/μ₀|s}⟩.
+        let single = tau / mu_view
+            * (-tau / mu_sun.max(mu_view)).exp()
+            * mean_attenuation(tau * (F::one() / mu_view - F::one() / mu_sun).abs());
+        let single_flux = (F::one() - backscatter) * tau / mu_sun
+            * (-tau / mu_sun.max(F::one() / diffusivity)).exp()
+            * mean_attenuation(tau * (diffusivity - F::one() / mu_sun).abs());
+        let diffuse = F::one() - reflectance - (-tau / mu_sun).exp();
+        (single, (diffuse - single_flux).max(F::zero()))
+    } else {
+        // ∫₀^τ e^{−t/μ₀} e^{−t/μ} dt/μ = (τ/μ)·⟨e^{−τ(1/μ₀ + 1/μ)s}⟩.
+        let single =
+            tau / mu_view * mean_attenuation(tau * (F::one() / mu_sun + F::one() / mu_view));
+        let single_flux =
+            backscatter * tau / mu_sun * mean_attenuation(tau * (F::one() / mu_sun + diffusivity));
+        (single, (reflectance - single_flux).max(F::zero()))
+    };
+    let opacity = F::one_minus_exp_neg(tau / mu_view);
+    let emissivity = F::one_minus_exp_neg(diffusivity * tau);
+    phase * single + flux * mu_sun * F::of(std::f64::consts::FRAC_1_PI) * opacity / emissivity
 }
 
 /// Distance (m) along a view from radius `r` with zenith cosine `mu` to the layer
@@ -173,13 +269,14 @@ pub const DIFFUSIVITY: f32 = 1.66;
 /// The layer seen along `view` (unit, east/north/up) from a viewer at radius `r` on
 /// the +z axis, composited over `background` (the radiance behind it, per channel):
 /// the layer's surface facing the viewer (its base from below, its top from above;
-/// nothing from inside), the texture's density there, the cloud's opacity
-/// `1 − exp(−τ·density/|μ_layer|)` and source radiance J (the reflected or diffusely
-/// transmitted sun and sky light of Eddington's two-stream slab, over the slab's
-/// emissivity `1 − exp(−1.66 τ)`: a thin edge is as bright as its scattering, not
-/// darker than the sky behind it), faded into the fog colour by the fog over the distance and
-/// toward the patch's rim (linearly over its outer half). Returns the composited
-/// radiance.
+/// nothing from inside), the column's optical thickness τ there
+/// ([`cloud_optical_thickness`]), its opacity `1 − exp(−τ/|μ_layer|)` over the
+/// background, and its own radiance: the sun's light it reflects (seen from above) or
+/// transmits (from below) toward the view ([`cloud_sun_scattering`], at the scattering
+/// angle between view and sun) and the sky's (Eddington's flux for diffuse light at
+/// μ = 1/2, seen as a uniform source through the opacity), faded into the fog colour by
+/// the fog over the distance and toward the patch's rim (linearly over its outer half).
+/// Returns the composited radiance.
 pub fn cloud_layer_radiance(
     view: [f32; 3],
     r: f32,
@@ -207,14 +304,6 @@ pub fn cloud_layer_radiance(
         return background;
     }
     let rim = (2.0 * (1.0 - reach / layer.half_span)).min(1.0);
-    let density = cloud_density(
-        horizontal[0] + layer.offset[0],
-        horizontal[1] + layer.offset[1],
-        layer,
-    );
-    if density <= 0.0 || layer.optical_thickness <= 0.0 {
-        return background;
-    }
     // Zenith cosine of the view at the hit point (the local vertical there for a
     // curved layer) and of the sun.
     let hit_z = r + mu * distance;
@@ -225,26 +314,36 @@ pub fn cloud_layer_radiance(
         mu
     };
     let slant = mu_hit.abs().max(0.01);
-    let tau = layer.optical_thickness * density;
-    let opacity = (1.0 - (-tau / slant).exp()) * rim;
+    let tau = cloud_optical_thickness(
+        horizontal[0] + layer.offset[0],
+        horizontal[1] + layer.offset[1],
+        layer,
+    );
+    if tau <= 0.0 {
+        return background;
+    }
+    let opacity = atmos::transmittance::one_minus_exp_neg(tau / slant);
     let sun = layer.sun_direction;
+    // The sun's zenith cosine at the hit point (the layer's local vertical: the
+    // viewer's, the layer's curvature over the patch tilting it by under 0.2°).
     let mu_sun = sun[2];
-    let reflectance = cloud_reflectance(tau, layer.asymmetry, mu_sun);
-    let direct = if mu_sun > 0.0 {
-        (-tau / mu_sun).exp()
-    } else {
-        1.0
-    };
-    let diffuse_factor = if below {
-        (1.0 - reflectance - direct).max(0.0)
-    } else {
-        reflectance
-    };
+    let cos_scattering = view[0] * sun[0] + view[1] * sun[1] + view[2] * sun[2];
+    let sun_scattering = cloud_sun_scattering(
+        tau,
+        layer.asymmetry,
+        mu_sun,
+        slant,
+        cos_scattering,
+        u32::from(below),
+    );
+    // The sky: an isotropic sky above the layer lighting its top, the Eddington flux
+    // for diffuse light (μ = 1/2) seen as a uniform source through the opacity.
     let sky_factor = if below {
         (1.0 - cloud_reflectance(tau, layer.asymmetry, 0.5) - (-tau / 0.5).exp()).max(0.0)
     } else {
         cloud_reflectance(tau, layer.asymmetry, 0.5)
     };
+    let emissivity = atmos::transmittance::one_minus_exp_neg(DIFFUSIVITY * tau);
     let fog = if layer.exp2_fog != 0 {
         // SGSky's exp² fog with the same 2 % at the visibility: exp(−(βd)²/3.912).
         let x = layer.fog_extinction * distance;
@@ -252,16 +351,10 @@ pub fn cloud_layer_radiance(
     } else {
         (-layer.fog_extinction * distance).exp()
     };
-    // The Eddington factors give what the whole slab sends out (a thin slab little);
-    // over the background the view sees the slab's source function J through its
-    // opacity, so J is that output over the slab's own emissivity 1 − exp(−1.66 τ).
-    let emissivity = atmos::transmittance::one_minus_exp_neg(DIFFUSIVITY * tau);
     std::array::from_fn(|i| {
-        let lit = (diffuse_factor * layer.sunlight[i] * mu_sun.max(0.0)
-            + sky_factor * layer.skylight[i])
-            * skyscape_wgsl::common::INV_PI
-            / emissivity;
-        let seen = fog * lit + (1.0 - fog) * layer.fog_colour[i];
-        background[i] + opacity * (seen - background[i])
+        let lit = sun_scattering * layer.sunlight[i]
+            + sky_factor * layer.skylight[i] * skyscape_wgsl::common::INV_PI * opacity / emissivity;
+        let faded = fog * lit + (1.0 - fog) * opacity * layer.fog_colour[i];
+        background[i] + rim * (faded - opacity * background[i])
     })
 }
