@@ -1098,7 +1098,8 @@ fn make_case_layers() -> Vec<celestial::clouds::CloudLayerUniforms> {
 }
 
 /// A layer uniform from a case row: x[k0..] = base, top, curved, feature, stretch,
-/// octaves, seed, threshold, softness, τ, g, exp2 (the rest fixed as `case_layers`).
+/// octaves, seed, threshold, softness, τ, g, exp2, core depth (the rest fixed as
+/// `case_layers`).
 fn layer_from(x: &[f64], k0: usize) -> celestial::clouds::CloudLayerUniforms {
     static FIRST: std::sync::OnceLock<celestial::clouds::CloudLayerUniforms> =
         std::sync::OnceLock::new();
@@ -1115,6 +1116,7 @@ fn layer_from(x: &[f64], k0: usize) -> celestial::clouds::CloudLayerUniforms {
     layer.optical_thickness = x[k0 + 9] as f32;
     layer.asymmetry = x[k0 + 10] as f32;
     layer.exp2_fog = x[k0 + 11] as u32;
+    layer.core_depth = x[k0 + 12] as f32;
     layer
 }
 
@@ -1132,13 +1134,14 @@ fn layer_row(layer: &celestial::clouds::CloudLayerUniforms, curved: u32, exp2: u
         f64::from(layer.optical_thickness),
         f64::from(layer.asymmetry),
         f64::from(exp2),
+        f64::from(layer.core_depth),
     ]
 }
 
 /// The WGSL constructor of the case's layer from `x{k0}…` (the fixed fields as
 /// `case_layers`): offset (300, −200), half span 20 km, fog 3.912/30 km, the light.
 macro_rules! layer_wgsl {
-    ($k:literal, $k1:literal, $k2:literal, $k3:literal, $k4:literal, $k5:literal, $k6:literal, $k7:literal, $k8:literal, $k9:literal, $k10:literal, $k11:literal) => {
+    ($k:literal, $k1:literal, $k2:literal, $k3:literal, $k4:literal, $k5:literal, $k6:literal, $k7:literal, $k8:literal, $k9:literal, $k10:literal, $k11:literal, $k12:literal) => {
         concat!(
             "let layer = CloudLayerUniforms(",
             $k,
@@ -1165,7 +1168,9 @@ macro_rules! layer_wgsl {
             ", vec2<f32>(300.0, -200.0), 20000.0, 0.0001304, ",
             "vec3<f32>(0.0, 0.6, 0.8), u32(",
             $k11,
-            "), vec3<f32>(1.0, 0.95, 0.9), 0.0, ",
+            "), vec3<f32>(1.0, 0.95, 0.9), ",
+            $k12,
+            ", ",
             "vec3<f32>(0.3, 0.4, 0.6), 0.0, vec3<f32>(0.2, 0.25, 0.3), 0.0); "
         )
     };
@@ -1267,9 +1272,43 @@ fn layer_distance_bound(x: &[f64]) -> Vec<f64> {
 /// The case's background behind the layer.
 const CLOUD_BACKGROUND: [f64; 3] = [0.1, 0.2, 0.5];
 
-/// f64 twin of `cloud_layer_radiance` with the hit distance scaled by `1 + stretch`
-/// (to measure the result's sensitivity to the distance's rounding).
-fn layer_radiance64(x: &[f64], stretch: f64) -> Vec<f64> {
+/// f64 `cloud_optical_thickness`: τ × the density's smoothstep × the noise's height
+/// above the edge's foot over the core depth.
+fn optical_thickness64(u: f64, v: f64, l: &celestial::clouds::CloudLayerUniforms) -> f64 {
+    let x = u / (f64::from(l.feature_size) * f64::from(l.stretch));
+    let y = v / f64::from(l.feature_size);
+    let n = fbm64(x, y, l.octaves, l.seed);
+    let softness = f64::from(l.softness);
+    let height = (n - f64::from(l.threshold)) / softness + 0.5;
+    let t = height.clamp(0.0, 1.0);
+    f64::from(l.optical_thickness) * t * t * (3.0 - 2.0 * t) * height.max(0.0) * softness
+        / f64::from(l.core_depth)
+}
+
+/// The optical thickness's error when (u, v) carry `duv` metres: the noise's error (the
+/// cloud_density case's coordinate and fBm terms) over the softness moves the height;
+/// d(S(h)·h)/dh ≤ 2.5 on [0, 1] (S the smoothstep, S' ≤ 1.5) and 1 above, times
+/// τ·softness/core depth; the height's own three roundings and the products' 6u.
+fn optical_thickness_error(
+    u: f64,
+    v: f64,
+    duv: f64,
+    l: &celestial::clouds::CloudLayerUniforms,
+) -> f64 {
+    let scale = f64::from(l.feature_size);
+    let dx = (6.0 * U * u.abs().max(v.abs()) + duv) / scale;
+    let softness = f64::from(l.softness);
+    let height = 3.0 + 1.0 / softness;
+    let noise_error = fbm_error(l.octaves, dx) + 4.0 * U;
+    let tau_scale = f64::from(l.optical_thickness) * softness / f64::from(l.core_depth);
+    tau_scale * 2.5 * (noise_error / softness + 3.0 * U * height)
+        + 6.0 * U * optical_thickness64(u, v, l)
+}
+
+/// f64 twin of `cloud_layer_radiance` with the hit distance scaled by `1 + stretch` and
+/// the column's optical thickness moved by `tau_shift` (to measure the result's
+/// sensitivity to their rounding); `cloud_sun_scattering` instantiated in f64.
+fn layer_radiance64(x: &[f64], stretch: f64, tau_shift: f64) -> Vec<f64> {
     let l = layer_from(x, 4);
     let view = [x[0], x[1], x[2]];
     let r = x[3];
@@ -1292,14 +1331,6 @@ fn layer_radiance64(x: &[f64], stretch: f64) -> Vec<f64> {
         return background.to_vec();
     }
     let rim = (2.0 * (1.0 - reach / half_span)).min(1.0);
-    let density = density64(
-        horizontal[0] + f64::from(l.offset[0]),
-        horizontal[1] + f64::from(l.offset[1]),
-        &l,
-    );
-    if density <= 0.0 || l.optical_thickness <= 0.0 {
-        return background.to_vec();
-    }
     let hit_z = r + view[2] * distance;
     let mu_hit = if l.curved != 0 {
         (view[0] * horizontal[0] + view[1] * horizontal[1] + view[2] * hit_z) / surface
@@ -1307,23 +1338,31 @@ fn layer_radiance64(x: &[f64], stretch: f64) -> Vec<f64> {
         view[2]
     };
     let slant = mu_hit.abs().max(0.01);
-    let tau = f64::from(l.optical_thickness) * density;
+    let tau = optical_thickness64(
+        horizontal[0] + f64::from(l.offset[0]),
+        horizontal[1] + f64::from(l.offset[1]),
+        &l,
+    );
+    if tau <= 0.0 {
+        return background.to_vec();
+    }
+    let tau = (tau + tau_shift).max(0.0);
     let g = f64::from(l.asymmetry);
-    let opacity = (1.0 - (-tau / slant).exp()) * rim;
-    let mu_sun = f64::from(l.sun_direction[2]);
-    let reflectance = reflectance64(tau, g, mu_sun);
-    let direct = if mu_sun > 0.0 {
-        (-tau / mu_sun).exp()
+    let opacity = -(-tau / slant).exp_m1();
+    let sun = l.sun_direction.map(f64::from);
+    let cos_scattering = view[0] * sun[0] + view[1] * sun[1] + view[2] * sun[2];
+    let sun_scattering = celestial::twins::cloud_sun_scattering::<f64>(
+        tau,
+        g,
+        sun[2],
+        slant,
+        cos_scattering,
+        u32::from(below),
+    );
+    let sky = if below {
+        (1.0 - reflectance64(tau, g, 0.5) - (-tau / 0.5).exp()).max(0.0)
     } else {
-        1.0
-    };
-    let (diffuse, sky) = if below {
-        (
-            (1.0 - reflectance - direct).max(0.0),
-            (1.0 - reflectance64(tau, g, 0.5) - (-tau / 0.5).exp()).max(0.0),
-        )
-    } else {
-        (reflectance, reflectance64(tau, g, 0.5))
+        reflectance64(tau, g, 0.5)
     };
     let beta = f64::from(l.fog_extinction);
     let fog = if l.exp2_fog != 0 {
@@ -1335,23 +1374,21 @@ fn layer_radiance64(x: &[f64], stretch: f64) -> Vec<f64> {
     let emissivity = -(-f64::from(celestial::clouds::DIFFUSIVITY) * tau).exp_m1();
     (0..3)
         .map(|i| {
-            let lit = (diffuse * f64::from(l.sunlight[i]) * mu_sun.max(0.0)
-                + sky * f64::from(l.skylight[i]))
-                / std::f64::consts::PI
-                / emissivity;
-            let seen = fog * lit + (1.0 - fog) * f64::from(l.fog_colour[i]);
-            background[i] + opacity * (seen - background[i])
+            let lit = sun_scattering * f64::from(l.sunlight[i])
+                + sky * f64::from(l.skylight[i]) / std::f64::consts::PI * opacity / emissivity;
+            let faded = fog * lit + (1.0 - fog) * opacity * f64::from(l.fog_colour[i]);
+            background[i] + rim * (faded - opacity * background[i])
         })
         .collect()
 }
 
 /// The layer radiance's forward bound: its change when the hit distance moves by its
 /// rounding (a relative 4u for flat layers, the ray–sphere bound for curved ones,
-/// which also moves the texture coordinates), plus the density's own bound carried
-/// through the opacity (∂α/∂τ = e^{−τ/μ}/μ), and 32u of the radiance for the
-/// exponentials and the blend.
+/// which also moves the texture coordinates) and when the column's optical thickness
+/// moves by its own bound (the cloud_optical_thickness case's), plus 64u of the
+/// radiance for the exponentials, the phase function and the blend.
 fn layer_radiance_bound(x: &[f64]) -> Vec<f64> {
-    let reference = layer_radiance64(x, 0.0);
+    let reference = layer_radiance64(x, 0.0, 0.0);
     let l = layer_from(x, 4);
     let r = x[3];
     let below = r < f64::from(l.base_radius);
@@ -1370,26 +1407,60 @@ fn layer_radiance_bound(x: &[f64]) -> Vec<f64> {
     } else {
         4.0 * U
     };
-    let plus = layer_radiance64(x, relative);
-    let minus = layer_radiance64(x, -relative);
     let horizontal = [x[0] * distance, x[1] * distance];
-    let density_bound = density_error(
+    let tau_bound = optical_thickness_error(
         horizontal[0] + f64::from(l.offset[0]),
         horizontal[1] + f64::from(l.offset[1]),
         4.0 * U * distance,
         &l,
     );
-    let tau_bound = f64::from(l.optical_thickness) * density_bound;
+    let shifted = [
+        layer_radiance64(x, relative, 0.0),
+        layer_radiance64(x, -relative, 0.0),
+        layer_radiance64(x, 0.0, tau_bound),
+        layer_radiance64(x, 0.0, -tau_bound),
+    ];
     (0..3)
         .map(|i| {
-            let sensitivity = (plus[i] - reference[i])
+            let distance_change = (shifted[0][i] - reference[i])
                 .abs()
-                .max((minus[i] - reference[i]).abs());
-            // The opacity's and the lighting's response to τ: ≤ 1/0.01 per unit τ for
-            // the slant, bounded by the radiance swing |seen − background| ≤ 2.
-            sensitivity + (tau_bound * 100.0).min(1.0) * 2.0 + 32.0 * U * reference[i].abs()
+                .max((shifted[1][i] - reference[i]).abs());
+            let tau_change = (shifted[2][i] - reference[i])
+                .abs()
+                .max((shifted[3][i] - reference[i]).abs());
+            // The distance's rounding moves the texture too: a step in τ there is caught
+            // by the shifted twin, the slope within the step by doubling it.
+            2.0 * distance_change + 2.0 * tau_change + 64.0 * U * reference[i].abs()
         })
         .collect()
+}
+
+/// `cloud_sun_scattering`'s forward bound: the exponentials' (3 + 2|x| ULP each, at the
+/// largest argument), the mean attenuations' arguments (a difference of reciprocals:
+/// 4u of τ(1/μ + 1/μ₀), moving ln φ by at most that), the phase function's base
+/// 1 + g² − 2g·cosθ (3u of its terms, relative to the base, ×1.5 for its 3/2 power), and
+/// 16u for the products; the multiple-scattering flux is a difference of terms ≤ 1 (16u
+/// absolute plus the direct beam's exp error) carried through μ₀/π·opacity/emissivity.
+fn sun_scattering_bound(x: &[f64]) -> Vec<f64> {
+    let (tau, g, mu_sun, mu_view, cos) = (x[0], x[1], x[2], x[3], x[4]);
+    if mu_sun <= 0.0 || tau <= 0.0 {
+        return vec![0.0];
+    }
+    let value =
+        celestial::twins::cloud_sun_scattering::<f64>(tau, g, mu_sun, mu_view, cos, x[5] as u32);
+    let base = 1.0 + g * g - 2.0 * g * cos;
+    let phase_error = 1.5 * 3.0 * U * (1.0 + g * g + 2.0 * (g * cos).abs()) / base;
+    let largest = tau * (1.0 / mu_sun + 1.0 / mu_view + 1.66);
+    let single_error =
+        2.0 * exp_relative_error(largest) + 4.0 * U * largest + phase_error + 16.0 * U;
+    let opacity = -(-tau / mu_view).exp_m1();
+    let emissivity = -(-1.66 * tau).exp_m1();
+    let flux_error = (16.0 * U + exp_relative_error(tau / mu_sun) + exp_relative_error(1.66 * tau))
+        * mu_sun
+        / std::f64::consts::PI
+        * opacity
+        / emissivity;
+    vec![value * single_error + flux_error]
 }
 
 fn layer_radiance_grid() -> Vec<Vec<f64>> {
@@ -1459,10 +1530,11 @@ fn cloud_cases() -> Vec<Case> {
         Case {
             name: "celestial::cloud_shadow",
             imports: &["celestial::clouds"],
-            arity: (16, 1),
+            arity: (17, 1),
             wgsl: concat!(
                 layer_wgsl!(
-                    "x4", "x5", "x6", "x7", "x8", "x9", "x10", "x11", "x12", "x13", "x14", "x15"
+                    "x4", "x5", "x6", "x7", "x8", "x9", "x10", "x11", "x12", "x13", "x14", "x15",
+                    "x16"
                 ),
                 "y0 = cloud_shadow(vec3<f32>(x0, x1, x2), x3, layer);"
             ),
@@ -1574,10 +1646,11 @@ fn cloud_cases() -> Vec<Case> {
         Case {
             name: "celestial::cloud_density",
             imports: &["celestial::clouds"],
-            arity: (14, 1),
+            arity: (15, 1),
             wgsl: concat!(
                 layer_wgsl!(
-                    "x2", "x3", "x4", "x5", "x6", "x7", "x8", "x9", "x10", "x11", "x12", "x13"
+                    "x2", "x3", "x4", "x5", "x6", "x7", "x8", "x9", "x10", "x11", "x12", "x13",
+                    "x14"
                 ),
                 "y0 = cloud_density(x0, x1, layer);"
             ),
@@ -1670,10 +1743,11 @@ fn cloud_cases() -> Vec<Case> {
         Case {
             name: "celestial::cloud_layer_radiance",
             imports: &["celestial::clouds"],
-            arity: (16, 3),
+            arity: (17, 3),
             wgsl: concat!(
                 layer_wgsl!(
-                    "x4", "x5", "x6", "x7", "x8", "x9", "x10", "x11", "x12", "x13", "x14", "x15"
+                    "x4", "x5", "x6", "x7", "x8", "x9", "x10", "x11", "x12", "x13", "x14", "x15",
+                    "x16"
                 ),
                 "let l = cloud_layer_radiance(vec3<f32>(x0, x1, x2), x3, layer, \
                  vec3<f32>(0.1, 0.2, 0.5)); y0 = l.x; y1 = l.y; y2 = l.z;"
@@ -1689,7 +1763,7 @@ fn cloud_cases() -> Vec<Case> {
                 )
                 .to_vec()
             },
-            reference: |x| layer_radiance64(x, 0.0),
+            reference: |x| layer_radiance64(x, 0.0, 0.0),
             audit: Audit::INDEPENDENT,
             tolerance: Tolerance {
                 abs: 0.0,
@@ -1697,8 +1771,92 @@ fn cloud_cases() -> Vec<Case> {
                 ulp: 4.0,
                 bound: Some(layer_radiance_bound),
                 why: "the f64 twin's change when the hit distance moves by its rounding (flat \
-                      4u, curved the ray–sphere bound; it moves the texture too), the density's \
-                      bound through the opacity, 32u for the exponentials and blends",
+                      4u, curved the ray–sphere bound; it moves the texture too) and when the \
+                      column's optical thickness moves by the cloud_optical_thickness case's \
+                      bound, each doubled; 64u for the exponentials, phase function and blends",
+            },
+        },
+        Case {
+            name: "celestial::cloud_optical_thickness",
+            imports: &["celestial::clouds"],
+            arity: (15, 1),
+            wgsl: concat!(
+                layer_wgsl!(
+                    "x2", "x3", "x4", "x5", "x6", "x7", "x8", "x9", "x10", "x11", "x12", "x13",
+                    "x14"
+                ),
+                "y0 = cloud_optical_thickness(x0, x1, layer);"
+            ),
+            grid: density_grid,
+            cpu: |x| {
+                let l = layer_from(&x.iter().map(|&v| f64::from(v)).collect::<Vec<_>>(), 2);
+                vec![celestial::twins::cloud_optical_thickness(x[0], x[1], &l)]
+            },
+            reference: |x| vec![optical_thickness64(x[0], x[1], &layer_from(x, 2))],
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 2.0,
+                bound: Some(|x| vec![optical_thickness_error(x[0], x[1], 0.0, &layer_from(x, 2))]),
+                why: "the noise's error (coordinates' quotients 6u, the fBm's blending) over the \
+                      softness moves the height; d(S(h)·h)/dh ≤ 2.5 times τ·softness/core depth; \
+                      the height's three roundings and the products' 6u",
+            },
+        },
+        Case {
+            name: "celestial::cloud_sun_scattering",
+            imports: &["celestial::clouds"],
+            arity: (6, 1),
+            wgsl: "y0 = cloud_sun_scattering(x0, x1, x2, x3, x4, u32(x5));",
+            grid: || {
+                let mut grid = Vec::new();
+                for tau in logspace(1e-3, 200.0, 24) {
+                    for g in [0.75, 0.85] {
+                        for mu_sun in linspace(-0.1, 1.0, 12) {
+                            for mu_view in [0.01, 0.05, 0.2, 0.45, 0.8, 1.0] {
+                                for cos in linspace(-1.0, 1.0, 9) {
+                                    for transmitted in [0.0, 1.0] {
+                                        grid.push(vec![tau, g, mu_sun, mu_view, cos, transmitted]);
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+                grid
+            },
+            cpu: |x| {
+                vec![celestial::twins::cloud_sun_scattering(
+                    x[0],
+                    x[1],
+                    x[2],
+                    x[3],
+                    x[4],
+                    x[5] as u32,
+                )]
+            },
+            reference: |x| {
+                vec![celestial::twins::cloud_sun_scattering::<f64>(
+                    x[0],
+                    x[1],
+                    x[2],
+                    x[3],
+                    x[4],
+                    x[5] as u32,
+                )]
+            },
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 4.0,
+                bound: Some(sun_scattering_bound),
+                why: "one formula instantiated in f64: the exponentials' 3 + 2|x| ULP at the \
+                      largest argument, the mean attenuations' arguments (differences of \
+                      reciprocals, 4u of τ(1/μ + 1/μ₀)), the phase function's base relative to \
+                      its terms (×1.5), 16u for products; the flux difference's 16u through \
+                      μ₀/π·opacity/emissivity",
             },
         },
     ]
