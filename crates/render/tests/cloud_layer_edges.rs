@@ -1,7 +1,9 @@
 //! The default scene's cloud layers have no dark specks along their edges: where a
-//! layer thins out over the sky its pixels lie between the sky's and the cloud's
-//! brightness, never darker than the sky behind them (celestial's
-//! `cloud_layer_radiance` sees the slab's source function through its opacity).
+//! layer thins out over the sky its pixels are never darker than the sky behind them
+//! (celestial's `cloud_layer_radiance` sees the column's light through its opacity, and
+//! a thin column scatters more than it hides). A thick core's base may be darker than a
+//! bright sky (its diffuse transmission falls with its optical thickness); the edge is
+//! where the layer meets clear sky.
 
 mod common;
 
@@ -22,11 +24,26 @@ fn displayed_luminance(pixel: u32) -> f64 {
     0.2126 * decode(0) + 0.7152 * decode(1) + 0.0722 * decode(2)
 }
 
-/// The pixels of the first `rows` rows whose luminance is below `factor` × the
-/// luminance of the same pixel without the layers (`sky`).
+/// The edge pixels of the first `SKY_ROWS` rows (a pixel the layers change, beside one
+/// of its 8 neighbours that they leave within 1 % of the sky: clear) whose luminance
+/// is below `factor` × the luminance of the same pixel without the layers (`sky`).
 fn darker_than_the_sky(image: &[f64], sky: &[f64], width: usize, factor: f64) -> Vec<usize> {
+    let clear = |i: usize| (image[i] - sky[i]).abs() <= 0.01 * sky[i];
     (0..SKY_ROWS * width)
-        .filter(|&i| image[i] < factor * sky[i])
+        .filter(|&i| {
+            let (x, y) = ((i % width) as i64, (i / width) as i64);
+            let beside_clear = (-1..=1).any(|dy| {
+                (-1..=1).any(|dx| {
+                    let (nx, ny) = (x + dx, y + dy);
+                    nx >= 0
+                        && ny >= 0
+                        && nx < width as i64
+                        && ny < SKY_ROWS as i64
+                        && clear((ny as usize) * width + nx as usize)
+                })
+            });
+            !clear(i) && beside_clear && image[i] < factor * sky[i]
+        })
         .collect()
 }
 
@@ -61,8 +78,8 @@ fn the_default_scenes_cloud_layer_edges_are_not_darker_than_the_sky() {
         .map(|&i| with_layers[i] / sky[i])
         .fold(1.0f64, f64::min);
     eprintln!(
-        "CPU: {} pixels of the layers darker than the sky behind them (darkest {darkest:.3} × \
-         the sky)",
+        "CPU: {} edge pixels of the layers darker than the sky behind them (darkest \
+         {darkest:.3} × the sky)",
         dark.len()
     );
     assert!(
@@ -85,7 +102,7 @@ fn the_default_scenes_cloud_layer_edges_are_not_darker_than_the_sky() {
     // linear value between two images).
     let dark = darker_than_the_sky(&with_layers, &sky, width, 0.95);
     eprintln!(
-        "GPU: {} displayed pixels of the layers 5 % darker than the sky behind them",
+        "GPU: {} displayed edge pixels of the layers 5 % darker than the sky behind them",
         dark.len()
     );
     assert!(dark.is_empty(), "GPU: {} pixels", dark.len());
