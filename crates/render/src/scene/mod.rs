@@ -466,11 +466,11 @@ impl Rung {
 
     /// The sky model's name in `skyscape explain`'s plan ("the closed form"), for a
     /// rung the GPU draws with passes of its own; `None` for a rung drawn through atmos'
-    /// tables (or with no GPU passes).
+    /// tables (or with no GPU passes). The dome's terrain and clouds see the closed
+    /// form's air; its sky is [`Rung::gpu_sky_evaluation`]'s.
     pub fn gpu_model(self) -> Option<&'static str> {
         match self {
-            Self::Dome => Some("SGSky's dome of the closed form"),
-            Self::ClosedForm | Self::ClosedFormVertex => Some("the closed form"),
+            Self::Dome | Self::ClosedForm | Self::ClosedFormVertex => Some("the closed form"),
             Self::Single => Some("single scattering"),
             _ => None,
         }
