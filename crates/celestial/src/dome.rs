@@ -462,12 +462,12 @@ pub fn sky_dome_weights<F: Float>(view: [F; 3], spin: F) -> ([usize; 3], [F; 3])
         // outside of: rounding at their shared diagonal or a sector's edge leaves
         // weights a few ULP below zero, where the blend is continuous).
         let triangles = sector_triangles(sector);
-        let candidates: &[[(usize, usize); 3]] = if lower == 1 {
+        let candidates: &[DomeTriangle] = if lower == 1 {
             &triangles[..1]
         } else {
             &triangles[2 * lower - 3..2 * lower - 1]
         };
-        let mut best: Option<([(usize, usize); 3], [F; 3])> = None;
+        let mut best: Option<(DomeTriangle, [F; 3])> = None;
         for &t in candidates {
             let p = t.map(|(ring, i)| sky_dome_vertex(ring, i, spin));
             if let Some(w) = sky_dome_ray_triangle(view, p) {
@@ -506,9 +506,12 @@ pub fn sky_dome_radiance<F: Float>(
     std::array::from_fn(|k| w[0] * c[0][k] + w[1] * c[1][k] + w[2] * c[2][k])
 }
 
+/// A triangle of the dome as (ring, index) pairs.
+type DomeTriangle = [(usize, usize); 3];
+
 /// The 7 triangles of sector `sector` (between vertices `sector` and `sector + 1`), in
 /// [`SkyDome::triangles`]' order.
-fn sector_triangles(sector: usize) -> [[(usize, usize); 3]; 7] {
+fn sector_triangles(sector: usize) -> [DomeTriangle; 7] {
     let (i, j) = (sector, (sector + 1) % DOME_SIDES);
     [
         [(0, 0), (1, i), (1, j)],
