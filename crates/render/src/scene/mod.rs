@@ -52,6 +52,7 @@ pub mod prepare;
 mod sgsky;
 mod sgsky_prepare;
 pub mod shipped;
+mod terrain_colour_section;
 mod terrain_prepare;
 mod warnings;
 
@@ -60,6 +61,7 @@ pub use cache::PrepareCache;
 pub use error::{Location, Origin, SceneError};
 pub use prepare::{CameraMove, Illuminant, PreparedScene, PreparedTerrain};
 pub use sgsky::{CloudKindName, CloudLayerSection, Coverage, CoverageName, VisibilitySection};
+pub use terrain_colour_section::{ColourSection, MaterialsModel, ProceduralMaterialsSection};
 
 use std::path::{Path, PathBuf};
 
@@ -542,6 +544,14 @@ pub struct TerrainSection {
     /// `[terrain.albedo]`: colour by height and slope.
     #[serde(default)]
     pub albedo: AlbedoSection,
+    /// `[terrain.colour]`: a colour image over the heightfield's ground, replacing the
+    /// ramp's albedo (with procedural materials, the grass's).
+    pub colour: Option<ColourSection>,
+    /// Where the albedo comes from: `ramp` (`[terrain.albedo]`) or `procedural`.
+    #[serde(default)]
+    pub materials: MaterialsModel,
+    /// `[terrain.procedural_materials]`: rock, grass and snow (with `materials = "procedural"`).
+    pub procedural_materials: Option<ProceduralMaterialsSection>,
     /// Self-shadow maps: Hoffman and Preetham's east/west pair, or `azimuths` equally spaced ones.
     #[serde(default)]
     pub horizon: HorizonVariant,
