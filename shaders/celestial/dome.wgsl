@@ -1,23 +1,24 @@
 // celestial::dome — SimGear's SGSky dome (a centre fan and inner, middle, outer and
 // skirt rings of 12 vertices, SimGear's 2002 dome.cxx geometry) drawn along a view ray:
-// the barycentric blend of the vertex colours over the triangle the ray meets.
-// Twin: crates/celestial/src/dome.rs (`sky_dome_radiance`, generic over the float type;
+// the triangle the ray meets and its barycentric weights (the vertex colours' blend).
+// Twin: crates/celestial/src/dome.rs (`sky_dome_weights`, generic over the float type;
 // this file mirrors its f32 instance operation for operation): same names, argument
 // order and units. Directions are unit east/north/up vectors from the dome's centre;
 // `spin` is vertex 0's azimuth from south toward east (radians); positions in km.
 
 const DOME_SIDES: u32 = 12u;
-const DOME_VERTICES: u32 = 49u;
 const DOME_TAU: f32 = 6.283185307179586;
 
 // (horizontal distance, height) of the centre, inner, middle, outer and skirt rings (km).
-const DOME_RINGS_KM: array<vec2<f32>, 5> = array<vec2<f32>, 5>(
-    vec2<f32>(0.0, 25.0),
-    vec2<f32>(50.0, 20.0),
-    vec2<f32>(70.0, 8.0),
-    vec2<f32>(80.0, 0.0),
-    vec2<f32>(50.0, -2.0),
-);
+fn sky_dome_ring(ring: u32) -> vec2<f32> {
+    switch ring {
+        case 0u: { return vec2<f32>(0.0, 25.0); }
+        case 1u: { return vec2<f32>(50.0, 20.0); }
+        case 2u: { return vec2<f32>(70.0, 8.0); }
+        case 3u: { return vec2<f32>(80.0, 0.0); }
+        default: { return vec2<f32>(50.0, -2.0); }
+    }
+}
 
 fn sky_dome_slot(ring: u32, index: u32) -> u32 {
     if ring == 0u {
@@ -27,8 +28,7 @@ fn sky_dome_slot(ring: u32, index: u32) -> u32 {
 }
 
 fn sky_dome_vertex(ring: u32, index: u32, spin: f32) -> vec3<f32> {
-    var rings = DOME_RINGS_KM;
-    let size = rings[ring];
+    let size = sky_dome_ring(ring);
     let phi = spin + f32(index % DOME_SIDES) * (DOME_TAU / f32(DOME_SIDES));
     return vec3<f32>(size.x * sin(phi), -size.x * cos(phi), size.y);
 }
@@ -71,63 +71,85 @@ fn sky_dome_triangle(sector: u32, k: u32) -> array<vec2<u32>, 3> {
     return array<vec2<u32>, 3>(vec2<u32>(upper, i), vec2<u32>(lower, j), vec2<u32>(upper, j));
 }
 
-fn sky_dome_radiance(view: vec3<f32>, spin: f32, colours: array<vec4<f32>, 49>) -> vec3<f32> {
-    var c = colours;
+// The triangle a view ray meets: its three vertex slots and barycentric weights.
+struct DomeWeights {
+    slots: vec3<u32>,
+    weights: vec3<f32>,
+}
+
+fn sky_dome_weights(view: vec3<f32>, spin: f32) -> DomeWeights {
     let step = DOME_TAU / f32(DOME_SIDES);
     var phi = (atan2(view.x, -view.y) - spin) % DOME_TAU;
     if phi < 0.0 {
         phi = phi + DOME_TAU;
     }
     let sector = u32(max(floor(phi / step), 0.0)) % DOME_SIDES;
-    let sectors = array<u32, 3>(sector, (sector + 1u) % DOME_SIDES, (sector + DOME_SIDES - 1u) % DOME_SIDES);
-    // The first triangle that holds the ray; where rounding leaves a ray on a shared
-    // edge outside both, the one it is least outside of (within 1024 ε).
-    var found = false;
-    var best_inside = 0.0;
-    var best_weights = vec3<f32>(0.0);
-    var best_triangle = array<vec2<u32>, 3>(vec2<u32>(0u), vec2<u32>(0u), vec2<u32>(0u));
-    for (var n = 0u; n < 3u; n++) {
-        for (var k = 0u; k < 7u; k++) {
-            let t = sky_dome_triangle(sectors[n], k);
+    let h = view.xy;
+    if h.x == 0.0 && h.y == 0.0 {
+        // Straight up: the centre vertex; straight down: the skirt's vertex 0.
+        var ring = 4u;
+        if view.z > 0.0 {
+            ring = 0u;
+        }
+        return DomeWeights(vec3<u32>(sky_dome_slot(ring, 0u)), vec3<f32>(1.0, 0.0, 0.0));
+    }
+    // The dome's cross-section in the ray's vertical half-plane: every ring's chord at
+    // the same parameter `along`, at `reach` × h horizontally; the band ends at the first
+    // ring whose chord point is on or below the ray.
+    let phi_first = spin + f32(sector % DOME_SIDES) * step;
+    let phi_second = spin + f32((sector + 1u) % DOME_SIDES) * step;
+    let first = vec2<f32>(sin(phi_first), -cos(phi_first));
+    let second = vec2<f32>(sin(phi_second), -cos(phi_second));
+    let edge = second - first;
+    let across = h.x * edge.y - h.y * edge.x;
+    let along = (first.x * h.y - first.y * h.x) / across;
+    let reach = (first.x * second.y - first.y * second.x) / across;
+    var lower = 0u;
+    for (var ring = 1u; ring < 5u; ring++) {
+        let size = sky_dome_ring(ring);
+        if size.y - view.z * size.x * reach <= 0.0 {
+            lower = ring;
+            break;
+        }
+    }
+    if lower > 0u {
+        // The centre fan's triangle, or the strip's two (the one the ray is least
+        // outside of).
+        var first_triangle = 0u;
+        var count = 1u;
+        if lower > 1u {
+            first_triangle = 2u * lower - 3u;
+            count = 2u;
+        }
+        var found = false;
+        var best_inside = 0.0;
+        var best = DomeWeights(vec3<u32>(0u), vec3<f32>(0.0));
+        for (var k = first_triangle; k < first_triangle + count; k++) {
+            let t = sky_dome_triangle(sector, k);
             let p0 = sky_dome_vertex(t[0].x, t[0].y, spin);
             let p1 = sky_dome_vertex(t[1].x, t[1].y, spin);
             let p2 = sky_dome_vertex(t[2].x, t[2].y, spin);
             let w = sky_dome_ray_triangle(view, p0, p1, p2);
             if w.w > 0.0 {
                 let inside = min(min(w.x, w.y), w.z);
-                if inside >= 0.0 {
-                    return w.x * c[sky_dome_slot(t[0].x, t[0].y)].xyz
-                        + w.y * c[sky_dome_slot(t[1].x, t[1].y)].xyz
-                        + w.z * c[sky_dome_slot(t[2].x, t[2].y)].xyz;
-                }
                 if !found || inside > best_inside {
                     found = true;
                     best_inside = inside;
-                    best_weights = w.xyz;
-                    best_triangle = t;
+                    best = DomeWeights(
+                        vec3<u32>(sky_dome_slot(t[0].x, t[0].y), sky_dome_slot(t[1].x, t[1].y), sky_dome_slot(t[2].x, t[2].y)),
+                        w.xyz,
+                    );
                 }
             }
         }
-    }
-    if found && best_inside >= -1.1920929e-7 * 1024.0 {
-        let t = best_triangle;
-        return best_weights.x * c[sky_dome_slot(t[0].x, t[0].y)].xyz
-            + best_weights.y * c[sky_dome_slot(t[1].x, t[1].y)].xyz
-            + best_weights.z * c[sky_dome_slot(t[2].x, t[2].y)].xyz;
-    }
-    // Below the skirt: along the sector's skirt chord where the ray's vertical plane
-    // meets it; the skirt's mean straight down.
-    let horizontal = view.xy;
-    if horizontal.x == 0.0 && horizontal.y == 0.0 {
-        var mean = vec3<f32>(0.0);
-        for (var i = 0u; i < DOME_SIDES; i++) {
-            mean = mean + c[sky_dome_slot(4u, i)].xyz;
+        if found {
+            return best;
         }
-        return mean / f32(DOME_SIDES);
     }
-    let start = sky_dome_vertex(4u, sector, spin);
-    let end = sky_dome_vertex(4u, sector + 1u, spin);
-    let edge = end.xy - start.xy;
-    let along = clamp((start.x * horizontal.y - start.y * horizontal.x) / (horizontal.x * edge.y - horizontal.y * edge.x), 0.0, 1.0);
-    return (1.0 - along) * c[sky_dome_slot(4u, sector)].xyz + along * c[sky_dome_slot(4u, sector + 1u)].xyz;
+    // Below the skirt.
+    let t = clamp(along, 0.0, 1.0);
+    return DomeWeights(
+        vec3<u32>(sky_dome_slot(4u, sector), sky_dome_slot(4u, sector + 1u), sky_dome_slot(4u, sector)),
+        vec3<f32>(1.0 - t, t, 0.0),
+    );
 }

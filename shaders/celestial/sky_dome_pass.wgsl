@@ -51,7 +51,10 @@ fn render_sky_dome(@builtin(global_invocation_id) gid: vec3<u32>) {
     let local = vec3<f32>(dot(view, frame[0]), dot(view, frame[1]), dot(view, frame[2]));
     let local_sun = vec3<f32>(dot(camera.sun, frame[0]), dot(camera.sun, frame[1]), dot(camera.sun, frame[2]));
     let cos_offset = dot(local, local_sun);
-    var radiance = sky_dome_radiance(local, dome.spin, dome.colours);
+    let hit = sky_dome_weights(local, dome.spin);
+    var radiance = hit.weights.x * dome.colours[hit.slots.x].xyz
+        + hit.weights.y * dome.colours[hit.slots.y].xyz
+        + hit.weights.z * dome.colours[hit.slots.z].xyz;
     for (var c = 0; c < 3; c++) {
         radiance[c] += sun_aureole_radiance(cos_offset, dome.mie_g, dome.sun_irradiance[c], dome.sun_transmittance[c], dome.mie_optical_depth[c]);
     }

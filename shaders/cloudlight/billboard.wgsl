@@ -11,11 +11,13 @@ struct BillboardFrame {
     half_width: f32,
     forward: vec3<f32>,
     half_height: f32,
-    // 0: Dobashi et al. 2000's size = (k·ρ/d)·ρ pixels; 1: a world diameter scale·ρ metres, projected.
+    // 0: Dobashi et al. 2000's size = (k·ρ/d)·ρ pixels; 1: a world diameter scale·ρ metres,
+    // projected; 2: a world diameter of scale metres whatever the density, projected.
     size_mode: u32,
-    // k (pixel·metres) or metres per unit density.
+    // k (pixel·metres), metres per unit density or the diameter in metres.
     size_scale: f32,
-    pad0: u32,
+    // How the kernel becomes opacity (splat_opacity): 0 scaled, 1 an optical depth.
+    opacity_mode: u32,
     pad1: u32,
 }
 
@@ -27,6 +29,18 @@ fn splat_alpha(r: f32) -> f32 {
         return q * q;
     }
     return 0.0;
+}
+
+// The opacity a splat gives a pixel where its kernel (splat_alpha) is `kernel` and its
+// weight is `weight`: weight·kernel (opacity_mode 0: Dobashi et al. 2000's texture alpha
+// times the particle's), 1 − exp(−weight·kernel) (1: an optical depth spread over the
+// kernel).
+fn splat_opacity(weight: f32, kernel: f32, opacity_mode: u32) -> f32 {
+    let x = weight * kernel;
+    if opacity_mode == 1u {
+        return 1.0 - exp(-x);
+    }
+    return x;
 }
 
 fn billboard_dot(a: vec3<f32>, b: vec3<f32>) -> f32 {
@@ -45,8 +59,10 @@ fn billboard_screen(frame: BillboardFrame, relative: vec3<f32>, density: f32) ->
     if frame.size_mode == 0u {
         let distance = sqrt(billboard_dot(relative, relative));
         size = (frame.size_scale * density / distance) * density;
-    } else {
+    } else if frame.size_mode == 1u {
         size = frame.size_scale * density * frame.focal / z;
+    } else {
+        size = frame.size_scale * frame.focal / z;
     }
     return vec3<f32>(cx, cy, 0.5 * size);
 }

@@ -11,6 +11,7 @@
 #import atmos::aerial_perspective
 #import terrain::shadow
 #import render::terrain_shading
+#import render::terrain_materials
 #import celestial::clouds
 #import cloudlight::shadow_map
 #import render::volume_shadow
@@ -39,9 +40,17 @@ struct TerrainUniform {
     albedo: AlbedoRamp,
     // Multiplies the radiance written (the HDR target holds radiance × exposure).
     radiance_scale: f32,
+    // Radians per pixel (the camera's vertical field over its rows): the footprint
+    // that band-limits the materials' detail.
+    pixel_angle: f32,
+    // 1: the procedural materials; 0: the albedo ramp.
+    procedural: u32,
+    // 1: colour_texels holds [terrain.colour]'s texture (colour_size pixels).
+    colour_enabled: u32,
+    colour_size: vec2<u32>,
+    colour_texels_per_metre: f32,
     padding0: f32,
-    padding1: f32,
-    padding2: f32,
+    materials: MaterialParams,
 }
 
 @group(2) @binding(0) var<uniform> terrain: TerrainUniform;
@@ -74,6 +83,9 @@ struct VolumeShadowUniform {
 // Transmittance toward the light per texel, east fastest, each map's from its offset
 // (one element when none).
 @group(2) @binding(6) var<storage, read> volume_shadow_values: array<f32>;
+// [terrain.colour]'s linear albedo per pixel (rgb, 0), x fastest, row 0 north (one
+// element without a texture).
+@group(2) @binding(7) var<storage, read> colour_texels: array<vec4<f32>>;
 
 struct TerrainVarying {
     @builtin(position) @invariant clip: vec4<f32>,
@@ -182,6 +194,38 @@ fn volume_cloud_shadow(world: vec3<f32>) -> f32 {
     return shadow_map_at(volume_shadow[0], world) * shadow_map_at(volume_shadow[1], world);
 }
 
+// The colour texture's linear albedo at map position `map` (m east and south of texel
+// (0, 0)), bilinear between pixel centres. Twin: render::terrain_colour's
+// ColourTexture::colour_at.
+fn terrain_colour_at(map: vec2<f32>) -> vec3<f32> {
+    let taps = colour_taps(map * terrain.colour_texels_per_metre, terrain.colour_size);
+    return colour_texels[taps.index.x].xyz * taps.weight.x + colour_texels[taps.index.y].xyz * taps.weight.y
+        + colour_texels[taps.index.z].xyz * taps.weight.z + colour_texels[taps.index.w].xyz * taps.weight.w;
+}
+
+// The terrain's albedo at map position `map` (m), `elevation` (m), with unit normal
+// `normal` (east, north, up), seen from the camera at `offset` (world axes, camera →
+// point): the colour texture or the ramp, or the procedural materials over the colour
+// texture's or the grass's albedo with the detail band-limited by the pixel's
+// footprint. Twin: render::passes::terrain::cpu's surface_albedo.
+fn surface_albedo(map: vec2<f32>, elevation: f32, normal: vec3<f32>, offset: vec3<f32>) -> vec3<f32> {
+    var ground = terrain.materials.grass_albedo;
+    if terrain.colour_enabled != 0u {
+        ground = terrain_colour_at(map);
+    }
+    if terrain.procedural == 0u {
+        if terrain.colour_enabled != 0u {
+            return ground;
+        }
+        return terrain_albedo(terrain.albedo, elevation, normal.z);
+    }
+    let distance = max(length(offset), 1e-3);
+    let cos_incidence = (offset.x * normal.x - offset.z * normal.y + offset.y * normal.z) / distance;
+    let footprint = pixel_footprint(distance, terrain.pixel_angle, cos_incidence);
+    let detail = detail_noise(map.x, map.y, footprint, terrain.materials.seed);
+    return procedural_albedo(normal, elevation, detail, ground, terrain.materials);
+}
+
 // The terrain's own radiance at world position `world`, lit by `light_at_point` (the
 // light's irradiance through the atmosphere there, from the scene's rung) and the sky's
 // irradiance. Rungs without tables call it with their own light and aerial perspective
@@ -204,8 +248,8 @@ fn terrain_surface(world: vec3<f32>, light_at_point: vec3<f32>) -> vec3<f32> {
             + azimuth_horizon(f.index.z, layers) * f.weight.z + azimuth_horizon(f.index.w, layers) * f.weight.w;
         self_shadow = soft_shadow(terrain.sun_elevation, horizon, terrain.sun_angular_radius);
     }
-    let albedo = terrain_albedo(terrain.albedo, world.y, normal.z);
     let offset = world - terrain.camera;
+    let albedo = surface_albedo(map, world.y, normal, offset);
     let cloud_shadow = cloud_shadow_at(offset) * volume_cloud_shadow(world);
     return surface_radiance(normal, normal.z, terrain.sun_enu, albedo, self_shadow, cloud_shadow, light_at_point, terrain.sky_irradiance);
 }

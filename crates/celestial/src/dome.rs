@@ -173,15 +173,6 @@ fn without_aureole(
     std::array::from_fn(|i| (colour[i] - a[i]).max(0.0))
 }
 
-/// Index of ring `ring`, vertex `index` in the colour list.
-fn slot(ring: usize, index: usize) -> usize {
-    if ring == 0 {
-        0
-    } else {
-        1 + (ring - 1) * DOME_SIDES + index % DOME_SIDES
-    }
-}
-
 impl SkyDome {
     /// SGSky's colouring.
     pub fn seed_weights(sky: [f64; 3], fog: [[f64; 3]; DOME_SIDES], spin: Angle) -> Self {
@@ -190,7 +181,7 @@ impl SkyDome {
         for ring in 1..5 {
             let w = SEED_SKY_WEIGHTS[ring];
             for (i, fog_colour) in fog.iter().enumerate() {
-                colours[slot(ring, i)] =
+                colours[sky_dome_slot(ring, i)] =
                     std::array::from_fn(|c| w * sky[c] + (1.0 - w) * fog_colour[c]);
             }
         }
@@ -223,7 +214,8 @@ impl SkyDome {
         for ring in 0..5 {
             let count = if ring == 0 { 1 } else { DOME_SIDES };
             for i in 0..count {
-                colours[slot(ring, i)] = colour(dome_vertex(ring, i, spin).normalize().to_array())?;
+                colours[sky_dome_slot(ring, i)] =
+                    colour(dome_vertex(ring, i, spin).normalize().to_array())?;
             }
         }
         Ok(Self { spin, colours })
@@ -309,7 +301,7 @@ impl SkyDome {
             let count = if ring == 0 { 1 } else { DOME_SIDES };
             for i in 0..count {
                 let direction = dome_vertex(ring, i, self.spin).normalize().to_array();
-                let k = slot(ring, i);
+                let k = sky_dome_slot(ring, i);
                 self.colours[k] = f(direction, self.colours[k]);
             }
         }
@@ -323,7 +315,7 @@ impl SkyDome {
 
     /// Colour of ring `ring` (0 = centre … 4 = skirt), vertex `index`.
     pub fn vertex_colour(&self, ring: usize, index: usize) -> [f64; 3] {
-        self.colours[slot(ring, index)]
+        self.colours[sky_dome_slot(ring, index)]
     }
 
     /// The dome's triangles as (ring, index) triples: the centre fan, then the three
@@ -372,7 +364,7 @@ fn cross<F: Float>(a: [F; 3], b: [F; 3]) -> [F; 3] {
 /// from south toward east): [`dome_vertex`] in kilometres, over the float type.
 fn sky_dome_vertex<F: Float>(ring: usize, index: usize, spin: F) -> [F; 3] {
     let (horizontal, height) = DOME_RINGS_M[ring];
-    let step = constant::<F>(std::f64::consts::TAU / DOME_SIDES as f64);
+    let step = constant::<F>(std::f64::consts::TAU) / F::from(DOME_SIDES).expect("12");
     let phi = spin + F::from(index % DOME_SIDES).expect("a small integer") * step;
     let horizontal = constant::<F>(horizontal / 1000.0);
     [
@@ -404,27 +396,35 @@ fn sky_dome_ray_triangle<F: Float>(d: [F; 3], p: [[F; 3]; 3]) -> Option<[F; 3]> 
     Some([F::one() - a - b, a, b])
 }
 
-/// SGSky's dome drawn along `view` (unit, east/north/up, from the dome's centre) for a
-/// dome rotated by `spin` (radians: vertex 0's azimuth from south toward east) with
-/// `colours` at its vertices (centre, then rings 1–4 × [`DOME_SIDES`]; see
-/// [`SkyDome::vertex_colours`]): the barycentric blend over the triangle the ray meets,
-/// as a rasteriser's Gouraud shading of the mesh gives.
+/// The slot of ring `ring` (0 = centre … 4 = skirt), vertex `index` in
+/// [`SkyDome::vertex_colours`]' order.
+pub fn sky_dome_slot(ring: usize, index: usize) -> usize {
+    if ring == 0 {
+        0
+    } else {
+        1 + (ring - 1) * DOME_SIDES + index % DOME_SIDES
+    }
+}
+
+/// Where a view ray meets SGSky's dome: the three vertex slots
+/// ([`sky_dome_slot`]) of the triangle it meets and its barycentric weights there,
+/// for `view` (unit, east/north/up, from the dome's centre) and a dome rotated by
+/// `spin` (radians: vertex 0's azimuth from south toward east). The dome's colour
+/// along the ray is the weights' blend of those vertices' colours
+/// ([`sky_dome_radiance`]), as a rasteriser's Gouraud shading of the mesh gives.
 ///
 /// The ray's azimuth picks its sector exactly (every triangle of a sector lies between
-/// the vertical planes through its two vertex azimuths), so the sector's 7 triangles are
-/// tested, then its neighbours' (rounding at a sector's edge); a ray that rounding
-/// leaves just outside every triangle at a shared edge takes the triangle it is least
-/// outside of (no more than 1024 ε in a barycentric weight). Below the skirt the dome
-/// is open: the skirt's chord colour where the ray's vertical plane crosses the chord
-/// (continuous with the skirt's edge), the skirt's mean straight down.
+/// the vertical planes through its two vertex azimuths); within the sector, the ray's
+/// elevation against each ring's chord picks the band (the strips are planar
+/// trapezoids), and Möller–Trumbore gives the weights over the band's one or two
+/// triangles: a constant cost per ray, as a rasteriser's. Below the skirt the dome is
+/// open: the skirt's chord where the ray's vertical plane crosses it (continuous with
+/// the skirt's edge). Straight up is the centre vertex; straight down, a direction
+/// with no azimuth, the skirt's vertex 0.
 ///
-/// The WGSL twin is `sky_dome_radiance` in `shaders/celestial/dome.wgsl` (parity case
-/// `celestial::sky_dome_radiance`).
-pub fn sky_dome_radiance<F: Float>(
-    view: [F; 3],
-    spin: F,
-    colours: &[[F; 3]; DOME_VERTICES],
-) -> [F; 3] {
+/// The WGSL twin is `sky_dome_weights` in `shaders/celestial/dome.wgsl` (parity case
+/// `celestial::sky_dome_weights`).
+pub fn sky_dome_weights<F: Float>(view: [F; 3], spin: F) -> ([usize; 3], [F; 3]) {
     let tau = constant::<F>(std::f64::consts::TAU);
     let step = tau / F::from(DOME_SIDES).expect("12");
     let mut phi = (view[0].atan2(-view[1]) - spin) % tau;
@@ -432,70 +432,86 @@ pub fn sky_dome_radiance<F: Float>(
         phi = phi + tau;
     }
     let sector = (phi / step).floor().to_usize().unwrap_or(0) % DOME_SIDES;
-    let slot = |ring: usize, index: usize| {
-        if ring == 0 {
-            0
+    let (zero, one) = (F::zero(), F::one());
+    let h = [view[0], view[1]];
+    if h[0] == zero && h[1] == zero {
+        let ring = if view[2] > zero { 0 } else { 4 };
+        return ([sky_dome_slot(ring, 0); 3], [one, zero, zero]);
+    }
+    // The sector's vertices on the unit circle: every ring's chord in the ray's vertical
+    // half-plane sits at the same parameter `along` and at `reach` × h horizontally
+    // (the rings are scaled copies), so the dome's cross-section there is the polyline
+    // centre → ring 1 → … → skirt, and the ray's band ends at the first ring whose chord
+    // point is on or below the ray.
+    let unit = |index: usize| {
+        let phi = spin + F::from(index % DOME_SIDES).expect("a small integer") * step;
+        [phi.sin(), -phi.cos()]
+    };
+    let cross2 = |a: [F; 2], b: [F; 2]| a[0] * b[1] - a[1] * b[0];
+    let (first, second) = (unit(sector), unit(sector + 1));
+    let edge = [second[0] - first[0], second[1] - first[1]];
+    let across = cross2(h, edge);
+    let along = cross2(first, h) / across;
+    let reach = cross2(first, second) / across;
+    let band = (1..5).find(|&ring| {
+        let (radius, height) = DOME_RINGS_M[ring];
+        constant::<F>(height / 1000.0) - view[2] * constant::<F>(radius / 1000.0) * reach <= zero
+    });
+    if let Some(lower) = band {
+        // The centre fan's triangle, or the strip's two (the one the ray is least
+        // outside of: rounding at their shared diagonal or a sector's edge leaves
+        // weights a few ULP below zero, where the blend is continuous).
+        let triangles = sector_triangles(sector);
+        let candidates: &[DomeTriangle] = if lower == 1 {
+            &triangles[..1]
         } else {
-            1 + (ring - 1) * DOME_SIDES + index % DOME_SIDES
-        }
-    };
-    let blend = |t: [(usize, usize); 3], w: [F; 3]| -> [F; 3] {
-        let c = t.map(|(ring, i)| colours[slot(ring, i)]);
-        std::array::from_fn(|k| w[0] * c[0][k] + w[1] * c[1][k] + w[2] * c[2][k])
-    };
-    // The first triangle that holds the ray; where rounding leaves a ray on a shared
-    // edge outside both, the one it is least outside of (within 1024 ε).
-    let mut best: Option<([(usize, usize); 3], [F; 3], F)> = None;
-    for s in [
-        sector,
-        (sector + 1) % DOME_SIDES,
-        (sector + DOME_SIDES - 1) % DOME_SIDES,
-    ] {
-        for t in sector_triangles(s) {
+            &triangles[2 * lower - 3..2 * lower - 1]
+        };
+        let mut best: Option<(DomeTriangle, [F; 3])> = None;
+        for &t in candidates {
             let p = t.map(|(ring, i)| sky_dome_vertex(ring, i, spin));
             if let Some(w) = sky_dome_ray_triangle(view, p) {
                 let inside = w[0].min(w[1]).min(w[2]);
-                if inside >= F::zero() {
-                    return blend(t, w);
-                }
-                if best.is_none_or(|(_, _, b)| inside > b) {
-                    best = Some((t, w, inside));
+                if best.is_none_or(|(_, b)| inside > b[0].min(b[1]).min(b[2])) {
+                    best = Some((t, w));
                 }
             }
         }
-    }
-    if let Some((t, w, inside)) = best
-        && inside >= -F::epsilon() * constant(1024.0)
-    {
-        return blend(t, w);
-    }
-    // Below the skirt: along the sector's skirt chord, where the ray's vertical plane
-    // meets it (t = (P_i × h) / (h × e) in the horizontal plane).
-    let horizontal = [view[0], view[1]];
-    if horizontal[0] == F::zero() && horizontal[1] == F::zero() {
-        let mut mean = [F::zero(); 3];
-        for i in 0..DOME_SIDES {
-            for k in 0..3 {
-                mean[k] = mean[k] + colours[slot(4, i)][k];
-            }
+        if let Some((t, w)) = best {
+            return (t.map(|(ring, i)| sky_dome_slot(ring, i)), w);
         }
-        return mean.map(|c| c / F::from(DOME_SIDES).expect("12"));
     }
-    let start = sky_dome_vertex(4, sector, spin);
-    let end = sky_dome_vertex(4, sector + 1, spin);
-    let edge = [end[0] - start[0], end[1] - start[1]];
-    let cross2 = |a: [F; 2], b: [F; 2]| a[0] * b[1] - a[1] * b[0];
-    let along = cross2([start[0], start[1]], horizontal) / cross2(horizontal, edge);
-    let along = along.max(F::zero()).min(F::one());
-    blend(
-        [(4, sector), (4, sector + 1), (4, sector)],
-        [F::one() - along, along, F::zero()],
+    // Below the skirt.
+    let along = along.max(zero).min(one);
+    (
+        [
+            sky_dome_slot(4, sector),
+            sky_dome_slot(4, sector + 1),
+            sky_dome_slot(4, sector),
+        ],
+        [one - along, along, zero],
     )
 }
 
+/// SGSky's dome's colour along `view` with `colours` at its vertices (centre, then
+/// rings 1–4 × [`DOME_SIDES`]; [`SkyDome::vertex_colours`]): [`sky_dome_weights`]'
+/// blend.
+pub fn sky_dome_radiance<F: Float>(
+    view: [F; 3],
+    spin: F,
+    colours: &[[F; 3]; DOME_VERTICES],
+) -> [F; 3] {
+    let (slots, w) = sky_dome_weights(view, spin);
+    let c = slots.map(|k| colours[k]);
+    std::array::from_fn(|k| w[0] * c[0][k] + w[1] * c[1][k] + w[2] * c[2][k])
+}
+
+/// A triangle of the dome as (ring, index) pairs.
+type DomeTriangle = [(usize, usize); 3];
+
 /// The 7 triangles of sector `sector` (between vertices `sector` and `sector + 1`), in
 /// [`SkyDome::triangles`]' order.
-fn sector_triangles(sector: usize) -> [[(usize, usize); 3]; 7] {
+fn sector_triangles(sector: usize) -> [DomeTriangle; 7] {
     let (i, j) = (sector, (sector + 1) % DOME_SIDES);
     [
         [(0, 0), (1, i), (1, j)],

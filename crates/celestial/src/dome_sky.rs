@@ -260,14 +260,16 @@ mod tests {
             let exact = dome.model().evaluate(&zenith_query);
             let painted = dome.painting(position, sun).unwrap();
             let aureole_at_zenith = painted.aureole.radiance([0.0, 0.0, 1.0]);
-            for c in 0..3 {
+            for ((got, expected), aureole) in sample
+                .radiance
+                .iter()
+                .zip(exact.radiance)
+                .zip(aureole_at_zenith)
+            {
                 // The pixel adds the aureole back: the model's zenith (f32 aureole).
-                let expected = exact.radiance[c];
                 assert!(
-                    (sample.radiance[c] - expected).abs() <= 1e-6 * expected.max(1e-9),
-                    "{c}: {} vs {expected} (aureole {})",
-                    sample.radiance[c],
-                    aureole_at_zenith[c]
+                    (got - expected).abs() <= 1e-6 * expected.max(1e-9),
+                    "{got} vs {expected} (aureole {aureole})"
                 );
             }
             let horizon = SkyQuery::new(atmosphere.planet_radius, position, x, sun).unwrap();

@@ -5,8 +5,11 @@
 //! propagation (physical mode, sun at 60° elevation), turns every cell denser than 0.3 into
 //! a billboard and draws them back to front with the CPU rasteriser, over a plain sky:
 //!
-//! * `target/cloudlight/billboards.png`: billboards sized 2.5 cells across at unit density
-//!   (`SizeRule::World`), 512×384;
+//! * `target/cloudlight/billboards.png`: billboards set by the lattice
+//!   (`BillboardSettings::lattice`: 3.1 cells across whatever the density, carrying the
+//!   cell's optical depth through the kernel), 512×384;
+//! * `target/cloudlight/billboards_density_size.png`: billboards sized 2.5 cells across at
+//!   unit density (`SizeRule::World`), each a one-cell slab's opacity at its centre;
 //! * `target/cloudlight/billboards_seed_size.png`: the same with Dobashi et al. 2000's size formula
 //!   (`(9500·ρ/d)·ρ` pixels), whose `k` was tuned for another scene scale: in metres
 //!   the particles are a pixel or two across, so the cloud looks sparse;
@@ -88,7 +91,7 @@ fn render_gpu(
     gpu: &skyscape_harness::GpuContext,
     particles: &[Billboard],
     camera: &Camera,
-    size: SizeRule,
+    settings: &BillboardSettings,
 ) -> Result<(Image<f32>, Option<f64>), Box<dyn std::error::Error>> {
     let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("billboards"),
@@ -106,7 +109,14 @@ fn render_gpu(
     });
     let view = texture.create_view(&Default::default());
     let mut pass = BillboardPass::new(&gpu.device, FORMAT)?;
-    pass.prepare(&gpu.device, &gpu.queue, particles, camera, size)?;
+    pass.prepare(
+        &gpu.device,
+        &gpu.queue,
+        particles,
+        camera,
+        settings.size,
+        settings.opacity,
+    )?;
     let clear = |encoder: &mut wgpu::CommandEncoder| {
         encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("clear"),
@@ -195,20 +205,37 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         metres_per_density: 2.5 * volume.voxel_size(),
     };
     let mut written = Vec::new();
-    for (size, name) in [
-        (world, "billboards.png"),
-        (SizeRule::default(), "billboards_seed_size.png"),
+    let sun_colour = [1.0, 0.97, 0.92];
+    for (settings, name) in [
+        (
+            BillboardSettings {
+                sun_colour,
+                ..BillboardSettings::lattice(volume.voxel_size())
+            },
+            "billboards.png",
+        ),
+        (
+            BillboardSettings {
+                size: world,
+                sun_colour,
+                ..Default::default()
+            },
+            "billboards_density_size.png",
+        ),
+        (
+            BillboardSettings {
+                sun_colour,
+                ..Default::default()
+            },
+            "billboards_seed_size.png",
+        ),
     ] {
-        let settings = BillboardSettings {
-            size,
-            sun_colour: [1.0, 0.97, 0.92],
-            ..Default::default()
-        };
+        let size = settings.size;
         let start = Instant::now();
         let particles = billboards(&volume, &light, &settings, &camera)?;
         let sorted = start.elapsed().as_secs_f64();
         let start = Instant::now();
-        let image = rasterise::<f32>(&particles, &camera, size);
+        let image = rasterise::<f32>(&particles, &camera, size, settings.opacity);
         let drawn = start.elapsed().as_secs_f64();
         println!(
             "{size:?}: {} particles selected and sorted in {:.1} ms, rasterised (CPU, f32) in {:.1} ms",
@@ -224,7 +251,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         match skyscape_harness::context() {
             Ok(gpu) => {
-                let (gpu_image, seconds) = render_gpu(gpu, &particles, &camera, size)?;
+                let (gpu_image, seconds) = render_gpu(gpu, &particles, &camera, &settings)?;
                 let code = |v: f32| (255.0 * srgb(v)).round() as i32;
                 let within = image
                     .rgba

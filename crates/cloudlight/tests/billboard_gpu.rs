@@ -13,7 +13,7 @@
 
 use cloudlight::CloudVolume;
 use cloudlight::billboard::{
-    BillboardSettings, Camera, FieldOfView, Image, SizeRule, billboards, rasterise,
+    BillboardSettings, Camera, FieldOfView, Image, Opacity, SizeRule, billboards, rasterise,
 };
 use cloudlight::gpu::billboard::{BillboardPass, BillboardPassError};
 use cloudlight::propagate::{SliceMode, propagate_f64};
@@ -82,6 +82,7 @@ fn render_gpu(
     particles: &[cloudlight::billboard::Billboard],
     camera: &Camera,
     size: SizeRule,
+    opacity: Opacity,
 ) -> Image<f32> {
     let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("billboard target"),
@@ -98,7 +99,7 @@ fn render_gpu(
         view_formats: &[],
     });
     let view = texture.create_view(&Default::default());
-    pass.prepare(&gpu.device, &gpu.queue, particles, camera, size)
+    pass.prepare(&gpu.device, &gpu.queue, particles, camera, size, opacity)
         .unwrap();
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     {
@@ -149,20 +150,28 @@ fn billboard_pass_matches_the_cpu_rasteriser() {
     let light = propagate_f64(&volume, to_sun, SliceMode::Physical).unwrap();
     let camera = camera();
     let mut pass = BillboardPass::new(&gpu.device, FORMAT).unwrap();
-    for size in [
-        SizeRule::default(),
-        SizeRule::World {
-            metres_per_density: 150.0,
-        },
+    for (size, opacity) in [
+        (SizeRule::default(), Opacity::default()),
+        (
+            SizeRule::World {
+                metres_per_density: 150.0,
+            },
+            Opacity::default(),
+        ),
+        (
+            SizeRule::lattice(volume.voxel_size()),
+            Opacity::OpticalDepth { cells: 1.0 },
+        ),
     ] {
         let settings = BillboardSettings {
             size,
+            opacity,
             sun_colour: [1.0, 0.95, 0.9],
             ..Default::default()
         };
         let particles = billboards(&volume, &light, &settings, &camera).unwrap();
-        let cpu = rasterise::<f32>(&particles, &camera, size);
-        let gpu_image = render_gpu(gpu, &mut pass, &particles, &camera, size);
+        let cpu = rasterise::<f32>(&particles, &camera, size, opacity);
+        let gpu_image = render_gpu(gpu, &mut pass, &particles, &camera, size, opacity);
         let pixels = cpu.rgba.len();
         let (mut within, mut covered, mut worst) = (0usize, 0usize, 0i32);
         let mut signed = [0i64; 4];
@@ -218,8 +227,15 @@ fn encode_before_prepare_and_a_wrong_target_are_errors() {
         pass.encode(&mut encoder, &view),
         Err(BillboardPassError::EncodeBeforePrepare)
     ));
-    pass.prepare(&gpu.device, &gpu.queue, &[], &camera(), SizeRule::default())
-        .unwrap();
+    pass.prepare(
+        &gpu.device,
+        &gpu.queue,
+        &[],
+        &camera(),
+        SizeRule::default(),
+        Opacity::default(),
+    )
+    .unwrap();
     assert!(matches!(
         pass.encode(&mut encoder, &view),
         Err(BillboardPassError::TargetSize {
@@ -237,8 +253,15 @@ fn encode_before_prepare_and_a_wrong_target_are_errors() {
         16,
     )
     .unwrap();
-    pass.prepare(&gpu.device, &gpu.queue, &[], &small, SizeRule::default())
-        .unwrap();
+    pass.prepare(
+        &gpu.device,
+        &gpu.queue,
+        &[],
+        &small,
+        SizeRule::default(),
+        Opacity::default(),
+    )
+    .unwrap();
     assert_eq!(pass.count(), 0);
     pass.encode(&mut encoder, &view).unwrap();
     gpu.queue.submit([encoder.finish()]);
@@ -250,24 +273,32 @@ fn f32_rasteriser_matches_the_f64_reference() {
     let volume = cumulus();
     let light = propagate_f64(&volume, [0.3, 0.2, 0.9], SliceMode::Physical).unwrap();
     let camera = camera();
-    for size in [
-        SizeRule::default(),
-        SizeRule::World {
-            metres_per_density: 150.0,
-        },
+    for (size, opacity) in [
+        (SizeRule::default(), Opacity::default()),
+        (
+            SizeRule::World {
+                metres_per_density: 150.0,
+            },
+            Opacity::default(),
+        ),
+        (
+            SizeRule::lattice(volume.voxel_size()),
+            Opacity::OpticalDepth { cells: 1.0 },
+        ),
     ] {
         let particles = billboards(
             &volume,
             &light,
             &BillboardSettings {
                 size,
+                opacity,
                 ..Default::default()
             },
             &camera,
         )
         .unwrap();
-        let twin = rasterise::<f32>(&particles, &camera, size);
-        let reference = rasterise::<f64>(&particles, &camera, size);
+        let twin = rasterise::<f32>(&particles, &camera, size, opacity);
+        let reference = rasterise::<f64>(&particles, &camera, size, opacity);
         let worst = twin
             .rgba
             .iter()

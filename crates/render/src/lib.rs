@@ -36,6 +36,8 @@ pub mod present;
 pub mod projection;
 pub mod scene;
 pub mod shell_clouds;
+pub mod terrain_colour;
+pub mod terrain_materials;
 pub mod terrain_mesh;
 pub mod terrain_shading;
 pub mod tonemap;

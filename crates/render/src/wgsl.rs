@@ -44,6 +44,7 @@ mod wgsl_tests {
     #[test]
     fn uniform_twins_match_their_wgsl_layouts() {
         use crate::present::PresentParameters;
+        use crate::terrain_materials::MaterialsUniform;
         use crate::terrain_shading::AlbedoRampUniform;
         let composer = super::composer();
         let wgsl = |module: &str, name: &str| {
@@ -64,6 +65,29 @@ mod wgsl_tests {
                     padding,
                 }),
                 wgsl("render::terrain_shading", "AlbedoRamp"),
+            ),
+            (
+                skyscape_wgsl::rust_layout!(MaterialsUniform {
+                    rock_albedo,
+                    snow_line,
+                    grass_albedo,
+                    snow_line_aspect,
+                    snow_albedo,
+                    grass_line,
+                    transition,
+                    cos_rock_gentle,
+                    cos_rock_steep,
+                    cos_snow_gentle,
+                    cos_snow_steep,
+                    line_noise,
+                    albedo_noise,
+                    seed,
+                    pole_north,
+                    padding0,
+                    padding1,
+                    padding2,
+                }),
+                wgsl("render::terrain_materials", "MaterialParams"),
             ),
             (
                 skyscape_wgsl::rust_layout!(PresentParameters {
@@ -102,9 +126,13 @@ mod wgsl_tests {
                     cloud_layer_count,
                     albedo,
                     radiance_scale,
+                    pixel_angle,
+                    procedural,
+                    colour_enabled,
+                    colour_size,
+                    colour_texels_per_metre,
                     padding0,
-                    padding1,
-                    padding2,
+                    materials,
                 }),
                 wgsl("render::terrain", "TerrainUniform"),
             ));

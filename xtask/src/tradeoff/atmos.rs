@@ -889,6 +889,13 @@ fn markdown(
             );
         }
     }
+    md.push_str(
+        "\n*SGSky's dome* paints the sky above the horizon and, below it, SimGear's skirt in \
+         the horizon's (fog) colour, which the scene's terrain covers: rays that end on the \
+         ground, most of the sphere seen from altitude, take that colour where the truth is \
+         the dim air in front of the ground. The 0 km column (below) is the sky the dome is \
+         for; above the horizon alone against rung 3: `docs/tradeoffs/sky_dome.md`.\n",
+    );
     md.push_str(&goals(rows));
     let _ = writeln!(
         md,

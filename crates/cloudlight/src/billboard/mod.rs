@@ -17,9 +17,15 @@
 //!   ([`crate::march::ambient_visibility`]); a caller replaces [`Billboard::colour`] with
 //!   it.
 //! * **Size** ([`SizeRule`]): `size = (k·ρ/d)·ρ` pixels by default
-//!   (`k` = 9500 px·m, `d` the distance from the eye in metres), or a world-space diameter.
+//!   (`k` = 9500 px·m, `d` the distance from the eye in metres), a world-space diameter
+//!   per unit density, or a fixed world diameter ([`SizeRule::lattice`]: 3.1 cells,
+//!   where the splats' lattice sum is flat, so a uniform cloud shows no dot grid).
 //!   The size is the side of the square sprite, as Direct3D point sizes are; the splat
 //!   fills its inscribed disc.
+//! * **Opacity** ([`Opacity`]): a slab's opacity at the splat's centre times the kernel
+//!   (Dobashi et al. 2000), or the cell's optical depth spread over the kernel
+//!   ([`Opacity::OpticalDepth`], [`splat_opacity`]), which gives a uniform cloud the
+//!   volume's transmittance. [`BillboardSettings::lattice`] pairs the fixed size with it.
 //! * **Splat** ([`splat_alpha`]): the procedural soft falloff `(1 − r²)²` for `r < 1`, 0
 //!   beyond (`r` = distance from the centre over the radius, size / 2). Smooth (C¹) at the
 //!   rim, 1 at the centre. [`splat_texture`] bakes it into a texture of any size; the GPU
@@ -59,7 +65,7 @@
 //! let settings = BillboardSettings::default();
 //! let particles = billboards(&volume, &light, &settings, &camera)?;
 //! assert_eq!(particles.len(), 64);
-//! let image = rasterise::<f32>(&particles, &camera, settings.size);
+//! let image = rasterise::<f32>(&particles, &camera, settings.size, settings.opacity);
 //! assert!(image.rgba[32 * 64 + 32][3] > 0.0); // the block covers the image's centre
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
@@ -69,12 +75,17 @@ mod particles;
 mod raster;
 mod shading;
 #[cfg(test)]
+mod spectrum_tests;
+#[cfg(test)]
 mod tests;
 
 pub use camera::{Camera, FieldOfView, MAX_IMAGE_SIDE};
-pub use particles::{Billboard, BillboardSettings, Opacity, SizeRule, billboards};
+pub use particles::{
+    Billboard, BillboardSettings, LATTICE_DIAMETER_CELLS, Opacity, SizeRule, billboards,
+};
 pub use raster::{
-    Image, ScreenFrame, billboard_screen, rasterise, rasterise_limited, splat_alpha, splat_texture,
+    Image, ScreenFrame, billboard_screen, rasterise, rasterise_limited, splat_alpha, splat_opacity,
+    splat_texture,
 };
 pub use shading::{ParticleLight, ParticleScattering, particle_radiance};
 

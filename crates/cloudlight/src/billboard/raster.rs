@@ -3,7 +3,7 @@
 use atmos::real::Real;
 use glam::DVec3;
 
-use super::{Billboard, BillboardError, Camera, MAX_IMAGE_SIDE, SizeRule, bad};
+use super::{Billboard, BillboardError, Camera, MAX_IMAGE_SIDE, Opacity, SizeRule, bad};
 
 /// The soft splat: `(1 − r²)²` for `r < 1`, else 0 (`r` = distance from the
 /// billboard's centre over its radius). WGSL twin `splat_alpha`.
@@ -13,6 +13,20 @@ pub fn splat_alpha<F: Real>(r: F) -> F {
         q * q
     } else {
         F::zero()
+    }
+}
+
+/// The opacity a splat gives a pixel where its kernel is `kernel` ([`splat_alpha`]) and
+/// its [`Billboard::weight`] is `weight`: `weight·kernel` for `opacity_mode` 0
+/// ([`Opacity::Slab`], [`Opacity::Density`]: Dobashi et al. 2000's texture alpha times the
+/// particle's), `1 − exp(−weight·kernel)` for 1 ([`Opacity::OpticalDepth`]: an optical
+/// depth spread over the kernel). WGSL twin `splat_opacity`.
+pub fn splat_opacity<F: Real>(weight: F, kernel: F, opacity_mode: u32) -> F {
+    let x = weight * kernel;
+    if opacity_mode == 1 {
+        F::one() - (-x).exp()
+    } else {
+        x
     }
 }
 
@@ -55,19 +69,22 @@ pub struct ScreenFrame<F> {
     pub half_width: F,
     /// Half the image height, pixels.
     pub half_height: F,
-    /// 0: [`SizeRule::Seed`], 1: [`SizeRule::World`].
+    /// 0: [`SizeRule::Seed`], 1: [`SizeRule::World`], 2: [`SizeRule::Fixed`].
     pub size_mode: u32,
-    /// `k` or `metres_per_density`.
+    /// `k`, `metres_per_density` or the diameter in metres.
     pub size_scale: F,
+    /// [`Opacity::mode`]: how the kernel becomes opacity ([`splat_opacity`]).
+    pub opacity_mode: u32,
 }
 
 impl<F: Real> ScreenFrame<F> {
-    /// The frame of `camera` with `size`, rounded to `F` once.
-    pub fn new(camera: &Camera, size: SizeRule) -> Self {
+    /// The frame of `camera` with `size` and `opacity`, rounded to `F` once.
+    pub fn new(camera: &Camera, size: SizeRule, opacity: Opacity) -> Self {
         let v = |d: DVec3| d.to_array().map(F::of);
         let (size_mode, scale) = match size {
             SizeRule::Seed { k } => (0, k),
             SizeRule::World { metres_per_density } => (1, metres_per_density),
+            SizeRule::Fixed { diameter } => (2, diameter),
         };
         Self {
             right: v(camera.right()),
@@ -78,6 +95,7 @@ impl<F: Real> ScreenFrame<F> {
             half_height: F::of(0.5 * f64::from(camera.height())),
             size_mode,
             size_scale: F::of(scale),
+            opacity_mode: opacity.mode(),
         }
     }
 }
@@ -98,8 +116,10 @@ pub fn billboard_screen<F: Real>(frame: &ScreenFrame<F>, relative: [F; 3], densi
     let size = if frame.size_mode == 0 {
         let distance = dot(relative, relative).sqrt();
         (frame.size_scale * density / distance) * density
-    } else {
+    } else if frame.size_mode == 1 {
         frame.size_scale * density * frame.focal / z
+    } else {
+        frame.size_scale * frame.focal / z
     };
     [cx, cy, F::of(0.5) * size]
 }
@@ -116,11 +136,16 @@ pub struct Image<F> {
 }
 
 /// Draws `billboards` (in their order: [`billboards`](super::billboards) sorts them back to front) as
-/// `camera` sees them, onto a transparent image (see the module documentation for the
-/// coverage rule). `rasterise::<f32>` is the GPU pass's twin, `rasterise::<f64>` the
-/// reference.
-pub fn rasterise<F: Real>(billboards: &[Billboard], camera: &Camera, size: SizeRule) -> Image<F> {
-    rasterise_behind(billboards, camera, size, None)
+/// `camera` sees them with the settings' `size` and `opacity` (those they were made with),
+/// onto a transparent image (see the module documentation for the coverage rule).
+/// `rasterise::<f32>` is the GPU pass's twin, `rasterise::<f64>` the reference.
+pub fn rasterise<F: Real>(
+    billboards: &[Billboard],
+    camera: &Camera,
+    size: SizeRule,
+    opacity: Opacity,
+) -> Image<F> {
+    rasterise_behind(billboards, camera, size, opacity, None)
 }
 
 /// [`rasterise`] in front of an opaque scene: `max_depth` holds, per pixel (row-major,
@@ -134,6 +159,7 @@ pub fn rasterise_limited<F: Real>(
     billboards: &[Billboard],
     camera: &Camera,
     size: SizeRule,
+    opacity: Opacity,
     max_depth: &[F],
 ) -> Result<Image<F>, BillboardError> {
     let pixels = camera.width() as usize * camera.height() as usize;
@@ -143,18 +169,25 @@ pub fn rasterise_limited<F: Real>(
             pixels,
         });
     }
-    Ok(rasterise_behind(billboards, camera, size, Some(max_depth)))
+    Ok(rasterise_behind(
+        billboards,
+        camera,
+        size,
+        opacity,
+        Some(max_depth),
+    ))
 }
 
 fn rasterise_behind<F: Real>(
     billboards: &[Billboard],
     camera: &Camera,
     size: SizeRule,
+    opacity: Opacity,
     max_depth: Option<&[F]>,
 ) -> Image<F> {
     let (width, height) = (camera.width(), camera.height());
     let mut rgba = vec![[F::zero(); 4]; width as usize * height as usize];
-    let frame = ScreenFrame::<F>::new(camera, size);
+    let frame = ScreenFrame::<F>::new(camera, size, opacity);
     let half = F::of(0.5);
     for b in billboards {
         let relative = b.relative.map(F::of);
@@ -163,7 +196,7 @@ fn rasterise_behind<F: Real>(
             continue;
         }
         let colour = b.colour.map(F::of);
-        let alpha = F::of(b.alpha);
+        let weight = F::of(b.weight);
         let z = dot(relative, frame.forward);
         // Pixel i's centre i + ½ can lie within the radius only for i in this range.
         let range = |c: F, n: u32| {
@@ -178,7 +211,7 @@ fn rasterise_behind<F: Real>(
                 let dx = F::of(i as f64) + half - cx;
                 let dy = F::of(j as f64) + half - cy;
                 let r = (dx * dx + dy * dy).sqrt() / radius;
-                let a = alpha * splat_alpha(r);
+                let a = splat_opacity(weight, splat_alpha(r), frame.opacity_mode);
                 let index = i as usize + width as usize * j as usize;
                 let in_front = max_depth.is_none_or(|limit| z < limit[index]);
                 if a > F::zero() && in_front {

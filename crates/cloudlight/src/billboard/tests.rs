@@ -172,14 +172,22 @@ fn camera_inside_the_cloud_and_extreme_inputs_give_finite_images() {
             24,
         )
         .unwrap();
-        for size in [
-            SizeRule::default(),
-            SizeRule::World {
-                metres_per_density: 100.0,
-            },
+        for (size, opacity) in [
+            (SizeRule::default(), Opacity::default()),
+            (
+                SizeRule::World {
+                    metres_per_density: 100.0,
+                },
+                Opacity::default(),
+            ),
+            (
+                SizeRule::lattice(v.voxel_size()),
+                Opacity::OpticalDepth { cells: 1.0 },
+            ),
         ] {
             let s = BillboardSettings {
                 size,
+                opacity,
                 near,
                 ..Default::default()
             };
@@ -190,12 +198,12 @@ fn camera_inside_the_cloud_and_extreme_inputs_give_finite_images() {
                     .all(|b| b.depth > near && (0.0..=1.0).contains(&b.alpha))
             );
             assert!(b.windows(2).all(|w| w[0].depth >= w[1].depth));
-            let image = rasterise::<f64>(&b, &cam, size);
+            let image = rasterise::<f64>(&b, &cam, size, opacity);
             assert!(image.rgba.iter().flatten().all(|c| c.is_finite()));
             // Premultiplied: 0 ≤ colour ≤ alpha ≤ 1 (sun colour 1, light ≤ 1).
             assert!(image.rgba.iter().all(|p| (0.0..=1.0).contains(&p[3])
                 && p[..3].iter().all(|c| (0.0..=p[3] + 1e-12).contains(c))));
-            let image = rasterise::<f32>(&b, &cam, size);
+            let image = rasterise::<f32>(&b, &cam, size, opacity);
             assert!(
                 image
                     .rgba
@@ -220,20 +228,23 @@ fn limited_rasteriser_hides_billboards_behind_the_surface() {
     };
     let b = billboards(&two, &[0.5f32, 1.0], &s, &cam).unwrap();
     let pixels = 64 * 48;
-    let open = rasterise::<f64>(&b, &cam, s.size);
+    let open = rasterise::<f64>(&b, &cam, s.size, s.opacity);
     let unlimited =
-        rasterise_limited::<f64>(&b, &cam, s.size, &vec![f64::INFINITY; pixels]).unwrap();
+        rasterise_limited::<f64>(&b, &cam, s.size, s.opacity, &vec![f64::INFINITY; pixels])
+            .unwrap();
     assert_eq!(open, unlimited);
     // A wall at 1025 m: only the nearer billboard (light 0.5) shows.
-    let wall = rasterise_limited::<f64>(&b, &cam, s.size, &vec![1025.0; pixels]).unwrap();
-    let near_only = rasterise::<f64>(&b[1..], &cam, s.size);
+    let wall =
+        rasterise_limited::<f64>(&b, &cam, s.size, s.opacity, &vec![1025.0; pixels]).unwrap();
+    let near_only = rasterise::<f64>(&b[1..], &cam, s.size, s.opacity);
     assert_eq!(b[1].depth, 1000.0);
     assert_eq!(wall, near_only);
     // A wall at exactly a billboard's depth hides it (strictly less is drawn).
-    let flush = rasterise_limited::<f32>(&b, &cam, s.size, &vec![1000.0; pixels]).unwrap();
+    let flush =
+        rasterise_limited::<f32>(&b, &cam, s.size, s.opacity, &vec![1000.0; pixels]).unwrap();
     assert!(flush.rgba.iter().all(|p| *p == [0.0; 4]));
     assert_eq!(
-        rasterise_limited::<f32>(&b, &cam, s.size, &[1.0; 3]),
+        rasterise_limited::<f32>(&b, &cam, s.size, s.opacity, &[1.0; 3]),
         Err(BillboardError::DepthLength { len: 3, pixels })
     );
 }
@@ -266,7 +277,7 @@ fn rasteriser_composites_over_in_order_at_pixel_centres() {
         ..Default::default()
     };
     let b = billboards(&one, &[0.5f32], &s, &cam).unwrap();
-    let image = rasterise::<f64>(&b, &cam, s.size);
+    let image = rasterise::<f64>(&b, &cam, s.size, s.opacity);
     let f = cam.focal_pixels();
     let radius = 50.0 * f / 1000.0;
     // Centre of the image (32, 24) is a pixel corner: the 4 nearest pixels are at
@@ -285,11 +296,11 @@ fn rasteriser_composites_over_in_order_at_pixel_centres() {
     );
     // Two billboards at one pixel: over in order.
     let twice = [b[0], b[0]];
-    let two = rasterise::<f64>(&twice, &cam, s.size);
+    let two = rasterise::<f64>(&twice, &cam, s.size, s.opacity);
     let q = two.rgba[31 + 64 * 23];
     assert!((q[3] - (a + (1.0 - a) * a)).abs() < 1e-12);
     // The f32 twin agrees with the reference to rounding.
-    let image32 = rasterise::<f32>(&b, &cam, s.size);
+    let image32 = rasterise::<f32>(&b, &cam, s.size, s.opacity);
     let worst = image
         .rgba
         .iter()

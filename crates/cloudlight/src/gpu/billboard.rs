@@ -13,7 +13,7 @@
 //! billboard clouds do).
 //! The CPU twin is [`rasterise::<f32>`](crate::billboard::rasterise).
 
-use crate::billboard::{Billboard, Camera, ScreenFrame, SizeRule};
+use crate::billboard::{Billboard, Camera, Opacity, ScreenFrame, SizeRule};
 
 /// Errors of [`BillboardPass`], naming the field and value.
 #[derive(Debug, thiserror::Error)]
@@ -46,7 +46,8 @@ pub enum BillboardPassError {
     EncodeBeforePrepare,
 }
 
-/// Bytes of one instance: relative position (3 × f32), density, colour (3 × f32), alpha.
+/// Bytes of one instance: relative position (3 × f32), density, colour (3 × f32), the
+/// splat's weight ([`Billboard::weight`]).
 pub const INSTANCE_BYTES: u64 = 32;
 const FRAME_BYTES: u64 = 64;
 
@@ -66,6 +67,7 @@ pub fn frame_bytes(frame: &ScreenFrame<f32>) -> [u8; FRAME_BYTES as usize] {
     words[8..12].copy_from_slice(&bits(frame.forward, frame.half_height));
     words[12] = frame.size_mode;
     words[13] = frame.size_scale.to_bits();
+    words[14] = frame.opacity_mode;
     bytemuck::cast(words)
 }
 
@@ -77,13 +79,13 @@ pub fn instance_bytes(billboards: &[Billboard]) -> Vec<u8> {
         floats.extend(b.relative.map(|v| v as f32));
         floats.push(b.density as f32);
         floats.extend(b.colour.map(|v| v as f32));
-        floats.push(b.alpha as f32);
+        floats.push(b.weight as f32);
     }
     bytemuck::cast_slice(&floats).to_vec()
 }
 
 /// The instance attributes: `@location(0)` relative position and density,
-/// `@location(1)` colour and alpha (see [`instance_bytes`]).
+/// `@location(1)` colour and the splat's weight (see [`instance_bytes`]).
 const INSTANCE_ATTRIBUTES: [wgpu::VertexAttribute; 2] =
     wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4];
 
@@ -275,7 +277,8 @@ impl BillboardPass {
     }
 
     /// Uploads `billboards` (drawn in their order: back to front from
-    /// [`billboards`](crate::billboard::billboards)) and `camera` with `size`, and creates
+    /// [`billboards`](crate::billboard::billboards)) and `camera` with `size` and
+    /// `opacity` (the settings the billboards were made with), and creates
     /// the bind group [`BillboardPass::encode`] records with. Takes effect at the next
     /// submit.
     pub fn prepare(
@@ -285,6 +288,7 @@ impl BillboardPass {
         billboards: &[Billboard],
         camera: &Camera,
         size: SizeRule,
+        opacity: Opacity,
     ) -> Result<(), BillboardPassError> {
         let bytes = billboards.len() as u64 * INSTANCE_BYTES;
         let limit = device.limits().max_buffer_size;
@@ -307,7 +311,7 @@ impl BillboardPass {
         queue.write_buffer(
             &frame,
             0,
-            &frame_bytes(&ScreenFrame::<f32>::new(camera, size)),
+            &frame_bytes(&ScreenFrame::<f32>::new(camera, size, opacity)),
         );
         let instances = (count > 0).then(|| {
             let buffer = device.create_buffer(&wgpu::BufferDescriptor {

@@ -181,6 +181,7 @@ pub fn composite_billboards_cpu(
         &particles,
         &camera,
         cloud.settings.size,
+        cloud.settings.opacity,
         &max_depth,
     )
     .map_err(billboard_error)?;

@@ -529,7 +529,11 @@ impl BillboardCloudPass {
         {
             self.bind_group = self.params_group(device);
         }
-        let frame = cloudlight::billboard::ScreenFrame::<f32>::new(&camera, cloud.settings.size);
+        let frame = cloudlight::billboard::ScreenFrame::<f32>::new(
+            &camera,
+            cloud.settings.size,
+            cloud.settings.opacity,
+        );
         queue.write_buffer(
             &self.uniform,
             0,

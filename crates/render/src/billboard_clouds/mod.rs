@@ -77,7 +77,7 @@ pub use cpu::{
 pub(crate) use gpu::BillboardCloudPass;
 #[cfg(feature = "gpu")]
 pub use gpu::{PARAMS_BYTES, params_bytes};
-pub use section::{BillboardsSection, DEFAULT_CELLS_PER_DENSITY, SlicesName, VolumeDraw};
+pub use section::{BillboardsSection, OpacityName, SlicesName, VolumeDraw};
 
 /// The scene's billboard cloud, built once per scene.
 #[derive(Debug, Clone)]

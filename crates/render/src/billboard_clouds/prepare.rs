@@ -2,7 +2,9 @@
 //! toward the sun (and the moon on a moonlit night), its particles' lighting baked.
 
 use cloudlight::CloudVolume;
-use cloudlight::billboard::{BillboardSettings, Opacity, ParticleScattering, SizeRule};
+use cloudlight::billboard::{
+    BillboardSettings, LATTICE_DIAMETER_CELLS, Opacity, ParticleScattering, SizeRule,
+};
 use cloudlight::march::Lighting;
 use cloudlight::propagate::{SliceMode, SlicePlan};
 
@@ -53,12 +55,28 @@ impl Scene {
                 "must be finite, > 0 m and ≤ 100,000 m",
             ));
         }
+        if let Some(c) = b.splat_cells
+            && !(c.is_finite() && c > 0.0 && c <= 100.0)
+        {
+            return Err(self.billboards_invalid(
+                "splat_cells",
+                format!("{c} cells"),
+                "must be finite, > 0 and ≤ 100 cells",
+            ));
+        }
+        if let (Some(c), Some(_)) = (b.splat_cells, b.size_m_per_density) {
+            return Err(self.billboards_invalid(
+                "splat_cells",
+                format!("{c} cells"),
+                "give one size rule: splat_cells, size_m_per_density or seed_k, not two",
+            ));
+        }
         if let Some(k) = b.seed_k {
-            if b.size_m_per_density.is_some() {
+            if b.size_m_per_density.is_some() || b.splat_cells.is_some() {
                 return Err(self.billboards_invalid(
                     "seed_k",
                     k.to_string(),
-                    "give either seed_k (Dobashi et al. 2000's size rule) or size_m_per_density, not both",
+                    "give one size rule: splat_cells, size_m_per_density or seed_k (Dobashi et al. 2000's), not two",
                 ));
             }
             if !(k.is_finite() && k > 0.0) {
@@ -126,20 +144,22 @@ impl Scene {
                 })
             })
             .collect::<Result<Vec<_>, SceneError>>()?;
-        let size = match b.seed_k {
-            Some(k) => SizeRule::Seed { k },
-            None => SizeRule::World {
-                metres_per_density: b
-                    .size_m_per_density
-                    .unwrap_or(DEFAULT_CELLS_PER_DENSITY * section.cell_size_m),
+        let size = match (b.seed_k, b.size_m_per_density) {
+            (Some(k), _) => SizeRule::Seed { k },
+            (None, Some(metres_per_density)) => SizeRule::World { metres_per_density },
+            (None, None) => SizeRule::Fixed {
+                diameter: b.splat_cells.unwrap_or(LATTICE_DIAMETER_CELLS) * section.cell_size_m,
             },
+        };
+        let cells = b.opacity_cells;
+        let opacity = match b.opacity {
+            OpacityName::OpticalDepth => Opacity::OpticalDepth { cells },
+            OpacityName::Slab => Opacity::Slab { cells },
         };
         let settings = BillboardSettings {
             density_threshold: b.density_threshold,
             size,
-            opacity: Opacity::Slab {
-                cells: b.opacity_cells,
-            },
+            opacity,
             // Dobashi et al. 2000's colour (the light alone): `particles` replaces it with
             // `particle_radiance`.
             sun_colour: [1.0; 3],

@@ -13,8 +13,8 @@
 //!   settings and version of the code that bakes them, `StaticLuts::to_bytes`, so a
 //!   second run of a scene starts without the bake);
 //! - the terrain (heightfield, normals, horizon maps, albedo), keyed by the `[terrain]`
-//!   section and, for a heightfield file, the file's path, length and modification
-//!   time;
+//!   section, the hemisphere and, for a heightfield file or a colour image, the file's
+//!   path, length and modification time;
 //! - celestial's sky as built (its star catalogue loaded), keyed by the atmosphere and
 //!   the sky's options, placed anew for each frame's instant.
 
@@ -32,13 +32,19 @@ pub(crate) struct SkyKey {
     pub(crate) options: celestial::sky::SkyOptions,
 }
 
-/// What a prepared terrain is built from: the section, and the heightfield file's path,
-/// length and modification time when it reads one (a file replaced between frames is
-/// read again).
+/// A file's path, length and modification time.
+pub(crate) type FileStamp = (std::path::PathBuf, u64, Option<std::time::SystemTime>);
+
+/// What a prepared terrain is built from: the section, the heightfield file's and the
+/// colour image's path, length and modification time when it reads them (a file
+/// replaced between frames is read again), and the hemisphere (the procedural
+/// materials' shaded side).
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct TerrainKey {
     pub(crate) section: TerrainSection,
-    pub(crate) file: Option<(std::path::PathBuf, u64, Option<std::time::SystemTime>)>,
+    pub(crate) file: Option<FileStamp>,
+    pub(crate) colour_file: Option<FileStamp>,
+    pub(crate) pole_north: i8,
 }
 
 /// The most table sets kept in memory: a scene's sun and moon, and a few atmospheres a

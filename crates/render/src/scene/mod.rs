@@ -52,6 +52,7 @@ pub mod prepare;
 mod sgsky;
 mod sgsky_prepare;
 pub mod shipped;
+mod terrain_colour_section;
 mod terrain_prepare;
 mod warnings;
 
@@ -60,6 +61,7 @@ pub use cache::PrepareCache;
 pub use error::{Location, Origin, SceneError};
 pub use prepare::{CameraMove, Illuminant, PreparedScene, PreparedTerrain};
 pub use sgsky::{CloudKindName, CloudLayerSection, Coverage, CoverageName, VisibilitySection};
+pub use terrain_colour_section::{ColourSection, MaterialsModel, ProceduralMaterialsSection};
 
 use std::path::{Path, PathBuf};
 
@@ -466,11 +468,11 @@ impl Rung {
 
     /// The sky model's name in `skyscape explain`'s plan ("the closed form"), for a
     /// rung the GPU draws with passes of its own; `None` for a rung drawn through atmos'
-    /// tables (or with no GPU passes).
+    /// tables (or with no GPU passes). The dome's terrain and clouds see the closed
+    /// form's air; its sky is [`Rung::gpu_sky_evaluation`]'s.
     pub fn gpu_model(self) -> Option<&'static str> {
         match self {
-            Self::Dome => Some("SGSky's dome of the closed form"),
-            Self::ClosedForm | Self::ClosedFormVertex => Some("the closed form"),
+            Self::Dome | Self::ClosedForm | Self::ClosedFormVertex => Some("the closed form"),
             Self::Single => Some("single scattering"),
             _ => None,
         }
@@ -542,6 +544,14 @@ pub struct TerrainSection {
     /// `[terrain.albedo]`: colour by height and slope.
     #[serde(default)]
     pub albedo: AlbedoSection,
+    /// `[terrain.colour]`: a colour image over the heightfield's ground, replacing the
+    /// ramp's albedo (with procedural materials, the grass's).
+    pub colour: Option<ColourSection>,
+    /// Where the albedo comes from: `ramp` (`[terrain.albedo]`) or `procedural`.
+    #[serde(default)]
+    pub materials: MaterialsModel,
+    /// `[terrain.procedural_materials]`: rock, grass and snow (with `materials = "procedural"`).
+    pub procedural_materials: Option<ProceduralMaterialsSection>,
     /// Self-shadow maps: Hoffman and Preetham's east/west pair, or `azimuths` equally spaced ones.
     #[serde(default)]
     pub horizon: HorizonVariant,

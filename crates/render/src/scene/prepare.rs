@@ -32,8 +32,13 @@ pub struct PreparedTerrain {
     pub normals: NormalMap,
     /// Its self-shadow maps.
     pub horizon: HorizonMaps,
-    /// Its colour.
+    /// Its colour by the ramp (`materials = "ramp"` without a colour texture).
     pub albedo: AlbedoRamp,
+    /// The procedural materials (`materials = "procedural"`), `None` for the ramp.
+    pub materials: Option<crate::terrain_materials::MaterialParams<f32>>,
+    /// The colour texture (`[terrain.colour]`): the albedo with the ramp, the grass's
+    /// with the procedural materials.
+    pub colour: Option<std::sync::Arc<crate::terrain_colour::ColourTexture>>,
     /// Where its aerial perspective is evaluated (`[terrain] aerial_perspective`).
     pub aerial_perspective: crate::aerial_vertex::AerialPerspective,
 }

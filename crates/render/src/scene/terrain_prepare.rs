@@ -7,7 +7,8 @@ use terrain::{Algorithm, Heightfield, HorizonOptions, NormalMap};
 
 use super::assemble::metres;
 use super::prepare::*;
-use super::{HorizonVariant, PrepareCache, Scene, SceneError};
+use super::{HorizonVariant, MaterialsModel, PrepareCache, Scene, SceneError};
+use crate::terrain_colour::read_colour_png;
 use crate::terrain_shading::AlbedoRamp;
 
 impl Scene {
@@ -25,14 +26,19 @@ impl Scene {
                     .map(|p| &p.path)
                     .or(section.raw_f32.as_ref().map(|r| &r.path))
                     .map(|path| self.resolve(path));
-                let file = source.map(|path| {
+                let stamp = |path: std::path::PathBuf| {
                     let meta = std::fs::metadata(&path).ok();
                     let (len, modified) = meta.map_or((0, None), |m| (m.len(), m.modified().ok()));
                     (path, len, modified)
-                });
+                };
                 let key = super::cache::TerrainKey {
                     section: section.clone(),
-                    file,
+                    file: source.map(stamp),
+                    colour_file: section
+                        .colour
+                        .as_ref()
+                        .map(|c| stamp(self.resolve(&c.path))),
+                    pole_north: self.pole_north() as i8,
                 };
                 Some(cache.terrain(key, || {
                     self.terrain()?.ok_or_else(|| unreachable_terrain(self))
@@ -154,14 +160,60 @@ impl Scene {
         let albedo = AlbedoRamp::new(&section.albedo).map_err(|(key, value, reason)| {
             self.invalid(&["terrain", "albedo", key], value, reason)
         })?;
+        let materials = match (section.materials, &section.procedural_materials) {
+            (MaterialsModel::Ramp, None) => None,
+            (MaterialsModel::Ramp, Some(_)) => {
+                return Err(self.invalid(
+                    &["terrain", "procedural_materials"],
+                    "a section".into(),
+                    "only used with materials = \"procedural\"".into(),
+                ));
+            }
+            (MaterialsModel::Procedural, given) => Some(
+                given
+                    .clone()
+                    .unwrap_or_default()
+                    .params(self.pole_north())
+                    .map_err(|(key, value, reason)| {
+                        self.invalid(&["terrain", "procedural_materials", key], value, reason)
+                    })?,
+            ),
+        };
+        let colour = match &section.colour {
+            Some(c) => {
+                let extent = [
+                    (heightfield.width() - 1) as f64 * heightfield.spacing(),
+                    (heightfield.height() - 1) as f64 * heightfield.spacing(),
+                ];
+                let texture = read_colour_png(&self.resolve(&c.path), c.cell_size, extent)
+                    .map_err(|(key, value, reason)| {
+                        self.invalid(&["terrain", "colour", key], value, reason)
+                    })?;
+                Some(std::sync::Arc::new(texture))
+            }
+            None => None,
+        };
         let normals = NormalMap::from_heightfield(&heightfield);
         Ok(Some(PreparedTerrain {
             heightfield,
             normals,
             horizon,
             albedo,
+            materials,
+            colour,
             aerial_perspective: section.aerial_perspective,
         }))
+    }
+}
+
+impl Scene {
+    /// +1 where the pole the terrain's shaded slopes face is north (the scene's
+    /// `[time] latitude_deg` ≥ 0, or no `[time]`), −1 in the southern hemisphere.
+    fn pole_north(&self) -> f32 {
+        match &self.file.time {
+            Some(time) if time.latitude_deg < 0.0 => -1.0,
+            _ => 1.0,
+        }
     }
 }
 

@@ -1,7 +1,9 @@
-//! Parity case of `celestial::dome`: SGSky's 12-sided dome drawn along a view ray
-//! (`sky_dome_radiance`: the sector by azimuth, Möller–Trumbore against its triangles,
-//! the barycentric blend; the skirt's chord below it). The f32 twin and the f64
-//! reference are one generic function instantiated twice.
+//! Parity case of `celestial::dome`: where a view ray meets SGSky's 12-sided dome
+//! (`sky_dome_weights`: the sector by azimuth, the band by the rings' chords,
+//! Möller–Trumbore over its triangles; the skirt's chord below it), compared through
+//! the blend of vertex colours that differ in every channel (the slots alone jump at
+//! shared edges, where the blend is continuous). The f32 twin and the f64 reference
+//! are one generic function instantiated twice.
 
 use super::*;
 
@@ -15,7 +17,9 @@ const WGSL: &str = "var colours: array<vec4<f32>, 49>; \
     for (var k = 0u; k < 49u; k++) { \
         colours[k] = vec4<f32>(f32(k % 7u), f32((k * 5u) % 11u), f32((k * 3u) % 13u), 1.0); \
     } \
-    let c = sky_dome_radiance(vec3<f32>(x0, x1, x2), x3, colours); \
+    let hit = sky_dome_weights(vec3<f32>(x0, x1, x2), x3); \
+    let c = hit.weights.x * colours[hit.slots.x].xyz + hit.weights.y * colours[hit.slots.y].xyz \
+        + hit.weights.z * colours[hit.slots.z].xyz; \
     y0 = c.x; y1 = c.y; y2 = c.z;";
 
 /// Directions over the sphere at four rotations, the vertices themselves, the sector
@@ -60,7 +64,7 @@ fn grid() -> Vec<Vec<f64>> {
 /// The case.
 pub fn cases() -> Vec<Case> {
     vec![Case {
-        name: "celestial::sky_dome_radiance",
+        name: "celestial::sky_dome_weights",
         imports: &["celestial::dome"],
         arity: (4, 3),
         wgsl: WGSL,

@@ -1,10 +1,13 @@
-//! Parity cases of `cloudlight::billboard` (Dobashi et al. 2000's billboards): the soft splat and a
-//! billboard's place and size on the image. The screen function's reference is the generic
-//! function's f64 instantiation (one formula, two precisions: the error is rounding); the
-//! splat's is an independent factored form.
+//! Parity cases of `cloudlight::billboard` (Dobashi et al. 2000's billboards): the soft splat, the
+//! opacity it gives a pixel, and a billboard's place and size on the image. The screen
+//! function's reference is the generic function's f64 instantiation (one formula, two
+//! precisions: the error is rounding); the splat's and the opacity's are independent
+//! forms.
 
 use super::*;
-use cloudlight::billboard::{Camera, FieldOfView, ScreenFrame, SizeRule, billboard_screen};
+use cloudlight::billboard::{
+    Camera, FieldOfView, Opacity, ScreenFrame, SizeRule, billboard_screen, splat_opacity,
+};
 use glam::DVec3;
 
 /// The cameras of the screen case: several orientations and image sizes.
@@ -46,15 +49,15 @@ fn hash01(i: u32, salt: u32) -> f64 {
 fn screen_grid() -> Vec<Vec<f64>> {
     let mut grid = Vec::new();
     for camera in cameras() {
-        for (mode, scale) in [(0.0, 9500.0), (1.0, 125.0)] {
-            let size = if mode == 0.0 {
-                SizeRule::Seed { k: scale }
-            } else {
-                SizeRule::World {
+        for (mode, scale) in [(0.0, 9500.0), (1.0, 125.0), (2.0, 310.0)] {
+            let size = match mode as u32 {
+                0 => SizeRule::Seed { k: scale },
+                1 => SizeRule::World {
                     metres_per_density: scale,
-                }
+                },
+                _ => SizeRule::Fixed { diameter: scale },
             };
-            let f = ScreenFrame::<f64>::new(&camera, size);
+            let f = ScreenFrame::<f64>::new(&camera, size, Opacity::default());
             for i in 0..1000u32 {
                 // Directions within the view (±0.6 of the depth sideways), distances 10 m to
                 // 50 km, densities 0.3 to 3.
@@ -90,6 +93,7 @@ fn frame_of<F: atmos::real::Real>(x: &[F]) -> ScreenFrame<F> {
         half_height: x[15],
         size_mode: x[16].to_u32().unwrap_or(0),
         size_scale: x[17],
+        opacity_mode: 0,
     }
 }
 
@@ -98,7 +102,8 @@ fn frame_of<F: atmos::real::Real>(x: &[F]) -> ScreenFrame<F> {
 /// inherits the dot products' errors over |z|; the centre adds a product and a sum (2u of
 /// each term). Seed size: |rel|'s dot (3u), WGSL sqrt (≤ 4.5 ULP → 9u over 2), a division
 /// (5u) and two products: 16u relative. World size: two products, a division and z's
-/// relative error. Doubled for margin.
+/// relative error; fixed size: a product, a division and z's relative error. Doubled
+/// for margin.
 fn screen_bound(x: &[f64]) -> Vec<f64> {
     let rel = [x[0], x[1], x[2]];
     let n = (rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2]).sqrt();
@@ -172,6 +177,65 @@ pub fn cases() -> Vec<Case> {
                       absolute in q, which cancels near the rim), doubled relative by the \
                       square, plus its rounding; 0 at r ≥ 1 on both sides (reference: \
                       (1 − r)²(1 + r)² in f64)",
+            },
+        },
+        Case {
+            name: "cloudlight::splat_opacity",
+            imports: &["cloudlight::billboard"],
+            arity: (3, 1),
+            wgsl: "y0 = splat_opacity(x0, x1, u32(x2));",
+            grid: || {
+                // Weights 10⁻⁶ to 40 (an optical depth at the centre, or an opacity ≤ 1 for
+                // mode 0), kernels 0 to 1, both modes.
+                let mut grid = Vec::new();
+                for weight in logspace(1e-6, 40.0, 101) {
+                    for kernel in linspace(0.0, 1.0, 51) {
+                        for mode in [0.0, 1.0] {
+                            grid.push(vec![weight, kernel, mode]);
+                        }
+                    }
+                }
+                grid.extend([
+                    vec![0.0, 0.5, 1.0],
+                    vec![0.0, 0.5, 0.0],
+                    vec![1e4, 1.0, 1.0],
+                ]);
+                grid
+            },
+            cpu: |x| vec![splat_opacity(x[0], x[1], x[2] as u32)],
+            // Independent forms: −expm1(−w·k) and the product.
+            reference: |x| {
+                let optical_depth = x[0] * x[1];
+                vec![if x[2] == 1.0 {
+                    -(-optical_depth).exp_m1()
+                } else {
+                    optical_depth
+                }]
+            },
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 1.0,
+                // Mode 1: x = w·k rounds (u·x relative, e^{−x}·u·x absolute in 1 − e^{−x});
+                // e = exp(−x) carries (4 + 2x) ULP of itself (WGSL exp), which the
+                // cancelling subtraction keeps as an absolute error. Mode 0: one product.
+                bound: Some(|x| {
+                    let optical_depth = x[0] * x[1];
+                    if x[2] == 1.0 {
+                        let e = (-optical_depth).exp();
+                        vec![
+                            (4.0 + 2.0 * optical_depth) * super::super::compare::ulp_f32(e)
+                                + e * U * optical_depth,
+                        ]
+                    } else {
+                        vec![U * optical_depth]
+                    }
+                }),
+                why: "1 − exp(−w·k): the product's rounding (u·x, times e^{−x}) and WGSL exp's \
+                      3 + 2x ULP of exp(−x) (+1 for libm) kept as an absolute error by the \
+                      cancelling subtraction, + 1 ULP of the result; mode 0 the product's \
+                      rounding (reference: −expm1(−w·k) in f64, or w·k)",
             },
         },
         Case {

@@ -29,6 +29,7 @@ mod render_billboard_cases;
 mod render_cases;
 mod render_cloud_order_cases;
 mod render_fog_cases;
+mod render_terrain_materials_cases;
 mod render_volume_cases;
 mod terrain_cases;
 
@@ -381,6 +382,7 @@ pub fn all() -> Vec<Case> {
         render_volume_cases::cases(),
         render_cloud_order_cases::cases(),
         render_fog_cases::cases(),
+        render_terrain_materials_cases::cases(),
         terrain_cases::cases(),
         cloudlight_cases::cases(),
         cloudlight_cases::cone_cases(),

@@ -26,6 +26,11 @@ pub(crate) const ENTRY: PassEntry = PassEntry {
 fn plan(scene: &PreparedScene) -> Vec<PlanLine> {
     let what = match rung_model(scene) {
         None => "atmos' sky pass, drawn first with depth writes off".to_owned(),
+        Some(_) if scene.rung == crate::scene::Rung::Dome => {
+            "SGSky's dome (with the sun's aureole) per pixel with the sun's disc through \
+             the transmittance toward the sun, drawn first with depth writes off"
+                .to_owned()
+        }
         Some(model) => format!(
             "{model}'s radiance per pixel with the sun's disc through its transmittance, \
              drawn first with depth writes off"

@@ -17,6 +17,7 @@ use super::lighting::{SUN_TABLE_SIZE, light_irradiance_at, terrain_lighting_for}
 use crate::RenderError;
 use crate::cpu_frame::{CpuFrame, PrecomputedFrame};
 use crate::scene::prepare::{HorizonMaps, Illuminant, PreparedScene, PreparedTerrain};
+use crate::terrain_materials::{detail_noise, pixel_footprint, procedural_albedo};
 use crate::terrain_shading::surface_radiance;
 
 /// Shades the frame's terrain hits by every light (the CPU twin of the terrain pass).
@@ -80,6 +81,8 @@ pub(crate) struct TerrainLight<'a> {
     /// spanning the terrain's range, first to last.
     sun_table: Vec<Vec3>,
     elevation_range: [f64; 2],
+    /// Radians per pixel (`super::pixel_angle`).
+    pixel_angle: f32,
     /// The per-vertex aerial perspective's mesh and vertex segments
     /// (`[terrain] aerial_perspective = "per-vertex"`), `None` per pixel.
     vertex_aerial: Option<crate::aerial_vertex::VertexAerial>,
@@ -125,6 +128,7 @@ pub(crate) fn terrain_light<'a>(
         sun_azimuth: lighting.sun_azimuth,
         sun_table,
         elevation_range: [low, high],
+        pixel_angle: super::pixel_angle(&scene.camera),
         vertex_aerial: terrain.aerial_perspective.per_vertex().then(|| {
             crate::aerial_vertex::VertexAerial::new(
                 scene,
@@ -178,6 +182,39 @@ fn filtered(values: &[f32], texels: &[usize; 4], weights: &[f32; 4]) -> f32 {
         .sum()
 }
 
+/// The terrain's albedo at map position `map` (m east and south of texel (0, 0)),
+/// `elevation` (m), with unit normal `normal` (east, north, up), seen from the camera at
+/// `offset` (world axes, camera → point): the colour texture or the ramp, or the
+/// procedural materials over the colour texture's or the grass's albedo, their detail
+/// band-limited by the pixel's footprint. Twin of WGSL `surface_albedo`
+/// (`shaders/render/terrain.wgsl`).
+fn surface_albedo(
+    terrain: &PreparedTerrain,
+    map: [f32; 2],
+    elevation: f32,
+    normal: Vec3,
+    offset: Vec3,
+    pixel_angle: f32,
+) -> Vec3 {
+    let colour = terrain.colour.as_ref().map(|c| c.colour_at(map));
+    let Some(params) = &terrain.materials else {
+        return colour.unwrap_or_else(|| terrain.albedo.albedo(elevation, normal.z));
+    };
+    let ground = colour.unwrap_or(Vec3::from_array(params.grass_albedo));
+    let distance = offset.length().max(1e-3);
+    let cos_incidence =
+        (offset.x * normal.x - offset.z * normal.y + offset.y * normal.z) / distance;
+    let footprint = pixel_footprint(distance, pixel_angle, cos_incidence);
+    let detail = detail_noise(map[0], map[1], footprint, params.seed);
+    Vec3::from_array(procedural_albedo(
+        normal.to_array(),
+        elevation,
+        detail,
+        ground.to_array(),
+        params,
+    ))
+}
+
 fn shade_terrain(
     scene: &PreparedScene,
     light: &TerrainLight<'_>,
@@ -217,7 +254,16 @@ fn shade_terrain(
         }
     };
     let elevation = hit.position[2];
-    let albedo = terrain.albedo.albedo(elevation as f32, normal_enu.z);
+    let camera_to_hit = (view * hit.distance).as_vec3();
+    let map = [hit.position[0] as f32, hit.position[1] as f32];
+    let albedo = surface_albedo(
+        terrain,
+        map,
+        elevation as f32,
+        normal_enu,
+        camera_to_hit,
+        light.pixel_angle,
+    );
     let n = normal_enu;
     if let Some(p) = precomputed {
         // The twins of the GPU terrain pass: the sun and the aerial perspective from

@@ -133,6 +133,24 @@ fn new_terrain_pass(
             usage: wgpu::BufferUsages::STORAGE,
         })
     };
+    // `[terrain.colour]`'s linear texels (one unused element without a texture: a
+    // binding may not be empty).
+    let colour_texels: &[[f32; 4]] = match &terrain.colour {
+        Some(colour) => &colour.texels,
+        None => &[[0.0; 4]],
+    };
+    if std::mem::size_of_val(colour_texels) as u64 > limit {
+        let size = terrain.colour.as_ref().map_or([1, 1], |c| c.size);
+        return Err(RenderError::InvalidParameter {
+            field: "terrain.colour.path",
+            value: format!("{}×{} pixels", size[0], size[1]),
+            reason: "the colour texture exceeds the device's storage-buffer binding size",
+        });
+    }
+    let colour_texels = storage(
+        "render terrain colour texels",
+        bytemuck::cast_slice(colour_texels),
+    );
     let heights = storage("render terrain heights", bytemuck::cast_slice(&heights));
     let normals = storage("render terrain normals", bytemuck::cast_slice(&normals));
     let horizons = storage("render terrain horizons", bytemuck::cast_slice(&horizons));
@@ -173,6 +191,7 @@ fn new_terrain_pass(
             storage_read(4, wgpu::ShaderStages::FRAGMENT),
             uniform_entry(5, wgpu::ShaderStages::FRAGMENT),
             storage_read(6, wgpu::ShaderStages::FRAGMENT),
+            storage_read(7, wgpu::ShaderStages::FRAGMENT),
         ],
     });
     let bind_group_with =
@@ -208,6 +227,10 @@ fn new_terrain_pass(
                     wgpu::BindGroupEntry {
                         binding: 6,
                         resource: volume_shadow_values.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 7,
+                        resource: colour_texels.as_entire_binding(),
                     },
                 ],
             })
@@ -446,9 +469,15 @@ impl GpuPass for TerrainPass {
             cloud_layer_count: light.cloud_layers.len() as u32,
             albedo: terrain.albedo.uniform(),
             radiance_scale: scene.present.exposure,
+            pixel_angle: super::pixel_angle(camera),
+            procedural: u32::from(terrain.materials.is_some()),
+            colour_enabled: u32::from(terrain.colour.is_some()),
+            colour_size: terrain.colour.as_ref().map_or([2, 2], |c| c.size),
+            colour_texels_per_metre: terrain.colour.as_ref().map_or(0.0, |c| c.texels_per_metre),
             padding0: 0.0,
-            padding1: 0.0,
-            padding2: 0.0,
+            materials: terrain
+                .materials
+                .map_or(bytemuck::Zeroable::zeroed(), |m| m.uniform()),
         };
         // The clouds' shadow maps (the CPU renderer reads the same values; the deck's
         // baked on the GPU by the same formula), each light's parameters.

@@ -20,6 +20,12 @@ pub(crate) mod shell_shadow;
 use super::{PassEntry, PlanLine, rung_model};
 use crate::scene::prepare::PreparedScene;
 
+/// Radians per pixel of `camera` (its vertical field over its rows): the footprint that
+/// band-limits the procedural materials' detail, the same on both renderers.
+pub(crate) fn pixel_angle(camera: &atmos::frame::FrameCamera) -> f32 {
+    2.0 * camera.tan_half_fov_y / camera.height as f32
+}
+
 /// The terrain's entry in the frame.
 pub(crate) const ENTRY: PassEntry = PassEntry {
     name: "terrain",

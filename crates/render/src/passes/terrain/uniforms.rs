@@ -37,12 +37,20 @@ pub struct TerrainUniform {
     pub albedo: AlbedoRampUniform,
     /// Multiplies the radiance written (the HDR target holds radiance × exposure).
     pub radiance_scale: f32,
+    /// Radians per pixel: the footprint that band-limits the materials' detail.
+    pub pixel_angle: f32,
+    /// 1: the procedural materials; 0: the ramp.
+    pub procedural: u32,
+    /// 1: a colour texture is bound.
+    pub colour_enabled: u32,
+    /// The colour texture's pixels (east, south).
+    pub colour_size: [u32; 2],
+    /// The colour texture's pixels per metre.
+    pub colour_texels_per_metre: f32,
     /// Alignment.
     pub padding0: f32,
-    /// Alignment.
-    pub padding1: f32,
-    /// Alignment.
-    pub padding2: f32,
+    /// The procedural materials' parameters.
+    pub materials: crate::terrain_materials::MaterialsUniform,
 }
 
 /// One marched cloud's shadow map parameters of a terrain draw (layout identical to WGSL
