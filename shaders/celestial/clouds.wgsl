@@ -102,16 +102,23 @@ fn cloud_reflectance(optical_thickness: f32, asymmetry: f32, mu_sun: f32) -> f32
     return clamp((scaled + (2.0 / 3.0 - mu_sun) * direct) / (4.0 / 3.0 + scaled), 0.0, 1.0);
 }
 
-// The column's vertical optical thickness at (u, v) metres: τ × density × the noise's
-// height above the edge's foot over the layer's core depth (thin edges, thick cores).
-fn cloud_optical_thickness(u: f32, v: f32, layer: CloudLayerUniforms) -> f32 {
+// The cloud at (u, v) metres: (coverage, the column's vertical optical thickness where
+// it is) — the edge's smoothstep cover of a column τ × the noise's height above the
+// edge's foot, floored at the threshold, over the layer's core depth.
+fn cloud_column(u: f32, v: f32, layer: CloudLayerUniforms) -> vec2<f32> {
     let x = u / (layer.feature_size * layer.stretch);
     let y = v / layer.feature_size;
     let n = cloud_fbm(x, y, layer.octaves, layer.seed);
     let height = (n - layer.threshold) / layer.softness + 0.5;
     let t = clamp(height, 0.0, 1.0);
-    let density = t * t * (3.0 - 2.0 * t);
-    return layer.optical_thickness * density * (max(height, 0.0) * layer.softness / layer.core_depth);
+    let coverage = t * t * (3.0 - 2.0 * t);
+    return vec2<f32>(coverage, layer.optical_thickness * (max(height, 0.5) * layer.softness / layer.core_depth));
+}
+
+// The area-mean vertical optical thickness at (u, v): coverage × the column's.
+fn cloud_optical_thickness(u: f32, v: f32, layer: CloudLayerUniforms) -> f32 {
+    let column = cloud_column(u, v, layer);
+    return column.x * column.y;
 }
 
 // (1 − e^{−y})/y for y ≥ 0 (1 at y = 0).
@@ -227,8 +234,10 @@ fn cloud_layer_radiance(view: vec3<f32>, r: f32, layer: CloudLayerUniforms, back
         mu_hit = (view.x * horizontal.x + view.y * horizontal.y + view.z * hit_z) / hit_radius;
     }
     let slant = max(abs(mu_hit), 0.01);
-    let tau = cloud_optical_thickness(horizontal.x + layer.offset.x, horizontal.y + layer.offset.y, layer);
-    if tau <= 0.0 {
+    let column = cloud_column(horizontal.x + layer.offset.x, horizontal.y + layer.offset.y, layer);
+    let coverage = column.x;
+    let tau = column.y;
+    if coverage <= 0.0 {
         return background;
     }
     let opacity = one_minus_exp_neg(tau / slant);
@@ -252,7 +261,7 @@ fn cloud_layer_radiance(view: vec3<f32>, r: f32, layer: CloudLayerUniforms, back
     for (var i = 0; i < 3; i++) {
         let lit = sun_scattering * layer.sunlight[i] + sky_factor * layer.skylight[i] * INV_PI * opacity / emissivity;
         let faded = fog * lit + (1.0 - fog) * opacity * layer.fog_colour[i];
-        result[i] = background[i] + rim * (faded - opacity * background[i]);
+        result[i] = background[i] + rim * coverage * (faded - opacity * background[i]);
     }
     return result;
 }

@@ -124,6 +124,7 @@ pub mod prelude {
 /// splatted with [`point_sprite_weight`](twins::point_sprite_weight), and a cloud
 /// layer's [`clouds::cloud_layer_radiance`] is built from
 /// [`cloud_layer_distance`](twins::cloud_layer_distance),
+/// [`cloud_column`](twins::cloud_column) and
 /// [`cloud_optical_thickness`](twins::cloud_optical_thickness) (the texture of
 /// [`cloud_density`](twins::cloud_density), over [`cloud_fbm`](twins::cloud_fbm) and
 /// [`cloud_value_noise`](twins::cloud_value_noise)),
@@ -135,8 +136,8 @@ pub mod prelude {
 pub mod twins {
     #[doc(inline)]
     pub use crate::clouds::{
-        cloud_density, cloud_fbm, cloud_layer_distance, cloud_optical_thickness, cloud_reflectance,
-        cloud_sun_scattering, cloud_value_noise,
+        cloud_column, cloud_density, cloud_fbm, cloud_layer_distance, cloud_optical_thickness,
+        cloud_reflectance, cloud_sun_scattering, cloud_value_noise,
     };
     #[doc(inline)]
     pub use crate::draw::{

@@ -13,13 +13,15 @@
 //!
 //! **Optical thickness and lighting.** Each type has the mean vertical optical thickness
 //! τ of its cloud elements from its ISCCP class (Rossow & Schiffer 1999, BAMS 80, 2261:
-//! high, middle and low clouds split at τ = 3.6 and 23). An element's column is thin at
-//! its edge and thick at its core: the local τ grows with the noise's height above the
-//! coverage threshold, scaled so that the covered area's mean is the kind's τ
-//! ([`cloud_optical_thickness`]). A view crossing it sees τ/|μ| and lets `exp(−τ/|μ|)`
-//! of the background through. The column's own radiance ([`cloud_sun_scattering`]) is
-//! its exact single scattering with a Henyey–Greenstein phase function (the forward
-//! glow around the sun, the silver lining of thin edges) plus the rest of the Eddington
+//! high, middle and low clouds split at τ = 3.6 and 23). An element covers part of the
+//! area across its soft edge and its column thickens toward its core: the local τ grows
+//! with the noise's height above the coverage threshold (floored at the threshold: a
+//! cloud's edge is sharp at a pixel's scale), scaled so that the covered area's mean is
+//! the kind's τ ([`cloud_column`]). A view crossing it sees τ/|μ| and lets
+//! `exp(−τ/|μ|)` of the background through on the covered part. The column's own
+//! radiance ([`cloud_sun_scattering`]) is its exact single scattering with a
+//! Henyey–Greenstein phase function (the forward glow around the sun, brightest through
+//! the thinner columns) plus the rest of the Eddington
 //! two-stream flux (Lacis & Hansen 1974, J. Atmos. Sci. 31, 118; Meador & Weaver 1980)
 //! as a uniform source (a thick core's base darker than its thin edges), lit by the
 //! sun's irradiance at the layer (the atmosphere's transmittance from the layer toward
@@ -44,7 +46,7 @@ pub use layer::{
     CloudKind, CloudKindParameters, CloudLayer, LayerShape, SGSKY_IN_CLOUD_VISIBILITY_M,
 };
 pub use shading::{
-    CloudLayerFrame, CloudLayerUniforms, DIFFUSIVITY, cloud_density, cloud_fbm,
+    CloudLayerFrame, CloudLayerUniforms, DIFFUSIVITY, cloud_column, cloud_density, cloud_fbm,
     cloud_layer_distance, cloud_layer_radiance, cloud_optical_thickness, cloud_reflectance,
     cloud_shadow, cloud_sun_scattering, cloud_value_noise,
 };

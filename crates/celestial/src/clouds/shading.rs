@@ -148,21 +148,36 @@ pub fn cloud_reflectance<F: Real>(optical_thickness: F, asymmetry: F, mu_sun: F)
         .min(F::one())
 }
 
-/// The column's vertical optical thickness at horizontal position (`u`, `v`) metres on
-/// the layer: the kind's τ × [`cloud_density`] × the noise's height above the foot of
-/// the cloud edge (threshold − softness/2) over the layer's `core_depth` (that height's
-/// mean over the covered area), so an element is thin at its edge and thick at its
-/// core, and τ is the covered area's mean (ISCCP's τ is a mean over cloudy pixels:
-/// Rossow & Schiffer 1999).
+/// The cloud at horizontal position (`u`, `v`) metres on the layer, as
+/// `[coverage, optical_thickness]`: the fraction of the area the cloud covers there (the
+/// coverage noise's smoothstep across the edge, [`cloud_density`]'s) and the vertical
+/// optical thickness of the cloud where it is: the kind's τ × the noise's height above
+/// the edge's foot (threshold − softness/2), floored at the edge's middle (the
+/// threshold), over the layer's `core_depth` (that height's mean over the covered area,
+/// noise above the threshold). An element's edge is partial cover of a finite column —
+/// a cloud's edge is sharp at the scale of a pixel, not a sheet thinning to nothing —
+/// and its core is thick; τ is the covered area's mean (ISCCP's τ is a mean over cloudy
+/// pixels: Rossow & Schiffer 1999).
 #[doc(hidden)]
-pub fn cloud_optical_thickness(u: f32, v: f32, layer: &CloudLayerUniforms) -> f32 {
+pub fn cloud_column(u: f32, v: f32, layer: &CloudLayerUniforms) -> [f32; 2] {
     let x = u / (layer.feature_size * layer.stretch);
     let y = v / layer.feature_size;
     let n = cloud_fbm(x, y, layer.octaves, layer.seed);
     let height = (n - layer.threshold) / layer.softness + 0.5;
     let t = height.clamp(0.0, 1.0);
-    let density = t * t * (3.0 - 2.0 * t);
-    layer.optical_thickness * density * (height.max(0.0) * layer.softness / layer.core_depth)
+    let coverage = t * t * (3.0 - 2.0 * t);
+    [
+        coverage,
+        layer.optical_thickness * (height.max(0.5) * layer.softness / layer.core_depth),
+    ]
+}
+
+/// The area-mean vertical optical thickness at (`u`, `v`): coverage × the column's
+/// ([`cloud_column`]), what a volume of the same layer holds there.
+#[doc(hidden)]
+pub fn cloud_optical_thickness(u: f32, v: f32, layer: &CloudLayerUniforms) -> f32 {
+    let [coverage, column] = cloud_column(u, v, layer);
+    coverage * column
 }
 
 /// (1 − e^{−y})/y for y ≥ 0 (1 at y = 0): the mean of e^{−y s} over s ∈ [0, 1].
@@ -269,9 +284,9 @@ pub const DIFFUSIVITY: f32 = 1.66;
 /// The layer seen along `view` (unit, east/north/up) from a viewer at radius `r` on
 /// the +z axis, composited over `background` (the radiance behind it, per channel):
 /// the layer's surface facing the viewer (its base from below, its top from above;
-/// nothing from inside), the column's optical thickness τ there
-/// ([`cloud_optical_thickness`]), its opacity `1 − exp(−τ/|μ_layer|)` over the
-/// background, and its own radiance: the sun's light it reflects (seen from above) or
+/// nothing from inside), the cloud's cover and column there ([`cloud_column`]), the
+/// column's opacity `1 − exp(−τ/|μ_layer|)` over the background on the covered part,
+/// and its own radiance: the sun's light it reflects (seen from above) or
 /// transmits (from below) toward the view ([`cloud_sun_scattering`], at the scattering
 /// angle between view and sun) and the sky's (Eddington's flux for diffuse light at
 /// μ = 1/2, seen as a uniform source through the opacity), faded into the fog colour by
@@ -314,12 +329,12 @@ pub fn cloud_layer_radiance(
         mu
     };
     let slant = mu_hit.abs().max(0.01);
-    let tau = cloud_optical_thickness(
+    let [coverage, tau] = cloud_column(
         horizontal[0] + layer.offset[0],
         horizontal[1] + layer.offset[1],
         layer,
     );
-    if tau <= 0.0 {
+    if coverage <= 0.0 {
         return background;
     }
     let opacity = atmos::transmittance::one_minus_exp_neg(tau / slant);
@@ -355,6 +370,6 @@ pub fn cloud_layer_radiance(
         let lit = sun_scattering * layer.sunlight[i]
             + sky_factor * layer.skylight[i] * skyscape_wgsl::common::INV_PI * opacity / emissivity;
         let faded = fog * lit + (1.0 - fog) * opacity * layer.fog_colour[i];
-        background[i] + rim * (faded - opacity * background[i])
+        background[i] + rim * coverage * (faded - opacity * background[i])
     })
 }

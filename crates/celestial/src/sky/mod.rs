@@ -119,8 +119,9 @@ pub struct LayerLight {
     pub direction: [f64; 3],
     /// Its irradiance at the layer, per channel (after the atmosphere above).
     pub irradiance: [f64; 3],
-    /// The sky's irradiance on a horizontal surface at the layer (π × its zenith
-    /// radiance: an isotropic sky), per channel.
+    /// The sky's irradiance on a horizontal surface at the layer, per channel: the
+    /// model's radiance over the upper hemisphere (4 × 8 directions) after `repaint`,
+    /// π × the given sky colour after `repaint_explicit`.
     pub skylight: [f64; 3],
 }
 

@@ -278,7 +278,7 @@ impl Sky {
             layer_light.push(LayerLight::stronger_source(
                 (sun_light, sun_irradiance),
                 (placement.moon_light.direction, moon_irradiance),
-                at_layer.sky([0.0, 0.0, 1.0])?.radiance,
+                hemisphere_mean_radiance(&at_layer)?,
             ));
         }
         let sun_angle = placement.sun.airless.zenith_angle();
@@ -316,10 +316,45 @@ impl Sky {
     }
 }
 
+/// Gauss–Legendre nodes and weights of the zenith cosine on [0, 1] (4 points: exact for
+/// a sky radiance polynomial of degree 6 in μ at each azimuth).
+const SKY_MU_NODES: [(f64, f64); 4] = [
+    (0.069_431_844_202_973_71, 0.173_927_422_568_726_93),
+    (0.330_009_478_207_571_9, 0.326_072_577_431_273_07),
+    (0.669_990_521_792_428_1, 0.326_072_577_431_273_07),
+    (0.930_568_155_797_026_3, 0.173_927_422_568_726_93),
+];
+/// Azimuths of the hemisphere quadrature.
+const SKY_AZIMUTHS: usize = 8;
+
+/// The sky's radiance averaged over the upper hemisphere with the cosine weight,
+/// `E_sky/π` (E_sky its irradiance on a horizontal surface), seen from `at`: 4 zenith
+/// cosines (Gauss–Legendre) × 8 azimuths of the model's radiance. A clear sky is far
+/// from isotropic (bright toward the sun and the horizon, darkest near the zenith), so
+/// its zenith radiance alone underestimates the light a cloud layer gets from it.
+fn hemisphere_mean_radiance(at: &SkyObjectsBuilder<'_>) -> Result<[f64; 3]> {
+    let mut sum = [0.0; 3];
+    for (mu, weight) in SKY_MU_NODES {
+        let horizontal = (1.0 - mu * mu).sqrt();
+        for k in 0..SKY_AZIMUTHS {
+            let phi = std::f64::consts::TAU * (k as f64 + 0.5) / SKY_AZIMUTHS as f64;
+            let radiance = at
+                .sky([horizontal * phi.sin(), horizontal * phi.cos(), mu])?
+                .radiance;
+            for (total, l) in sum.iter_mut().zip(radiance) {
+                // E/π = (1/π) ∫∫ L μ dμ dφ; the azimuth step 2π/8 over π.
+                *total += 2.0 * weight * mu * l / SKY_AZIMUTHS as f64;
+            }
+        }
+    }
+    Ok(sum)
+}
+
 impl LayerLight {
     /// A layer lit by the stronger of `sun` and `moon` (each a unit east/north/up
     /// direction and its irradiance at the layer: the one of larger luminance × sine
-    /// of elevation), under an isotropic sky of zenith radiance `zenith_radiance`.
+    /// of elevation), under a sky of cosine-weighted mean radiance `zenith_radiance`
+    /// (its irradiance over π; an isotropic sky's radiance).
     pub(super) fn stronger_source(
         sun: ([f64; 3], [f64; 3]),
         moon: ([f64; 3], [f64; 3]),

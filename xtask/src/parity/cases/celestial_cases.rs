@@ -1272,17 +1272,25 @@ fn layer_distance_bound(x: &[f64]) -> Vec<f64> {
 /// The case's background behind the layer.
 const CLOUD_BACKGROUND: [f64; 3] = [0.1, 0.2, 0.5];
 
-/// f64 `cloud_optical_thickness`: τ × the density's smoothstep × the noise's height
-/// above the edge's foot over the core depth.
-fn optical_thickness64(u: f64, v: f64, l: &celestial::clouds::CloudLayerUniforms) -> f64 {
+/// f64 `cloud_column`: the edge's smoothstep cover and the column's τ × the noise's
+/// height above the edge's foot, floored at the threshold, over the core depth.
+fn column64(u: f64, v: f64, l: &celestial::clouds::CloudLayerUniforms) -> [f64; 2] {
     let x = u / (f64::from(l.feature_size) * f64::from(l.stretch));
     let y = v / f64::from(l.feature_size);
     let n = fbm64(x, y, l.octaves, l.seed);
     let softness = f64::from(l.softness);
     let height = (n - f64::from(l.threshold)) / softness + 0.5;
     let t = height.clamp(0.0, 1.0);
-    f64::from(l.optical_thickness) * t * t * (3.0 - 2.0 * t) * height.max(0.0) * softness
-        / f64::from(l.core_depth)
+    [
+        t * t * (3.0 - 2.0 * t),
+        f64::from(l.optical_thickness) * height.max(0.5) * softness / f64::from(l.core_depth),
+    ]
+}
+
+/// f64 `cloud_optical_thickness`: coverage × the column's τ.
+fn optical_thickness64(u: f64, v: f64, l: &celestial::clouds::CloudLayerUniforms) -> f64 {
+    let [coverage, column] = column64(u, v, l);
+    coverage * column
 }
 
 /// The optical thickness's error when (u, v) carry `duv` metres: the noise's error (the
@@ -1303,6 +1311,24 @@ fn optical_thickness_error(
     let tau_scale = f64::from(l.optical_thickness) * softness / f64::from(l.core_depth);
     tau_scale * 2.5 * (noise_error / softness + 3.0 * U * height)
         + 6.0 * U * optical_thickness64(u, v, l)
+}
+
+/// `cloud_column`'s errors when (u, v) carry `duv` metres: the height's error as in
+/// [`optical_thickness_error`]; the coverage's smoothstep has slope ≤ 1.5 in the height
+/// (plus its own 4u), the column's max(h, ½)·τ·softness/core depth slope ≤ 1 (plus its
+/// products' 4u).
+fn column_error(u: f64, v: f64, duv: f64, l: &celestial::clouds::CloudLayerUniforms) -> [f64; 2] {
+    let scale = f64::from(l.feature_size);
+    let dx = (6.0 * U * u.abs().max(v.abs()) + duv) / scale;
+    let softness = f64::from(l.softness);
+    let height = 3.0 + 1.0 / softness;
+    let height_error = (fbm_error(l.octaves, dx) + 4.0 * U) / softness + 3.0 * U * height;
+    let [coverage, column] = column64(u, v, l);
+    let tau_scale = f64::from(l.optical_thickness) * softness / f64::from(l.core_depth);
+    [
+        1.5 * height_error + 4.0 * U * coverage,
+        tau_scale * height_error + 4.0 * U * column,
+    ]
 }
 
 /// f64 twin of `cloud_layer_radiance` with the hit distance scaled by `1 + stretch` and
@@ -1338,12 +1364,12 @@ fn layer_radiance64(x: &[f64], stretch: f64, tau_shift: f64) -> Vec<f64> {
         view[2]
     };
     let slant = mu_hit.abs().max(0.01);
-    let tau = optical_thickness64(
+    let [coverage, tau] = column64(
         horizontal[0] + f64::from(l.offset[0]),
         horizontal[1] + f64::from(l.offset[1]),
         &l,
     );
-    if tau <= 0.0 {
+    if coverage <= 0.0 {
         return background.to_vec();
     }
     let tau = (tau + tau_shift).max(0.0);
@@ -1377,7 +1403,7 @@ fn layer_radiance64(x: &[f64], stretch: f64, tau_shift: f64) -> Vec<f64> {
             let lit = sun_scattering * f64::from(l.sunlight[i])
                 + sky * f64::from(l.skylight[i]) / std::f64::consts::PI * opacity / emissivity;
             let faded = fog * lit + (1.0 - fog) * opacity * f64::from(l.fog_colour[i]);
-            background[i] + rim * (faded - opacity * background[i])
+            background[i] + rim * coverage * (faded - opacity * background[i])
         })
         .collect()
 }
@@ -1777,6 +1803,35 @@ fn cloud_cases() -> Vec<Case> {
             },
         },
         Case {
+            name: "celestial::cloud_column",
+            imports: &["celestial::clouds"],
+            arity: (15, 2),
+            wgsl: concat!(
+                layer_wgsl!(
+                    "x2", "x3", "x4", "x5", "x6", "x7", "x8", "x9", "x10", "x11", "x12", "x13",
+                    "x14"
+                ),
+                "let column = cloud_column(x0, x1, layer); y0 = column.x; y1 = column.y;"
+            ),
+            grid: density_grid,
+            cpu: |x| {
+                let l = layer_from(&x.iter().map(|&v| f64::from(v)).collect::<Vec<_>>(), 2);
+                celestial::twins::cloud_column(x[0], x[1], &l).to_vec()
+            },
+            reference: |x| column64(x[0], x[1], &layer_from(x, 2)).to_vec(),
+            audit: Audit::INDEPENDENT,
+            tolerance: Tolerance {
+                abs: 0.0,
+                rel: 0.0,
+                ulp: 2.0,
+                bound: Some(|x| column_error(x[0], x[1], 0.0, &layer_from(x, 2)).to_vec()),
+                why: "the noise's error (coordinates' quotients 6u, the fBm's blending) over the \
+                      softness moves the height; the coverage's smoothstep slope ≤ 1.5 and the \
+                      column's max(h, ½) slope ≤ 1 times τ·softness/core depth; their own \
+                      roundings 4u",
+            },
+        },
+        Case {
             name: "celestial::cloud_optical_thickness",
             imports: &["celestial::clouds"],
             arity: (15, 1),
@@ -1800,7 +1855,7 @@ fn cloud_cases() -> Vec<Case> {
                 ulp: 2.0,
                 bound: Some(|x| vec![optical_thickness_error(x[0], x[1], 0.0, &layer_from(x, 2))]),
                 why: "the noise's error (coordinates' quotients 6u, the fBm's blending) over the \
-                      softness moves the height; d(S(h)·h)/dh ≤ 2.5 times τ·softness/core depth; \
+                      softness moves the height; d(S(h)·max(h, ½))/dh ≤ 2.5 times τ·softness/core depth; \
                       the height's three roundings and the products' 6u",
             },
         },
