@@ -69,19 +69,11 @@ fn darker_than_the_sky(
 
 #[test]
 fn the_default_scenes_cloud_layer_edges_are_not_darker_than_the_sky() {
-    let scene = common::shipped("default", 960, 540).prepare().unwrap();
+    let (scene, with_layers, sky) = common::luminance_with_and_without_clouds("default", 960, 540);
     let mut cloudless = common::shipped("default", 960, 540);
     cloudless.file.clouds = None;
     let cloudless = cloudless.prepare().unwrap();
     let width = scene.camera.width as usize;
-    let luminance = |scene: &render::scene::PreparedScene| -> Vec<f64> {
-        render::cpu_renderer::render_radiance(scene)
-            .unwrap()
-            .iter()
-            .map(|p| f64::from(common::luminance(p.radiance)))
-            .collect()
-    };
-    let (with_layers, sky) = (luminance(&scene), luminance(&cloudless));
     // The default's cumulus are lit from the south-west at 33°: their bases, seen from
     // below, are over three times the sky's luminance, so no pixel of a layer should be
     // darker than the sky behind it; 1 % allows for f32 rounding.

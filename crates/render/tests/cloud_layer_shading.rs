@@ -14,18 +14,7 @@ const SKY_ROWS: usize = 100;
 /// The luminances of the first `SKY_ROWS` rows' pixels that the layers change by more
 /// than 10 % of the sky behind them (a layer pixel, not an almost clear edge), sorted.
 fn layer_pixels(name: &str) -> Vec<f64> {
-    let scene = common::shipped(name, WIDTH, HEIGHT).prepare().unwrap();
-    let mut cloudless = common::shipped(name, WIDTH, HEIGHT);
-    cloudless.file.clouds = None;
-    let cloudless = cloudless.prepare().unwrap();
-    let luminance = |scene: &render::scene::PreparedScene| -> Vec<f64> {
-        render::cpu_renderer::render_radiance(scene)
-            .unwrap()
-            .iter()
-            .map(|p| f64::from(common::luminance(p.radiance)))
-            .collect()
-    };
-    let (with_layers, sky) = (luminance(&scene), luminance(&cloudless));
+    let (_, with_layers, sky) = common::luminance_with_and_without_clouds(name, WIDTH, HEIGHT);
     let mut pixels: Vec<f64> = (0..SKY_ROWS * WIDTH as usize)
         .filter(|&i| (with_layers[i] - sky[i]).abs() > 0.1 * sky[i])
         .map(|i| with_layers[i])

@@ -13,7 +13,6 @@ use glam::DVec3;
 
 use super::place::POINT_LOWEST_ELEVATION_RAD;
 use super::*;
-use crate::dome::spin_from_azimuth;
 use crate::error::{Result, check_range};
 use crate::horizontal::parallactic_angle;
 use crate::moon::{MOON_RADIUS_M, geocentric_from_topocentric};
@@ -316,21 +315,7 @@ impl Sky {
         let stars =
             self.catalogue
                 .sky_at_sidereal_time(&drive.star_instant, local_sidereal_time, latitude);
-        let scale = LuminanceScale::new(&self.atmosphere, sun.distance_m)?;
-        let moon_light = MoonLight::new(&moon, &sun, &self.atmosphere, &scale)?;
-        self.placement = Some(Placement {
-            instant: drive.star_instant,
-            observer,
-            sun,
-            moon,
-            planets,
-            stars,
-            spin: spin_from_azimuth(sun.airless.azimuth),
-            scale,
-            moon_light,
-        });
-        self.paint = None;
-        Ok(self.placement.as_ref().expect("set above"))
+        self.place(drive.star_instant, observer, sun, moon, planets, stars)
     }
 
     /// SGSky's `repaint` with explicit colours and transmittance (FlightGear's drive):

@@ -92,11 +92,25 @@ impl Sky {
             .map(|&p| planet_position(p, instant, observer))
             .collect::<Result<Vec<_>>>()?;
         let stars = self.catalogue.sky(instant, observer);
+        self.place(*instant, *observer, sun, moon, planets, stars)
+    }
+
+    /// Keeps the bodies' places with what follows from them (the dome's spin, the
+    /// photometric scale, the moon's light) as the placement, and forgets the paint.
+    pub(super) fn place(
+        &mut self,
+        instant: Instant,
+        observer: Observer,
+        sun: SunPosition,
+        moon: MoonPosition,
+        planets: Vec<PlanetPosition>,
+        stars: Vec<SkyStar>,
+    ) -> Result<&Placement> {
         let scale = LuminanceScale::new(&self.atmosphere, sun.distance_m)?;
         let moon_light = MoonLight::new(&moon, &sun, &self.atmosphere, &scale)?;
         self.placement = Some(Placement {
-            instant: *instant,
-            observer: *observer,
+            instant,
+            observer,
             sun,
             moon,
             planets,

@@ -60,6 +60,28 @@ pub fn luminance(rgb: [f32; 3]) -> f32 {
     0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]
 }
 
+/// The shipped scene `name` at `width × height` prepared with its clouds and without
+/// them, and the CPU reference renderer's luminance of each (Rec. 709, per pixel).
+pub fn luminance_with_and_without_clouds(
+    name: &str,
+    width: u32,
+    height: u32,
+) -> (render::scene::PreparedScene, Vec<f64>, Vec<f64>) {
+    let scene = shipped(name, width, height).prepare().unwrap();
+    let mut cloudless = shipped(name, width, height);
+    cloudless.file.clouds = None;
+    let cloudless = cloudless.prepare().unwrap();
+    let luminance_of = |scene: &render::scene::PreparedScene| -> Vec<f64> {
+        render::cpu_renderer::render_radiance(scene)
+            .unwrap()
+            .iter()
+            .map(|p| f64::from(luminance(p.radiance)))
+            .collect()
+    };
+    let (with_clouds, without) = (luminance_of(&scene), luminance_of(&cloudless));
+    (scene, with_clouds, without)
+}
+
 /// A cloud's shadow on the terrain: the same view drawn with its map and without.
 #[derive(Debug)]
 pub struct TerrainDarkening {
