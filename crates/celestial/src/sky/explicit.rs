@@ -432,20 +432,20 @@ impl Sky {
             );
             self.layers.len()
         ];
-        let sun_angle = placement.sun.airless.zenith_angle();
-        let moon_angle = placement.moon.airless.zenith_angle();
-        self.layers_changed = false;
-        self.paint = Some(Paint {
+        let angles = [
+            placement.sun.airless.zenith_angle(),
+            placement.moon.airless.zenith_angle(),
+        ];
+        self.keep_paint(Paint {
             sky_colour: paint.sky_colour,
             fog_colours,
             dome,
-            sun_angle,
-            moon_angle,
+            sun_angle: angles[0],
+            moon_angle: angles[1],
             discs,
             points,
             aureole,
             layer_light,
-        });
-        Ok(self.paint.as_ref().expect("set above"))
+        })
     }
 }

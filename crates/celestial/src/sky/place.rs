@@ -295,20 +295,27 @@ impl Sky {
                 hemisphere_mean_radiance(&at_layer)?,
             ));
         }
-        let sun_angle = placement.sun.airless.zenith_angle();
-        let moon_angle = placement.moon.airless.zenith_angle();
-        self.layers_changed = false;
-        self.paint = Some(Paint {
+        let angles = [
+            placement.sun.airless.zenith_angle(),
+            placement.moon.airless.zenith_angle(),
+        ];
+        self.keep_paint(Paint {
             sky_colour,
             fog_colours,
             dome,
-            sun_angle,
-            moon_angle,
+            sun_angle: angles[0],
+            moon_angle: angles[1],
             discs,
             points,
             aureole,
             layer_light,
-        });
+        })
+    }
+
+    /// Keeps `paint` as the sky's paint (the layers' light now follows their changes).
+    pub(super) fn keep_paint(&mut self, paint: Paint) -> Result<&Paint> {
+        self.layers_changed = false;
+        self.paint = Some(paint);
         Ok(self.paint.as_ref().expect("set above"))
     }
 }
