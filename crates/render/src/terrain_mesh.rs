@@ -131,7 +131,8 @@ impl TerrainLod {
     /// The tiles to draw for a camera at `camera_map` (metres in the map's frame: x
     /// east from texel 0, y south from row 0, z up), whose image maps a length `l` at
     /// distance `d` to `l / d · pixels_per_radian` pixels, keeping every tile's
-    /// projected error at or below `max_error_px` (0: the full resolution everywhere).
+    /// projected error at or below `max_error_px` (0: the full resolution everywhere),
+    /// nearest first (by the horizontal distance to the tile's centre).
     pub fn select(
         &self,
         camera_map: [f64; 3],
@@ -156,6 +157,19 @@ impl TerrainLod {
                 );
             }
         }
+        // Nearest first: the depth test then rejects the fragments of tiles hidden
+        // behind nearer ones before they are shaded (early depth testing), instead of
+        // shading far ridges that nearer ones overwrite.
+        let spacing = self.spacing;
+        out.sort_by(|a, b| {
+            let distance = |t: &Tile| {
+                let half = 0.5 * f64::from(TILE_CELLS * t.step) * spacing;
+                let dx = f64::from(t.origin[0]) * spacing + half - camera_map[0];
+                let dy = f64::from(t.origin[1]) * spacing + half - camera_map[1];
+                dx * dx + dy * dy
+            };
+            distance(a).total_cmp(&distance(b))
+        });
         out
     }
 
@@ -299,6 +313,24 @@ mod tests {
                 .sum()
         };
         assert_eq!(area(&full), area(&far));
+    }
+
+    #[test]
+    fn tiles_come_nearest_first() {
+        // Nearest first lets the depth test reject hidden fragments before shading.
+        let lod = TerrainLod::new(&ridge(513));
+        let camera = [7000.0, 15000.0, 800.0];
+        let tiles = lod.select(camera, 1000.0, 0.5);
+        assert!(tiles.len() > 4);
+        let centre_distance = |t: &Tile| {
+            let half = 0.5 * f64::from(TILE_CELLS * t.step) * 30.0;
+            let dx = f64::from(t.origin[0]) * 30.0 + half - camera[0];
+            let dy = f64::from(t.origin[1]) * 30.0 + half - camera[1];
+            (dx * dx + dy * dy).sqrt()
+        };
+        let distances: Vec<f64> = tiles.iter().map(centre_distance).collect();
+        assert!(distances.windows(2).all(|w| w[0] <= w[1]), "{distances:?}");
+        assert!(distances[0] < distances[distances.len() - 1]);
     }
 
     #[test]

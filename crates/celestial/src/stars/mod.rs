@@ -109,6 +109,11 @@ impl StarCatalogue {
             })?;
         let motions = motion::hipparcos2_motions()?;
         let names = names::star_names()?;
+        // Each star's first IAU name in the table.
+        let mut iau_names = std::collections::HashMap::new();
+        for n in names.iter().filter(|n| n.kind == NameKind::Iau) {
+            iau_names.entry(n.hip).or_insert(n.name);
+        }
         let mut stars = Vec::new();
         for star in catalogue.iter_stars() {
             let hip = star.id();
@@ -118,10 +123,7 @@ impl StarCatalogue {
                 .binary_search_by_key(&hip, |m| m.hip)
                 .ok()
                 .map(|i| motions[i]);
-            let name = names
-                .iter()
-                .find(|n| n.hip == hip && n.kind == NameKind::Iau)
-                .map(|n| n.name);
+            let name = iau_names.get(&hip).copied();
             stars.push(CatalogueStar {
                 hip,
                 name,
@@ -135,13 +137,18 @@ impl StarCatalogue {
                 b_minus_v: f64::from(star.bv()),
             });
         }
+        // The catalogue gives B−V to a thousandth of a magnitude, so its tens of
+        // thousands of stars share a few thousand colour indices: each colour is
+        // integrated over the spectrum once.
+        let mut colours: std::collections::HashMap<u64, [f64; 3]> =
+            std::collections::HashMap::new();
         let appearance = stars
             .iter()
             .map(|star| {
-                (
-                    illuminance_from_magnitude(star.magnitude),
-                    star_colour_from_b_minus_v(star.b_minus_v),
-                )
+                let colour = *colours
+                    .entry(star.b_minus_v.to_bits())
+                    .or_insert_with(|| star_colour_from_b_minus_v(star.b_minus_v));
+                (illuminance_from_magnitude(star.magnitude), colour)
             })
             .collect();
         let astrometry = stars.iter().map(CatalogueStar::astrometry).collect();
