@@ -42,6 +42,24 @@ pub fn render_radiance(scene: &PreparedScene) -> Result<Vec<PixelRadiance>, Rend
     Ok(run_frame(scene)?.pixels)
 }
 
+/// The frame's display pixels and its linear radiance from one run of the passes
+/// ([`render_cpu`] and [`render_radiance`] each run them all).
+pub fn render_cpu_with_radiance(
+    scene: &PreparedScene,
+) -> Result<(Frame, Vec<PixelRadiance>), RenderError> {
+    let frame = run_frame(scene)?;
+    let camera = &scene.camera;
+    let pixels = frame.display.ok_or(RenderError::NotPrepared)?;
+    Ok((
+        Frame {
+            width: camera.width,
+            height: camera.height,
+            pixels,
+        },
+        frame.pixels,
+    ))
+}
+
 /// Runs the scene's passes on the CPU.
 fn run_frame(scene: &PreparedScene) -> Result<crate::cpu_frame::CpuFrame<'_>, RenderError> {
     if let Some(cloud) = scene

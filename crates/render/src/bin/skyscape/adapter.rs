@@ -290,8 +290,8 @@ pub(crate) fn render_gpu(
 }
 
 pub(crate) fn render_cpu(scene: &PreparedScene) -> Result<Rendered, String> {
-    let radiance = render::cpu_renderer::render_radiance(scene).map_err(|e| e.to_string())?;
-    let frame = render::cpu_renderer::render_cpu(scene).map_err(|e| e.to_string())?;
+    let (frame, radiance) =
+        render::cpu_renderer::render_cpu_with_radiance(scene).map_err(|e| e.to_string())?;
     Ok(Rendered {
         pixels: frame.pixels,
         radiance: Some(radiance.iter().map(|p| p.radiance).collect()),
