@@ -28,6 +28,72 @@ pub struct LightSource<'a> {
     pub sky_model: &'a (dyn atmos::SkyModel + Send + Sync),
     /// Unit world direction toward the light (x east, y up, z south).
     pub direction: DVec3,
+    /// The precomputed rung's tables lit by it, when the scene uses that rung.
+    pub precomputed: Option<&'a atmos::lut::PrecomputedSky>,
+}
+
+impl<'a> LightSource<'a> {
+    /// The model this light's scattered queries read ([`scattered_queries`]).
+    pub fn scattered(&self) -> ScatteredQueries<'a> {
+        scattered_queries(self.sky_model, self.precomputed)
+    }
+}
+
+/// The model a handful of scattered sky queries read — a hemisphere quadrature for an
+/// irradiance, celestial's dome, stars and cloud-layer light — for the rung `sky_model`
+/// with its precomputed tables `precomputed` (when the rung is the precomputed one):
+/// those tables marched per ray ([`atmos::lut::MarchedPrecomputedSky`]) rather than a
+/// sky-view table baked for each viewpoint and sun the queries come from; any other rung
+/// is itself. A frame's pixels still read the sky-view table, as the GPU does.
+pub fn scattered_queries<'a>(
+    sky_model: &'a (dyn atmos::SkyModel + Send + Sync),
+    precomputed: Option<&'a atmos::lut::PrecomputedSky>,
+) -> ScatteredQueries<'a> {
+    match precomputed {
+        Some(sky) => ScatteredQueries::Marched(atmos::lut::MarchedPrecomputedSky::new(sky)),
+        None => ScatteredQueries::Rung(sky_model),
+    }
+}
+
+/// See [`scattered_queries`].
+#[derive(Clone, Copy)]
+pub enum ScatteredQueries<'a> {
+    /// The precomputed rung's tables, marched per ray.
+    Marched(atmos::lut::MarchedPrecomputedSky<'a>),
+    /// The rung itself.
+    Rung(&'a (dyn atmos::SkyModel + Send + Sync)),
+}
+
+impl std::fmt::Debug for ScatteredQueries<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        use atmos::SkyModel;
+        f.debug_tuple("ScatteredQueries")
+            .field(&self.label())
+            .finish()
+    }
+}
+
+impl atmos::SkyModel for ScatteredQueries<'_> {
+    fn label(&self) -> String {
+        match self {
+            Self::Marched(model) => model.label(),
+            Self::Rung(model) => model.label(),
+        }
+    }
+
+    fn evaluate(&self, query: &atmos::SkyQuery) -> atmos::SkySample {
+        match self {
+            Self::Marched(model) => model.evaluate(query),
+            Self::Rung(model) => model.evaluate(query),
+        }
+    }
+
+    fn evaluate_batch(&self, queries: &[atmos::SkyQuery]) -> Vec<atmos::SkySample> {
+        match self {
+            Self::Marched(model) => model.evaluate_batch(queries),
+            Self::Rung(model) => model.evaluate_batch(queries),
+        }
+    }
 }
 
 impl std::fmt::Debug for LightSource<'_> {

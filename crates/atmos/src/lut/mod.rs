@@ -24,6 +24,7 @@
 
 pub mod aerial_perspective;
 pub mod drop_in;
+pub mod marched_sky;
 pub mod multiple_scattering_lut;
 pub mod multiple_scattering_moments;
 pub mod parameterization;
@@ -34,6 +35,7 @@ pub mod sky_irradiance;
 pub mod sky_view_lut;
 pub mod transmittance_lut;
 
+pub use marched_sky::MarchedPrecomputedSky;
 pub use precomputed_sky::{FrameLuts, PrecomputedSky, StaticLuts};
 
 use crate::AtmosError;

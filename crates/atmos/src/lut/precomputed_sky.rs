@@ -358,7 +358,9 @@ type SkyViewCache = Vec<([u32; 2], Arc<Lut2d>)>;
 
 /// Rung 3 on the CPU: static LUTs baked at construction, sky-view LUTs baked by
 /// [`PrecomputedSky::prepare`] (or on demand by [`SkyModel::evaluate`]) and cached per
-/// (viewer radius, sun zenith cosine).
+/// (viewer radius, sun zenith cosine). For a few scattered queries from many viewpoints
+/// (a dome, a hemisphere), [`super::MarchedPrecomputedSky`] reads the same tables
+/// without baking a sky-view table.
 #[derive(Debug)]
 pub struct PrecomputedSky {
     luts: StaticLuts,

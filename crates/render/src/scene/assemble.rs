@@ -218,7 +218,11 @@ impl Scene {
         let terrain = self.cached_terrain(cache)?;
         stage("sky objects and cloud layers");
         let (sky_objects, clouds) = match sky.as_mut() {
-            Some(sky) => self.sky_objects_and_clouds(sky, &*sky_model, forward, cam, out)?,
+            Some(sky) => {
+                // celestial's repaint queries the sky at scattered directions.
+                let model = crate::light::scattered_queries(&*sky_model, precomputed.as_deref());
+                self.sky_objects_and_clouds(sky, &model, forward, cam, out)?
+            }
             None => {
                 if let Some(clouds) = file.clouds.as_ref().filter(|c| !c.layers.is_empty()) {
                     return Err(self.invalid(
@@ -255,6 +259,7 @@ impl Scene {
                 atmosphere: &atmosphere,
                 sky_model: &*sky_model,
                 direction: sun,
+                precomputed: precomputed.as_deref(),
             })
             .chain(other_lights.iter().map(LightSky::source))
             .collect();

@@ -201,6 +201,7 @@ impl Illuminant<'_> {
             atmosphere: self.atmosphere,
             sky_model: self.sky_model,
             direction: self.direction,
+            precomputed: self.precomputed,
         }
     }
 
@@ -232,6 +233,7 @@ impl LightSky {
             atmosphere: &self.atmosphere,
             sky_model: self.sky_model.as_ref(),
             direction: self.direction,
+            precomputed: self.precomputed.as_deref(),
         }
     }
 }

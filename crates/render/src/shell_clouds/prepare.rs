@@ -170,7 +170,8 @@ impl Scene {
         let point = camera_position.try_normalize().unwrap_or(DVec3::Y) * middle;
         // One light (the sun, or the moon through the moonlit atmosphere) there.
         let light_at = |light: &crate::light::LightSource<'_>| {
-            let (model, atmosphere, toward) = (light.sky_model, light.atmosphere, light.direction);
+            let (model, atmosphere, toward) =
+                (light.scattered(), light.atmosphere, light.direction);
             let light_error = |e: MarchError| self.shell_error(section, "bottom_m", Box::new(e));
             let light = cloudlight::march::atmos_light(
                 &model,

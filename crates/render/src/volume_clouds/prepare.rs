@@ -251,7 +251,7 @@ impl Scene {
         section: &CloudVolumeSection,
         light: &LightSource<'_>,
     ) -> Result<Lighting<f32>, SceneError> {
-        let (model, atmosphere, toward) = (light.sky_model, light.atmosphere, light.direction);
+        let (model, atmosphere, toward) = (light.scattered(), light.atmosphere, light.direction);
         let s = section;
         let invalid = |e: String| self.volume_invalid("base_m", deg_free(s.base_m, " m"), e);
         // Planet-centred: world + planet radius up.

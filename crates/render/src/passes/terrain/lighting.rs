@@ -98,7 +98,7 @@ pub fn terrain_lighting_for(
     let c = scene.camera_position;
     let here = DVec3::new(c.x, light.atmosphere.planet_radius + mean, c.z);
     let irradiance = atmos::ground_irradiance::ground_irradiance(
-        &light.sky_model,
+        &crate::light::scattered_queries(light.sky_model, light.precomputed),
         light.atmosphere,
         here,
         light.direction,
