@@ -374,6 +374,8 @@ impl AtmosphereTables {
         Ok(Self {
             device: device.clone(),
             settings: s,
+            atmosphere: atmosphere_uniform,
+            multiple_scattering_orders: settings.multiple_scattering_orders,
             atmosphere_buffer,
             settings_buffer,
             transmittance,

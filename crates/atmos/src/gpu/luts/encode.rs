@@ -5,7 +5,8 @@ use super::passes::*;
 use super::*;
 use crate::frame::FrameCamera;
 use crate::gpu::resources::READ_STAGES;
-use crate::lut::{LutSettings, LutSettingsUniform};
+use crate::lut::multiple_scattering_moments::MULTIPLE_SCATTERING_LAYERS;
+use crate::lut::{LutSettings, LutSettingsUniform, StaticLuts};
 use crate::view::ViewCamera;
 use crate::{AtmosError, Atmosphere};
 
@@ -114,6 +115,82 @@ impl AtmosphereTables {
             self.passes[SKY_IRRADIANCE].label,
             timestamp_writes,
         );
+    }
+
+    /// Writes static tables baked on the CPU ([`StaticLuts`]: a preparation's, or read
+    /// back from a cache) into the transmittance and multiple-scattering textures, in
+    /// place of [`Self::encode_static_luts`]: the f32 twin's texels as they are (layer
+    /// `m` of the multiple-scattering table at entry `x + w·(y + h·m)`, the bake's own
+    /// layout), so a frame reads exactly what the CPU renderer reads. A queue write (a
+    /// `prepare` step); worth it where a GPU bake costs more than an upload, as on a CPU
+    /// adapter. Errors naming the field when `luts` were baked for another atmosphere
+    /// or with other table settings than these textures'.
+    pub fn write_static_luts(
+        &self,
+        queue: &wgpu::Queue,
+        luts: &StaticLuts,
+    ) -> Result<(), AtmosError> {
+        let mismatch = |field: &str, value: f64, reason: &'static str| AtmosError::InvalidSetting {
+            setting: "static tables",
+            field: field.to_owned(),
+            value,
+            reason,
+        };
+        if luts.atmosphere != self.atmosphere {
+            return Err(mismatch(
+                "atmosphere",
+                f64::from(luts.atmosphere.planet_radius),
+                "baked for another atmosphere than the GPU tables'",
+            ));
+        }
+        if luts.settings != self.settings {
+            return Err(mismatch(
+                "settings.transmittance_width",
+                f64::from(luts.settings.transmittance_width),
+                "baked with other table settings than the GPU tables'",
+            ));
+        }
+        if luts.multiple_scattering_orders != self.multiple_scattering_orders {
+            return Err(mismatch(
+                "multiple_scattering_orders",
+                f64::from(luts.multiple_scattering_orders),
+                "baked with another number of scattering orders than the GPU tables'",
+            ));
+        }
+        for (table, lut, layers) in [
+            (&self.transmittance, &luts.transmittance, 1),
+            (
+                &self.multiple_scattering,
+                &luts.multiple_scattering,
+                MULTIPLE_SCATTERING_LAYERS,
+            ),
+        ] {
+            let size = table.texture.size();
+            if lut.texels.len() as u64
+                != u64::from(size.width) * u64::from(size.height) * u64::from(layers)
+            {
+                return Err(mismatch(
+                    "texels",
+                    lut.texels.len() as f64,
+                    "a table's texel count differs from its texture's",
+                ));
+            }
+            queue.write_texture(
+                table.texture.as_image_copy(),
+                bytemuck::cast_slice(&lut.texels),
+                wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(size.width * 16),
+                    rows_per_image: Some(size.height),
+                },
+                wgpu::Extent3d {
+                    width: size.width,
+                    height: size.height,
+                    depth_or_array_layers: layers,
+                },
+            );
+        }
+        Ok(())
     }
 
     /// Records both static bakes in one pass (transmittance, then multiple scattering):
@@ -226,6 +303,15 @@ impl AtmosphereLuts {
     ) {
         self.tables
             .encode_multiple_scattering(encoder, timestamp_writes);
+    }
+
+    /// Writes CPU-baked static tables ([`AtmosphereTables::write_static_luts`]).
+    pub fn write_static_luts(
+        &self,
+        queue: &wgpu::Queue,
+        luts: &StaticLuts,
+    ) -> Result<(), AtmosError> {
+        self.tables.write_static_luts(queue, luts)
     }
 
     /// Records both static bakes in one pass (transmittance, then multiple scattering).

@@ -158,6 +158,10 @@ impl LutLayouts {
 pub struct AtmosphereTables {
     pub(crate) device: wgpu::Device,
     settings: LutSettingsUniform,
+    /// The atmosphere the tables are for (what [`AtmosphereTables::write_static_luts`]
+    /// checks a CPU bake against).
+    atmosphere: crate::AtmosphereParameters,
+    multiple_scattering_orders: u32,
     atmosphere_buffer: wgpu::Buffer,
     settings_buffer: wgpu::Buffer,
     transmittance: Table,

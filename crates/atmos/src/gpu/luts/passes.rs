@@ -28,9 +28,11 @@ impl Table {
                 wgpu::TextureDimension::D2
             },
             format: FORMAT,
+            // COPY_DST: the static tables can be written from a CPU bake.
             usage: wgpu::TextureUsages::STORAGE_BINDING
                 | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::COPY_DST,
             view_formats: &[],
         });
         let view = texture.create_view(&wgpu::TextureViewDescriptor {

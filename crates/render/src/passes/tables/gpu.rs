@@ -1,5 +1,6 @@
-//! The tables pass on the GPU: atmos' LUT bakes per light (the static tables once, the
-//! per-frame tables every frame), or a rung's sky evaluation per light.
+//! The tables pass on the GPU: atmos' LUT bakes per light (the static tables once —
+//! the preparation's CPU tables written, or baked — the per-frame tables every frame),
+//! or a rung's sky evaluation per light.
 
 use crate::RenderError;
 use crate::gpu::frame::{GpuPass, GpuShared};
@@ -19,8 +20,8 @@ fn frame_bake(index: usize) -> &'static str {
 /// Records the lights' table bakes or sky evaluations.
 #[derive(Debug)]
 struct TablesPass {
-    /// The static tables are baked once per atmosphere, by the first encoder that
-    /// records this pass.
+    /// The static tables are written once per atmosphere: from the preparation's CPU
+    /// tables when it has them, else baked by the first encoder that records this pass.
     static_luts_pending: bool,
 }
 
@@ -58,6 +59,19 @@ impl GpuPass for TablesPass {
         }
         for (luts, camera) in shared.tables.iter().zip(&cameras) {
             luts.prepare(queue, camera);
+        }
+        // The preparation holds each light's static tables (its CPU side reads them):
+        // written as they are, no GPU bake (the renderer draws one atmosphere; a new
+        // one builds a new renderer).
+        if self.static_luts_pending {
+            let prepared: Vec<_> = scene.lights().iter().map(|l| l.precomputed).collect();
+            if !shared.tables.is_empty() && prepared.iter().all(Option::is_some) {
+                for (luts, cpu) in shared.tables.iter().zip(prepared.into_iter().flatten()) {
+                    luts.write_static_luts(queue, cpu.static_luts())
+                        .map_err(RenderError::Atmosphere)?;
+                }
+                self.static_luts_pending = false;
+            }
         }
         let GpuShared {
             device,

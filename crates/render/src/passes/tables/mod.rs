@@ -29,8 +29,8 @@ fn plan(scene: &PreparedScene) -> Vec<PlanLine> {
             PlanLine::timed(
                 "atmosphere LUT bakes",
                 Ok(
-                    "transmittance and multiple scattering once; sky view and aerial \
-                     perspective per frame"
+                    "sky view and aerial perspective per frame; transmittance and multiple \
+                     scattering once, written from the preparation's CPU tables (no GPU bake)"
                         .into(),
                 ),
             ),
