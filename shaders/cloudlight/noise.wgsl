@@ -26,6 +26,19 @@ fn noise_wrap(i: i32, period: u32) -> u32 {
     return u32(((i % p) + p) % p);
 }
 
+// (noise_wrap(i − 1, period), noise_wrap(i + 1, period)) from here = noise_wrap(i, period):
+// a step around the period instead of two more integer divisions, the same modulo where
+// i ± 1 does not overflow and period ≤ 2³⁰ (noise_wrap is then the Euclidean remainder);
+// the full wraps elsewhere.
+fn noise_wrap_neighbours(i: i32, here: u32, period: u32) -> vec2<u32> {
+    if i == -2147483647 - 1 || i == 2147483647 || period > 1073741824u {
+        return vec2<u32>(noise_wrap(i - 1, period), noise_wrap(i + 1, period));
+    }
+    let below = select(here - 1u, period - 1u, here == 0u);
+    let above = select(here + 1u, 0u, here + 1u == period);
+    return vec2<u32>(below, above);
+}
+
 // The top 24 bits of a hash in [0, 1), exact.
 fn noise_unit_from_bits(bits: u32) -> f32 {
     return f32(bits >> 8u) * (1.0 / 16777216.0);
@@ -56,20 +69,27 @@ fn perlin_noise(p: vec3<f32>, period: u32, seed: u32) -> f32 {
     let i = vec3<i32>(floor_p);
     let f = p - floor_p;
     let x0 = noise_wrap(i.x, period);
-    let x1 = noise_wrap(i.x + 1, period);
     let y0 = noise_wrap(i.y, period);
-    let y1 = noise_wrap(i.y + 1, period);
     let z0 = noise_wrap(i.z, period);
-    let z1 = noise_wrap(i.z + 1, period);
+    let x1 = noise_wrap_neighbours(i.x, x0, period).y;
+    let y1 = noise_wrap_neighbours(i.y, y0, period).y;
+    let z1 = noise_wrap_neighbours(i.z, z0, period).y;
     let g = f - vec3<f32>(1.0);
-    let n000 = perlin_gradient_dot(noise_cell_hash(vec3<u32>(x0, y0, z0), seed), f.x, f.y, f.z);
-    let n100 = perlin_gradient_dot(noise_cell_hash(vec3<u32>(x1, y0, z0), seed), g.x, f.y, f.z);
-    let n010 = perlin_gradient_dot(noise_cell_hash(vec3<u32>(x0, y1, z0), seed), f.x, g.y, f.z);
-    let n110 = perlin_gradient_dot(noise_cell_hash(vec3<u32>(x1, y1, z0), seed), g.x, g.y, f.z);
-    let n001 = perlin_gradient_dot(noise_cell_hash(vec3<u32>(x0, y0, z1), seed), f.x, f.y, g.z);
-    let n101 = perlin_gradient_dot(noise_cell_hash(vec3<u32>(x1, y0, z1), seed), g.x, f.y, g.z);
-    let n011 = perlin_gradient_dot(noise_cell_hash(vec3<u32>(x0, y1, z1), seed), f.x, g.y, g.z);
-    let n111 = perlin_gradient_dot(noise_cell_hash(vec3<u32>(x1, y1, z1), seed), g.x, g.y, g.z);
+    // noise_cell_hash of the eight corners, sharing the x and xy prefixes of its chain.
+    let hash_x0 = hash_combine(seed, x0);
+    let hash_x1 = hash_combine(seed, x1);
+    let hash_x0y0 = hash_combine(hash_x0, y0);
+    let hash_x1y0 = hash_combine(hash_x1, y0);
+    let hash_x0y1 = hash_combine(hash_x0, y1);
+    let hash_x1y1 = hash_combine(hash_x1, y1);
+    let n000 = perlin_gradient_dot(hash_combine(hash_x0y0, z0), f.x, f.y, f.z);
+    let n100 = perlin_gradient_dot(hash_combine(hash_x1y0, z0), g.x, f.y, f.z);
+    let n010 = perlin_gradient_dot(hash_combine(hash_x0y1, z0), f.x, g.y, f.z);
+    let n110 = perlin_gradient_dot(hash_combine(hash_x1y1, z0), g.x, g.y, f.z);
+    let n001 = perlin_gradient_dot(hash_combine(hash_x0y0, z1), f.x, f.y, g.z);
+    let n101 = perlin_gradient_dot(hash_combine(hash_x1y0, z1), g.x, f.y, g.z);
+    let n011 = perlin_gradient_dot(hash_combine(hash_x0y1, z1), f.x, g.y, g.z);
+    let n111 = perlin_gradient_dot(hash_combine(hash_x1y1, z1), g.x, g.y, g.z);
     let u = perlin_fade(f.x);
     let v = perlin_fade(f.y);
     let w = perlin_fade(f.z);
@@ -82,27 +102,75 @@ fn perlin_noise(p: vec3<f32>, period: u32, seed: u32) -> f32 {
     return noise_lerp(nxy0, nxy1, w);
 }
 
+// A cell is skipped in worley_noise's search only when WORLEY_SKIP_MARGIN times a lower
+// bound of its squared distance reaches the best found: the bound is rounded as the
+// distance is and never exceeds it; the margin covers a compiler fusing the sums of
+// squares into fma (a few ULP of a sum of non-negative terms).
+const WORLEY_SKIP_MARGIN: f32 = 0.99;
+
+// One axis of worley_noise's 3×3×3 search around cell i for a point with fraction f: the
+// cell offsets in the order 0, nearer neighbour, farther neighbour, the cells wrapped into
+// the period, and lower bounds of the feature point's |offset| along the axis (ascending).
+// The point of cell i + d is at (d + u) − f, u in [0, 1): ≤ −f for d = −1 (d + u ≤ 0 after
+// rounding), ≥ 1 − f for d = +1 (d + u ≥ 1 after rounding), anything for d = 0.
+struct WorleyAxis {
+    offset: vec3<f32>,
+    cell: vec3<u32>,
+    bound: vec3<f32>,
+}
+
+fn worley_axis(i: i32, f: f32, period: u32) -> WorleyAxis {
+    let here = noise_wrap(i, period);
+    let neighbours = noise_wrap_neighbours(i, here, period);
+    let below = neighbours.x;
+    let above = neighbours.y;
+    let bound_below = f;
+    let bound_above = 1.0 - f;
+    if bound_below <= bound_above {
+        return WorleyAxis(vec3<f32>(0.0, -1.0, 1.0), vec3<u32>(here, below, above), vec3<f32>(0.0, bound_below, bound_above));
+    }
+    return WorleyAxis(vec3<f32>(0.0, 1.0, -1.0), vec3<u32>(here, above, below), vec3<f32>(0.0, bound_above, bound_below));
+}
+
 // Worley F1 at p (lattice cells) with an integer period: the distance in cells to the
-// nearest feature point of the 3×3×3 cells around p's cell.
+// nearest feature point of the 3×3×3 cells around p's cell. The minimum does not depend
+// on the visiting order: the own cell first, per axis the nearer neighbour before the
+// farther, and a cell is skipped when the sum of its squared per-axis bounds (x, then y,
+// then z, as the distance sums) cannot be below the best; the bounds ascend along each
+// axis, so the rest of that row, column or slab is skipped with it. A skipped cell is
+// never nearer than the best: the result is the full search's. The cell hash is chained
+// axis by axis (noise_cell_hash's x, y, z order).
 fn worley_noise(p: vec3<f32>, period: u32, seed: u32) -> f32 {
     let floor_p = floor(p);
     let i = vec3<i32>(floor_p);
     let f = p - floor_p;
+    let x = worley_axis(i.x, f.x, period);
+    let y = worley_axis(i.y, f.y, period);
+    let z = worley_axis(i.z, f.z, period);
     var best = 16.0;
-    for (var dz = -1; dz <= 1; dz++) {
-        for (var dy = -1; dy <= 1; dy++) {
-            for (var dx = -1; dx <= 1; dx++) {
-                let cell = vec3<u32>(
-                    noise_wrap(i.x + dx, period),
-                    noise_wrap(i.y + dy, period),
-                    noise_wrap(i.z + dz, period),
-                );
-                let h0 = noise_cell_hash(cell, seed);
+    for (var a = 0u; a < 3u; a++) {
+        let bound_x = x.bound[a] * x.bound[a];
+        if WORLEY_SKIP_MARGIN * bound_x >= best {
+            break;
+        }
+        let hash_x = hash_combine(seed, x.cell[a]);
+        for (var b = 0u; b < 3u; b++) {
+            let bound_xy = bound_x + y.bound[b] * y.bound[b];
+            if WORLEY_SKIP_MARGIN * bound_xy >= best {
+                break;
+            }
+            let hash_xy = hash_combine(hash_x, y.cell[b]);
+            for (var c = 0u; c < 3u; c++) {
+                let bound_xyz = bound_xy + z.bound[c] * z.bound[c];
+                if WORLEY_SKIP_MARGIN * bound_xyz >= best {
+                    break;
+                }
+                let h0 = hash_combine(hash_xy, z.cell[c]);
                 let h1 = hash_u32(h0);
                 let h2 = hash_u32(h1);
-                let ox = f32(dx) + noise_unit_from_bits(h0) - f.x;
-                let oy = f32(dy) + noise_unit_from_bits(h1) - f.y;
-                let oz = f32(dz) + noise_unit_from_bits(h2) - f.z;
+                let ox = x.offset[a] + noise_unit_from_bits(h0) - f.x;
+                let oy = y.offset[b] + noise_unit_from_bits(h1) - f.y;
+                let oz = z.offset[c] + noise_unit_from_bits(h2) - f.z;
                 best = min(best, ox * ox + oy * oy + oz * oz);
             }
         }

@@ -32,15 +32,28 @@ fn height_gradient(h: f32, cloud_type: f32) -> f32 {
 
 // The density in [0, 1] from the height fraction, the weather, the shape noise (4
 // channels), the detail noise (3) and the detail erosion strength: Schneider's base
-// remap, height profile, coverage (max(b·g + coverage − 1, 0)) and detail erosion.
+// remap, height profile, coverage (max(b·g + coverage − 1, 0)) and, where that is above
+// zero, detail erosion.
 fn shell_density_from_noise(h: f32, coverage: f32, cloud_type: f32, shape: vec4<f32>, detail: vec3<f32>, erosion: f32) -> f32 {
-    let fbm = worley_channels_fbm(shape.yzw);
-    let base = (shape.x + 1.0 - fbm) / (2.0 - fbm);
-    let gradient = height_gradient(h, cloud_type);
-    let covered = max(base * gradient + coverage - 1.0, 0.0);
+    let covered = shell_covered_density(height_gradient(h, cloud_type), coverage, shape);
     if covered <= 0.0 {
         return 0.0;
     }
+    return shell_eroded_density(h, covered, detail, erosion);
+}
+
+// The density before detail erosion: the base shape b = (shape.x + 1 − fbm)/(2 − fbm)
+// (fbm the Worley fBm of shape.yzw) times the height profile, through the coverage,
+// max(b·g + coverage − 1, 0).
+fn shell_covered_density(gradient: f32, coverage: f32, shape: vec4<f32>) -> f32 {
+    let fbm = worley_channels_fbm(shape.yzw);
+    let base = (shape.x + 1.0 - fbm) / (2.0 - fbm);
+    return max(base * gradient + coverage - 1.0, 0.0);
+}
+
+// The density after detail erosion of the covered density (> 0) at height fraction h:
+// e = erosion·mix(dfbm, 1 − dfbm, clamp(10h, 0, 1)), max(covered − e, 0)/(1 − e).
+fn shell_eroded_density(h: f32, covered: f32, detail: vec3<f32>, erosion: f32) -> f32 {
     let detail_fbm = worley_channels_fbm(detail);
     let wisp = min(max(h * 10.0, 0.0), 1.0);
     let modifier = detail_fbm + wisp * ((1.0 - detail_fbm) - detail_fbm);
@@ -48,8 +61,16 @@ fn shell_density_from_noise(h: f32, coverage: f32, cloud_type: f32, shape: vec4<
     return max(covered - e, 0.0) / (1.0 - e);
 }
 
+// How far below zero g + coverage − 1 must be for the density to be zero whatever the
+// shape noise: the base shape is at most 1 (channels in [0, 1]), so b·g + coverage − 1 ≤
+// g + coverage − 1; the margin absorbs both sides' roundings.
+const COVERAGE_SKIP_MARGIN: f32 = 1e-3;
+
 // The shell's density at planet-centred p for the weather there; zero outside
-// (inner_radius, outer_radius). Noise in the local frame q = (x, y, |p| − inner).
+// (inner_radius, outer_radius). Noise in the local frame q = (x, y, |p| − inner), each
+// looked up only where the density depends on it: the shape noise not where
+// g + coverage − 1 < −COVERAGE_SKIP_MARGIN, the detail only where the covered density is
+// above zero (the same result as shell_density_from_noise of both).
 fn shell_density(p: vec3<f32>, inner_radius: f32, outer_radius: f32, coverage: f32, cloud_type: f32, shape_period: f32, detail_period: f32, erosion: f32, seed: u32) -> f32 {
     let r = sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
     if !(r > inner_radius && r < outer_radius) || coverage <= 0.0 {
@@ -57,17 +78,21 @@ fn shell_density(p: vec3<f32>, inner_radius: f32, outer_radius: f32, coverage: f
     }
     let height = r - inner_radius;
     let h = height / (outer_radius - inner_radius);
-    if height_gradient(h, cloud_type) <= 0.0 {
+    let gradient = height_gradient(h, cloud_type);
+    if gradient <= 0.0 || gradient + coverage - 1.0 < -COVERAGE_SKIP_MARGIN {
         return 0.0;
     }
     let q = vec3<f32>(p.x, p.y, height);
-    let shape = cloud_shape_noise(q / shape_period, seed);
-    let detail = cloud_detail_noise(q / detail_period, seed);
-    return shell_density_from_noise(h, coverage, cloud_type, shape, detail, erosion);
+    let covered = shell_covered_density(gradient, coverage, cloud_shape_noise(q / shape_period, seed));
+    if covered <= 0.0 {
+        return 0.0;
+    }
+    return shell_eroded_density(h, covered, cloud_detail_noise(q / detail_period, seed), erosion);
 }
 
 // shell_density with the noise looked up in baked textures (NoiseBake's shape and
-// detail textures, trilinear and repeating) instead of evaluated.
+// detail textures, trilinear and repeating) instead of evaluated, each only where the
+// density depends on it (as shell_density).
 fn shell_density_textured(p: vec3<f32>, inner_radius: f32, outer_radius: f32, coverage: f32, cloud_type: f32, shape_period: f32, detail_period: f32, erosion: f32, shape_tex: texture_3d<f32>, detail_tex: texture_3d<f32>) -> f32 {
     let r = sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
     if !(r > inner_radius && r < outer_radius) || coverage <= 0.0 {
@@ -75,13 +100,16 @@ fn shell_density_textured(p: vec3<f32>, inner_radius: f32, outer_radius: f32, co
     }
     let height = r - inner_radius;
     let h = height / (outer_radius - inner_radius);
-    if height_gradient(h, cloud_type) <= 0.0 {
+    let gradient = height_gradient(h, cloud_type);
+    if gradient <= 0.0 || gradient + coverage - 1.0 < -COVERAGE_SKIP_MARGIN {
         return 0.0;
     }
     let q = vec3<f32>(p.x, p.y, height);
-    let shape = noise_texture_trilinear(shape_tex, q / shape_period);
-    let detail = noise_texture_trilinear(detail_tex, q / detail_period).xyz;
-    return shell_density_from_noise(h, coverage, cloud_type, shape, detail, erosion);
+    let covered = shell_covered_density(gradient, coverage, noise_texture_trilinear(shape_tex, q / shape_period));
+    if covered <= 0.0 {
+        return 0.0;
+    }
+    return shell_eroded_density(h, covered, noise_texture_trilinear(detail_tex, q / detail_period).xyz, erosion);
 }
 
 // 1 − smoothstep(fade_start, fade_end, t): the view march's fade toward the horizon.
@@ -89,15 +117,24 @@ fn horizon_fade(t: f32, fade_start: f32, fade_end: f32) -> f32 {
     return 1.0 - shell_smoothstep(fade_start, fade_end, t);
 }
 
+// One field of procedural_weather: clamp(mean + contrast·(2n − 1), 0, 1) with n the Perlin
+// fBm at p under octave seed k; the clamped mean, without the fBm, where the contrast is
+// zero and the mean is not (mean + 0·(2n − 1) = mean for the finite n in [0, 1]).
+fn procedural_weather_field(p: vec3<f32>, cells: u32, seed: u32, k: u32, mean: f32, contrast: f32) -> f32 {
+    if contrast == 0.0 && mean != 0.0 {
+        return min(max(mean, 0.0), 1.0);
+    }
+    let n = perlin_fbm(p, cells, noise_octave_seed(seed, k));
+    return min(max(mean + contrast * (2.0 * n - 1.0), 0.0), 1.0);
+}
+
 // Procedural weather at (x, y) metres: (coverage, cloud type), each
 // clamp(mean + contrast·(2n − 1), 0, 1) of a Perlin fBm repeating every period metres.
 fn procedural_weather(xy: vec2<f32>, period: f32, cells: u32, seed: u32, coverage_mean: f32, coverage_contrast: f32, type_mean: f32, type_contrast: f32) -> vec2<f32> {
     let scale = f32(cells) / period;
     let p = vec3<f32>(xy.x * scale, xy.y * scale, 0.0);
-    let n_coverage = perlin_fbm(p, cells, noise_octave_seed(seed, 7u));
-    let n_type = perlin_fbm(p, cells, noise_octave_seed(seed, 8u));
-    let coverage = min(max(coverage_mean + coverage_contrast * (2.0 * n_coverage - 1.0), 0.0), 1.0);
-    let cloud_type = min(max(type_mean + type_contrast * (2.0 * n_type - 1.0), 0.0), 1.0);
+    let coverage = procedural_weather_field(p, cells, seed, 7u, coverage_mean, coverage_contrast);
+    let cloud_type = procedural_weather_field(p, cells, seed, 8u, type_mean, type_contrast);
     return vec2<f32>(coverage, cloud_type);
 }
 

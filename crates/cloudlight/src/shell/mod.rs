@@ -23,6 +23,11 @@
 //!    Worley fBm of the detail channels (billowy at the base, wispy above), and the
 //!    density `max(c − e, 0)/(1 − e)` (Schneider's `remap(c, e, 1, 0, 1)`).
 //!
+//! The noise is looked up only where the density depends on it (steps 2–4, then step 5):
+//! the shape noise not where `g + coverage − 1` is clearly negative (then `c = 0`, since
+//! `b ≤ 1`), the detail noise only where `c > 0`. The result is the same, bit for bit, as
+//! looking both up.
+//!
 //! **Height profiles** ([`height_gradient`]): a trapezoid `smoothstep(a, b, h) −
 //! smoothstep(c, d, h)` over the height fraction, with the corner fractions
 //! [`STRATUS_GRADIENT`] `(0, 0.1, 0.2, 0.3)` (a thin layer at the shell's base),

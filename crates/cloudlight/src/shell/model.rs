@@ -43,7 +43,9 @@ pub fn height_gradient<F: Real>(h: F, cloud_type: F) -> F {
 
 /// The density (module documentation, steps 2–5) from the height fraction `h` (in
 /// [0, 1]), the weather's `coverage` and `cloud_type`, the shape noise's four channels,
-/// the detail noise's three and the detail `erosion` strength (in [0, 1)). WGSL twin
+/// the detail noise's three and the detail `erosion` strength (in [0, 1)): the covered
+/// density of steps 2–4 (`shell_covered_density`), then, where that is above zero, its
+/// erosion by the detail (step 5, `shell_eroded_density`). WGSL twin
 /// `shell_density_from_noise`.
 pub fn shell_density_from_noise<F: Real>(
     h: F,
@@ -53,20 +55,47 @@ pub fn shell_density_from_noise<F: Real>(
     detail: [F; 3],
     erosion: F,
 ) -> F {
-    let (zero, one) = (F::zero(), F::one());
+    let covered = shell_covered_density(height_gradient(h, cloud_type), coverage, shape);
+    if covered <= F::zero() {
+        return F::zero();
+    }
+    shell_eroded_density(h, covered, detail, erosion)
+}
+
+/// The density before detail erosion (module documentation, steps 2 and 4): the base
+/// shape `b = (shape₀ + 1 − fbm)/(2 − fbm)` from the shape noise's four channels, times
+/// the height profile `gradient` (step 3), through the coverage, `max(b·g + coverage − 1,
+/// 0)`. A step of [`shell_density_from_noise`] (its parity case covers it). WGSL twin
+/// `shell_covered_density`.
+fn shell_covered_density<F: Real>(gradient: F, coverage: F, shape: [F; 4]) -> F {
+    let one = F::one();
     let fbm = worley_channels_fbm([shape[1], shape[2], shape[3]]);
     let base = (shape[0] + one - fbm) / (F::of(2.0) - fbm);
-    let gradient = height_gradient(h, cloud_type);
-    let covered = (base * gradient + coverage - one).max(zero);
-    if covered <= zero {
-        return zero;
-    }
+    (base * gradient + coverage - one).max(F::zero())
+}
+
+/// The density after detail erosion (module documentation, step 5) of the density
+/// `covered` (> 0, [`shell_covered_density`]) at height fraction `h`, from the detail
+/// noise's three channels and the `erosion` strength (in [0, 1)): `e = erosion·mix(dfbm,
+/// 1 − dfbm, clamp(10h, 0, 1))`, `max(covered − e, 0)/(1 − e)`. A step of
+/// [`shell_density_from_noise`] (its parity case covers it). WGSL twin
+/// `shell_eroded_density`.
+fn shell_eroded_density<F: Real>(h: F, covered: F, detail: [F; 3], erosion: F) -> F {
+    let (zero, one) = (F::zero(), F::one());
     let detail_fbm = worley_channels_fbm(detail);
     let wisp = (h * F::of(10.0)).max(zero).min(one);
     let modifier = detail_fbm + wisp * ((one - detail_fbm) - detail_fbm);
     let e = erosion * modifier;
     (covered - e).max(zero) / (one - e)
 }
+
+/// How far below zero `g + coverage − 1` must be for [`density_with`] to return zero
+/// without looking up the noise. The base shape is at most 1 (shape channels in [0, 1]:
+/// `shape₀ + 1 − fbm ≤ 2 − fbm`), so `b·g + coverage − 1 ≤ g + coverage − 1` and the
+/// covered density is zero wherever the right side is negative; the margin absorbs the
+/// roundings of both sides (a few ULP of values ≤ 2, and the base exceeding 1 by as
+/// much), so the skip never changes a result. WGSL twin `COVERAGE_SKIP_MARGIN`.
+const COVERAGE_SKIP_MARGIN: f64 = 1e-3;
 
 /// The shell's density at the planet-centred point `p` (metres) for the weather
 /// `coverage` and `cloud_type` there: zero unless `inner_radius < |p| < outer_radius`,
@@ -92,11 +121,8 @@ pub fn shell_density<F: Real>(
         coverage,
         cloud_type,
         erosion,
-        |q| {
-            let shape = cloud_shape_noise(q.map(|c| c / shape_period), seed);
-            let detail = cloud_detail_noise(q.map(|c| c / detail_period), seed);
-            (shape, detail)
-        },
+        |q| cloud_shape_noise(q.map(|c| c / shape_period), seed),
+        |q| cloud_detail_noise(q.map(|c| c / detail_period), seed),
     )
 }
 
@@ -123,15 +149,20 @@ pub fn shell_density_textured<F: Real>(
         coverage,
         cloud_type,
         erosion,
+        |q| shape.sample_trilinear(q.map(|c| c / shape_period)),
         |q| {
-            let s = shape.sample_trilinear(q.map(|c| c / shape_period));
             let d = detail.sample_trilinear(q.map(|c| c / detail_period));
-            (s, [d[0], d[1], d[2]])
+            [d[0], d[1], d[2]]
         },
     )
 }
 
-/// The shell density's steps around the noise lookup `noise(q)` (shape, detail).
+/// The shell density's steps around the noise lookups `shape_noise(q)` and
+/// `detail_noise(q)`: [`shell_density_from_noise`] with each noise looked up only where
+/// the result depends on it. Zero outside the shell, at zero coverage or height profile,
+/// and where `g + coverage − 1` is below `−COVERAGE_SKIP_MARGIN` (the covered density is
+/// zero whatever the shape); the detail only where the covered density is above zero.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn density_with<F: Real>(
     p: [F; 3],
     inner_radius: F,
@@ -139,20 +170,26 @@ pub(super) fn density_with<F: Real>(
     coverage: F,
     cloud_type: F,
     erosion: F,
-    noise: impl Fn([F; 3]) -> ([F; 4], [F; 3]),
+    shape_noise: impl Fn([F; 3]) -> [F; 4],
+    detail_noise: impl Fn([F; 3]) -> [F; 3],
 ) -> F {
-    let zero = F::zero();
+    let (zero, one) = (F::zero(), F::one());
     let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
     if !(r > inner_radius && r < outer_radius) || coverage <= zero {
         return zero;
     }
     let height = r - inner_radius;
     let h = height / (outer_radius - inner_radius);
-    if height_gradient(h, cloud_type) <= zero {
+    let gradient = height_gradient(h, cloud_type);
+    if gradient <= zero || gradient + coverage - one < -F::of(COVERAGE_SKIP_MARGIN) {
         return zero;
     }
-    let (shape, detail) = noise([p[0], p[1], height]);
-    shell_density_from_noise(h, coverage, cloud_type, shape, detail, erosion)
+    let q = [p[0], p[1], height];
+    let covered = shell_covered_density(gradient, coverage, shape_noise(q));
+    if covered <= zero {
+        return zero;
+    }
+    shell_eroded_density(h, covered, detail_noise(q), erosion)
 }
 
 /// The horizon fade at distance `t` (metres) along a view ray: 1 up to `fade_start`,
@@ -167,7 +204,9 @@ pub fn horizon_fade<F: Real>(t: F, fade_start: F, fade_end: F) -> F {
 /// each `clamp(mean + contrast·(2n − 1), 0, 1)` with `n` the [`perlin_fbm`] on the plane
 /// `z = 0` at `(x, y)·cells/period` with lattice period `cells`, so the map repeats every
 /// `period` metres; coverage uses seed `noise_octave_seed(seed, 7)`, the type
-/// `noise_octave_seed(seed, 8)`. WGSL twin `procedural_weather`.
+/// `noise_octave_seed(seed, 8)`. A field with zero contrast and a non-zero mean is its
+/// clamped mean (`mean + 0·(2n − 1)` is `mean` for the finite `n` in [0, 1]), so its fBm is
+/// not evaluated. WGSL twin `procedural_weather`.
 #[allow(clippy::too_many_arguments)]
 pub fn procedural_weather<F: Real>(
     xy: [F; 2],
@@ -181,16 +220,30 @@ pub fn procedural_weather<F: Real>(
 ) -> [F; 2] {
     let scale = F::of(f64::from(cells)) / period;
     let p = [xy[0] * scale, xy[1] * scale, F::zero()];
+    [
+        procedural_weather_field(p, cells, seed, 7, coverage_mean, coverage_contrast),
+        procedural_weather_field(p, cells, seed, 8, type_mean, type_contrast),
+    ]
+}
+
+/// One field of [`procedural_weather`]: `clamp(mean + contrast·(2n − 1), 0, 1)` with `n`
+/// the [`perlin_fbm`] at `p` under seed `noise_octave_seed(seed, k)`; the clamped mean,
+/// without the fBm, where the contrast is zero and the mean is not. WGSL twin
+/// `procedural_weather_field`.
+fn procedural_weather_field<F: Real>(
+    p: [F; 3],
+    cells: u32,
+    seed: u32,
+    k: u32,
+    mean: F,
+    contrast: F,
+) -> F {
     let (zero, one, two) = (F::zero(), F::one(), F::of(2.0));
-    let n_coverage = perlin_fbm(p, cells, crate::noise::noise_octave_seed(seed, 7));
-    let n_type = perlin_fbm(p, cells, crate::noise::noise_octave_seed(seed, 8));
-    let coverage = (coverage_mean + coverage_contrast * (two * n_coverage - one))
-        .max(zero)
-        .min(one);
-    let cloud_type = (type_mean + type_contrast * (two * n_type - one))
-        .max(zero)
-        .min(one);
-    [coverage, cloud_type]
+    if contrast == zero && mean != zero {
+        return mean.max(zero).min(one);
+    }
+    let n = perlin_fbm(p, cells, crate::noise::noise_octave_seed(seed, k));
+    (mean + contrast * (two * n - one)).max(zero).min(one)
 }
 
 /// The spans of the ray `origin + t·direction` (planet-centred metres, unit `direction`,
@@ -235,4 +288,239 @@ pub fn shell_ray_spans<F: Real>(
         push(enter, exit);
     }
     spans
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use skyscape_wgsl::common::hash_u32;
+
+    /// The shell density looking up both noises wherever the height profile is above
+    /// zero, then steps 2–5 in one piece: what [`density_with`] must equal bit for bit.
+    #[allow(clippy::too_many_arguments)]
+    fn density_looking_up_both<F: Real>(
+        p: [F; 3],
+        inner_radius: F,
+        outer_radius: F,
+        coverage: F,
+        cloud_type: F,
+        erosion: F,
+        shape_noise: impl Fn([F; 3]) -> [F; 4],
+        detail_noise: impl Fn([F; 3]) -> [F; 3],
+    ) -> F {
+        let zero = F::zero();
+        let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        if !(r > inner_radius && r < outer_radius) || coverage <= zero {
+            return zero;
+        }
+        let height = r - inner_radius;
+        let h = height / (outer_radius - inner_radius);
+        if height_gradient(h, cloud_type) <= zero {
+            return zero;
+        }
+        let q = [p[0], p[1], height];
+        let (shape, detail) = (shape_noise(q), detail_noise(q));
+        let one = F::one();
+        let fbm = worley_channels_fbm([shape[1], shape[2], shape[3]]);
+        let base = (shape[0] + one - fbm) / (F::of(2.0) - fbm);
+        let gradient = height_gradient(h, cloud_type);
+        let covered = (base * gradient + coverage - one).max(zero);
+        if covered <= zero {
+            return zero;
+        }
+        let detail_fbm = worley_channels_fbm(detail);
+        let wisp = (h * F::of(10.0)).max(zero).min(one);
+        let modifier = detail_fbm + wisp * ((one - detail_fbm) - detail_fbm);
+        let e = erosion * modifier;
+        (covered - e).max(zero) / (one - e)
+    }
+
+    /// A deterministic value in [0, 1) for sample `i` and channel `salt`.
+    fn unit(i: u32, salt: u32) -> f64 {
+        f64::from(hash_u32(i.wrapping_mul(0x9e37_79b9) ^ salt.wrapping_mul(0x85eb_ca6b)) >> 8)
+            / 16_777_216.0
+    }
+
+    /// How many samples took each path: outside or no profile, skipped by the coverage
+    /// bound, covered density zero after the shape lookup, eroded.
+    #[derive(Debug, Default)]
+    struct Paths {
+        no_profile: u32,
+        coverage_bound: u32,
+        uncovered: u32,
+        eroded: u32,
+    }
+
+    /// [`density_with`] against [`density_looking_up_both`] on `count` samples of a
+    /// deck from 1 km to 1.8 km above the Earth: points over ±20 km at every height
+    /// through and around the deck, coverage 0, 1, uniform, or within ±2e-3 of the
+    /// bound `1 − g`, cloud types and erosion over their ranges.
+    fn check_lazy_against_both<F: Real>(
+        count: u32,
+        shape_noise: impl Fn([F; 3]) -> [F; 4],
+        detail_noise: impl Fn([F; 3]) -> [F; 3],
+    ) -> Paths {
+        let ground = 6_360_000.0;
+        let (inner, outer) = (ground + 1_000.0, ground + 1_800.0);
+        let mut paths = Paths::default();
+        for i in 0..count {
+            let x = 20_000.0 * (2.0 * unit(i, 1) - 1.0);
+            let y = 20_000.0 * (2.0 * unit(i, 2) - 1.0);
+            let r = inner - 50.0 + (outer - inner + 100.0) * unit(i, 3);
+            let z = (r * r - x * x - y * y).sqrt();
+            let cloud_type = [0.0, 0.5, 1.0, unit(i, 4)][i as usize % 4];
+            let h = (r - inner) / (outer - inner);
+            let g = height_gradient(h, cloud_type);
+            let coverage = match (i / 4) % 4 {
+                0 => 0.0,
+                1 => 1.0,
+                2 => unit(i, 5),
+                _ => (1.0 - g + 2e-3 * (2.0 * unit(i, 5) - 1.0)).clamp(0.0, 1.0),
+            };
+            let erosion = 0.9 * unit(i, 6);
+            let p = [x, y, z].map(F::of);
+            let (inner_f, outer_f) = (F::of(inner), F::of(outer));
+            let (coverage, cloud_type, erosion) =
+                (F::of(coverage), F::of(cloud_type), F::of(erosion));
+            let lazy = density_with(
+                p,
+                inner_f,
+                outer_f,
+                coverage,
+                cloud_type,
+                erosion,
+                &shape_noise,
+                &detail_noise,
+            );
+            let both = density_looking_up_both(
+                p,
+                inner_f,
+                outer_f,
+                coverage,
+                cloud_type,
+                erosion,
+                &shape_noise,
+                &detail_noise,
+            );
+            let bits = |v: F| v.to_f64().expect("widens").to_bits();
+            assert_eq!(
+                bits(lazy),
+                bits(both),
+                "sample {i}: p = {p:?}, coverage {coverage:?}, type {cloud_type:?}"
+            );
+            // Which path the lazy evaluation took (recomputed as it computes it).
+            let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+            let h = (r - inner_f) / (outer_f - inner_f);
+            let gradient = height_gradient(h, cloud_type);
+            if !(r > inner_f && r < outer_f) || coverage <= F::zero() || gradient <= F::zero() {
+                paths.no_profile += 1;
+            } else if gradient + coverage - F::one() < -F::of(COVERAGE_SKIP_MARGIN) {
+                paths.coverage_bound += 1;
+            } else if lazy == F::zero() {
+                paths.uncovered += 1;
+            } else {
+                paths.eroded += 1;
+            }
+        }
+        paths
+    }
+
+    /// Each path taken by at least `share` of `count` samples.
+    fn assert_every_path(paths: &Paths, count: u32, share: f64) {
+        let least = (share * f64::from(count)) as u32;
+        for (name, n) in [
+            ("no profile", paths.no_profile),
+            ("coverage bound", paths.coverage_bound),
+            ("uncovered", paths.uncovered),
+            ("eroded", paths.eroded),
+        ] {
+            assert!(n >= least, "{name}: {n} of {count} samples ({paths:?})");
+        }
+    }
+
+    fn check_procedural<F: Real>(count: u32) {
+        let (shape_period, detail_period) = (F::of(6_000.0), F::of(800.0));
+        let paths = check_lazy_against_both::<F>(
+            count,
+            |q| cloud_shape_noise(q.map(|c| c / shape_period), 3),
+            |q| cloud_detail_noise(q.map(|c| c / detail_period), 3),
+        );
+        assert_every_path(&paths, count, 0.02);
+    }
+
+    #[test]
+    fn lazy_noise_gives_the_same_density_in_f32() {
+        check_procedural::<f32>(100_000);
+    }
+
+    #[test]
+    fn lazy_noise_gives_the_same_density_in_f64() {
+        check_procedural::<f64>(100_000);
+    }
+
+    /// Both fields' fBm evaluated whatever the contrast: what [`procedural_weather`] must
+    /// equal bit for bit.
+    fn weather_with_both_fbms<F: Real>(xy: [F; 2], means: [F; 2], contrasts: [F; 2]) -> [F; 2] {
+        let (period, cells, seed) = (F::of(50_000.0), 4, 2026);
+        let scale = F::of(f64::from(cells)) / period;
+        let p = [xy[0] * scale, xy[1] * scale, F::zero()];
+        let (zero, one, two) = (F::zero(), F::one(), F::of(2.0));
+        std::array::from_fn(|k| {
+            let n = perlin_fbm(
+                p,
+                cells,
+                crate::noise::noise_octave_seed(seed, 7 + k as u32),
+            );
+            (means[k] + contrasts[k] * (two * n - one))
+                .max(zero)
+                .min(one)
+        })
+    }
+
+    fn check_weather<F: Real>() {
+        let means = [0.0, 0.35, 0.5, 1.0];
+        let contrasts = [0.0, 0.25, 1.0];
+        for i in 0..20_000u32 {
+            let xy = [1, 2].map(|s| F::of(200_000.0 * (2.0 * unit(i, s) - 1.0)));
+            let m = [means[i as usize % 4], means[(i / 4) as usize % 4]].map(F::of);
+            let c = [
+                contrasts[(i / 16) as usize % 3],
+                contrasts[(i / 48) as usize % 3],
+            ]
+            .map(F::of);
+            let lazy = procedural_weather(xy, F::of(50_000.0), 4, 2026, m[0], c[0], m[1], c[1]);
+            let both = weather_with_both_fbms(xy, m, c);
+            let bits = |v: [F; 2]| v.map(|x| x.to_f64().expect("widens").to_bits());
+            assert_eq!(
+                bits(lazy),
+                bits(both),
+                "xy {xy:?}, means {m:?}, contrasts {c:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn weather_without_contrast_skips_its_fbm_exactly() {
+        check_weather::<f32>();
+        check_weather::<f64>();
+    }
+
+    #[test]
+    fn lazy_textures_give_the_same_density() {
+        let (shape, detail) = (NoiseTexture::shape(3, 16), NoiseTexture::detail(3, 8));
+        fn check<F: Real>(shape: &NoiseTexture, detail: &NoiseTexture) {
+            let (shape_period, detail_period) = (F::of(6_000.0), F::of(800.0));
+            let paths = check_lazy_against_both::<F>(
+                100_000,
+                |q| shape.sample_trilinear(q.map(|c| c / shape_period)),
+                |q| {
+                    let d = detail.sample_trilinear(q.map(|c| c / detail_period));
+                    [d[0], d[1], d[2]]
+                },
+            );
+            assert_every_path(&paths, 100_000, 0.02);
+        }
+        check::<f32>(&shape, &detail);
+        check::<f64>(&shape, &detail);
+    }
 }
