@@ -37,9 +37,11 @@ fn display() -> Option<(String, Option<Xvfb>)> {
     }
     for number in 90..110 {
         let name = format!(":{number}");
-        if Path::new(&format!("/tmp/.X11-unix/X{number}")).exists() {
+        if display_in_use(number) {
             continue;
         }
+        let socket = format!("/tmp/.X11-unix/X{number}");
+        let spawned = std::time::SystemTime::now();
         let child = Command::new("Xvfb")
             .args([
                 name.as_str(),
@@ -55,7 +57,12 @@ fn display() -> Option<(String, Option<Xvfb>)> {
             .ok()?;
         let server = Xvfb(child);
         for _ in 0..100 {
-            if Path::new(&format!("/tmp/.X11-unix/X{number}")).exists() {
+            // Ready once this server has made its socket: one left by a server killed
+            // earlier is older than the spawn.
+            let fresh = std::fs::metadata(&socket)
+                .and_then(|m| m.modified())
+                .is_ok_and(|made| made >= spawned);
+            if fresh {
                 return Some((name, Some(server)));
             }
             std::thread::sleep(std::time::Duration::from_millis(50));
@@ -63,6 +70,18 @@ fn display() -> Option<(String, Option<Xvfb>)> {
         return None;
     }
     None
+}
+
+/// Whether display `:number` has a running server: its lock file names a live process.
+/// A socket without one was left by a server that was killed; a new server replaces it.
+fn display_in_use(number: u32) -> bool {
+    let Ok(lock) = std::fs::read_to_string(format!("/tmp/.X{number}-lock")) else {
+        return false;
+    };
+    match lock.trim().parse::<u32>() {
+        Ok(pid) if Path::new("/proc/self").exists() => Path::new(&format!("/proc/{pid}")).exists(),
+        _ => true,
+    }
 }
 
 /// The default scene's camera after the script's `turn 20 -3` and `move 300 100 50`,
