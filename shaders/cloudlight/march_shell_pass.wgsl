@@ -1,11 +1,14 @@
-// The view ray-march of a procedural cloud shell as a compute pass: one invocation per
-// pixel of a pinhole camera (planet-centred metres) runs field_march's march_pixel, its
+// The view ray-march of a procedural cloud shell: each pixel of a pinhole camera
+// (planet-centred metres) runs field_march's march_pixel (march_shell_pass_pixel), its
 // density field the shell (cloudlight::gpu::MarchShellPass binds
 // cloudlight::density_source to cloudlight::density_shell), then fades the result toward
-// the horizon at its transmittance-weighted depth. Twin:
+// the horizon at its transmittance-weighted depth; from a fragment stage over
+// march_raster's triangle (march_shell_fragment) or, where fragment shaders cannot write
+// storage buffers, a compute stage (march_shell_main). Twin:
 // cloudlight::march::render_image::<f32> on a CloudShell, each pixel then march::faded by
 // CloudShell::horizon_fade(depth).
 #import cloudlight::field_march
+#import cloudlight::march_raster
 #import cloudlight::shell
 
 @group(0) @binding(0) var<uniform> params: MarchParams;
@@ -15,26 +18,39 @@
 // when view.y is 1 (otherwise a placeholder is bound).
 @group(0) @binding(2) var<storage, read> max_distance: array<f32>;
 
-@compute @workgroup_size(8, 8)
-fn march_shell_main(@builtin(global_invocation_id) gid: vec3<u32>) {
+// Marches `pixel` (x, y; row 0 at the top) into image_out, faded toward the horizon;
+// pixels outside the image write nothing.
+fn march_shell_pass_pixel(pixel: vec2<u32>) {
     let size = params.image.xy;
-    if gid.x >= size.x || gid.y >= size.y {
+    if pixel.x >= size.x || pixel.y >= size.y {
         return;
     }
     // Temporally amortised (view.z = 1): only the pixels the reprojection left to march.
-    if params.view.z == 1u && image_out[2u * (gid.x + size.x * gid.y) + 1u].y == 0.0 {
+    if params.view.z == 1u && image_out[2u * (pixel.x + size.x * pixel.y) + 1u].y == 0.0 {
         return;
     }
     var limit = INFINITE_DISTANCE;
     if params.view.y != 0u {
-        limit = max_distance[gid.x + size.x * gid.y];
+        limit = max_distance[pixel.x + size.x * pixel.y];
     }
-    let result = march_pixel(params, gid.xy, limit);
+    let result = march_pixel(params, pixel, limit);
     // The horizon fade at the cloud's depth (march::faded).
     let fade = horizon_fade(result.depth, params.horizon_fade.x, params.horizon_fade.y);
     let radiance = vec3<f32>(result.radiance.x * fade, result.radiance.y * fade, result.radiance.z * fade);
     let transmittance = 1.0 - fade * (1.0 - result.transmittance);
-    let index = 2u * (gid.x + size.x * gid.y);
+    let index = 2u * (pixel.x + size.x * pixel.y);
     image_out[index] = vec4<f32>(radiance, transmittance);
     image_out[index + 1u] = vec4<f32>(result.depth, 0.0, 0.0, 0.0);
+}
+
+// One fragment per pixel of march_raster's triangle.
+@fragment
+fn march_shell_fragment(@builtin(position) position: vec4<f32>) {
+    march_shell_pass_pixel(march_raster_pixel(position));
+}
+
+// One invocation per pixel, 8×8 per workgroup.
+@compute @workgroup_size(8, 8)
+fn march_shell_main(@builtin(global_invocation_id) gid: vec3<u32>) {
+    march_shell_pass_pixel(gid.xy);
 }

@@ -205,7 +205,7 @@ fn worley_axis<F: Real>(i: i32, f: F, period: u32) -> WorleyAxis<F> {
 ///
 /// F1 is the minimum of the 27 squared distances, which does not depend on the order
 /// they are visited in, so the search visits `p`'s own cell first and, per axis, the
-/// nearer neighbour before the farther one ([`WorleyAxis`]), and skips every cell whose
+/// nearer neighbour before the farther one (`WorleyAxis`), and skips every cell whose
 /// squared distance cannot be below the best found: the sum of the squared per-axis
 /// bounds, accumulated x, then y, then z as the distance is, is a lower bound of the
 /// distance as rounded (each rounding is monotonic). Along each axis the bounds ascend,

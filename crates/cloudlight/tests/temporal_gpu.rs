@@ -1,13 +1,13 @@
 //! `TemporalMarch` on a GPU: a still camera's amortised image is the full march's after
 //! four frames (to f32 rounding); a moving camera's is, on average, no further from
-//! each frame's full march than the last frame's full march is (skipped without an
-//! adapter, see skyscape-harness).
+//! each frame's full march than the last frame's full march is; the march's fragment
+//! and compute stages amortise alike (skipped without an adapter, see skyscape-harness).
 #![cfg(feature = "gpu")]
 
 use std::num::NonZeroU32;
 
 use cloudlight::CloudVolume;
-use cloudlight::gpu::{MarchPass, TemporalMarch};
+use cloudlight::gpu::{MarchPass, MarchStage, TemporalMarch};
 use cloudlight::march::{
     LightMarch, Lighting, MarchConfig, MarchResult, MarchSettings, PinholeCamera,
 };
@@ -169,4 +169,37 @@ fn an_amortised_march_converges_and_follows_a_moving_camera() {
         "mean {mean} against one frame late {late_mean}"
     );
     assert!(worst < 0.05, "worst relative error {worst}");
+}
+
+#[test]
+fn the_fragment_and_compute_stages_amortise_alike() {
+    let Some(gpu) = skyscape_harness::gpu_or_skip("temporal march stages") else {
+        return;
+    };
+    let Ok(mut fragment) = MarchPass::with_stage(&gpu.device, MarchStage::Fragment) else {
+        eprintln!("temporal march stages: no fragment stage on this adapter; nothing to compare");
+        return;
+    };
+    let mut compute = MarchPass::with_stage(&gpu.device, MarchStage::Compute).unwrap();
+    let marcher = Marcher {
+        gpu,
+        volume: lumpy_blob(),
+        settings: MarchSettings::default(),
+        lighting: Lighting::<f32>::white_sun([0.3, 0.2, (1.0f64 - 0.13).sqrt()]).unwrap(),
+        size: [45, 34],
+    };
+    let mut temporals = [(); 2].map(|()| TemporalMarch::new(&gpu.device).unwrap());
+    // The first frame marches every pixel, then a still frame and three moving ones,
+    // each marching a quarter of the pixels and reprojecting the rest.
+    let mut amortised_pixels = 0;
+    for (frame, x) in [0.0, 0.0, 20.0, 40.0, 60.0].into_iter().enumerate() {
+        let [on_fragment, on_compute] = &mut temporals;
+        let a = marcher.frame(&mut fragment, Some(on_fragment), &camera(x));
+        let b = marcher.frame(&mut compute, Some(on_compute), &camera(x));
+        assert!(a == b, "frame {frame}: the stages' amortised images differ");
+        if frame > 0 {
+            amortised_pixels += a.len();
+        }
+    }
+    eprintln!("temporal march: the stages agree over {amortised_pixels} amortised pixels");
 }

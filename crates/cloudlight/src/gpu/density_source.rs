@@ -134,12 +134,13 @@ pub(crate) fn compose_over<S: GpuDensitySource + ?Sized>(
     crate::composer().compose_module_bound(entry, &[(DENSITY_SLOT, S::MODULE)])
 }
 
-/// The layout entries of a source's bindings 4 and 5.
-pub(crate) fn source_layout_entries<S: GpuDensitySource + ?Sized>()
--> [wgpu::BindGroupLayoutEntry; 2] {
+/// The layout entries of a source's bindings 4 and 5, visible to `visibility`.
+pub(crate) fn source_layout_entries<S: GpuDensitySource + ?Sized>(
+    visibility: wgpu::ShaderStages,
+) -> [wgpu::BindGroupLayoutEntry; 2] {
     let entry = |binding, ty, min: Option<u64>| wgpu::BindGroupLayoutEntry {
         binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
+        visibility,
         ty: wgpu::BindingType::Buffer {
             ty,
             has_dynamic_offset: false,

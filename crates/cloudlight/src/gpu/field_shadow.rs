@@ -43,7 +43,7 @@ pub(super) fn shadow_pipeline<S: GpuDensitySource + ?Sized>(
         ),
         entry(1, output),
     ];
-    entries.extend(source_layout_entries::<S>());
+    entries.extend(source_layout_entries::<S>(wgpu::ShaderStages::COMPUTE));
     let (pipeline, layout) =
         super::one_group_pipeline(device, label, &entries, &module, entry_point);
     Ok((pipeline, layout))

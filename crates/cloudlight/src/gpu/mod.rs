@@ -23,8 +23,9 @@ pub use field_shadow::SHADOW_WORKGROUP_SIZE;
 
 mod march;
 pub use march::{
-    FieldMarchPass, MARCH_WORKGROUP_SIZE, MarchGpuError, MarchPass, MarchShellPass, MarchedField,
-    OutsideShadow, SKY_DISTANCE_M, TemporalMarch, compose_march_shader, compose_march_shell_shader,
+    FieldMarchPass, MARCH_WORKGROUP_SIZE, MarchGpuError, MarchPass, MarchShellPass, MarchStage,
+    MarchedField, OutsideShadow, SKY_DISTANCE_M, TemporalMarch, compose_march_shader,
+    compose_march_shell_shader,
 };
 
 mod noise_bake;

@@ -18,11 +18,12 @@ use cloudlight::march::Lighting;
 pub(crate) trait CloudMarch {
     /// The march's output (after its `prepare`).
     fn image(&self) -> Option<&wgpu::Buffer>;
-    /// Records the march, a compute pass of its own.
+    /// Records the march, a pass of its own (a render pass on the fragment stage, a
+    /// compute pass on the compute fallback: `cloudlight::gpu::MarchStage`).
     fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
-        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) -> Result<(), crate::RenderError>;
     /// Marches, from the next prepare, only the pixels `temporal`'s reprojection leaves
     /// it (its phase for a `size` image), or every pixel without it.
@@ -39,7 +40,7 @@ pub(crate) trait CloudMarch {
         &self,
         temporal: &TemporalMarch,
         encoder: &mut wgpu::CommandEncoder,
-        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) -> Result<(), crate::RenderError>;
 }
 
@@ -53,7 +54,7 @@ macro_rules! cloud_march {
             fn encode(
                 &self,
                 encoder: &mut wgpu::CommandEncoder,
-                timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+                timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
             ) -> Result<(), crate::RenderError> {
                 Ok(self.encode_timed(encoder, timestamp_writes)?)
             }
@@ -72,7 +73,7 @@ macro_rules! cloud_march {
                 &self,
                 temporal: &TemporalMarch,
                 encoder: &mut wgpu::CommandEncoder,
-                timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+                timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
             ) -> Result<(), crate::RenderError> {
                 Ok(temporal.encode(encoder, self, timestamp_writes)?)
             }
@@ -100,8 +101,9 @@ struct LitMarch<M> {
 
 /// The timestamp writes of one cloud's passes (each `None` when untimed).
 pub(crate) struct CloudTimes<'a> {
-    /// Each light's march, in the scene's lights' order.
-    pub marches: Vec<Option<wgpu::ComputePassTimestampWrites<'a>>>,
+    /// Each light's march, in the scene's lights' order (a render pass's writes: the
+    /// march's `encode_timed`).
+    pub marches: Vec<Option<wgpu::RenderPassTimestampWrites<'a>>>,
     /// The composite render pass.
     pub composite: Option<wgpu::RenderPassTimestampWrites<'a>>,
 }
@@ -489,13 +491,13 @@ impl<M: CloudMarch> CloudComposite<M> {
     }
 
     /// Records each light's march (after [`CloudDistance::encode`]; `marches`: their
-    /// timestamp writes, the lights' order) and the air passes with each light's `airs`,
-    /// each a compute pass of its own: what a composite reads.
+    /// timestamp writes, the lights' order; each a pass of its own) and the air passes
+    /// with each light's `airs`, each a compute pass of its own: what a composite reads.
     pub(crate) fn encode_marches(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         airs: &[super::cloud_air::CloudAir<'_>],
-        marches: Vec<Option<wgpu::ComputePassTimestampWrites<'_>>>,
+        marches: Vec<Option<wgpu::RenderPassTimestampWrites<'_>>>,
     ) -> Result<(), crate::RenderError> {
         let name = self.name;
         let groups = self.groups.ok_or(crate::RenderError::NotPrepared)?;

@@ -1,6 +1,7 @@
 //! Parity passes of `cloudlight`'s view march through a procedural cloud shell (Schneider 2015):
-//! an image (64×48, 112×90) by `cloudlight::gpu::MarchShellPass` (`march_shell_pass.wgsl`, entry
-//! `march_shell_main`), per pixel (radiance r, g, b, transmittance), of the cumulus layer
+//! an image (64×48, 112×90) by `cloudlight::gpu::MarchShellPass` (`march_shell_pass.wgsl`, on
+//! the stage its `new` chooses: `march_shell_fragment`, or `march_shell_main` where fragment
+//! shaders cannot write storage), per pixel (radiance r, g, b, transmittance), of the cumulus layer
 //! seen from the ground and of the shipped `stratocumulus` deck seen from above.
 //! Reference: the generic march at f64 on the `CloudShell` (each pixel as
 //! `march::render_image::<f64>` marches it: `march_view_at_pixel` along `pixel_direction`);

@@ -9,8 +9,8 @@
 //!
 //! [`FieldMarchPass::new`] builds the pipeline; [`FieldMarchPass::prepare`] uploads the
 //! field's source, the camera, settings and lighting, and creates the output buffer and
-//! the bind group; [`FieldMarchPass::encode`] only records one dispatch (8×8 pixels per
-//! workgroup; [`FieldMarchPass::encode_timed`] adds timestamp writes).
+//! the bind group; [`FieldMarchPass::encode`] only records the march's one pass
+//! ([`FieldMarchPass::encode_timed`] adds timestamp writes).
 //! [`FieldMarchPass::prepare_limited`] also binds a per-pixel distance buffer (`f32`
 //! metres along each pixel's ray, x fastest, row 0 at the top) where each march stops:
 //! terrain in front of or inside the cloud. A caller with a depth buffer converts depth
@@ -21,6 +21,37 @@
 //! [`MarchResult`]; [`FieldMarchPass::decode`] turns its bytes into them. The f32 CPU
 //! twin is [`render_image::<f32>`](crate::march::render_image) on the same field.
 //!
+//! # The stage
+//!
+//! Each entry's per-pixel function (`march_pass_pixel`, `march_shell_pass_pixel`: the
+//! pixel's `march_pixel`, written to the output at the pixel's index) runs on one of two
+//! stages, [`MarchStage`]:
+//!
+//! * **Fragment** (the choice wherever the device allows it): a render pass draws one
+//!   full-screen triangle (`march_raster.wgsl`) and the fragment at pixel
+//!   `floor(position.xy)` marches that pixel. Lavapipe (Mesa's software Vulkan driver)
+//!   spreads fragment work over every core but runs a compute dispatch on one thread,
+//!   so there the fragment stage is the fast one (llvmpipe's GL driver threads both
+//!   alike); on a GPU the two run the same code on the same hardware. A render pass
+//!   needs an attachment: the pass owns an image-sized `Depth16Unorm` one (created in
+//!   `prepare` when the size changes), cleared, neither tested nor written, and
+//!   discarded — the cheapest attachment every backend (Vulkan, GL, Metal, DX12)
+//!   renders to, there only to size the pass. The image is then limited to the
+//!   device's `max_texture_dimension_2d` pixels along each axis.
+//! * **Compute**, the fallback: one invocation per pixel, [`MARCH_WORKGROUP_SIZE`]² per
+//!   workgroup, for a device whose fragment shaders cannot write storage buffers
+//!   (`wgpu::DownlevelFlags::FRAGMENT_WRITABLE_STORAGE`: some GLES and older mobile
+//!   Vulkan devices). A `wgpu::Device` does not report its adapter's downlevel flags,
+//!   so [`FieldMarchPass::new`] builds the fragment pipeline inside error scopes and
+//!   builds the compute one if the device refuses it; a caller holding the adapter
+//!   may choose with [`MarchStage::supported`] and [`FieldMarchPass::with_stage`].
+//!
+//! Both stages bind the same buffers (visible to that stage only), read the same
+//! uniform and write the same output, so every reader of the output — a composite, the
+//! [`TemporalMarch`] (whose phase check sits in the per-pixel function, so a pixel left
+//! to the reprojection writes nothing on either stage), [`FieldMarchPass::decode`] — is
+//! the same; `tests/march_stage_gpu.rs` compares the two stages' outputs bit for bit.
+//!
 //! [`CloudVolume`]: crate::CloudVolume
 //! [`CloudVolume::density_at`]: crate::CloudVolume::density_at
 //! [`MarchResult`]: crate::march::MarchResult
@@ -28,15 +59,17 @@
 
 mod pass;
 mod shared;
+mod stage;
 mod temporal;
 
 pub use pass::{
     FieldMarchPass, MarchPass, MarchShellPass, MarchedField, compose_march_shader,
     compose_march_shell_shader,
 };
+pub use stage::MarchStage;
 pub use temporal::{SKY_DISTANCE_M, TemporalMarch};
 
-/// Pixels per workgroup along each image axis.
+/// Pixels per workgroup along each image axis (the compute stage).
 pub const MARCH_WORKGROUP_SIZE: u32 = 8;
 
 /// Another cloud's shadow map a march reads (`shaders/cloudlight/outside_shadow.wgsl`,
@@ -71,15 +104,28 @@ pub enum MarchGpuError {
         /// The device limit.
         limit: u64,
     },
-    /// The image is empty or needs more workgroups along one axis than the device allows.
-    #[error("{field} = {value} pixels: must be ≥ 1 and need at most {limit} workgroups")]
+    /// The image is empty or larger than the march's stage allows.
+    #[error("{field} = {value} pixels: must be between 1 and {limit} on the {stage} stage")]
     ImageSize {
         /// `size.x` or `size.y`.
         field: &'static str,
         /// Pixels along it.
         value: u32,
-        /// `max_compute_workgroups_per_dimension`.
+        /// The stage the pass runs on.
+        stage: MarchStage,
+        /// The most pixels it allows: the device's `max_texture_dimension_2d` (the
+        /// fragment stage's attachment) or [`MARCH_WORKGROUP_SIZE`] ×
+        /// `max_compute_workgroups_per_dimension` (the compute stage's dispatch).
         limit: u32,
+    },
+    /// The device refused the pass's pipeline on a stage (on the fragment stage: a
+    /// device whose fragment shaders cannot write storage buffers).
+    #[error("the device refused the march's {stage}-stage pipeline: {message}")]
+    Pipeline {
+        /// The stage.
+        stage: MarchStage,
+        /// wgpu's error, on one line.
+        message: String,
     },
     /// The per-pixel distance buffer is too small or cannot be bound as storage.
     #[error(

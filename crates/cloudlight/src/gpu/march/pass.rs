@@ -4,18 +4,22 @@
 use std::marker::PhantomData;
 
 use super::shared::*;
+use super::stage::StagePass;
 use super::*;
 use crate::gpu::density_source::{GpuDensitySource, SourceBuffers, compose_over};
 use crate::march::{Lighting, MarchResult, MarchSettings, PinholeCamera};
 use crate::{CloudShell, CloudVolume};
 
 /// A field the view march runs over: its density source and the pass's entry (a thin
-/// WGSL file around `field_march.wgsl`'s `march_pixel`).
+/// WGSL file around `field_march.wgsl`'s `march_pixel`, one per-pixel function called
+/// from a fragment and a compute entry point).
 pub trait MarchedField: GpuDensitySource {
     /// The entry's module.
     const ENTRY: &'static str;
-    /// The entry point.
-    const ENTRY_POINT: &'static str;
+    /// The fragment entry point ([`MarchStage::Fragment`]).
+    const FRAGMENT_ENTRY_POINT: &'static str;
+    /// The compute entry point ([`MarchStage::Compute`]).
+    const COMPUTE_ENTRY_POINT: &'static str;
     /// The pass's label.
     const LABEL: &'static str;
 
@@ -27,7 +31,8 @@ pub trait MarchedField: GpuDensitySource {
 /// `march_pass.wgsl`: the volume's image as marched.
 impl MarchedField for CloudVolume {
     const ENTRY: &'static str = "cloudlight::march_pass";
-    const ENTRY_POINT: &'static str = "march_main";
+    const FRAGMENT_ENTRY_POINT: &'static str = "march_fragment";
+    const COMPUTE_ENTRY_POINT: &'static str = "march_main";
     const LABEL: &'static str = "cloudlight march";
 
     fn horizon_fade(&self) -> [f64; 2] {
@@ -38,7 +43,8 @@ impl MarchedField for CloudVolume {
 /// `march_shell_pass.wgsl`: each pixel faded by [`CloudShell::horizon_fade`] of its depth.
 impl MarchedField for CloudShell {
     const ENTRY: &'static str = "cloudlight::march_shell_pass";
-    const ENTRY_POINT: &'static str = "march_shell_main";
+    const FRAGMENT_ENTRY_POINT: &'static str = "march_shell_fragment";
+    const COMPUTE_ENTRY_POINT: &'static str = "march_shell_main";
     const LABEL: &'static str = "cloudlight march shell";
 
     fn horizon_fade(&self) -> [f64; 2] {
@@ -47,12 +53,14 @@ impl MarchedField for CloudShell {
     }
 }
 
-/// The composed WGSL of the march pass over a [`CloudVolume`] (entry point `march_main`).
+/// The composed WGSL of the march pass over a [`CloudVolume`] (entry points
+/// `march_fragment` and `march_main`).
 pub fn compose_march_shader() -> Result<String, skyscape_wgsl::ComposeError> {
     compose_over::<CloudVolume>(CloudVolume::ENTRY)
 }
 
-/// The composed WGSL of the shell march pass (entry point `march_shell_main`).
+/// The composed WGSL of the shell march pass (entry points `march_shell_fragment` and
+/// `march_shell_main`).
 pub fn compose_march_shell_shader() -> Result<String, skyscape_wgsl::ComposeError> {
     compose_over::<CloudShell>(CloudShell::ENTRY)
 }
@@ -143,7 +151,8 @@ fn params_words(
 /// [`MarchPass`] for a [`CloudVolume`], [`MarchShellPass`] for a [`CloudShell`].
 #[derive(Debug)]
 pub struct FieldMarchPass<F> {
-    pipeline: wgpu::ComputePipeline,
+    /// The pipeline on its stage (and the fragment stage's attachment).
+    stage: StagePass,
     layout: wgpu::BindGroupLayout,
     prepared: Option<Prepared>,
     /// The temporal amortisation's phase for the next `prepare` (`None`: every pixel).
@@ -167,27 +176,54 @@ pub type MarchPass = FieldMarchPass<CloudVolume>;
 pub type MarchShellPass = FieldMarchPass<CloudShell>;
 
 impl<F: MarchedField> FieldMarchPass<F> {
-    /// Builds the pipeline on `device`.
+    /// Builds the pipeline on `device`: on the fragment stage where the device accepts
+    /// it (fragment shaders that write storage buffers, what
+    /// [`MarchStage::supported`] reads from an adapter's downlevel flags), otherwise on
+    /// the compute stage. [`FieldMarchPass::stage`] says which.
     pub fn new(device: &wgpu::Device) -> Result<Self, MarchGpuError> {
+        match Self::with_stage(device, MarchStage::Fragment) {
+            Err(MarchGpuError::Pipeline { .. }) => Self::with_stage(device, MarchStage::Compute),
+            built => built,
+        }
+    }
+
+    /// Builds the pipeline on `stage` (a caller that knows its adapter's
+    /// [`MarchStage::supported`], or a comparison of the two stages); a stage the device
+    /// refuses is [`MarchGpuError::Pipeline`].
+    pub fn with_stage(device: &wgpu::Device, stage: MarchStage) -> Result<Self, MarchGpuError> {
         use wgpu::BufferBindingType::{Storage, Uniform};
-        let (pipeline, layout) = march_pipeline::<F>(
-            device,
-            &compose_over::<F>(F::ENTRY)?,
-            F::LABEL,
-            F::ENTRY_POINT,
+        let entries = march_layout_entries::<F>(
+            stage.visibility(),
             &[
                 (Uniform, Some(PARAMS_BYTES)),
                 (Storage { read_only: false }, None),
                 (Storage { read_only: true }, None),
             ],
         );
+        let entry_point = match stage {
+            MarchStage::Fragment => F::FRAGMENT_ENTRY_POINT,
+            MarchStage::Compute => F::COMPUTE_ENTRY_POINT,
+        };
+        let (stage, layout) = StagePass::new(
+            device,
+            stage,
+            &compose_over::<F>(F::ENTRY)?,
+            F::LABEL,
+            entry_point,
+            &entries,
+        )?;
         Ok(Self {
-            pipeline,
+            stage,
             layout,
             prepared: None,
             phase: None,
             field: PhantomData,
         })
+    }
+
+    /// The stage the per-pixel march runs on.
+    pub fn stage(&self) -> MarchStage {
+        self.stage.stage()
     }
 
     /// Marches, from the next `prepare` on, only the pixels a
@@ -206,8 +242,9 @@ impl<F: MarchedField> FieldMarchPass<F> {
     }
 
     /// Uploads the field (its density source), the camera, settings and lighting,
-    /// creates the output buffer (`size[0] × size[1]` pixels) and the bind group
-    /// [`FieldMarchPass::encode`] records with. Takes effect at the next submit.
+    /// creates the output buffer (`size[0] × size[1]` pixels), the bind group
+    /// [`FieldMarchPass::encode`] records with and, on the fragment stage, the
+    /// attachment when the size changed. Takes effect at the next submit.
     /// Unlimited rays: [`FieldMarchPass::prepare_limited`] with no distance buffer.
     #[allow(clippy::too_many_arguments)] // device, queue and the twin's five inputs
     pub fn prepare(
@@ -282,7 +319,7 @@ impl<F: MarchedField> FieldMarchPass<F> {
         max_distance: Option<&wgpu::Buffer>,
         outside: Option<&OutsideShadow<'_>>,
     ) -> Result<(), MarchGpuError> {
-        let workgroups = march_workgroups(device, size)?;
+        self.stage.prepare(device, F::LABEL, size)?;
         let limit = device.limits().max_storage_buffer_binding_size;
         let source =
             SourceBuffers::upload(device, queue, field, F::LABEL, limit).map_err(|bytes| {
@@ -326,7 +363,6 @@ impl<F: MarchedField> FieldMarchPass<F> {
         );
         self.prepared = Some(Prepared {
             bind_group,
-            workgroups,
             size,
             image,
             params: words,
@@ -336,30 +372,32 @@ impl<F: MarchedField> FieldMarchPass<F> {
         Ok(())
     }
 
-    /// Records the march's dispatch into `encoder` (one compute pass, untimed).
+    /// Records the march into `encoder` (one pass of its own, untimed): a render pass
+    /// drawing the full-screen triangle on the fragment stage, a compute pass of one
+    /// dispatch on the compute stage.
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder) -> Result<(), MarchGpuError> {
         self.encode_timed(encoder, None)
     }
 
-    /// [`FieldMarchPass::encode`] with timestamp writes on its compute pass.
+    /// [`FieldMarchPass::encode`] with timestamp writes on its pass. They are a render
+    /// pass's, the stage [`FieldMarchPass::new`] chooses wherever it can; on the compute
+    /// stage the same query set and indices go on its compute pass.
     pub fn encode_timed(
         &self,
         encoder: &mut wgpu::CommandEncoder,
-        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) -> Result<(), MarchGpuError> {
         let prepared = self
             .prepared
             .as_ref()
             .ok_or(MarchGpuError::EncodeBeforePrepare)?;
-        crate::gpu::dispatch_2d(
+        self.stage.record(
             encoder,
             F::LABEL,
             timestamp_writes,
-            &self.pipeline,
             &prepared.bind_group,
-            prepared.workgroups,
-        );
-        Ok(())
+            prepared.size,
+        )
     }
 
     /// The output buffer (module documentation); `None` before `prepare`.

@@ -1,5 +1,5 @@
-//! What the march pass holds whatever its field: the outside-shadow bindings, the
-//! pipeline, the dispatch, the output image and its decoding.
+//! What the march pass holds whatever its field and stage: the outside-shadow bindings,
+//! the bind group's layout, the output image and its decoding.
 
 use super::*;
 use crate::gpu::density_source::{GpuDensitySource, SourceBuffers, source_layout_entries};
@@ -67,12 +67,11 @@ pub(super) fn outside_bindings(
     Ok((params, values))
 }
 
-/// What the march pass keeps from `prepare`: the bind group, the dispatch and the
+/// What the march pass keeps from `prepare`: the bind group, the image's size and the
 /// output image; `_inputs` and `_source` keep the bound buffers alive.
 #[derive(Debug)]
 pub(super) struct Prepared {
     pub(super) bind_group: wgpu::BindGroup,
-    pub(super) workgroups: [u32; 2],
     pub(super) size: [u32; 2],
     pub(super) image: wgpu::Buffer,
     /// The parameters' words (`MarchParams`), as uploaded.
@@ -81,63 +80,43 @@ pub(super) struct Prepared {
     pub(super) _source: SourceBuffers,
 }
 
-/// A march pass's compute pipeline and its one bind group's layout: `bindings[i]` is
-/// binding `i`'s buffer type and minimum size (buffers only), then the density source's
-/// bindings 4 and 5 and bindings 8 and 9, another cloud's shadow ([`OutsideShadow`]).
-pub(super) fn march_pipeline<S: GpuDensitySource + ?Sized>(
-    device: &wgpu::Device,
-    source: &str,
-    label: &str,
-    entry_point: &str,
+/// A march pass's bind group layout entries, each visible to `visibility`: `bindings[i]`
+/// is binding `i`'s buffer type and minimum size (buffers only), then the density
+/// source's bindings 4 and 5 and bindings 8 and 9, another cloud's shadow
+/// ([`OutsideShadow`]).
+pub(super) fn march_layout_entries<S: GpuDensitySource + ?Sized>(
+    visibility: wgpu::ShaderStages,
     bindings: &[(wgpu::BufferBindingType, Option<u64>)],
-) -> (wgpu::ComputePipeline, wgpu::BindGroupLayout) {
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    });
-    let entries: Vec<wgpu::BindGroupLayoutEntry> = bindings
+) -> Vec<wgpu::BindGroupLayoutEntry> {
+    let buffer = |binding, ty, min: Option<u64>| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty,
+            has_dynamic_offset: false,
+            min_binding_size: min.and_then(wgpu::BufferSize::new),
+        },
+        count: None,
+    };
+    bindings
         .iter()
         .enumerate()
-        .map(|(binding, &(ty, min))| wgpu::BindGroupLayoutEntry {
-            binding: binding as u32,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty,
-                has_dynamic_offset: false,
-                min_binding_size: min.and_then(wgpu::BufferSize::new),
-            },
-            count: None,
-        })
-        .chain(source_layout_entries::<S>())
-        .chain(
-            [
-                // outside_shadow.wgsl's uniform and values (field_march imports it).
-                (
-                    8,
-                    wgpu::BufferBindingType::Uniform,
-                    Some(OUTSIDE_PARAMS_BYTES),
-                ),
-                (
-                    9,
-                    wgpu::BufferBindingType::Storage { read_only: true },
-                    None,
-                ),
-            ]
-            .map(|(binding, ty, min)| wgpu::BindGroupLayoutEntry {
-                binding,
-                visibility: wgpu::ShaderStages::COMPUTE,
-                ty: wgpu::BindingType::Buffer {
-                    ty,
-                    has_dynamic_offset: false,
-                    min_binding_size: min.and_then(wgpu::BufferSize::new),
-                },
-                count: None,
-            }),
-        )
-        .collect();
-    let (pipeline, layout) =
-        crate::gpu::one_group_pipeline(device, label, &entries, &module, entry_point);
-    (pipeline, layout)
+        .map(|(binding, &(ty, min))| buffer(binding as u32, ty, min))
+        .chain(source_layout_entries::<S>(visibility))
+        // outside_shadow.wgsl's uniform and values (field_march imports it).
+        .chain([
+            buffer(
+                8,
+                wgpu::BufferBindingType::Uniform,
+                Some(OUTSIDE_PARAMS_BYTES),
+            ),
+            buffer(
+                9,
+                wgpu::BufferBindingType::Storage { read_only: true },
+                None,
+            ),
+        ])
+        .collect()
 }
 
 /// The light march's mode word, cone step and spread, light steps; the jitter's word.
@@ -192,28 +171,6 @@ pub(super) fn distance_binding(
         });
     }
     Ok(buffer.clone())
-}
-
-/// The workgroups of a `size` image ([`MARCH_WORKGROUP_SIZE`]² pixels each), within the
-/// device's limit per dimension.
-pub(super) fn march_workgroups(
-    device: &wgpu::Device,
-    size: [u32; 2],
-) -> Result<[u32; 2], MarchGpuError> {
-    let limit = device.limits().max_compute_workgroups_per_dimension;
-    let mut workgroups = [0u32; 2];
-    for (k, (field, value)) in ["size.x", "size.y"].into_iter().zip(size).enumerate() {
-        let groups = value.div_ceil(MARCH_WORKGROUP_SIZE);
-        if value == 0 || groups > limit {
-            return Err(MarchGpuError::ImageSize {
-                field,
-                value,
-                limit,
-            });
-        }
-        workgroups[k] = groups;
-    }
-    Ok(workgroups)
 }
 
 /// The output buffer of a `size` image (two `vec4<f32>` per pixel), within the storage

@@ -159,14 +159,15 @@ impl TemporalMarch {
         Ok(())
     }
 
-    /// Records the frame: the reprojection (when there is a history), `march` (only
-    /// the pixels left to it; `timestamp_writes` on its pass), and the copy of its image
+    /// Records the frame: the reprojection (a compute pass, when there is a history),
+    /// `march` (only the pixels left to it, on its stage; `timestamp_writes` on its
+    /// pass, as [`FieldMarchPass::encode_timed`] takes them), and the copy of its image
     /// into the history.
     pub fn encode<F: MarchedField>(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         march: &FieldMarchPass<F>,
-        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) -> Result<(), MarchGpuError> {
         if let Some((bind_group, groups)) = &self.bind_group {
             crate::gpu::dispatch_2d(

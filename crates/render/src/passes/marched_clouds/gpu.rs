@@ -109,8 +109,8 @@ impl GpuPass for MarchedClouds {
         let marches = |count: usize, labels: [&'static str; 2]| -> Vec<_> {
             (0..count)
                 .map(|index| match index {
-                    0 => times.and_then(|t| t.compute_writes(labels[0])),
-                    1 => times.and_then(|t| t.compute_writes(labels[1])),
+                    0 => times.and_then(|t| t.render_writes(labels[0])),
+                    1 => times.and_then(|t| t.render_writes(labels[1])),
                     _ => None,
                 })
                 .collect()
