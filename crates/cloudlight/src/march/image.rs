@@ -86,6 +86,50 @@ impl PinholeCamera {
         })
     }
 
+    /// [`look_at`](Self::look_at) from a vertical field of view: `vertical_fov` in radians
+    /// (0, π) spans the `size[1]` rows of a `size[0] × size[1]` image, and the camera's
+    /// horizontal field is the one that gives it, `tan(h/2) = tan(v/2)·size[0]/size[1]`
+    /// (the convention of `render`'s scenes and `atmos`' cameras). The camera keeps the
+    /// horizontal field, so an image of another aspect sees the same horizontal field and
+    /// another vertical one ([`vertical_fov`](Self::vertical_fov)). Errors name the field:
+    /// `vertical_fov` out of range or NaN, a zero `size[0]` / `size[1]`, and `look_at`'s.
+    pub fn look_at_vertical_fov(
+        origin: [f64; 3],
+        target: [f64; 3],
+        up_hint: [f64; 3],
+        vertical_fov: f64,
+        size: [u32; 2],
+    ) -> Result<Self, MarchError> {
+        if !(vertical_fov > 0.0 && vertical_fov < std::f64::consts::PI) {
+            return Err(invalid(
+                "vertical_fov",
+                vertical_fov,
+                "must be in (0, π) rad",
+            ));
+        }
+        if size[0] == 0 {
+            return Err(invalid("size[0]", 0.0, "must be ≥ 1 (pixels)"));
+        }
+        if size[1] == 0 {
+            return Err(invalid("size[1]", 0.0, "must be ≥ 1 (pixels)"));
+        }
+        let aspect = f64::from(size[0]) / f64::from(size[1]);
+        let horizontal_fov = 2.0 * ((0.5 * vertical_fov).tan() * aspect).atan();
+        Self::look_at(origin, target, up_hint, horizontal_fov)
+    }
+
+    /// The horizontal field of view, radians.
+    pub fn horizontal_fov(&self) -> f64 {
+        self.horizontal_fov
+    }
+
+    /// The vertical field of view (radians) over an image of `size` (`size[0]` columns,
+    /// `size[1]` rows): `2·atan(tan(h/2)·size[1]/size[0])`, the field the rows of that
+    /// image span.
+    pub fn vertical_fov(&self, size: [u32; 2]) -> f64 {
+        2.0 * self.tan_half(size)[1].atan()
+    }
+
     /// Position (m).
     pub fn origin(&self) -> [f64; 3] {
         self.origin
@@ -185,5 +229,87 @@ pub fn faded<F: Real>(result: MarchResult<F>, fade: F) -> MarchResult<F> {
         radiance: result.radiance.map(|c| c * fade),
         transmittance: F::one() - fade * (F::one() - result.transmittance),
         depth: result.depth,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A camera built from a vertical field is `look_at` with the matching horizontal one:
+    /// every pixel's direction agrees to 1e-12 (the two fields differ only by the
+    /// atan/tan round trip, a few ulps), the accessor gives the vertical field back, and
+    /// the same vertical field over a wider image is a wider horizontal field.
+    #[test]
+    fn vertical_fov_round_trips_through_look_at() {
+        let (origin, target, up) = (
+            [10.0, -20.0, 1500.0],
+            [400.0, 300.0, 1200.0],
+            [0.0, 0.0, 1.0],
+        );
+        for (size, vertical_deg) in [([64u32, 36u32], 45.0f64), ([17, 31], 80.0), ([5, 5], 10.0)] {
+            let vertical = vertical_deg.to_radians();
+            let camera =
+                PinholeCamera::look_at_vertical_fov(origin, target, up, vertical, size).unwrap();
+            let aspect = f64::from(size[0]) / f64::from(size[1]);
+            let horizontal = 2.0 * ((0.5 * vertical).tan() * aspect).atan();
+            let reference = PinholeCamera::look_at(origin, target, up, horizontal).unwrap();
+            assert!((camera.vertical_fov(size) - vertical).abs() < 1e-12);
+            assert!((reference.vertical_fov(size) - vertical).abs() < 1e-12);
+            let direction = |c: &PinholeCamera, pixel| {
+                let [forward, right, up] = c.basis();
+                pixel_direction(pixel, size, forward, right, up, c.tan_half(size))
+            };
+            for y in 0..size[1] {
+                for x in 0..size[0] {
+                    let (a, b) = (direction(&camera, [x, y]), direction(&reference, [x, y]));
+                    for k in 0..3 {
+                        assert!((a[k] - b[k]).abs() < 1e-12, "{size:?} {x},{y}: {a:?} {b:?}");
+                    }
+                }
+            }
+            // The top row's centre looks (v/2)·(1 − 1/rows) above the axis at most: the
+            // vertical field really spans the rows.
+            let [forward, _, _] = camera.basis();
+            let top = direction(&camera, [size[0] / 2, 0]);
+            let off_axis =
+                |d: [f64; 3]| (d[0] * forward[0] + d[1] * forward[1] + d[2] * forward[2]).acos();
+            let edge = ((1.0 - 1.0 / f64::from(size[1])) * (0.5 * vertical).tan()).atan();
+            if size[0] % 2 == 1 {
+                assert!((off_axis(top) - edge).abs() < 1e-12);
+            }
+        }
+        let wide =
+            PinholeCamera::look_at_vertical_fov(origin, target, up, 0.8, [200, 100]).unwrap();
+        let square =
+            PinholeCamera::look_at_vertical_fov(origin, target, up, 0.8, [100, 100]).unwrap();
+        assert!(wide.horizontal_fov() > square.horizontal_fov());
+        assert!((square.horizontal_fov() - 0.8).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bad_vertical_fov_and_size_are_named() {
+        let make = |fov, size| {
+            PinholeCamera::look_at_vertical_fov(
+                [0.0; 3],
+                [1.0, 0.0, 0.0],
+                [0.0, 0.0, 1.0],
+                fov,
+                size,
+            )
+            .unwrap_err()
+            .to_string()
+        };
+        for fov in [0.0, -0.5, std::f64::consts::PI, f64::NAN, f64::INFINITY] {
+            let e = make(fov, [4, 4]);
+            assert!(e.starts_with("vertical_fov = "), "{e}");
+        }
+        assert!(make(1.0, [0, 4]).starts_with("size[0] = 0"));
+        assert!(make(1.0, [4, 0]).starts_with("size[1] = 0"));
+        let e =
+            PinholeCamera::look_at_vertical_fov([0.0; 3], [0.0; 3], [0.0, 0.0, 1.0], 1.0, [4, 4])
+                .unwrap_err()
+                .to_string();
+        assert!(e.starts_with("target = 0"), "{e}");
     }
 }
