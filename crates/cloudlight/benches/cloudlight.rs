@@ -15,7 +15,7 @@
 use std::hint::black_box;
 
 use cloudlight::CloudVolume;
-use cloudlight::cone::{ConeSettings, ConeWeights, FullMarchSettings, LightRay};
+use cloudlight::cone::{ConeSettings, FullMarchSettings, LightRay};
 use cloudlight::propagate::{SliceMode, SlicePlan, propagate};
 use cloudlight::shadow_map::{DEFAULT_STEPS, ShadowGrid, ShadowMapPlan, shadow_map};
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -111,8 +111,7 @@ fn light_march(c: &mut Criterion) {
     group.finish();
 
     let mut group = c.benchmark_group("light_estimate_per_sample");
-    let cone = ConeSettings::new(cloudlight::cone::MAX_LENGTH, 0.0, ConeWeights::Partitioned)
-        .expect("valid cone");
+    let cone = ConeSettings::sevenths();
     let ray = rays[rays.len() / 2 + 8 * 16 + 8];
     group.bench_function("cone_6+1_partitioned", |b| {
         b.iter(|| {

@@ -233,6 +233,23 @@ impl ConeSettings {
         })
     }
 
+    /// Schneider's 6 + 1 light samples (Schneider & Vos 2015, "The Real-Time Volumetric
+    /// Cloudscapes of Horizon Zero Dawn", SIGGRAPH Advances in Real-Time Rendering;
+    /// Schneider 2016, GPU Pro 7, "Real-Time Volumetric Cloudscapes") laid out as a
+    /// quadrature of the whole light path: [`ConeWeights::Partitioned`] with a step of
+    /// [`MAX_LENGTH`], so the step used is `Δ = min(MAX_LENGTH, L/7) = L/7` for every
+    /// path `L` (metres) the API accepts (six samples at `(i + ½)·L/7`, the far sample at
+    /// `13L/14`, every weight `L/7`), and no spread (a straight line toward the sun). The
+    /// cone that `cargo xtask tradeoff cloudlight` measures as "cone 6+1, partitioned,
+    /// Δ = L/7"; [`crate::march::LightMarch::cone_sevenths`] is the same for the march.
+    pub const fn sevenths() -> Self {
+        Self {
+            step: MAX_LENGTH,
+            spread: 0.0,
+            weights: ConeWeights::Partitioned,
+        }
+    }
+
     /// The step Δ, metres.
     pub fn step(&self) -> f64 {
         self.step
@@ -489,6 +506,49 @@ mod tests {
         let cone = ConeSettings::new(40.0, 0.0, ConeWeights::Partitioned).unwrap();
         let tau32: f32 = ray.cone_optical_depth(&v, &cone);
         assert!((f64::from(tau32) - 1.4).abs() < 1e-6, "{tau32}");
+    }
+
+    /// The sevenths preset is seven equal steps of `L/7` over the path (six midpoints and
+    /// the far sample at the midpoint of the last seventh), whatever `L`, and the march's
+    /// preset carries the same values.
+    #[test]
+    fn sevenths_preset_is_seven_equal_steps_over_the_path() {
+        let cone = ConeSettings::sevenths();
+        assert_eq!(
+            ConeSettings::new(cone.step(), cone.spread(), cone.weights()),
+            Ok(cone)
+        );
+        for exit in [1.0, 350.0, 12_000.0, MAX_LENGTH] {
+            let seventh = exit / 7.0;
+            for i in 0..7u32 {
+                let [x, y, z, weight] = cone_sample(
+                    i,
+                    [0.0, 0.0, 1.0],
+                    cone.step(),
+                    exit,
+                    cone.spread(),
+                    cone.weights(),
+                );
+                let midpoint = (f64::from(i) + 0.5) * seventh;
+                assert_eq!([x, y], [0.0, 0.0]);
+                assert!(
+                    (z - midpoint).abs() <= 1e-12 * exit,
+                    "{exit} {i}: {z} vs {midpoint}"
+                );
+                assert!(
+                    (weight - seventh).abs() <= 1e-12 * exit,
+                    "{exit} {i}: {weight}"
+                );
+            }
+        }
+        assert_eq!(
+            crate::march::LightMarch::cone_sevenths(),
+            crate::march::LightMarch::Cone {
+                step: cone.step(),
+                spread: cone.spread(),
+                weights: cone.weights(),
+            }
+        );
     }
 
     #[test]

@@ -491,12 +491,7 @@ fn view_settings(cell: f64) -> Vec<(String, MarchSettings)> {
         "64 view steps, cone 6+1 partitioned, Δ = L/7".into(),
         settings(
             64,
-            LightMarch::Cone {
-                weights: ConeWeights::Partitioned,
-                // A step past any exit: the partitioned layout's 7 equal steps over the path.
-                step: cloudlight::cone::MAX_LENGTH,
-                spread: 0.0,
-            },
+            LightMarch::cone_sevenths(),
             Jitter::None,
             Octaves::SINGLE,
         ),

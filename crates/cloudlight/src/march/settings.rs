@@ -50,6 +50,19 @@ pub enum LightMarch {
     },
 }
 
+impl LightMarch {
+    /// Schneider's 6 + 1 cone as seven equal steps of `L/7` over the path to the field's
+    /// exit, no spread: the march's form of [`ConeSettings::sevenths`](crate::cone::ConeSettings::sevenths),
+    /// where the sources and the layout are documented.
+    pub const fn cone_sevenths() -> Self {
+        LightMarch::Cone {
+            step: crate::cone::MAX_LENGTH,
+            spread: 0.0,
+            weights: ConeWeights::Partitioned,
+        }
+    }
+}
+
 /// Multiple-scattering octaves (module documentation): `count` terms with extinction
 /// `aⁿ`, contribution `bⁿ` and phase eccentricity `cⁿ`. `count = 1` is single scattering.
 #[derive(Debug, Clone, Copy, PartialEq)]
