@@ -586,9 +586,7 @@ fn march_accuracy_and_cost() {
                 view_steps: 8,
                 jitter,
                 light: full(32),
-                transmittance_epsilon: 0.0,
-                ambient_steps: 0,
-                ..d
+                ..MarchConfig::reference_comparison()
             });
             let (mut abs_sum, mut bias) = (0.0, 0.0);
             for (k, &dir) in rays.iter().enumerate() {
@@ -608,9 +606,7 @@ fn march_accuracy_and_cost() {
             let s = settings(MarchConfig {
                 view_steps: *steps,
                 light: *light,
-                transmittance_epsilon: 0.0,
-                ambient_steps: 0,
-                ..d
+                ..MarchConfig::reference_comparison()
             });
             let start = std::time::Instant::now();
             let marched: Vec<_> = rays

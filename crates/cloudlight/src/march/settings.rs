@@ -137,6 +137,22 @@ impl Default for MarchConfig {
     }
 }
 
+impl MarchConfig {
+    /// The march to compare against [`crate::reference`]: [`MarchConfig::default`] with
+    /// no early exit (`transmittance_epsilon` 0) and no ambient light (`ambient_steps` 0).
+    /// The references (exact single scattering, the path tracer) integrate the whole ray
+    /// and light it by the sun alone; the default's early exit drops the ray's tail once
+    /// the transmittance is below 1e-3 and its ambient term adds sky light, both of which
+    /// the references do not have.
+    pub fn reference_comparison() -> Self {
+        Self {
+            transmittance_epsilon: 0.0,
+            ambient_steps: 0,
+            ..Self::default()
+        }
+    }
+}
+
 /// Validated [`MarchConfig`] (the default is [`MarchConfig::default`], valid).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct MarchSettings {
@@ -193,5 +209,28 @@ impl MarchSettings {
     /// The validated fields.
     pub fn config(&self) -> &MarchConfig {
         &self.config
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The reference comparison differs from the default in exactly the early exit and the
+    /// ambient march, and is valid.
+    #[test]
+    fn reference_comparison_is_the_default_without_early_exit_or_ambient() {
+        let reference = MarchConfig::reference_comparison();
+        assert_eq!(reference.transmittance_epsilon, 0.0);
+        assert_eq!(reference.ambient_steps, 0);
+        assert_eq!(
+            MarchConfig {
+                transmittance_epsilon: MarchConfig::default().transmittance_epsilon,
+                ambient_steps: MarchConfig::default().ambient_steps,
+                ..reference
+            },
+            MarchConfig::default()
+        );
+        assert!(MarchSettings::new(reference).is_ok());
     }
 }
