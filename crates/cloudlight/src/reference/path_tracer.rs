@@ -21,10 +21,14 @@
 //! `(seed, sample index)`: results do not depend on the thread count. Samples run in
 //! blocks across rayon's threads; means and standard errors (√(variance/n)) are reported
 //! for single scattering (order 1), multiple scattering (orders ≥ 2) and their sum.
+//! [`radiance_image`] traces every pixel of a [`PinholeCamera`](crate::march::PinholeCamera).
 
 use rayon::prelude::*;
 
 use super::{Phase, ReferenceError, ReferenceField, Sun, unit};
+
+mod image;
+pub use image::radiance_image;
 
 const GOLDEN_GAMMA: u64 = 0x9E37_79B9_7F4A_7C15;
 
@@ -386,74 +390,100 @@ pub fn estimate<F: ReferenceField + ?Sized>(
     settings: &PathTracerSettings,
     sampler: impl Fn([f64; 2]) -> RaySample + Sync,
 ) -> Result<PathTracerResult, ReferenceError> {
-    settings.validate()?;
-    phase.validate()?;
-    let sigma = field.extinction_per_density();
-    let bound = field.density_bound();
-    if !(bound.is_finite() && bound >= 0.0) {
-        return Err(ReferenceError::BadParameter {
-            field: "density_bound",
-            value: bound,
-            requirement: "must be finite and ≥ 0",
-        });
-    }
-    let problem = Problem {
-        field,
-        to_sun: sun.to_sun(),
-        phase: *phase,
-        settings: *settings,
-        bound,
-        majorant: sigma * bound,
-    };
+    let problem = Problem::new(field, sun, phase, settings)?;
     let n = settings.samples;
     let blocks = n.div_ceil(BLOCK);
     let tally = (0..blocks)
         .into_par_iter()
-        .map(|b| -> Result<Tally, ReferenceError> {
-            let mut tally = Tally::default();
-            for i in b * BLOCK..((b + 1) * BLOCK).min(n) {
-                let mut rng = Random::new(settings.seed, i);
-                let ray = sampler([rng.uniform(), rng.uniform()]);
-                for (field_name, value) in ["origin.x", "origin.y", "origin.z"]
-                    .into_iter()
-                    .zip(ray.origin)
-                {
-                    if !value.is_finite() {
-                        return Err(ReferenceError::BadRay {
-                            field: field_name,
-                            value,
-                            requirement: "must be finite (metres)",
-                        });
-                    }
-                }
-                let d = unit(
-                    ray.direction,
-                    ["direction.x", "direction.y", "direction.z"],
-                    "direction",
-                )?;
-                let (s, m, k) = problem.path(ray.origin, d, &mut rng, &mut tally.worst)?;
-                tally.single.push(ray.weight * s);
-                tally.multiple.push(ray.weight * m);
-                tally.total.push(ray.weight * (s + m));
-                tally.collisions += k;
-            }
-            Ok(tally)
-        })
+        .map(|b| problem.trace(settings.seed, b * BLOCK..((b + 1) * BLOCK).min(n), &sampler))
         .try_reduce(Tally::default, |a, b| Ok(a.merge(b)))?;
-    if tally.worst.0 > bound {
-        return Err(ReferenceError::MajorantExceeded {
-            density: tally.worst.0,
+    problem.result(tally, sun)
+}
+
+impl<'a, F: ReferenceField + ?Sized> Problem<'a, F> {
+    /// Validates the settings, the phase function and the field's density bound.
+    fn new(
+        field: &'a F,
+        sun: &Sun,
+        phase: &Phase,
+        settings: &PathTracerSettings,
+    ) -> Result<Self, ReferenceError> {
+        settings.validate()?;
+        phase.validate()?;
+        let sigma = field.extinction_per_density();
+        let bound = field.density_bound();
+        if !(bound.is_finite() && bound >= 0.0) {
+            return Err(ReferenceError::BadParameter {
+                field: "density_bound",
+                value: bound,
+                requirement: "must be finite and ≥ 0",
+            });
+        }
+        Ok(Problem {
+            field,
+            to_sun: sun.to_sun(),
+            phase: *phase,
+            settings: *settings,
             bound,
-        });
+            majorant: sigma * bound,
+        })
     }
-    let e = sun.irradiance();
-    Ok(PathTracerResult {
-        total: tally.total.estimate(n, e),
-        single: tally.single.estimate(n, e),
-        multiple: tally.multiple.estimate(n, e),
-        samples: n,
-        mean_collisions: tally.collisions as f64 / n as f64,
-    })
+
+    /// The tally of samples `indices`, each with its own stream under `seed`.
+    fn trace(
+        &self,
+        seed: u64,
+        indices: std::ops::Range<u64>,
+        sampler: &(impl Fn([f64; 2]) -> RaySample + ?Sized),
+    ) -> Result<Tally, ReferenceError> {
+        let mut tally = Tally::default();
+        for i in indices {
+            let mut rng = Random::new(seed, i);
+            let ray = sampler([rng.uniform(), rng.uniform()]);
+            for (field_name, value) in ["origin.x", "origin.y", "origin.z"]
+                .into_iter()
+                .zip(ray.origin)
+            {
+                if !value.is_finite() {
+                    return Err(ReferenceError::BadRay {
+                        field: field_name,
+                        value,
+                        requirement: "must be finite (metres)",
+                    });
+                }
+            }
+            let d = unit(
+                ray.direction,
+                ["direction.x", "direction.y", "direction.z"],
+                "direction",
+            )?;
+            let (s, m, k) = self.path(ray.origin, d, &mut rng, &mut tally.worst)?;
+            tally.single.push(ray.weight * s);
+            tally.multiple.push(ray.weight * m);
+            tally.total.push(ray.weight * (s + m));
+            tally.collisions += k;
+        }
+        Ok(tally)
+    }
+
+    /// The estimates of a tally of all `settings.samples` paths.
+    fn result(&self, tally: Tally, sun: &Sun) -> Result<PathTracerResult, ReferenceError> {
+        if tally.worst.0 > self.bound {
+            return Err(ReferenceError::MajorantExceeded {
+                density: tally.worst.0,
+                bound: self.bound,
+            });
+        }
+        let n = self.settings.samples;
+        let e = sun.irradiance();
+        Ok(PathTracerResult {
+            total: tally.total.estimate(n, e),
+            single: tally.single.estimate(n, e),
+            multiple: tally.multiple.estimate(n, e),
+            samples: n,
+            mean_collisions: tally.collisions as f64 / n as f64,
+        })
+    }
 }
 
 /// The radiance along one view ray (every sample on the same ray).
