@@ -156,6 +156,8 @@ fn main() {
             gpu_device = device;
             let (wall, prep, device) = measure(&base, runs, &warm_folder)?;
             rows.push(("GPU, warm cache".to_owned(), wall, prep, device));
+            let (wall, prep, device) = measure(&with_cpu, runs, &cold)?;
+            rows.push(("`--cpu`, empty cache".to_owned(), wall, prep, device));
             let (wall, prep, device) = measure(&with_cpu, runs, &warm_folder)?;
             rows.push(("`--cpu`, warm cache".to_owned(), wall, prep, device));
             Ok(SceneFigures {
