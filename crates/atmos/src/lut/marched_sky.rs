@@ -8,13 +8,11 @@
 //! quadrature for a surface's irradiance, the light at a cloud layer's altitude — would
 //! pay for a whole table per viewpoint and sun. [`MarchedPrecomputedSky`] marches each
 //! such ray instead, with the same transmittance and multiple-scattering tables
-//! ([`march_view_segment`], `pixel_samples` steps: the path the rung already takes for
+//! ([`super::raymarch::march_view_segment`], `pixel_samples` steps: the path the rung already takes for
 //! viewers above the atmosphere and for finite segments), so its answers carry no
 //! sky-view interpolation error and cost nothing per viewpoint.
 
 use super::precomputed_sky::PrecomputedSky;
-use super::raymarch::march_view_segment;
-use crate::frame::UNLIMITED_DISTANCE;
 use crate::ladder::{SkyModel, SkyQuery, SkySample};
 
 /// [`PrecomputedSky`]'s tables read by a per-ray march (module documentation).
@@ -36,24 +34,8 @@ impl SkyModel for MarchedPrecomputedSky<'_> {
     }
 
     fn evaluate(&self, query: &SkyQuery) -> SkySample {
-        let luts = self.sky.static_luts();
-        let bindings = luts.bindings();
-        let [r, mu, mu_s, nu] = query.cosines().map(|c| c as f32);
-        let r = r.max(luts.atmosphere.planet_radius);
-        let max_distance = query.max_distance().min(f64::from(UNLIMITED_DISTANCE)) as f32;
-        let segment = march_view_segment(
-            &bindings,
-            r,
-            mu,
-            mu_s,
-            nu,
-            max_distance,
-            luts.settings.pixel_samples,
-        );
-        SkySample {
-            radiance: segment.radiance.map(f64::from),
-            transmittance: segment.transmittance.map(f64::from),
-        }
+        self.sky
+            .marched_sample(query.cosines(), query.max_distance())
     }
 }
 

@@ -446,28 +446,45 @@ impl PrecomputedSky {
         query: &SkyQuery,
         cosines: [f64; 4],
     ) -> SkySample {
-        let bindings = self.luts.bindings();
-        let a = &self.luts.atmosphere;
-        let [r, mu, mu_s, nu] = cosines.map(|c| c as f32);
-        let r = r.max(a.planet_radius);
-        let segment = if query.max_distance().is_infinite() {
-            unlimited_view_segment(&bindings, sky_view, r, mu, mu_s, nu)
-        } else {
-            let max_distance = query.max_distance().min(f64::from(UNLIMITED_DISTANCE)) as f32;
-            march_view_segment(
-                &bindings,
-                r,
-                mu,
-                mu_s,
-                nu,
-                max_distance,
-                self.luts.settings.pixel_samples,
-            )
-        };
-        SkySample {
-            radiance: segment.radiance.map(f64::from),
-            transmittance: segment.transmittance.map(f64::from),
+        if !query.max_distance().is_infinite() {
+            return self.marched_sample(cosines, query.max_distance());
         }
+        let [r, mu, mu_s, nu] = cosines.map(|c| c as f32);
+        let r = r.max(self.luts.atmosphere.planet_radius);
+        sample(unlimited_view_segment(
+            &self.luts.bindings(),
+            sky_view,
+            r,
+            mu,
+            mu_s,
+            nu,
+        ))
+    }
+
+    /// The segment of `[r, μ, μ_s, ν]` up to `max_distance` (m; infinite: the whole
+    /// ray) marched through the static tables ([`march_view_segment`], `pixel_samples`
+    /// steps), no sky-view table: this rung's answer for a finite segment, and
+    /// [`super::MarchedPrecomputedSky`]'s for every query.
+    pub(crate) fn marched_sample(&self, cosines: [f64; 4], max_distance: f64) -> SkySample {
+        let [r, mu, mu_s, nu] = cosines.map(|c| c as f32);
+        let r = r.max(self.luts.atmosphere.planet_radius);
+        sample(march_view_segment(
+            &self.luts.bindings(),
+            r,
+            mu,
+            mu_s,
+            nu,
+            max_distance.min(f64::from(UNLIMITED_DISTANCE)) as f32,
+            self.luts.settings.pixel_samples,
+        ))
+    }
+}
+
+/// A segment's f32 radiance and transmittance as a [`SkySample`].
+fn sample(segment: ScatteringSegment) -> SkySample {
+    SkySample {
+        radiance: segment.radiance.map(f64::from),
+        transmittance: segment.transmittance.map(f64::from),
     }
 }
 
