@@ -34,7 +34,7 @@ pub struct LightSource<'a> {
 
 impl<'a> LightSource<'a> {
     /// The model this light's scattered queries read ([`scattered_queries`]).
-    pub fn scattered(&self) -> ScatteredQueries<'a> {
+    pub fn scattered(&self) -> Box<dyn atmos::SkyModel + Send + Sync + 'a> {
         scattered_queries(self.sky_model, self.precomputed)
     }
 }
@@ -48,51 +48,10 @@ impl<'a> LightSource<'a> {
 pub fn scattered_queries<'a>(
     sky_model: &'a (dyn atmos::SkyModel + Send + Sync),
     precomputed: Option<&'a atmos::lut::PrecomputedSky>,
-) -> ScatteredQueries<'a> {
+) -> Box<dyn atmos::SkyModel + Send + Sync + 'a> {
     match precomputed {
-        Some(sky) => ScatteredQueries::Marched(atmos::lut::MarchedPrecomputedSky::new(sky)),
-        None => ScatteredQueries::Rung(sky_model),
-    }
-}
-
-/// See [`scattered_queries`].
-#[derive(Clone, Copy)]
-pub enum ScatteredQueries<'a> {
-    /// The precomputed rung's tables, marched per ray.
-    Marched(atmos::lut::MarchedPrecomputedSky<'a>),
-    /// The rung itself.
-    Rung(&'a (dyn atmos::SkyModel + Send + Sync)),
-}
-
-impl std::fmt::Debug for ScatteredQueries<'_> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        use atmos::SkyModel;
-        f.debug_tuple("ScatteredQueries")
-            .field(&self.label())
-            .finish()
-    }
-}
-
-impl atmos::SkyModel for ScatteredQueries<'_> {
-    fn label(&self) -> String {
-        match self {
-            Self::Marched(model) => model.label(),
-            Self::Rung(model) => model.label(),
-        }
-    }
-
-    fn evaluate(&self, query: &atmos::SkyQuery) -> atmos::SkySample {
-        match self {
-            Self::Marched(model) => model.evaluate(query),
-            Self::Rung(model) => model.evaluate(query),
-        }
-    }
-
-    fn evaluate_batch(&self, queries: &[atmos::SkyQuery]) -> Vec<atmos::SkySample> {
-        match self {
-            Self::Marched(model) => model.evaluate_batch(queries),
-            Self::Rung(model) => model.evaluate_batch(queries),
-        }
+        Some(sky) => Box::new(atmos::lut::MarchedPrecomputedSky::new(sky)),
+        None => Box::new(sky_model),
     }
 }
 

@@ -221,7 +221,7 @@ impl Scene {
             Some(sky) => {
                 // celestial's repaint queries the sky at scattered directions.
                 let model = crate::light::scattered_queries(&*sky_model, precomputed.as_deref());
-                self.sky_objects_and_clouds(sky, &model, forward, cam, out)?
+                self.sky_objects_and_clouds(sky, &*model, forward, cam, out)?
             }
             None => {
                 if let Some(clouds) = file.clouds.as_ref().filter(|c| !c.layers.is_empty()) {
