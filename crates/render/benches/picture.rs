@@ -116,6 +116,8 @@ fn measure(
     Ok((median(walls), median(preparations), device))
 }
 
+/// A scene's rows: what ran, its median wall time and preparation (s), and the device
+/// its binary reported.
 struct SceneFigures {
     name: String,
     rows: Vec<(String, f64, f64, String)>,
@@ -281,8 +283,15 @@ fn write_report(
             out,
             "| run | picture (s) | of which preparation (s) |\n|---|---:|---:|"
         );
-        for (label, wall, prep, _) in &f.rows {
-            let _ = writeln!(out, "| {label} | {wall:.2} | {prep:.2} |");
+        for (label, wall, prep, device) in &f.rows {
+            // A GPU run on a machine without an adapter falls back to the CPU renderer.
+            let fell_back = label.starts_with("GPU") && device.contains("CPU reference renderer");
+            let note = if fell_back {
+                " (no adapter: drawn by the CPU reference renderer)"
+            } else {
+                ""
+            };
+            let _ = writeln!(out, "| {label}{note} | {wall:.2} | {prep:.2} |");
         }
         let _ = writeln!(out);
     }
