@@ -123,6 +123,11 @@ pub(super) fn make_case_layers() -> Vec<celestial::clouds::CloudLayerUniforms> {
 /// A layer uniform from a case row: x[k0..] = base, top, curved, feature, stretch,
 /// octaves, seed, threshold, softness, τ, g, exp2, core depth (the rest fixed as
 /// `case_layers`).
+/// [`layer_from`] of a case's f32 inputs (the CPU twin's side).
+pub(super) fn layer_from_f32(x: &[f32], k0: usize) -> celestial::clouds::CloudLayerUniforms {
+    layer_from(&x.iter().map(|&v| f64::from(v)).collect::<Vec<_>>(), k0)
+}
+
 pub(super) fn layer_from(x: &[f64], k0: usize) -> celestial::clouds::CloudLayerUniforms {
     static FIRST: std::sync::OnceLock<celestial::clouds::CloudLayerUniforms> =
         std::sync::OnceLock::new();
@@ -361,7 +366,7 @@ pub(super) fn cases() -> Vec<Case> {
             ),
             grid: cloud_shadow_grid,
             cpu: |x| {
-                let l = layer_from(&x.iter().map(|&v| f64::from(v)).collect::<Vec<_>>(), 4);
+                let l = layer_from_f32(x, 4);
                 vec![celestial::clouds::cloud_shadow(
                     [x[0], x[1], x[2]],
                     x[3],
@@ -477,7 +482,7 @@ pub(super) fn cases() -> Vec<Case> {
             ),
             grid: density_grid,
             cpu: |x| {
-                let l = layer_from(&x.iter().map(|&v| f64::from(v)).collect::<Vec<_>>(), 2);
+                let l = layer_from_f32(x, 2);
                 vec![celestial::twins::cloud_density(x[0], x[1], &l)]
             },
             reference: |x| vec![density64(x[0], x[1], &layer_from(x, 2))],

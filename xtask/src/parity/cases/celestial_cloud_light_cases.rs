@@ -266,7 +266,7 @@ pub(super) fn cases() -> Vec<Case> {
             ),
             grid: layer_radiance_grid,
             cpu: |x| {
-                let l = layer_from(&x.iter().map(|&v| f64::from(v)).collect::<Vec<_>>(), 4);
+                let l = layer_from_f32(x, 4);
                 celestial::clouds::cloud_layer_radiance(
                     [x[0], x[1], x[2]],
                     x[3],
@@ -301,7 +301,7 @@ pub(super) fn cases() -> Vec<Case> {
             ),
             grid: density_grid,
             cpu: |x| {
-                let l = layer_from(&x.iter().map(|&v| f64::from(v)).collect::<Vec<_>>(), 2);
+                let l = layer_from_f32(x, 2);
                 celestial::twins::cloud_column(x[0], x[1], &l).to_vec()
             },
             reference: |x| column64(x[0], x[1], &layer_from(x, 2)).to_vec(),
@@ -330,7 +330,7 @@ pub(super) fn cases() -> Vec<Case> {
             ),
             grid: density_grid,
             cpu: |x| {
-                let l = layer_from(&x.iter().map(|&v| f64::from(v)).collect::<Vec<_>>(), 2);
+                let l = layer_from_f32(x, 2);
                 vec![celestial::twins::cloud_optical_thickness(x[0], x[1], &l)]
             },
             reference: |x| vec![optical_thickness64(x[0], x[1], &layer_from(x, 2))],
